@@ -1,0 +1,10 @@
+#pragma once
+// Sub-command registration: each sub-command lives in its own command_<name>.cpp, parses its
+// arguments with CLI11 and calls into a library. Argument parsing and help text only.
+#include <CLI/CLI.hpp>
+
+namespace thaw::cli {
+
+// One line per sub-command, in the order shown by --help.
+
+}  // namespace thaw::cli

@@ -1,0 +1,33 @@
+// thaw: the one executable. Sub-commands register themselves on the CLI11 app; user errors
+// (thaw::UserError) are caught here, once, and printed as one line with exit code 2.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+
+#include "src/cli/commands.h"
+#include "src/common/error.h"
+#include "thaw_version.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "thaw: simulate a hollow ice shell full of water as it melts (Stefan problem) and render "
+      "every step with refraction through air | ice | water."};
+  app.set_version_flag("--version", std::string("thaw ") + THAW_VERSION_STRING);
+  app.require_subcommand(1);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  } catch (const thaw::UserError& e) {
+    std::fprintf(stderr, "thaw: error: %s\n", e.what());
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "thaw: error: out of memory\n");
+    return 3;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "thaw: internal error: %s\n", e.what());
+    return 3;
+  }
+  return 0;
+}

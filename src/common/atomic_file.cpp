@@ -1,0 +1,101 @@
+#include "src/common/atomic_file.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cstring>
+#include <system_error>
+
+#include "src/common/error.h"
+
+namespace thaw {
+namespace fs = std::filesystem;
+
+fs::path temporary_sibling(const fs::path& final_path) {
+  static std::atomic<unsigned> counter{0};
+  fs::path p = final_path;
+  p += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  return p;
+}
+
+void ensure_directory(const fs::path& dir) {
+  if (dir.empty()) return;
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw UserError(dir.string(), "", "exists and is not a directory");
+  fs::create_directories(dir, ec);
+  if (ec) throw UserError(dir.string(), "", "cannot create directory: " + ec.message());
+}
+
+void write_file_atomic(const fs::path& path, std::string_view contents) {
+  AtomicOutputFile out(path, true);
+  out.stream().write(contents.data(), static_cast<std::streamsize>(contents.size()));
+  out.commit();
+}
+
+AtomicOutputFile::AtomicOutputFile(fs::path path, bool binary)
+    : m_path(std::move(path)), m_temp(temporary_sibling(m_path)) {
+  m_stream.open(m_temp, binary ? std::ios::out | std::ios::binary : std::ios::out);
+  if (!m_stream)
+    throw UserError(m_path.string(), "", std::string("cannot write: ") + std::strerror(errno));
+}
+
+AtomicOutputFile::~AtomicOutputFile() {
+  if (!m_committed) {
+    m_stream.close();
+    std::error_code ec;
+    fs::remove(m_temp, ec);
+  }
+}
+
+void AtomicOutputFile::commit() {
+  m_stream.flush();
+  const bool ok = static_cast<bool>(m_stream);
+  m_stream.close();
+  if (!ok || m_stream.fail()) {
+    std::error_code ec;
+    fs::remove(m_temp, ec);
+    m_committed = true;
+    throw UserError(m_path.string(), "", "write failed (disk full or I/O error)");
+  }
+  std::error_code ec;
+  fs::rename(m_temp, m_path, ec);
+  m_committed = true;
+  if (ec) {
+    fs::remove(m_temp, ec);
+    throw UserError(m_path.string(), "", "cannot rename temporary file into place: " + ec.message());
+  }
+}
+
+StagingDirectory::StagingDirectory(fs::path final_dir)
+    : m_final(std::move(final_dir)), m_temp(temporary_sibling(m_final)) {
+  if (m_final.has_parent_path()) ensure_directory(m_final.parent_path());
+  std::error_code ec;
+  if (fs::exists(m_final, ec) && !fs::is_directory(m_final, ec))
+    throw UserError(m_final.string(), "", "exists and is not a directory");
+  fs::create_directories(m_temp, ec);
+  if (ec) throw UserError(m_final.string(), "", "cannot create output directory: " + ec.message());
+}
+
+StagingDirectory::~StagingDirectory() {
+  if (!m_committed) {
+    std::error_code ec;
+    fs::remove_all(m_temp, ec);
+  }
+}
+
+void StagingDirectory::commit() {
+  std::error_code ec;
+  fs::path old;
+  if (fs::exists(m_final, ec)) {
+    old = temporary_sibling(m_final);
+    fs::rename(m_final, old, ec);
+    if (ec) throw UserError(m_final.string(), "", "cannot replace existing output: " + ec.message());
+  }
+  fs::rename(m_temp, m_final, ec);
+  if (ec) throw UserError(m_final.string(), "", "cannot move output into place: " + ec.message());
+  m_committed = true;
+  if (!old.empty()) fs::remove_all(old, ec);
+}
+
+}  // namespace thaw

@@ -1,0 +1,44 @@
+#pragma once
+// Progress display with an ETA, kept out of the algorithms (they take a callback). On a terminal
+// it redraws one line on stderr; otherwise it prints a plain line every 10 % of the work.
+// Thread-safe: advance() may be called from OpenMP workers.
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <string>
+
+namespace thaw {
+
+/// What algorithms see: called with (items done, items total).
+using ProgressCallback = std::function<void(std::int64_t, std::int64_t)>;
+
+class ProgressReporter {
+ public:
+  /// title: shown before the bar; total: number of work items (>= 0); quiet: print nothing.
+  ProgressReporter(std::string title, std::int64_t total, bool quiet = false);
+  ~ProgressReporter();
+
+  void advance(std::int64_t items = 1);
+  void set_done(std::int64_t items_done);
+  /// Prints the final line (elapsed time); called by the destructor if not called before.
+  void finish();
+  double elapsed_s() const;
+  ProgressCallback callback();
+
+  /// Human-readable duration: "0.42 s", "3 min 05 s", "1 h 02 min".
+  static std::string format_duration(double seconds);
+
+ private:
+  void report(std::int64_t done, bool force);
+  std::string m_title;
+  std::int64_t m_total;
+  bool m_quiet, m_tty, m_finished = false;
+  std::atomic<std::int64_t> m_done{0};
+  std::chrono::steady_clock::time_point m_start, m_last_print;
+  int m_last_decile = -1;
+  std::mutex m_mutex;
+};
+
+}  // namespace thaw

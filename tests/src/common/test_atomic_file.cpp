@@ -1,0 +1,87 @@
+#include "src/common/atomic_file.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "src/common/error.h"
+
+namespace thaw {
+namespace {
+namespace fs = std::filesystem;
+
+fs::path scratch(const std::string& name) {
+  fs::path p = fs::temp_directory_path() / ("thaw_test_atomic_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p;
+}
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(AtomicFile, WritesAndLeavesNoTemporary) {
+  const fs::path dir = scratch("write");
+  write_file_atomic(dir / "a.txt", "hello");
+  EXPECT_EQ(read(dir / "a.txt"), "hello");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
+  fs::remove_all(dir);
+}
+
+TEST(AtomicFile, UncommittedLeavesOldContentAndNoTemporary) {
+  const fs::path dir = scratch("abort");
+  write_file_atomic(dir / "a.txt", "old");
+  {
+    AtomicOutputFile out(dir / "a.txt");
+    out.stream() << "new but interrupted";
+  }
+  EXPECT_EQ(read(dir / "a.txt"), "old");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
+  fs::remove_all(dir);
+}
+
+TEST(AtomicFile, UnwritableDirectoryIsAUserError) {
+  EXPECT_THROW(write_file_atomic("/nonexistent_dir_thaw/x.txt", "x"), UserError);
+}
+
+TEST(StagingDirectory, ReplacesOnlyOnCommit) {
+  const fs::path dir = scratch("stage");
+  const fs::path out = dir / "result";
+  {
+    StagingDirectory stage(out);
+    write_file_atomic(stage.path() / "f.txt", "1");
+    EXPECT_FALSE(fs::exists(out));
+  }
+  EXPECT_FALSE(fs::exists(out));  // not committed: nothing half-written appears
+  {
+    StagingDirectory stage(out);
+    write_file_atomic(stage.path() / "f.txt", "2");
+    stage.commit();
+  }
+  EXPECT_EQ(read(out / "f.txt"), "2");
+  {
+    StagingDirectory stage(out);
+    write_file_atomic(stage.path() / "g.txt", "3");
+    stage.commit();
+  }
+  EXPECT_FALSE(fs::exists(out / "f.txt"));
+  EXPECT_EQ(read(out / "g.txt"), "3");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
+  fs::remove_all(dir);
+}
+
+TEST(StagingDirectory, TargetThatIsAFileIsAUserError) {
+  const fs::path dir = scratch("stagefile");
+  write_file_atomic(dir / "f", "x");
+  EXPECT_THROW(StagingDirectory(dir / "f"), UserError);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace thaw
