@@ -1,0 +1,187 @@
+#include "render/accel/bvh.h"
+
+#include <algorithm>
+
+#include "src/common/check.h"
+
+namespace thaw::render {
+
+namespace {
+
+constexpr int kBins = 16;
+// Below this depth the build uses SAH; deeper it splits at the median so the depth (and thus the
+// traversal stack) stays bounded even for adversarial inputs.
+constexpr int kMaxSahDepth = 48;
+
+struct BuildNode {
+  Aabb box;
+  std::uint32_t first = 0, count = 0;  // primitive range (leaf) or range covered (interior)
+  std::uint32_t right = 0;             // slot of the right child (interior)
+  bool leaf = false;
+  bool used = false;
+};
+
+struct Builder {
+  std::span<const Aabb> bounds;
+  std::vector<Vec3> centroids;
+  std::vector<std::uint32_t>& order;
+  std::vector<BuildNode>& slots;
+  BvhBuildOptions options;
+
+  // Builds the subtree for order[begin, end) into slots[slot, slot + 2 (end - begin) - 1):
+  // a subtree of m primitives has at most 2m - 1 nodes, so children get disjoint slot ranges and
+  // parallel subtrees never write to the same slot (the gaps are squeezed out when flattening).
+  int build(std::uint32_t slot, std::uint32_t begin, std::uint32_t end, int depth) {
+    BuildNode& node = slots[slot];
+    node.used = true;
+    Aabb box, cbox;
+    for (std::uint32_t i = begin; i < end; ++i) {
+      box.extend(bounds[order[i]]);
+      cbox.extend(centroids[order[i]]);
+    }
+    node.box = box;
+    node.first = begin;
+    node.count = end - begin;
+    const std::uint32_t m = end - begin;
+    if (m <= 1) {
+      node.leaf = true;
+      return 1;
+    }
+    std::uint32_t mid = begin;
+    bool split_found = false;
+    const Vec3 cext = cbox.extent();
+    if (depth < kMaxSahDepth) {
+      float best_cost = std::numeric_limits<float>::infinity();
+      int best_axis = -1, best_bin = -1;
+      for (int axis = 0; axis < 3; ++axis) {
+        if (!(cext[axis] > 0.0f)) continue;
+        Aabb bin_box[kBins];
+        std::uint32_t bin_count[kBins] = {};
+        const float scale = kBins * (1.0f - 1e-6f) / cext[axis];
+        for (std::uint32_t i = begin; i < end; ++i) {
+          int b = static_cast<int>((centroids[order[i]][axis] - cbox.lo[axis]) * scale);
+          b = std::clamp(b, 0, kBins - 1);
+          bin_box[b].extend(bounds[order[i]]);
+          ++bin_count[b];
+        }
+        float right_area[kBins];
+        std::uint32_t right_count[kBins];
+        Aabb acc;
+        std::uint32_t cnt = 0;
+        for (int b = kBins - 1; b > 0; --b) {
+          acc.extend(bin_box[b]);
+          cnt += bin_count[b];
+          right_area[b] = acc.area();
+          right_count[b] = cnt;
+        }
+        acc = Aabb{};
+        cnt = 0;
+        for (int b = 0; b < kBins - 1; ++b) {
+          acc.extend(bin_box[b]);
+          cnt += bin_count[b];
+          if (cnt == 0 || right_count[b + 1] == 0) continue;
+          const float cost = acc.area() * float(cnt) + right_area[b + 1] * float(right_count[b + 1]);
+          if (cost < best_cost) {
+            best_cost = cost;
+            best_axis = axis;
+            best_bin = b;
+          }
+        }
+      }
+      if (best_axis >= 0) {
+        const float area = box.area();
+        const float split_cost = options.traversal_cost + (area > 0.0f ? best_cost / area : float(m));
+        if (m <= static_cast<std::uint32_t>(options.max_leaf_size) && float(m) <= split_cost) {
+          node.leaf = true;
+          return 1;
+        }
+        const float scale = kBins * (1.0f - 1e-6f) / cext[best_axis];
+        const float lo = cbox.lo[best_axis];
+        auto* it = std::partition(order.data() + begin, order.data() + end, [&](std::uint32_t p) {
+          const int b = std::clamp(static_cast<int>((centroids[p][best_axis] - lo) * scale), 0, kBins - 1);
+          return b <= best_bin;
+        });
+        mid = static_cast<std::uint32_t>(it - order.data());
+        split_found = mid > begin && mid < end;
+      }
+    }
+    if (!split_found) {
+      if (m <= static_cast<std::uint32_t>(options.max_leaf_size)) {
+        node.leaf = true;
+        return 1;
+      }
+      // Median split along the widest centroid axis (all centroids equal: any halving works).
+      const int axis = max_dimension(cext);
+      mid = begin + m / 2;
+      std::nth_element(order.data() + begin, order.data() + mid, order.data() + end,
+                       [&](std::uint32_t a, std::uint32_t b) {
+                         if (centroids[a][axis] != centroids[b][axis]) return centroids[a][axis] < centroids[b][axis];
+                         return a < b;
+                       });
+    }
+    const std::uint32_t left_slot = slot + 1;
+    const std::uint32_t right_slot = slot + 2 * (mid - begin);
+    node.right = right_slot;
+    int dl = 0, dr = 0;
+    if (m >= options.parallel_threshold) {
+#pragma omp task shared(dl) default(shared)
+      dl = build(left_slot, begin, mid, depth + 1);
+      dr = build(right_slot, mid, end, depth + 1);
+#pragma omp taskwait
+    } else {
+      dl = build(left_slot, begin, mid, depth + 1);
+      dr = build(right_slot, mid, end, depth + 1);
+    }
+    return 1 + std::max(dl, dr);
+  }
+};
+
+}  // namespace
+
+Bvh::Bvh(std::span<const Aabb> bounds, const BvhBuildOptions& options) {
+  const std::size_t n = bounds.size();
+  if (n == 0) return;
+  THAW_CHECK(n < (std::size_t(1) << 31), "too many primitives for a 32-bit BVH");
+  m_order.resize(n);
+  for (std::uint32_t i = 0; i < n; ++i) m_order[i] = i;
+  std::vector<BuildNode> slots(2 * n - 1);
+  Builder builder{bounds, {}, m_order, slots, options};
+  builder.centroids.resize(n);
+  for (std::size_t i = 0; i < n; ++i) builder.centroids[i] = bounds[i].center();
+  if (n >= options.parallel_threshold) {
+#pragma omp parallel
+#pragma omp single
+    m_depth = builder.build(0, 0, static_cast<std::uint32_t>(n), 0);
+  } else {
+    m_depth = builder.build(0, 0, static_cast<std::uint32_t>(n), 0);
+  }
+  // Flatten depth-first: left child right after its parent, right child index in `offset`.
+  m_nodes.reserve(2 * n - 1);
+  struct Item {
+    std::uint32_t slot;
+    std::int64_t parent;  // flat index of the parent whose `offset` must point here, or -1
+  };
+  std::vector<Item> todo{{0, -1}};
+  while (!todo.empty()) {
+    const Item item = todo.back();
+    todo.pop_back();
+    const BuildNode& b = slots[item.slot];
+    const auto flat = static_cast<std::uint32_t>(m_nodes.size());
+    if (item.parent >= 0) m_nodes[static_cast<std::size_t>(item.parent)].offset = flat;
+    BvhNode node{};
+    node.lo = b.box.lo;
+    node.hi = b.box.hi;
+    if (b.leaf) {
+      node.offset = b.first;
+      node.count = b.count;
+      m_nodes.push_back(node);
+    } else {
+      node.count = 0;
+      m_nodes.push_back(node);
+      todo.push_back({b.right, flat});       // right: visited after the whole left subtree
+      todo.push_back({item.slot + 1, -1});   // left: next in the array
+    }
+  }
+}
+
+}  // namespace thaw::render

@@ -1,0 +1,31 @@
+#pragma once
+// Image files, always written atomically (temporary file + rename, src/common/atomic_file.h):
+// PNG, 8-bit sRGB after scaling by 2^exposure and clamping to [0, 1] (IEC 61966-2-1 transfer
+// curve), and PFM, linear 32-bit float RGB for HDR work (bottom row first, little endian).
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "render/image/image.h"
+
+namespace thaw::render {
+
+/// sRGB transfer curve of a linear value in [0, 1].
+float linear_to_srgb(float v);
+/// 8-bit sRGB of linear `v` scaled by `scale` (clamped, rounded to nearest).
+std::uint8_t to_srgb8(float v, float scale = 1.0f);
+
+/// PNG file bytes of `image` (8-bit sRGB, exposure in stops).
+std::string encode_png(const Image& image, double exposure = 0.0);
+/// PFM file bytes of `image` (linear float).
+std::string encode_pfm(const Image& image);
+
+void write_png(const std::filesystem::path& path, const Image& image, double exposure = 0.0);
+void write_pfm(const std::filesystem::path& path, const Image& image);
+/// Chooses the format by extension (.png or .pfm); throws UserError for anything else.
+void write_image(const std::filesystem::path& path, const Image& image, double exposure = 0.0);
+/// Throws UserError unless `path` has a supported extension and a writable existing folder.
+void check_output_path(const std::filesystem::path& path);
+
+}  // namespace thaw::render

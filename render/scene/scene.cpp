@@ -1,0 +1,407 @@
+#include "render/scene/scene.h"
+
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "render/geometry/box.h"
+#include "render/geometry/obj_loader.h"
+#include "render/geometry/plane.h"
+#include "render/geometry/sphere.h"
+#include "src/common/error.h"
+
+namespace thaw::render {
+
+namespace {
+
+Vec3 to_vec3(const Vec3d& v) {
+  return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
+}
+Rgb to_rgb(const RgbD& c) {
+  return {static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2])};
+}
+
+Texture build_texture(const TextureDescription& t) {
+  Texture tex;
+  if (t.kind == TextureDescription::Kind::solid) {
+    tex.kind = Texture::Kind::solid;
+    tex.color0 = to_rgb(t.color);
+  } else {
+    tex.kind = Texture::Kind::checker;
+    tex.color0 = to_rgb(t.checker_colors[0]);
+    tex.color1 = to_rgb(t.checker_colors[1]);
+    tex.size = static_cast<float>(t.checker_size);
+    tex.offset = to_vec3(t.checker_offset);
+  }
+  return tex;
+}
+
+Material build_material(const MaterialDescription& d) {
+  Material m;
+  m.texture = build_texture(d.texture);
+  switch (d.kind) {
+    case MaterialDescription::Kind::matte:
+      m.kind = Material::Kind::matte;
+      break;
+    case MaterialDescription::Kind::metal:
+      m.kind = Material::Kind::metal;
+      break;
+    case MaterialDescription::Kind::phong:
+      m.kind = Material::Kind::phong;
+      m.ka = static_cast<float>(d.ka);
+      m.kd = static_cast<float>(d.kd);
+      m.ks = static_cast<float>(d.ks);
+      m.shininess = static_cast<float>(d.shininess);
+      m.reflectance = static_cast<float>(d.reflectance);
+      m.transmittance = static_cast<float>(d.transmittance);
+      m.ior = static_cast<float>(d.ior);
+      break;
+    case MaterialDescription::Kind::emissive:
+      m.kind = Material::Kind::emissive;
+      m.emission = to_rgb(d.emission) * static_cast<float>(d.emission_intensity);
+      break;
+  }
+  return m;
+}
+
+bool finite3(const Vec3d& v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
+
+}  // namespace
+
+Scene build_scene(const SceneDescription& desc) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::string& src = desc.source_name;
+  Scene s;
+  const ImageSettings& img = desc.image;
+  if (img.width < 1 || img.height < 1 || img.width > 16384 || img.height > 16384 ||
+      static_cast<long long>(img.width) * img.height > (1LL << 26))
+    throw UserError(src, "image", "image size " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+                                      " is out of range (1..16384 per side, at most 2^26 pixels)");
+  if (img.samples_per_pixel < 1) throw UserError(src, "image.samples_per_pixel", "must be at least 1");
+  if (img.max_depth < 1) throw UserError(src, "image.max_depth", "must be at least 1");
+  if (!(img.min_weight >= 0.0)) throw UserError(src, "image.min_weight", "must not be negative");
+  s.m_settings = img;
+
+  const CameraDescription& cam = desc.camera;
+  if (!finite3(cam.position) || !finite3(cam.look_at) || !finite3(cam.up))
+    throw UserError(src, "camera", "camera vectors must be finite");
+  const Vec3 pos = to_vec3(cam.position), at = to_vec3(cam.look_at), up = to_vec3(cam.up);
+  if (!(length(at - pos) > 0.0f)) throw UserError(src, "camera.look_at", "must differ from the camera position");
+  if (!(length(up) > 0.0f)) throw UserError(src, "camera.up", "must not be the zero vector");
+  if (!(length(cross(normalize(at - pos), normalize(up))) > 1e-6f))
+    throw UserError(src, "camera.up", "must not be parallel to the viewing direction");
+  if (!(cam.vertical_fov_deg > 0.0 && cam.vertical_fov_deg < 180.0))
+    throw UserError(src, "camera.vertical_fov_deg", "must be in (0, 180) degrees");
+  s.m_camera = Camera(pos, at, up, cam.vertical_fov_deg, img.width, img.height);
+
+  for (const auto& l : desc.lights)
+    s.m_lights.push_back({to_vec3(l.position), to_rgb(l.color) * static_cast<float>(l.intensity),
+                          l.falloff == LightDescription::Falloff::inverse_square});
+  s.m_ambient = to_rgb(desc.ambient.color) * static_cast<float>(desc.ambient.intensity);
+  s.m_background = to_rgb(img.background);
+
+  std::map<std::string, std::uint32_t> media{{"vacuum", 0}};
+  s.m_media.push_back({"vacuum", IorModel::constant(1.0)});
+  for (const auto& m : desc.media) {
+    if (media.count(m.name)) throw UserError(src, "media." + m.name, "medium defined twice (or redefines vacuum)");
+    if (!(m.ior >= 1.0 && m.ior < 10.0)) throw UserError(src, "media." + m.name + ".ior", "must be in [1, 10)");
+    media[m.name] = static_cast<std::uint32_t>(s.m_media.size());
+    s.m_media.push_back({m.name, IorModel::constant(m.ior)});
+  }
+  std::map<std::string, std::uint32_t> materials;
+  for (const auto& m : desc.materials) {
+    if (materials.count(m.name)) throw UserError(src, "materials." + m.name, "material defined twice");
+    materials[m.name] = static_cast<std::uint32_t>(s.m_materials.size());
+    s.m_materials.push_back(build_material(m));
+  }
+
+  std::vector<Aabb> bounds;
+  std::vector<Primitive> prims;
+  std::map<std::filesystem::path, TriangleMesh> obj_cache;
+  std::set<std::uint32_t> inside_media, outside_media;
+  for (std::size_t oi = 0; oi < desc.objects.size(); ++oi) {
+    const ObjectDescription& od = desc.objects[oi];
+    const std::string label = od.label.empty() ? "objects[" + std::to_string(oi) + "]" : od.label;
+    SceneObject obj;
+    obj.label = label;
+    obj.shape = od.shape;
+    obj.dielectric = od.is_dielectric();
+    if (obj.dielectric) {
+      auto in = media.find(od.inside), out = media.find(od.outside);
+      if (in == media.end()) throw UserError(src, label + ".inside", "unknown medium '" + od.inside + "'");
+      if (out == media.end()) throw UserError(src, label + ".outside", "unknown medium '" + od.outside + "'");
+      if (in->second == out->second) throw UserError(src, label, "inside and outside must be different media");
+      obj.inside = in->second;
+      obj.outside = out->second;
+      inside_media.insert(obj.inside);
+      outside_media.insert(obj.outside);
+    } else {
+      auto m = materials.find(od.material);
+      if (m == materials.end()) throw UserError(src, label + ".material", "unknown material '" + od.material + "'");
+      obj.material = m->second;
+    }
+    const auto object_id = static_cast<std::uint32_t>(s.m_objects.size());
+    switch (od.shape) {
+      case ObjectDescription::Shape::sphere: {
+        if (!finite3(od.center) || !(od.radius > 0.0) || !std::isfinite(od.radius))
+          throw UserError(src, label, "sphere needs a finite centre and a positive radius");
+        const Vec3 c = to_vec3(od.center);
+        const float r = static_cast<float>(od.radius);
+        Aabb b;
+        b.extend(c - Vec3{r, r, r});
+        b.extend(c + Vec3{r, r, r});
+        bounds.push_back(b);
+        prims.push_back({c, Vec3{r, 0, 0}, Vec3{}, PrimitiveKind::sphere, object_id, 0});
+        ++s.m_stats.spheres;
+        break;
+      }
+      case ObjectDescription::Shape::box: {
+        if (!finite3(od.box_min) || !finite3(od.box_max))
+          throw UserError(src, label, "box corners must be finite");
+        for (int k = 0; k < 3; ++k)
+          if (!(od.box_min[k] < od.box_max[k])) throw UserError(src, label + ".max", "must exceed min in every coordinate");
+        Aabb b;
+        b.extend(to_vec3(od.box_min));
+        b.extend(to_vec3(od.box_max));
+        bounds.push_back(b);
+        prims.push_back({b.lo, b.hi, Vec3{}, PrimitiveKind::box, object_id, 0});
+        ++s.m_stats.boxes;
+        break;
+      }
+      case ObjectDescription::Shape::plane: {
+        if (obj.dielectric)
+          throw UserError(src, label, "a plane is not closed and cannot be a dielectric interface");
+        const double len = std::sqrt(od.normal[0] * od.normal[0] + od.normal[1] * od.normal[1] + od.normal[2] * od.normal[2]);
+        if (!finite3(od.point) || !finite3(od.normal) || !(std::abs(len - 1.0) <= 1e-6))
+          throw UserError(src, label + ".normal", "plane needs a finite point and a unit normal");
+        obj.plane_point = to_vec3(od.point);
+        obj.plane_normal = normalize(to_vec3(od.normal));
+        s.m_planes.push_back(object_id);
+        ++s.m_stats.planes;
+        break;
+      }
+      case ObjectDescription::Shape::mesh: {
+        TriangleMesh mesh;
+        std::string mesh_name;
+        if (od.mesh) {
+          mesh = *od.mesh;
+          mesh_name = label;
+          if (auto problem = validate_mesh(mesh)) throw UserError(src, label, "mesh: " + *problem);
+        } else {
+          if (od.mesh_file.empty()) throw UserError(src, label, "mesh object needs a file or an in-memory mesh");
+          const std::filesystem::path path = od.mesh_file.is_absolute() ? od.mesh_file : desc.base_dir / od.mesh_file;
+          mesh_name = path.string();
+          auto it = obj_cache.find(path);
+          if (it == obj_cache.end()) it = obj_cache.emplace(path, load_obj(path)).first;
+          mesh = it->second;
+        }
+        if (!(od.scale > 0.0) || !std::isfinite(od.scale) || !finite3(od.translate))
+          throw UserError(src, label, "mesh scale must be positive and translate finite");
+        if (od.scale != 1.0 || od.translate != Vec3d{0.0, 0.0, 0.0}) transform_mesh(mesh, od.scale, od.translate);
+        if (od.smooth_normals) compute_smooth_normals(mesh);
+        if (obj.dielectric) {
+          if (auto problem = closed_surface_problem(mesh))
+            throw UserError(mesh_name, label, "a dielectric mesh must be a closed surface: " + *problem);
+          if (!(signed_volume(mesh) > 0.0))
+            throw UserError(mesh_name, label, "a dielectric mesh must be oriented outward (its signed volume is not positive)");
+        }
+        if (mesh.has_normals()) {
+          obj.normal_set = static_cast<int>(s.m_normal_sets.size());
+          s.m_normal_sets.push_back({std::move(mesh.normals), std::move(mesh.normal_indices)});
+        }
+        for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+          const auto& tri = mesh.triangles[t];
+          const Vec3 a = mesh.positions[tri[0]], b = mesh.positions[tri[1]], c = mesh.positions[tri[2]];
+          Aabb bb;
+          bb.extend(a);
+          bb.extend(b);
+          bb.extend(c);
+          bounds.push_back(bb);
+          prims.push_back({a, b, c, PrimitiveKind::triangle, object_id, static_cast<std::uint32_t>(t)});
+        }
+        s.m_stats.triangles += mesh.triangles.size();
+        break;
+      }
+    }
+    s.m_objects.push_back(std::move(obj));
+  }
+
+  // The camera's medium: given, or the one medium that is outside some interface but inside none.
+  if (!desc.camera.medium.empty()) {
+    auto it = media.find(desc.camera.medium);
+    if (it == media.end()) throw UserError(src, "camera.medium", "unknown medium '" + desc.camera.medium + "'");
+    s.m_camera_medium = it->second;
+  } else {
+    std::vector<std::uint32_t> outermost;
+    for (auto m : outside_media)
+      if (!inside_media.count(m)) outermost.push_back(m);
+    if (outermost.size() == 1) {
+      s.m_camera_medium = outermost[0];
+    } else if (outermost.size() > 1) {
+      std::string names;
+      for (auto m : outermost) names += (names.empty() ? "" : ", ") + s.m_media[m].name;
+      throw UserError(src, "camera.medium", "the camera's medium is ambiguous (" + names + "): set camera.medium");
+    }
+  }
+
+  s.m_bvh = Bvh(bounds);
+  s.m_primitives.resize(prims.size());
+  for (std::size_t i = 0; i < prims.size(); ++i) s.m_primitives[i] = prims[s.m_bvh.order()[i]];
+  s.m_stats.bvh_nodes = s.m_bvh.nodes().size();
+  s.m_stats.bvh_depth = s.m_bvh.depth();
+  s.m_stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return s;
+}
+
+bool Scene::intersect(const Ray& ray, Hit& hit) const {
+  float t_max = ray.t_max;
+  bool found = false;
+  if (!m_bvh.empty()) {
+    const Bvh::RayData rd(ray);
+    const ShearedRay sr(ray);
+    const Primitive* prims = m_primitives.data();
+    found = m_bvh.intersect(rd, t_max, [&](std::uint32_t first, std::uint32_t count, float& tm) {
+      bool any = false;
+      for (std::uint32_t i = first; i < first + count; ++i) {
+        const Primitive& p = prims[i];
+        if (p.kind == PrimitiveKind::triangle) [[likely]] {
+          TriangleHit th;
+          if (intersect_triangle(sr, p.a, p.b, p.c, tm, th)) {
+            tm = th.t;
+            hit.t = th.t;
+            hit.b1 = th.b1;
+            hit.b2 = th.b2;
+            hit.prim = i;
+            any = true;
+          }
+        } else if (p.kind == PrimitiveKind::sphere) {
+          float t;
+          if (intersect_sphere(ray, p.a, p.b.x, tm, t)) {
+            tm = t;
+            hit.t = t;
+            hit.prim = i;
+            any = true;
+          }
+        } else {
+          float t;
+          int axis;
+          bool high;
+          if (intersect_box(ray, p.a, p.b, tm, t, axis, high)) {
+            tm = t;
+            hit.t = t;
+            hit.prim = i;
+            hit.aux = static_cast<std::uint32_t>(2 * axis + (high ? 1 : 0));
+            any = true;
+          }
+        }
+      }
+      return any;
+    });
+  }
+  for (std::uint32_t k = 0; k < m_planes.size(); ++k) {
+    const SceneObject& o = m_objects[m_planes[k]];
+    float t;
+    if (intersect_plane(ray, o.plane_point, o.plane_normal, t_max, t)) {
+      t_max = t;
+      hit.t = t;
+      hit.prim = kPlaneBit | k;
+      found = true;
+    }
+  }
+  return found;
+}
+
+bool Scene::occluded(const Ray& ray) const {
+  for (std::uint32_t k = 0; k < m_planes.size(); ++k) {
+    const SceneObject& o = m_objects[m_planes[k]];
+    float t;
+    if (intersect_plane(ray, o.plane_point, o.plane_normal, ray.t_max, t)) return true;
+  }
+  if (m_bvh.empty()) return false;
+  const Bvh::RayData rd(ray);
+  const ShearedRay sr(ray);
+  const Primitive* prims = m_primitives.data();
+  return m_bvh.occluded(rd, ray.t_max, [&](std::uint32_t first, std::uint32_t count, float tm) {
+    for (std::uint32_t i = first; i < first + count; ++i) {
+      const Primitive& p = prims[i];
+      float t;
+      if (p.kind == PrimitiveKind::triangle) [[likely]] {
+        TriangleHit th;
+        if (intersect_triangle(sr, p.a, p.b, p.c, tm, th)) return true;
+      } else if (p.kind == PrimitiveKind::sphere) {
+        if (intersect_sphere(ray, p.a, p.b.x, tm, t)) return true;
+      } else {
+        int axis;
+        bool high;
+        if (intersect_box(ray, p.a, p.b, tm, t, axis, high)) return true;
+      }
+    }
+    return false;
+  });
+}
+
+SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {
+  SurfaceInteraction si;
+  if (hit.prim & kPlaneBit) {
+    const std::uint32_t oi = m_planes[hit.prim & ~kPlaneBit];
+    const SceneObject& o = m_objects[oi];
+    Vec3 p = ray.at(hit.t);
+    // Project back onto the plane; the remaining error is a few ulps of the coordinates involved.
+    p = p - o.plane_normal * dot(p - o.plane_point, o.plane_normal);
+    si.p = p;
+    si.p_error = (abs(p) + abs(o.plane_point)) * gamma_bound(6);
+    si.ng = si.ns = o.plane_normal;
+    si.object = oi;
+    return si;
+  }
+  const Primitive& pr = m_primitives[hit.prim];
+  si.object = pr.object;
+  switch (pr.kind) {
+    case PrimitiveKind::triangle: {
+      const float b0 = 1.0f - hit.b1 - hit.b2;
+      // Barycentric reconstruction and its error bound (pbrt-v4 Triangle::InteractionFromIntersection).
+      si.p = pr.a * b0 + pr.b * hit.b1 + pr.c * hit.b2;
+      si.p_error = (abs(pr.a * b0) + abs(pr.b * hit.b1) + abs(pr.c * hit.b2)) * gamma_bound(7);
+      Vec3 n = cross(pr.b - pr.a, pr.c - pr.a);
+      const float len = length(n);
+      si.ng = len > 0.0f ? n / len : Vec3{0, 0, 1};
+      si.ns = si.ng;
+      const int set = m_objects[pr.object].normal_set;
+      if (set >= 0) {
+        const NormalSet& ns = m_normal_sets[static_cast<std::size_t>(set)];
+        const auto& idx = ns.indices[pr.index];
+        const Vec3 sn = ns.normals[idx[0]] * b0 + ns.normals[idx[1]] * hit.b1 + ns.normals[idx[2]] * hit.b2;
+        const float sl = length(sn);
+        if (sl > 0.0f) si.ns = face_forward(sn / sl, si.ng);
+      }
+      break;
+    }
+    case PrimitiveKind::sphere: {
+      const Vec3 c = pr.a;
+      const float r = pr.b.x;
+      Vec3 d = ray.at(hit.t) - c;
+      const float dl = length(d);
+      d = dl > 0.0f ? d * (r / dl) : Vec3{0, r, 0};
+      si.p = c + d;  // reprojected onto the sphere (pbrt-v4 Sphere::Intersect)
+      si.p_error = (abs(d) + abs(c)) * gamma_bound(6);
+      si.ng = si.ns = d / r;
+      break;
+    }
+    case PrimitiveKind::box: {
+      const int axis = static_cast<int>(hit.aux / 2);
+      const bool high = (hit.aux & 1u) != 0;
+      Vec3 p = ray.at(hit.t);
+      p[axis] = high ? pr.b[axis] : pr.a[axis];  // exactly on the face
+      si.p = p;
+      si.p_error = abs(p) * gamma_bound(3);
+      Vec3 n{0, 0, 0};
+      n[axis] = high ? 1.0f : -1.0f;
+      si.ng = si.ns = n;
+      break;
+    }
+  }
+  return si;
+}
+
+}  // namespace thaw::render

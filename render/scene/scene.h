@@ -1,0 +1,134 @@
+#pragma once
+// A renderable scene: primitives (triangles, spheres, boxes) in one BVH, infinite planes beside
+// it, opaque materials, media with their IOR models, dielectric interfaces naming the medium
+// inside and outside, lights and camera. Built once from a SceneDescription by build_scene(),
+// which loads and checks meshes (a dielectric mesh must be closed and outward oriented);
+// immutable and shared by all render threads afterwards. Knows nothing about TOML or images.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "render/accel/bvh.h"
+#include "render/geometry/triangle.h"
+#include "render/material/ior_model.h"
+#include "render/material/material.h"
+#include "render/math/color.h"
+#include "render/scene/camera.h"
+#include "render/scene/scene_description.h"
+
+namespace thaw::render {
+
+enum class PrimitiveKind : std::uint32_t { triangle = 0, sphere = 1, box = 2 };
+
+/// One BVH primitive, stored in leaf order. Triangle: vertices a, b, c. Sphere: centre a,
+/// radius b.x. Box: corners a (min) and b (max).
+struct Primitive {
+  Vec3 a, b, c;
+  PrimitiveKind kind;
+  /// index into Scene::objects()
+  std::uint32_t object;
+  /// triangle index within its mesh (for shading normals)
+  std::uint32_t index;
+};
+static_assert(sizeof(Primitive) == 48);
+
+struct Medium {
+  std::string name;
+  IorModel ior;
+};
+
+struct SceneObject {
+  std::string label;
+  ObjectDescription::Shape shape = ObjectDescription::Shape::sphere;
+  bool dielectric = false;
+  /// opaque objects: index into Scene::materials()
+  std::uint32_t material = 0;
+  /// dielectric interfaces: indices into Scene::media()
+  std::uint32_t inside = 0, outside = 0;
+  /// meshes with shading normals: index into the scene's normal sets, else -1
+  int normal_set = -1;
+  // plane
+  Vec3 plane_point, plane_normal;
+};
+
+struct PointLight {
+  Vec3 position;
+  /// colour * intensity
+  Rgb radiance;
+  bool inverse_square = false;
+};
+
+/// Result of a ray query: distance and enough to reconstruct the surface point.
+struct Hit {
+  float t = 0;
+  /// barycentrics of the 2nd and 3rd vertex (triangles)
+  float b1 = 0, b2 = 0;
+  /// primitive index (leaf order) or kPlaneBit | plane index
+  std::uint32_t prim = 0;
+  /// boxes: 2 * axis + (1 if the face at max)
+  std::uint32_t aux = 0;
+};
+inline constexpr std::uint32_t kPlaneBit = 0x80000000u;
+
+/// The surface at a hit: point with its rounding-error bound, unit geometric normal (outward for
+/// closed surfaces, as given for planes) and unit shading normal (same side as the geometric one).
+struct SurfaceInteraction {
+  Vec3 p, p_error, ng, ns;
+  std::uint32_t object = 0;
+};
+
+struct SceneStatistics {
+  std::size_t triangles = 0, spheres = 0, boxes = 0, planes = 0, bvh_nodes = 0;
+  int bvh_depth = 0;
+  double build_seconds = 0;
+};
+
+class Scene {
+ public:
+  const ImageSettings& settings() const { return m_settings; }
+  const Camera& camera() const { return m_camera; }
+  const std::vector<PointLight>& lights() const { return m_lights; }
+  const std::vector<Medium>& media() const { return m_media; }
+  const std::vector<Material>& materials() const { return m_materials; }
+  const std::vector<SceneObject>& objects() const { return m_objects; }
+  const std::vector<Primitive>& primitives() const { return m_primitives; }
+  const Bvh& bvh() const { return m_bvh; }
+  Rgb ambient() const { return m_ambient; }
+  Rgb background() const { return m_background; }
+  /// medium the camera sits in (index into media())
+  std::uint32_t camera_medium() const { return m_camera_medium; }
+  const SceneStatistics& statistics() const { return m_stats; }
+
+  /// Closest hit with 0 < t < ray.t_max.
+  bool intersect(const Ray& ray, Hit& hit) const;
+  /// Whether anything (opaque or dielectric) lies on the ray for 0 < t < ray.t_max.
+  bool occluded(const Ray& ray) const;
+  /// The surface at `hit` along `ray`.
+  SurfaceInteraction interaction(const Ray& ray, const Hit& hit) const;
+
+ private:
+  friend Scene build_scene(const SceneDescription&);
+  ImageSettings m_settings;
+  Camera m_camera;
+  std::vector<PointLight> m_lights;
+  Rgb m_ambient, m_background;
+  std::vector<Medium> m_media;
+  std::vector<Material> m_materials;
+  std::vector<SceneObject> m_objects;
+  std::vector<Primitive> m_primitives;
+  struct NormalSet {
+    std::vector<Vec3> normals;
+    std::vector<std::array<std::uint32_t, 3>> indices;
+  };
+  std::vector<NormalSet> m_normal_sets;
+  std::vector<std::uint32_t> m_planes;  // object indices
+  Bvh m_bvh;
+  std::uint32_t m_camera_medium = 0;
+  SceneStatistics m_stats;
+};
+
+/// Validates `desc` (names, geometry, closed dielectric meshes), loads its meshes and builds the
+/// BVH. Throws thaw::UserError naming the scene file (or object label) and the problem.
+Scene build_scene(const SceneDescription& desc);
+
+}  // namespace thaw::render

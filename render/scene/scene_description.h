@@ -1,0 +1,143 @@
+#pragma once
+// What a scene is, as plain data: parsed from TOML by render/scene/scene_parser.h or filled in by
+// code (the pipeline adds its two shell meshes this way), then turned into a renderable Scene by
+// build_scene() (render/scene/scene.h), which validates names and geometry. Double precision,
+// scene units (metres for thaw's own scenes), linear RGB. Knows nothing about TOML.
+#include <array>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "render/geometry/triangle_mesh.h"
+
+namespace thaw::render {
+
+using Vec3d = std::array<double, 3>;
+using RgbD = std::array<double, 3>;
+
+struct ImageSettings {
+  int width = 640;
+  int height = 480;
+  int samples_per_pixel = 1;
+  /// levels of the Whitted tree, the primary ray being level 1 (POV-Ray max_trace_level)
+  int max_depth = 10;
+  /// radiance of every ray that escapes the scene (linear RGB)
+  RgbD background{0.0, 0.0, 0.0};
+  /// branches whose weight falls below this are not traced (POV-Ray adc_bailout, 1/255)
+  double min_weight = 1.0 / 255.0;
+  /// 2^exposure scales radiance before PNG encoding [stops]
+  double exposure = 0.0;
+};
+
+struct CameraDescription {
+  Vec3d position{0.0, 0.0, 5.0};
+  Vec3d look_at{0.0, 0.0, 0.0};
+  /// unit vector
+  Vec3d up{0.0, 1.0, 0.0};
+  /// full vertical field of view [degrees], in (0, 180)
+  double vertical_fov_deg = 40.0;
+  /// medium the camera sits in; empty: the outermost medium of the scene (see build_scene)
+  std::string medium;
+};
+
+struct AmbientDescription {
+  RgbD color{1.0, 1.0, 1.0};
+  double intensity = 0.0;
+};
+
+struct LightDescription {
+  enum class Falloff { none, inverse_square };
+  Vec3d position{0.0, 10.0, 0.0};
+  RgbD color{1.0, 1.0, 1.0};
+  double intensity = 1.0;
+  /// "none" as in POV-Ray; inverse_square divides by the squared distance [scene units^2]
+  Falloff falloff = Falloff::none;
+};
+
+struct MediumDescription {
+  std::string name;
+  /// index of refraction (constant; issue 5 adds dispersive models)
+  double ior = 1.0;
+};
+
+struct TextureDescription {
+  enum class Kind { solid, checker };
+  Kind kind = Kind::solid;
+  RgbD color{0.8, 0.8, 0.8};
+  std::array<RgbD, 2> checker_colors{RgbD{0.9, 0.9, 0.9}, RgbD{0.1, 0.1, 0.1}};
+  /// checker cell size [scene units]
+  double checker_size = 1.0;
+  Vec3d checker_offset{0.0, 0.0, 0.0};
+};
+
+struct MaterialDescription {
+  enum class Kind { matte, metal, phong, emissive };
+  std::string name;
+  Kind kind = Kind::matte;
+  TextureDescription texture;
+  double ka = 1.0, kd = 1.0, ks = 0.0, shininess = 32.0;
+  double reflectance = 0.0, transmittance = 0.0, ior = 1.0;
+  RgbD emission{1.0, 1.0, 1.0};
+  double emission_intensity = 1.0;
+};
+
+struct ObjectDescription {
+  enum class Shape { mesh, sphere, box, plane };
+  Shape shape = Shape::sphere;
+  /// where the object came from, for error messages ("objects[2]" or a caller's label)
+  std::string label;
+  // sphere
+  Vec3d center{0.0, 0.0, 0.0};
+  double radius = 1.0;
+  // box
+  Vec3d box_min{-1.0, -1.0, -1.0}, box_max{1.0, 1.0, 1.0};
+  // plane
+  Vec3d point{0.0, 0.0, 0.0};
+  Vec3d normal{0.0, 1.0, 0.0};
+  // mesh: either a file (OBJ, absolute or relative to SceneDescription::base_dir) or a mesh in
+  // memory; scale then translate is applied to it.
+  std::filesystem::path mesh_file;
+  std::shared_ptr<const TriangleMesh> mesh;
+  double scale = 1.0;
+  Vec3d translate{0.0, 0.0, 0.0};
+  /// replace the mesh's normals by area-weighted smooth normals
+  bool smooth_normals = false;
+  /// opaque object: the material's name. Dielectric interface: material empty, inside and
+  /// outside name the media (the surface must be closed and outward oriented).
+  std::string material;
+  std::string inside, outside;
+
+  bool is_dielectric() const { return material.empty(); }
+};
+
+struct SceneDescription {
+  ImageSettings image;
+  CameraDescription camera;
+  AmbientDescription ambient;
+  std::vector<LightDescription> lights;
+  /// "vacuum" (n = 1) is always defined and need not be listed
+  std::vector<MediumDescription> media;
+  std::vector<MaterialDescription> materials;
+  std::vector<ObjectDescription> objects;
+  /// folder relative mesh files are resolved against (the scene file's folder)
+  std::filesystem::path base_dir;
+  /// the scene file, for error messages ("" when built in code)
+  std::string source_name;
+
+  /// Convenience for code-built scenes: adds a closed dielectric mesh between two media.
+  ObjectDescription& add_dielectric_mesh(std::shared_ptr<const TriangleMesh> mesh, std::string inside,
+                                         std::string outside, std::string label = "") {
+    ObjectDescription o;
+    o.shape = ObjectDescription::Shape::mesh;
+    o.mesh = std::move(mesh);
+    o.inside = std::move(inside);
+    o.outside = std::move(outside);
+    o.label = label.empty() ? "objects[" + std::to_string(objects.size()) + "]" : std::move(label);
+    objects.push_back(std::move(o));
+    return objects.back();
+  }
+};
+
+}  // namespace thaw::render

@@ -1,0 +1,236 @@
+#include "render/scene/scene_parser.h"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "src/common/error.h"
+#include "src/common/toml_table.h"
+
+namespace thaw::render {
+
+namespace {
+
+double length3(const Vec3d& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+/// A unit vector: |v| must be 1 to within 1e-6 relative (a float's worth of rounding in the file).
+Vec3d unit_vec3(const TomlTable& t, const std::string& key) {
+  const Vec3d v = t.get_vec3(key);
+  const double len = length3(v);
+  if (len == 0.0) t.fail(key, "must not be the zero vector");
+  if (std::abs(len - 1.0) > 1e-6)
+    t.fail(key, "must be a unit vector (its length is " + std::to_string(len) + ")");
+  return v;
+}
+
+RgbD color3(const TomlTable& t, const std::string& key, const RgbD& fallback) {
+  const RgbD c = t.get_vec3(key, fallback);
+  for (double v : c)
+    if (v < 0.0) t.fail(key, "colour components must not be negative");
+  return c;
+}
+
+int int_in(const TomlTable& t, const std::string& key, int fallback, int lo, int hi) {
+  const auto v = t.get_int(key, fallback);
+  if (v < lo || v > hi)
+    t.fail(key, "must be between " + std::to_string(lo) + " and " + std::to_string(hi) + " (got " +
+                    std::to_string(v) + ")");
+  return static_cast<int>(v);
+}
+
+TextureDescription parse_texture(const TomlTable& m) {
+  TextureDescription tex;
+  if (m.has("checker")) {
+    if (m.has("color")) m.fail("color", "give either color or checker, not both");
+    const TomlTable c = m.table("checker");
+    tex.kind = TextureDescription::Kind::checker;
+    const auto colors = c.get_vec3s("colors");
+    if (colors.size() != 2) c.fail("colors", "expected two colours [[r, g, b], [r, g, b]]");
+    for (const auto& col : colors)
+      for (double v : col)
+        if (v < 0.0) c.fail("colors", "colour components must not be negative");
+    tex.checker_colors = {colors[0], colors[1]};
+    tex.checker_size = c.require_positive("size", c.get_double("size"));
+    tex.checker_offset = c.get_vec3("offset", {0.0, 0.0, 0.0});
+  } else {
+    tex.kind = TextureDescription::Kind::solid;
+    tex.color = color3(m, "color", {0.8, 0.8, 0.8});
+  }
+  return tex;
+}
+
+MaterialDescription parse_material(const std::string& name, const TomlTable& m) {
+  MaterialDescription mat;
+  mat.name = name;
+  const std::string kind = m.get_string("kind");
+  if (kind == "matte") {
+    mat.kind = MaterialDescription::Kind::matte;
+    mat.texture = parse_texture(m);
+  } else if (kind == "metal") {
+    mat.kind = MaterialDescription::Kind::metal;
+    mat.texture = parse_texture(m);
+  } else if (kind == "phong") {
+    mat.kind = MaterialDescription::Kind::phong;
+    mat.texture = parse_texture(m);
+    mat.ka = m.require_non_negative("ka", m.get_double("ka", 0.1));
+    mat.kd = m.require_non_negative("kd", m.get_double("kd", 0.9));
+    mat.ks = m.require_non_negative("ks", m.get_double("ks", 0.0));
+    mat.shininess = m.require_positive("shininess", m.get_double("shininess", 32.0));
+    mat.reflectance = m.require_non_negative("reflectance", m.get_double("reflectance", 0.0));
+    mat.transmittance = m.require_non_negative("transmittance", m.get_double("transmittance", 0.0));
+    mat.ior = m.require_positive("ior", m.get_double("ior", 1.0));
+  } else if (kind == "emissive") {
+    mat.kind = MaterialDescription::Kind::emissive;
+    mat.emission = color3(m, "color", {1.0, 1.0, 1.0});
+    mat.emission_intensity = m.require_non_negative("intensity", m.get_double("intensity", 1.0));
+  } else {
+    m.fail("kind", "unknown material kind '" + kind + "' (expected matte, metal, phong or emissive)");
+  }
+  return mat;
+}
+
+}  // namespace
+
+SceneDescription parse_scene_string(const std::string& text, const std::string& source_name,
+                                    const std::filesystem::path& base_dir) {
+  const TomlTable root = TomlTable::parse_string(text, source_name);
+  SceneDescription s;
+  s.source_name = source_name;
+  s.base_dir = base_dir;
+
+  if (auto img = root.optional_table("image")) {
+    s.image.width = int_in(*img, "width", s.image.width, 1, kMaxImageSide);
+    s.image.height = int_in(*img, "height", s.image.height, 1, kMaxImageSide);
+    if (static_cast<long long>(s.image.width) * s.image.height > kMaxImagePixels)
+      img->fail("height", "image has too many pixels (limit " + std::to_string(kMaxImagePixels) + ")");
+    s.image.samples_per_pixel = int_in(*img, "samples_per_pixel", 1, 1, 65536);
+    s.image.max_depth = int_in(*img, "max_depth", 10, 1, 64);
+    s.image.background = color3(*img, "background", s.image.background);
+    s.image.min_weight = img->require_non_negative("min_weight", img->get_double("min_weight", 1.0 / 255.0));
+    s.image.exposure = img->get_double("exposure", 0.0);
+  }
+  if (auto cam = root.optional_table("camera")) {
+    s.camera.position = cam->get_vec3("position");
+    s.camera.look_at = cam->get_vec3("look_at");
+    s.camera.up = cam->has("up") ? unit_vec3(*cam, "up") : Vec3d{0.0, 1.0, 0.0};
+    s.camera.vertical_fov_deg = cam->get_double("vertical_fov_deg");
+    if (!(s.camera.vertical_fov_deg > 0.0 && s.camera.vertical_fov_deg < 180.0))
+      cam->fail("vertical_fov_deg", "must be in (0, 180) degrees");
+    s.camera.medium = cam->get_string("medium", "");
+    const Vec3d d{s.camera.look_at[0] - s.camera.position[0], s.camera.look_at[1] - s.camera.position[1],
+                  s.camera.look_at[2] - s.camera.position[2]};
+    if (length3(d) == 0.0) cam->fail("look_at", "must differ from the camera position");
+    const Vec3d c{d[1] * s.camera.up[2] - d[2] * s.camera.up[1], d[2] * s.camera.up[0] - d[0] * s.camera.up[2],
+                  d[0] * s.camera.up[1] - d[1] * s.camera.up[0]};
+    if (length3(c) <= 1e-9 * length3(d)) cam->fail("up", "must not be parallel to the viewing direction");
+  } else {
+    root.fail("camera", "required table [camera] is missing");
+  }
+  if (auto amb = root.optional_table("ambient")) {
+    s.ambient.color = color3(*amb, "color", s.ambient.color);
+    s.ambient.intensity = amb->require_non_negative("intensity", amb->get_double("intensity", 0.0));
+  }
+  for (const TomlTable& l : root.array_of_tables("lights")) {
+    LightDescription light;
+    const std::string kind = l.get_string("kind", "point");
+    if (kind != "point") l.fail("kind", "unknown light kind '" + kind + "' (expected point)");
+    light.position = l.get_vec3("position");
+    light.color = color3(l, "color", light.color);
+    light.intensity = l.require_non_negative("intensity", l.get_double("intensity", 1.0));
+    const std::string falloff = l.get_string("falloff", "none");
+    if (falloff == "none") light.falloff = LightDescription::Falloff::none;
+    else if (falloff == "inverse_square") light.falloff = LightDescription::Falloff::inverse_square;
+    else l.fail("falloff", "unknown falloff '" + falloff + "' (expected none or inverse_square)");
+    s.lights.push_back(light);
+  }
+  std::set<std::string> media{"vacuum"};
+  if (auto med = root.optional_table("media")) {
+    for (const std::string& name : med->keys()) {
+      const TomlTable m = med->table(name);
+      MediumDescription md;
+      md.name = name;
+      md.ior = m.get_double("ior");
+      if (!(md.ior >= 1.0 && md.ior < 10.0)) m.fail("ior", "must be in [1, 10) (got " + std::to_string(md.ior) + ")");
+      if (name == "vacuum") m.fail("ior", "'vacuum' is predefined (n = 1) and cannot be redefined");
+      media.insert(name);
+      s.media.push_back(md);
+    }
+  }
+  std::set<std::string> materials;
+  if (auto mats = root.optional_table("materials")) {
+    for (const std::string& name : mats->keys()) {
+      s.materials.push_back(parse_material(name, mats->table(name)));
+      materials.insert(name);
+    }
+  }
+  if (!s.camera.medium.empty() && !media.count(s.camera.medium))
+    root.table("camera").fail("medium", "unknown medium '" + s.camera.medium + "'");
+
+  const auto objects = root.array_of_tables("objects");
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const TomlTable& o = objects[i];
+    ObjectDescription obj;
+    obj.label = o.has("name") ? o.get_string("name") : o.path();
+    const std::string shape = o.get_string("shape");
+    if (shape == "sphere") {
+      obj.shape = ObjectDescription::Shape::sphere;
+      obj.center = o.get_vec3("center");
+      obj.radius = o.require_positive("radius", o.get_double("radius"));
+    } else if (shape == "box") {
+      obj.shape = ObjectDescription::Shape::box;
+      obj.box_min = o.get_vec3("min");
+      obj.box_max = o.get_vec3("max");
+      for (int k = 0; k < 3; ++k)
+        if (!(obj.box_min[k] < obj.box_max[k])) o.fail("max", "must exceed min in every coordinate");
+    } else if (shape == "plane") {
+      obj.shape = ObjectDescription::Shape::plane;
+      obj.point = o.get_vec3("point");
+      obj.normal = unit_vec3(o, "normal");
+    } else if (shape == "mesh") {
+      obj.shape = ObjectDescription::Shape::mesh;
+      const std::string file = o.get_string("file");
+      if (file.empty()) o.fail("file", "must name an OBJ file");
+      obj.mesh_file = file;
+      obj.scale = o.require_positive("scale", o.get_double("scale", 1.0));
+      obj.translate = o.get_vec3("translate", {0.0, 0.0, 0.0});
+      obj.smooth_normals = o.get_bool("smooth_normals", false);
+    } else {
+      o.fail("shape", "unknown shape '" + shape + "' (expected mesh, sphere, box or plane)");
+    }
+    const bool has_material = o.has("material");
+    const bool has_media = o.has("inside") || o.has("outside");
+    if (has_material && has_media)
+      o.fail("material", "an object is either opaque (material) or a dielectric interface (inside, outside), not both");
+    if (has_material) {
+      obj.material = o.get_string("material");
+      if (!materials.count(obj.material)) o.fail("material", "unknown material '" + obj.material + "'");
+    } else if (has_media) {
+      obj.inside = o.get_string("inside");
+      obj.outside = o.get_string("outside");
+      if (!media.count(obj.inside)) o.fail("inside", "unknown medium '" + obj.inside + "'");
+      if (!media.count(obj.outside)) o.fail("outside", "unknown medium '" + obj.outside + "'");
+      if (obj.inside == obj.outside) o.fail("outside", "inside and outside must be different media");
+      if (obj.shape == ObjectDescription::Shape::plane)
+        o.fail("inside", "a plane is not closed and cannot be a dielectric interface; give it a material");
+    } else {
+      o.fail("shape", "object needs either material = \"...\" or inside/outside media");
+    }
+    s.objects.push_back(std::move(obj));
+  }
+  root.check_no_unknown_keys();
+  return s;
+}
+
+SceneDescription parse_scene_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw UserError(path.string(), "", "scene file not found");
+  const TomlTable probe = TomlTable::parse_file(path);  // reports missing/malformed files uniformly
+  (void)probe;
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return parse_scene_string(buffer.str(), path.string(), path.parent_path());
+}
+
+}  // namespace thaw::render

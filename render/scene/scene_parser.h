@@ -1,0 +1,24 @@
+#pragma once
+// Reads a thaw scene file (TOML; keys documented in docs/render.md) into a SceneDescription.
+// Every key is checked: unknown keys, wrong types, out-of-range values and unknown medium or
+// material names are thaw::UserError naming the file, line and key. Meshes are not loaded here
+// (build_scene does that), so parsing is cheap and testable from strings.
+#include <filesystem>
+#include <string>
+
+#include "render/scene/scene_description.h"
+
+namespace thaw::render {
+
+/// Parses `path`; relative mesh files are resolved against its folder.
+SceneDescription parse_scene_file(const std::filesystem::path& path);
+
+/// Parses scene text; `source_name` names it in errors, `base_dir` resolves mesh files.
+SceneDescription parse_scene_string(const std::string& text, const std::string& source_name,
+                                    const std::filesystem::path& base_dir = {});
+
+/// Largest accepted image side [pixels] and pixel count.
+inline constexpr int kMaxImageSide = 16384;
+inline constexpr long long kMaxImagePixels = 1LL << 26;
+
+}  // namespace thaw::render
