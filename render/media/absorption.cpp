@@ -1,0 +1,106 @@
+// Beer-Lambert absorption; see absorption.h.
+#include "render/media/absorption.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <utility>
+
+#include "src/common/error.h"
+
+namespace thaw::render::media {
+namespace {
+
+std::string num(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+Absorption Absorption::constant(double per_m) {
+  Absorption a;
+  a.m_constant_per_m = per_m;
+  return a;
+}
+
+Absorption Absorption::table(std::vector<double> wavelength_nm, std::vector<double> per_m) {
+  Absorption a;
+  a.m_table_nm = std::move(wavelength_nm);
+  a.m_table_per_m = std::move(per_m);
+  return a;
+}
+
+Absorption Absorption::scaled(double scale) const {
+  Absorption a = *this;
+  a.m_scale = m_scale * scale;
+  return a;
+}
+
+bool Absorption::is_zero() const {
+  if (m_scale == 0) return true;
+  if (m_table_nm.empty()) return m_constant_per_m == 0;
+  return std::all_of(m_table_per_m.begin(), m_table_per_m.end(), [](double v) { return v == 0; });
+}
+
+double Absorption::per_m_at(double lambda_nm) const {
+  if (m_table_nm.empty()) return m_scale * m_constant_per_m;
+  const auto& x = m_table_nm;
+  const auto& y = m_table_per_m;
+  if (lambda_nm <= x.front()) return m_scale * y.front();
+  if (lambda_nm >= x.back()) return m_scale * y.back();
+  const auto i = static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), lambda_nm) - x.begin()) - 1;
+  const double t = (lambda_nm - x[i]) / (x[i + 1] - x[i]);
+  return m_scale * (y[i] * (1 - t) + y[i + 1] * t);
+}
+
+SampledSpectrum Absorption::per_m(const SampledWavelengths& wavelengths) const {
+  SampledSpectrum s;
+  for (int i = 0; i < kSpectrumSamples; ++i)
+    s[i] = static_cast<float>(per_m_at(wavelengths.lambda_nm(i)));
+  return s;
+}
+
+SampledSpectrum Absorption::transmittance(double distance_m,
+                                          const SampledWavelengths& wavelengths) const {
+  SampledSpectrum t;
+  for (int i = 0; i < kSpectrumSamples; ++i)
+    t[i] = static_cast<float>(std::exp(-per_m_at(wavelengths.lambda_nm(i)) * distance_m));
+  return t;
+}
+
+void Absorption::validate(const std::string& file, const std::string& where) const {
+  auto fail = [&](const std::string& key, const std::string& problem) {
+    throw UserError(file, "key '" + where + "." + key + "'", problem);
+  };
+  if (!std::isfinite(m_scale) || m_scale < 0)
+    fail("absorption_scale", "must be a finite number >= 0 (got " + num(m_scale) + ")");
+  if (m_table_nm.empty()) {
+    if (!std::isfinite(m_constant_per_m) || m_constant_per_m < 0)
+      fail("absorption_per_m", "absorption coefficient must be finite and >= 0 per metre (got " +
+                                   num(m_constant_per_m) + ")");
+    return;
+  }
+  if (m_table_nm.size() != m_table_per_m.size())
+    fail("absorption_per_m", "wavelength_nm has " + std::to_string(m_table_nm.size()) +
+                                 " entries but per_m has " + std::to_string(m_table_per_m.size()));
+  if (m_table_nm.size() < 2) fail("absorption_per_m", "a table needs at least two rows");
+  for (std::size_t i = 0; i + 1 < m_table_nm.size(); ++i)
+    if (!(m_table_nm[i + 1] > m_table_nm[i]))
+      fail("absorption_per_m.wavelength_nm",
+           "must be strictly increasing (row " + std::to_string(i + 1) + ")");
+  if (m_table_nm.front() > kLambdaMinNm || m_table_nm.back() < kLambdaMaxNm)
+    fail("absorption_per_m.wavelength_nm",
+         "covers " + num(m_table_nm.front()) + "-" + num(m_table_nm.back()) +
+             " nm but must cover the rendered range " + num(kLambdaMinNm) + "-" +
+             num(kLambdaMaxNm) + " nm");
+  for (std::size_t i = 0; i < m_table_per_m.size(); ++i)
+    if (!std::isfinite(m_table_per_m[i]) || m_table_per_m[i] < 0)
+      fail("absorption_per_m.per_m", "entry " + std::to_string(i) +
+                                         " must be finite and >= 0 per metre (got " +
+                                         num(m_table_per_m[i]) + ")");
+}
+
+}  // namespace thaw::render::media

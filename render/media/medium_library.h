@@ -1,0 +1,19 @@
+#pragma once
+// The built-in library of optical media (vacuum, air, water at 0 and 20 C, ice Ih, N-BK7,
+// N-SF10, fused silica, diamond) with their sources: data/optics/media.toml, embedded in the
+// binary at build time so the file that documents the data is the data.
+#include <string>
+#include <vector>
+
+#include "render/media/medium.h"
+
+namespace thaw::render::media {
+
+/// All presets in file order (parsed once, on first use).
+const std::vector<MediumSpec>& medium_presets();
+/// The preset called `name`, or nullptr.
+const MediumSpec* find_medium_preset(const std::string& name);
+/// "vacuum, air, water-20c, ..." for error messages.
+std::string medium_preset_names();
+
+}  // namespace thaw::render::media
