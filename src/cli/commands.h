@@ -6,5 +6,6 @@
 namespace thaw::cli {
 
 // One line per sub-command, in the order shown by --help.
+void register_mesh(CLI::App& app);     ///< thaw mesh (command_mesh.cpp)
 
 }  // namespace thaw::cli

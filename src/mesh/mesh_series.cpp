@@ -1,0 +1,264 @@
+#include "src/mesh/mesh_series.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "src/common/atomic_file.h"
+#include "src/common/error.h"
+#include "src/mesh/obj_writer.h"
+#include "src/mesh/surface_mesher.h"
+
+namespace thaw::mesh {
+
+namespace fs = std::filesystem;
+
+std::string surface_file_name(long step, bool inner) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "step_%06ld_%s.obj", step, inner ? "inner" : "outer");
+  return buf;
+}
+
+namespace {
+
+// One surface to mesh: decided sequentially before the parallel loop.
+struct Task {
+  std::size_t step_index = 0;
+  bool inner = true;
+  ShellShape shape;
+  SurfaceCriteria criteria;
+};
+
+// What a task reports back (written by exactly one thread, read after the loop).
+struct TaskResult {
+  std::string error;  // "" if fine
+  long triangles = 0;
+  double volume_m3 = 0;
+  // Containment of the inner mesh in the outer one, by support functions of the shared convex
+  // core C: the inner mesh lies within max_core_distance of C; the outer mesh's convex hull
+  // contains {x : dist(x, C) < min_face_offset}, min over faces of (n . a - h_C(n)).
+  double max_core_distance = 0;
+  double min_face_offset = 0;
+};
+
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+void measure(const ShellShape& shape, const TriangleMesh& m, TaskResult& r) {
+  r.triangles = static_cast<long>(m.faces.size());
+  r.volume_m3 = enclosed_volume(m);
+  r.max_core_distance = 0;
+  for (const auto& v : m.vertices)
+    r.max_core_distance = std::max(r.max_core_distance, shape.signed_distance(v) + shape.radius_m);
+  r.min_face_offset = std::numeric_limits<double>::infinity();
+  for (const auto& f : m.faces) {
+    const Vec3 &a = m.vertices[f[0]], &b = m.vertices[f[1]], &c = m.vertices[f[2]];
+    const Vec3 u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    Vec3 n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const double len = std::sqrt(dot(n, n));
+    if (!(len > 0)) continue;  // a degenerate face cannot bound anything (checks reject those)
+    for (double& x : n) x /= len;
+    r.min_face_offset = std::min(r.min_face_offset, dot(n, a) - shape.core_support(n));
+  }
+}
+
+void validate_geometry(const sim::ShellGeometry& g, const fs::path& summary) {
+  if (g.geometry == sim::Geometry::planar && !(g.lateral_size_m > 0))
+    throw UserError(summary.string(), "parameters.shell.lateral_size_m",
+                    "must be > 0 for a planar shell, got " + std::to_string(g.lateral_size_m));
+}
+
+}  // namespace
+
+MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& requested,
+                                    const ProgressCallback& progress) {
+  validate(requested);
+  const fs::path summary = simdir / "summary.json";
+  const auto rows = sim::read_interfaces_csv(simdir / "interfaces.csv");
+  const auto geometry = sim::read_shell_geometry(summary);
+  validate_geometry(geometry, summary);
+
+  double largest_area = 0;
+  for (const auto& r : rows)
+    largest_area = std::max(largest_area, ShellShape::from_geometry(geometry, r.outer_radius_m).area());
+  const MeshOptions options = resolve_triangle_target(requested, largest_area);
+
+  MeshManifest manifest;
+  manifest.options = options;
+  manifest.geometry = geometry;
+  std::vector<Task> tasks;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto& row = rows[i];
+    StepRecord rec;
+    rec.step = row.step;
+    rec.time_s = row.time_s;
+    rec.inner_radius_m = row.inner_radius_m;
+    rec.outer_radius_m = row.outer_radius_m;
+    rec.inner.radius_m = row.inner_radius_m;
+    rec.outer.radius_m = row.outer_radius_m;
+    const bool no_ice = !(row.outer_radius_m > row.inner_radius_m);
+    if (no_ice) {
+      rec.outer.reason = rec.inner.reason = "no ice left (outer_radius_m == inner_radius_m)";
+    } else {
+      if (row.inner_radius_m <= 0)
+        rec.inner.reason = "no liquid core left (inner_radius_m == 0)";
+      else if (row.inner_radius_m < options.min_radius_m)
+        rec.inner.reason = "inner radius below min_radius_m";
+      if (row.outer_radius_m < options.min_radius_m) rec.outer.reason = "outer radius below min_radius_m";
+    }
+    const double shell = row.outer_radius_m - row.inner_radius_m;
+    for (bool inner : {true, false}) {
+      SurfaceRecord& s = inner ? rec.inner : rec.outer;
+      if (!s.reason.empty()) continue;
+      Task t;
+      t.step_index = i;
+      t.inner = inner;
+      t.shape = ShellShape::from_geometry(geometry, s.radius_m);
+      if (too_thin_to_mesh(t.shape, options)) {
+        s.reason = "slab too thin for its lateral size to mesh within max_triangles";
+        continue;
+      }
+      t.criteria = criteria_for(t.shape, options);
+      if (!inner && rec.inner.reason.empty()) {
+        // Keep the outer mesh's facets off the inner surface: a facet deviates inward by at most
+        // its distance bound, so a bound below the shell thickness keeps the inner mesh strictly
+        // inside. Refining costs triangles ~ 1 / distance; stop at 1/8 of the normal bound.
+        const double d = t.criteria.facet_distance_m;
+        t.criteria = criteria_for(t.shape, options, std::max(std::min(d, 0.5 * shell), d / 8));
+      }
+      s.file = surface_file_name(row.step, inner);
+      s.distance_bound_m = t.criteria.facet_distance_m;
+      s.exact_volume_m3 = t.shape.volume();
+      tasks.push_back(t);
+    }
+    manifest.steps.push_back(rec);
+  }
+
+  const fs::path final_dir = simdir / "mesh";
+  StagingDirectory staging(final_dir);
+  const fs::path out_dir = staging.path();
+
+  std::vector<TaskResult> results(tasks.size());
+  const std::int64_t total = static_cast<std::int64_t>(tasks.size());
+  std::int64_t done = 0;
+  if (progress) progress(0, total);
+  const int jobs = options.jobs > 0 ? options.jobs : omp_get_max_threads();
+  const long n_tasks = static_cast<long>(tasks.size());
+  // Nothing may throw out of this loop: every exception is caught and stored per task.
+#pragma omp parallel for schedule(dynamic, 1) num_threads(jobs)
+  for (long k = 0; k < n_tasks; ++k) {
+    const Task& t = tasks[static_cast<std::size_t>(k)];
+    TaskResult& r = results[static_cast<std::size_t>(k)];
+    try {
+      const TriangleMesh m = mesh_surface(t.shape, t.criteria, options);
+      measure(t.shape, m, r);
+      const StepRecord& rec = manifest.steps[t.step_index];
+      char comment[256];
+      std::snprintf(comment, sizeof comment, "thaw mesh: step %ld, %s surface of a %s, radius %.17g m",
+                    rec.step, t.inner ? "inner (water|ice)" : "outer (ice|air)",
+                    sim::to_string(t.shape.geometry), t.shape.radius_m);
+      write_obj(out_dir / surface_file_name(rec.step, t.inner), m, comment);
+    } catch (const std::exception& e) {
+      r.error = e.what();
+    } catch (...) {
+      r.error = "unknown failure";
+    }
+    if (progress) {
+#pragma omp critical(thaw_mesh_progress)
+      progress(++done, total);
+    }
+  }
+
+  // Gather in step order, so the first error reported does not depend on scheduling.
+  std::vector<const TaskResult*> inner_of(manifest.steps.size(), nullptr), outer_of(manifest.steps.size(), nullptr);
+  for (std::size_t k = 0; k < tasks.size(); ++k) {
+    const Task& t = tasks[k];
+    const TaskResult& r = results[k];
+    StepRecord& rec = manifest.steps[t.step_index];
+    if (!r.error.empty())
+      throw UserError((final_dir / surface_file_name(rec.step, t.inner)).string(), "",
+                      "meshing failed: " + r.error + " (try a smaller --edge-length or --distance)");
+    SurfaceRecord& s = t.inner ? rec.inner : rec.outer;
+    s.triangles = r.triangles;
+    s.volume_m3 = r.volume_m3;
+    (t.inner ? inner_of : outer_of)[t.step_index] = &r;
+  }
+  for (std::size_t i = 0; i < manifest.steps.size(); ++i) {
+    if (!inner_of[i] || !outer_of[i]) continue;
+    StepRecord& rec = manifest.steps[i];
+    const bool inside = inner_of[i]->max_core_distance < outer_of[i]->min_face_offset;
+    rec.inner_inside_outer = inside;
+    const double shell = rec.outer_radius_m - rec.inner_radius_m;
+    if (inside) {
+      if (!manifest.thinnest_contained_shell_m || shell < *manifest.thinnest_contained_shell_m)
+        manifest.thinnest_contained_shell_m = shell;
+    } else {
+      if (shell > rec.outer.distance_bound_m)
+        throw UserError((final_dir / surface_file_name(rec.step, false)).string(), "",
+                        "inner mesh not strictly inside the outer mesh although the shell (" +
+                            std::to_string(shell) + " m) is thicker than the distance bound");
+      manifest.steps_inner_touching_outer.push_back(rec.step);
+    }
+  }
+
+  write_file_atomic(out_dir / "manifest.json", to_json(manifest).dump(1) + "\n");
+  staging.commit();
+  return manifest;
+}
+
+nlohmann::ordered_json to_json(const MeshManifest& m) {
+  nlohmann::ordered_json j;
+  j["format"] = "thaw-mesh/1";
+  j["options"] = to_json(m.options);
+  nlohmann::ordered_json g;
+  g["geometry"] = sim::to_string(m.geometry.geometry);
+  switch (m.geometry.geometry) {
+    case sim::Geometry::sphere: g["frame"] = "spheres centred at the origin"; break;
+    case sim::Geometry::cylinder:
+      g["length_m"] = m.geometry.length_m;
+      g["frame"] = "capsules centred at the origin, axis along z, tube |z| <= length_m / 2";
+      break;
+    case sim::Geometry::planar:
+      g["lateral_size_m"] = m.geometry.lateral_size_m;
+      g["planar_symmetric"] = m.geometry.planar_symmetric;
+      g["frame"] = "slabs |x| <= radius, flat faces |y|,|z| <= lateral_size_m / 2, rounded edges";
+      break;
+  }
+  j["geometry"] = g;
+  j["thinnest_contained_shell_m"] =
+      m.thinnest_contained_shell_m ? nlohmann::ordered_json(*m.thinnest_contained_shell_m) : nlohmann::ordered_json(nullptr);
+  j["steps_inner_touching_outer"] = m.steps_inner_touching_outer;
+  nlohmann::ordered_json steps = nlohmann::ordered_json::array();
+  for (const auto& s : m.steps) {
+    nlohmann::ordered_json e;
+    e["step"] = s.step;
+    e["time_s"] = s.time_s;
+    e["inner_radius_m"] = s.inner_radius_m;
+    e["outer_radius_m"] = s.outer_radius_m;
+    for (const char* key : {"inner", "outer"}) {
+      const SurfaceRecord& r = key[0] == 'i' ? s.inner : s.outer;
+      e[key] = r.file ? nlohmann::ordered_json(*r.file) : nlohmann::ordered_json(nullptr);
+    }
+    e["inner_triangles"] = s.inner.triangles;
+    e["outer_triangles"] = s.outer.triangles;
+    for (const std::string key : {"inner", "outer"}) {
+      const SurfaceRecord& r = key == "inner" ? s.inner : s.outer;
+      if (r.file) {
+        e[key + "_volume_m3"] = r.volume_m3;
+        e[key + "_exact_volume_m3"] = r.exact_volume_m3;
+        e[key + "_distance_bound_m"] = r.distance_bound_m;
+      } else {
+        e[key + "_reason"] = r.reason;
+      }
+    }
+    e["inner_inside_outer"] = s.inner_inside_outer ? nlohmann::ordered_json(*s.inner_inside_outer) : nlohmann::ordered_json(nullptr);
+    steps.push_back(e);
+  }
+  j["steps"] = steps;
+  return j;
+}
+
+}  // namespace thaw::mesh

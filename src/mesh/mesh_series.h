@@ -1,0 +1,65 @@
+#pragma once
+// Meshes every step of a simulation folder: reads SIMDIR/interfaces.csv and SIMDIR/summary.json
+// (sim/io contract) and writes SIMDIR/mesh/step_NNNNNN_inner.obj, ..._outer.obj and
+// manifest.json ("thaw-mesh/1"). Surfaces are meshed in parallel (OpenMP, one independent mesher
+// per surface); the output is byte-identical whatever the number of threads. The folder is filled
+// under a temporary name and replaces SIMDIR/mesh only when everything succeeded.
+// Knows nothing about CGAL (surface_mesher.h does the meshing) nor about rendering.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "sim/io/interface_history.h"
+#include "src/common/progress.h"
+#include "src/mesh/mesh_options.h"
+
+namespace thaw::mesh {
+
+/// One surface of one step in the manifest.
+struct SurfaceRecord {
+  std::optional<std::string> file;  ///< OBJ file name relative to SIMDIR/mesh; empty if vanished
+  std::string reason;               ///< why there is no file ("" if there is one)
+  long triangles = 0;
+  double radius_m = 0;              ///< distance of the surface from its core [m]
+  double distance_bound_m = 0;      ///< effective CGAL facet_distance used [m]
+  double volume_m3 = 0;             ///< enclosed volume of the mesh [m^3]
+  double exact_volume_m3 = 0;       ///< enclosed volume of the exact surface [m^3]
+};
+
+struct StepRecord {
+  long step = 0;
+  double time_s = 0, inner_radius_m = 0, outer_radius_m = 0;
+  SurfaceRecord inner, outer;
+  /// Both surfaces exist and every inner vertex is strictly inside every outer face's plane
+  /// (exact test for these convex shapes); nullopt when a surface vanished.
+  std::optional<bool> inner_inside_outer;
+};
+
+struct MeshManifest {
+  MeshOptions options;  ///< effective options (after resolve_triangle_target)
+  sim::ShellGeometry geometry;
+  std::vector<StepRecord> steps;
+  /// Thinnest shell (outer - inner) [m] of a step whose inner mesh is strictly inside its outer
+  /// mesh; nullopt if no step had both surfaces.
+  std::optional<double> thinnest_contained_shell_m;
+  /// Steps whose shell was too thin for strict containment at the finest refinement allowed.
+  std::vector<long> steps_inner_touching_outer;
+};
+
+/// "step_000012_inner.obj" / "step_000012_outer.obj".
+std::string surface_file_name(long step, bool inner);
+
+/// Meshes SIMDIR as described above and returns the manifest it wrote. `progress` is called with
+/// (surfaces done, surfaces total). Throws thaw::UserError (one line naming the file) on a missing
+/// or malformed input, an unwritable SIMDIR/mesh, or a surface that failed its checks; nothing is
+/// left half-written then (an existing SIMDIR/mesh is kept).
+MeshManifest mesh_simulation_folder(const std::filesystem::path& simdir, const MeshOptions& options,
+                                    const ProgressCallback& progress = {});
+
+/// The manifest as written to manifest.json.
+nlohmann::ordered_json to_json(const MeshManifest& manifest);
+
+}  // namespace thaw::mesh

@@ -1,0 +1,21 @@
+#pragma once
+// Wavefront OBJ output of a TriangleMesh, the contract the renderer and inspector read:
+// `v x y z` at 17 significant digits (round-trips doubles exactly), optional `vn` (9 significant
+// digits: float precision is plenty for shading normals), 1-based `f i j k` or `f i//i j//j k//k`,
+// counter-clockwise seen from outside. Deterministic text (C locale formatting), written
+// atomically (temporary file + rename). Knows nothing about CGAL or how the mesh was made.
+#include <filesystem>
+#include <string>
+
+#include "src/mesh/triangle_mesh.h"
+
+namespace thaw::mesh {
+
+/// The OBJ text; `comment` (one line, may be empty) is written as a leading `# ` line.
+std::string format_obj(const TriangleMesh& mesh, const std::string& comment = "");
+
+/// Writes format_obj(mesh, comment) to `path` atomically; throws thaw::UserError on failure.
+void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh,
+               const std::string& comment = "");
+
+}  // namespace thaw::mesh

@@ -1,0 +1,141 @@
+// The only translation unit of thaw that instantiates CGAL Mesh_3 and Polygon_mesh_processing.
+// Recipe (found to work on CGAL 5.5, /work/shared/reference/physics.md): an implicit
+// Labeled_mesh_domain_3 with relative_error_bound ~1e-6, facet criteria only (the older
+// `parameters::facet_angle = ...` style of CGAL 5.5), manifold(), no_perturb(), no_exude(); the
+// boundary facets are extracted with facets_in_complex_3_to_triangle_mesh.
+#include "src/mesh/surface_mesher.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Labeled_mesh_domain_3.h>
+#include <CGAL/Mesh_complex_3_in_triangulation_3.h>
+#include <CGAL/Mesh_criteria_3.h>
+#include <CGAL/Mesh_triangulation_3.h>
+#include <CGAL/Polygon_mesh_processing/manifoldness.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/facets_in_complex_3_to_triangle_mesh.h>
+#include <CGAL/make_mesh_3.h>
+
+#include <cmath>
+#include <vector>
+
+namespace thaw::mesh {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = K::Point_3;
+using Domain = CGAL::Labeled_mesh_domain_3<K>;
+using Tr = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
+using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr>;
+using Criteria = CGAL::Mesh_criteria_3<Tr>;
+using SurfaceMesh = CGAL::Surface_mesh<Point>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+// The implicit function Mesh_3 samples: negative inside.
+struct ImplicitShape {
+  ShellShape shape;
+  K::FT operator()(const Point& p) const { return shape.signed_distance({p.x(), p.y(), p.z()}); }
+};
+
+std::string check(const SurfaceMesh& sm) {
+  if (sm.number_of_faces() == 0) return "empty mesh";
+  if (!CGAL::is_valid_polygon_mesh(sm)) return "not a valid polygon mesh";
+  if (!CGAL::is_closed(sm)) return "not closed (has boundary edges)";
+  if (!CGAL::is_triangle_mesh(sm)) return "not a triangle mesh";
+  std::vector<SurfaceMesh::Halfedge_index> pinched;
+  PMP::non_manifold_vertices(sm, std::back_inserter(pinched));
+  if (!pinched.empty()) return std::to_string(pinched.size()) + " non-manifold vertices";
+  const long euler = static_cast<long>(sm.number_of_vertices()) -
+                     static_cast<long>(sm.number_of_edges()) + static_cast<long>(sm.number_of_faces());
+  if (euler != 2)
+    return "Euler characteristic " + std::to_string(euler) + " (expected 2: one sphere-like surface)";
+  if (PMP::does_self_intersect(sm)) return "self-intersecting";
+  if (!PMP::is_outward_oriented(sm)) return "not outward oriented";
+  return "";
+}
+
+// Builds a Surface_mesh from a soup; returns false if the soup is not a polygon mesh
+// (non-manifold edges or inconsistent orientation cannot be represented).
+bool to_surface_mesh(const TriangleMesh& mesh, SurfaceMesh& sm) {
+  std::vector<Point> points;
+  points.reserve(mesh.vertices.size());
+  for (const auto& v : mesh.vertices) points.emplace_back(v[0], v[1], v[2]);
+  std::vector<std::array<std::size_t, 3>> faces;
+  faces.reserve(mesh.faces.size());
+  for (const auto& f : mesh.faces) {
+    for (int i : f)
+      if (i < 0 || static_cast<std::size_t>(i) >= points.size()) return false;
+    faces.push_back({static_cast<std::size_t>(f[0]), static_cast<std::size_t>(f[1]),
+                     static_cast<std::size_t>(f[2])});
+  }
+  if (!PMP::is_polygon_soup_a_polygon_mesh(faces)) return false;
+  PMP::polygon_soup_to_polygon_mesh(points, faces, sm);
+  return true;
+}
+
+}  // namespace
+
+std::string check_closed_manifold_outward(const TriangleMesh& mesh) {
+  SurfaceMesh sm;
+  if (!to_surface_mesh(mesh, sm))
+    return "not a 2-manifold oriented polygon mesh (non-manifold edge, bad index or inconsistent "
+           "orientation)";
+  return check(sm);
+}
+
+TriangleMesh mesh_surface(const ShellShape& shape, const MeshOptions& options) {
+  return mesh_surface(shape, criteria_for(shape, options), options);
+}
+
+TriangleMesh mesh_surface(const ShellShape& shape, const SurfaceCriteria& c,
+                          const MeshOptions& options) {
+  if (!(shape.radius_m > 0) || !std::isfinite(shape.radius_m) || !(shape.core_half_size_m >= 0))
+    throw MeshError("surface radius must be finite and > 0");
+  if (!(c.facet_size_m > 0) || !(c.facet_distance_m > 0)) throw MeshError("facet criteria must be > 0");
+
+  namespace params = CGAL::parameters;
+  // The bounding sphere (given by its squared radius) must contain the surface; its centre, the
+  // origin, is inside every shape, so the first random ray from it already finds the surface.
+  const double bound = 1.2 * shape.bounding_radius();
+  CGAL::Random rng(0);  // explicit seed: reproducible whatever ran before on this thread
+  Domain domain = Domain::create_implicit_mesh_domain(
+      ImplicitShape{shape}, K::Sphere_3(CGAL::ORIGIN, bound * bound),
+      params::relative_error_bound = options.relative_error_bound, params::p_rng = &rng);
+  Criteria criteria(params::facet_angle = c.facet_angle_deg, params::facet_size = c.facet_size_m,
+                    params::facet_distance = c.facet_distance_m);
+  C3t3 c3t3 = CGAL::make_mesh_3<C3t3>(domain, criteria, params::no_perturb(), params::no_exude(),
+                                       params::manifold());
+
+  SurfaceMesh sm;
+  CGAL::facets_in_complex_3_to_triangle_mesh(c3t3, sm);
+  if (sm.number_of_faces() > 0 && CGAL::is_closed(sm) && !PMP::is_outward_oriented(sm))
+    PMP::reverse_face_orientations(sm);
+  if (const std::string problem = check(sm); !problem.empty()) throw MeshError(problem);
+
+  TriangleMesh out;
+  out.vertices.reserve(sm.number_of_vertices());
+  std::vector<int> index(sm.num_vertices(), -1);
+  for (auto v : sm.vertices()) {
+    const Point& p = sm.point(v);
+    index[v.idx()] = static_cast<int>(out.vertices.size());
+    out.vertices.push_back({p.x(), p.y(), p.z()});
+  }
+  out.faces.reserve(sm.number_of_faces());
+  for (auto f : sm.faces()) {
+    std::array<int, 3> tri{};
+    int k = 0;
+    for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) tri[k++] = index[v.idx()];
+    out.faces.push_back(tri);
+  }
+  if (options.normals) {
+    out.normals.reserve(out.vertices.size());
+    for (const auto& v : out.vertices) out.normals.push_back(shape.outward_normal(v));
+  }
+  return out;
+}
+
+}  // namespace thaw::mesh
