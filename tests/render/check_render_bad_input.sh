@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# CLI smoke test of `thaw render` on bad input (issue 3): every case must exit with code 2, print
+# exactly one line on stderr naming the problem, and leave no output file (not even a temporary).
+# usage: check_render_bad_input.sh THAW_EXECUTABLE SOURCE_DIR
+set -u
+thaw=$1; src=$2
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+good="$src/data/scenes/s1_ice_shell.toml"
+cp -r "$src/data/scenes/meshes" "$work/meshes"
+failures=0
+
+# expect_bad NAME EXPECTED_FRAGMENT ARGS...: runs thaw render ARGS (-o $work/out.png unless
+# OUT is set to another path)
+expect_bad() {
+  local name=$1 fragment=$2; shift 2
+  rm -rf "$work"/out.* "$work/err"
+  "$thaw" render "$@" -o "${OUT:-$work/out.png}" --quiet 2>"$work/err" >/dev/null
+  local code=$? lines
+  lines=$(wc -l <"$work/err")
+  if [ "$code" -ne 2 ]; then echo "FAIL $name: exit code $code, expected 2"; failures=$((failures + 1)); fi
+  if [ "$lines" -ne 1 ]; then echo "FAIL $name: $lines lines on stderr, expected 1"; cat "$work/err"; failures=$((failures + 1)); fi
+  if ! grep -q -- "$fragment" "$work/err"; then echo "FAIL $name: stderr lacks '$fragment':"; cat "$work/err"; failures=$((failures + 1)); fi
+  if compgen -G "$work/out.*" >/dev/null; then echo "FAIL $name: output file left behind"; failures=$((failures + 1)); fi
+  [ "$code" -eq 2 ] && echo "ok   $name: $(cat "$work/err")"
+}
+
+# scene NAME SED_EXPRESSION: a copy of the good scene edited by sed, in $work
+scene() { sed -e "$2" "$good" >"$work/$1.toml"; echo "$work/$1.toml"; }
+
+expect_bad missing_scene "not found" "$work/nope.toml"
+printf 'this is = = not toml\n' >"$work/malformed.toml"
+expect_bad malformed_toml "line 1" "$work/malformed.toml"
+expect_bad unknown_key "unknown key" "$(scene unknown_key 's/^max_depth = 10/max_dpth = 10/')"
+expect_bad unknown_medium "unknown medium 'watr'" "$(scene unknown_medium 's/inside = "water"/inside = "watr"/')"
+expect_bad unknown_material "unknown material" "$(scene unknown_material 's/material = "floor"/material = "flor"/')"
+expect_bad zero_width "width" "$(scene zero_width 's/^width = 640/width = 0/')"
+expect_bad huge_size "height" "$(scene huge 's/^height = 640/height = 1000000/')"
+expect_bad zero_up "zero vector" "$(scene zero_up 's/^up = .*/up = [0.0, 0.0, 0.0]/')"
+expect_bad non_unit_up "unit vector" "$(scene non_unit_up 's/^up = .*/up = [0.0, 2.0, 0.0]/')"
+expect_bad missing_obj "not found" "$(scene missing_obj 's#meshes/floor_200.obj#meshes/nothing.obj#')"
+# An open dielectric mesh: drop the last face of the icosphere.
+head -n -1 "$work/meshes/sphere_r0.7.obj" >"$work/meshes/open.obj"
+expect_bad open_mesh "closed" "$(scene open_mesh 's#shape = "sphere"#shape = "mesh"\nfile = "meshes/open.obj"#; /^center = /d; /^radius = /d')"
+printf 'v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n' >"$work/meshes/nan.obj"
+expect_bad nan_obj "line 2" "$(scene nan_obj 's#meshes/floor_200.obj#meshes/nan.obj#')"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n' >"$work/meshes/badindex.obj"
+expect_bad bad_index "out of range" "$(scene bad_index 's#meshes/floor_200.obj#meshes/badindex.obj#')"
+: >"$work/meshes/empty.obj"
+expect_bad empty_obj "no faces" "$(scene empty_obj 's#meshes/floor_200.obj#meshes/empty.obj#')"
+expect_bad bad_cli_width "--width" "$good" --width 0
+OUT="$work/out.jpg" expect_bad bad_extension "unsupported output format" "$good"
+OUT="$work/no/such/dir/out.png" expect_bad missing_out_dir "does not exist" "$good"
+
+# And the good scene renders (tiny) and leaves exactly the PNG.
+if "$thaw" render "$good" -o "$work/out.png" --width 24 --height 24 --quiet && [ -s "$work/out.png" ]; then
+  echo "ok   good scene renders"
+else
+  echo "FAIL good scene"; failures=$((failures + 1))
+fi
+[ "$failures" -eq 0 ] || { echo "$failures failure(s)"; exit 1; }

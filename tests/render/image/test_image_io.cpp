@@ -1,0 +1,64 @@
+// Tests render/image/image_io.h: the sRGB curve, PNG and PFM bytes, atomic writes.
+#include "render/image/image_io.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <unistd.h>
+
+#include "src/common/error.h"
+
+namespace thaw::render {
+namespace {
+
+TEST(ImageIo, SrgbCurveKnownValues) {
+  EXPECT_EQ(to_srgb8(0.0f), 0);
+  EXPECT_EQ(to_srgb8(1.0f), 255);
+  EXPECT_EQ(to_srgb8(2.0f), 255);   // clamped
+  EXPECT_EQ(to_srgb8(-1.0f), 0);
+  EXPECT_EQ(to_srgb8(0.5f), 188);   // 1.055 * 0.5^(1/2.4) - 0.055 = 0.7354 -> 187.5 -> 188
+  EXPECT_EQ(to_srgb8(0.18f), 118);  // 18 % grey: 0.4614 -> 117.7
+  EXPECT_EQ(to_srgb8(0.25f, 2.0f), 188);  // exposure +1 stop
+  EXPECT_EQ(to_srgb8(0.002f), 7);   // linear segment: 12.92 * 0.002 = 0.02584 -> 6.6
+}
+
+TEST(ImageIo, PfmLayout) {
+  Image img(3, 2);
+  img.at(0, 0) = Rgb{1, 2, 3};   // top-left: written in the last row
+  img.at(2, 1) = Rgb{4, 5, 6};   // bottom-right: written in the first row
+  const std::string pfm = encode_pfm(img);
+  const std::string header = "PF\n3 2\n-1.0\n";
+  ASSERT_EQ(pfm.size(), header.size() + 3 * 2 * 12);
+  EXPECT_EQ(pfm.substr(0, header.size()), header);
+  float v[3];
+  std::memcpy(v, pfm.data() + header.size() + 2 * 12, 12);
+  EXPECT_EQ(v[0], 4.0f);
+  std::memcpy(v, pfm.data() + header.size() + 3 * 12, 12);
+  EXPECT_EQ(v[2], 3.0f);
+}
+
+TEST(ImageIo, PngSignature) {
+  const std::string png = encode_png(Image(4, 4));
+  ASSERT_GT(png.size(), 8u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+}
+
+TEST(ImageIo, WritesAtomicallyAndChecksPaths) {
+  const auto dir = std::filesystem::temp_directory_path() / ("thaw_image_io_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  write_image(dir / "a.png", Image(2, 2));
+  write_image(dir / "a.pfm", Image(2, 2));
+  EXPECT_TRUE(std::filesystem::exists(dir / "a.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "a.pfm"));
+  EXPECT_THROW(write_image(dir / "a.jpg", Image(2, 2)), UserError);
+  EXPECT_THROW(write_image(dir / "missing" / "a.png", Image(2, 2)), UserError);
+  // Nothing but the two finished files: no temporaries left behind.
+  int files = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++files;
+  EXPECT_EQ(files, 2);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace thaw::render

@@ -1,0 +1,86 @@
+// Tests render/scene/scene.h: build_scene from code (the pipeline's path) and its checks.
+#include "render/scene/scene.h"
+
+#include <gtest/gtest.h>
+
+#include "src/common/error.h"
+#include "tests/render/test_util.h"
+
+namespace thaw::render {
+namespace {
+
+SceneDescription shell_scene() {
+  SceneDescription d;
+  d.camera.position = {0, 0, 5};
+  d.camera.look_at = {0, 0, 0};
+  d.media = {{"air", 1.0}, {"ice", 1.31}, {"water", 1.33}};
+  d.add_dielectric_mesh(std::make_shared<TriangleMesh>(test::icosphere(3, 1.0f)), "ice", "air", "outer");
+  d.add_dielectric_mesh(std::make_shared<TriangleMesh>(test::icosphere(3, 0.7f)), "water", "ice", "inner");
+  return d;
+}
+
+TEST(Scene, BuildsFromInMemoryMeshesAndFindsCameraMedium) {
+  const Scene s = build_scene(shell_scene());
+  EXPECT_EQ(s.statistics().triangles, 2u * 1280u);
+  EXPECT_EQ(s.media()[s.camera_medium()].name, "air");
+  Hit hit;
+  ASSERT_TRUE(s.intersect(Ray{{0, 0, 5}, {0, 0, -1}}, hit));
+  EXPECT_NEAR(hit.t, 4.0f, 2e-3f);  // icosphere face centres sit inside the sphere by < 2e-3
+  const SurfaceInteraction si = s.interaction(Ray{{0, 0, 5}, {0, 0, -1}}, hit);
+  EXPECT_GT(si.ng.z, 0.99f);  // outward
+  EXPECT_EQ(s.objects()[si.object].label, "outer");
+}
+
+TEST(Scene, OpenDielectricMeshIsRejected) {
+  SceneDescription d = shell_scene();
+  auto open = std::make_shared<TriangleMesh>(test::icosphere(2, 0.5f));
+  open->triangles.pop_back();
+  d.add_dielectric_mesh(open, "water", "ice", "leaky");
+  try {
+    build_scene(d);
+    FAIL();
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("leaky"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("closed"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Scene, InwardDielectricMeshIsRejected) {
+  SceneDescription d = shell_scene();
+  auto inward = std::make_shared<TriangleMesh>(test::icosphere(2, 0.5f));
+  for (auto& t : inward->triangles) std::swap(t[1], t[2]);
+  d.add_dielectric_mesh(inward, "water", "ice");
+  EXPECT_THROW(build_scene(d), UserError);
+}
+
+TEST(Scene, UnknownNamesAndMissingFilesAreRejected) {
+  SceneDescription d = shell_scene();
+  d.objects[1].inside = "juice";
+  EXPECT_THROW(build_scene(d), UserError);
+  d = shell_scene();
+  ObjectDescription o;
+  o.shape = ObjectDescription::Shape::mesh;
+  o.mesh_file = "/nonexistent/thing.obj";
+  o.material = "none";
+  d.materials.push_back({});
+  d.materials.back().name = "none";
+  d.objects.push_back(o);
+  EXPECT_THROW(build_scene(d), UserError);
+}
+
+TEST(Scene, AmbiguousCameraMediumMustBeGiven) {
+  SceneDescription d = shell_scene();
+  d.add_dielectric_mesh(std::make_shared<TriangleMesh>(test::icosphere(1, 0.2f, {3, 0, 0})), "water", "vacuum");
+  EXPECT_THROW(build_scene(d), UserError);
+  d.camera.medium = "air";
+  EXPECT_NO_THROW(build_scene(d));
+}
+
+TEST(Scene, BadImageSizeIsRejected) {
+  SceneDescription d = shell_scene();
+  d.image.width = 0;
+  EXPECT_THROW(build_scene(d), UserError);
+}
+
+}  // namespace
+}  // namespace thaw::render

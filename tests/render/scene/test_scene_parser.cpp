@@ -1,0 +1,160 @@
+// Tests render/scene/scene_parser.h: the issue's example scene parses; every kind of bad input is
+// a UserError naming the file, the line and the key.
+#include "render/scene/scene_parser.h"
+
+#include <gtest/gtest.h>
+
+#include "src/common/error.h"
+
+namespace thaw::render {
+namespace {
+
+const std::string kExample = R"(
+[image]
+width = 64
+height = 48
+samples_per_pixel = 4
+max_depth = 10
+background = [0.25, 0.30, 0.40]
+[camera]
+position = [0.0, 1.3, 5.5]
+look_at = [0.0, -0.2, 0.0]
+up = [0.0, 1.0, 0.0]
+vertical_fov_deg = 35.0
+[ambient]
+color = [1.0, 1.0, 1.0]
+intensity = 0.1
+[[lights]]
+kind = "point"
+position = [-4.0, 6.0, 4.0]
+color = [1.0, 1.0, 1.0]
+intensity = 1.0
+falloff = "inverse_square"
+[media.ice]
+ior = 1.31
+[media.water]
+ior = 1.33
+[materials.floor]
+kind = "matte"
+checker = { colors = [[0.8, 0.1, 0.1], [0.9, 0.9, 0.9]], size = 0.5 }
+[materials.shiny]
+kind = "phong"
+color = [0.2, 0.3, 0.4]
+ks = 0.5
+shininess = 50
+reflectance = 0.2
+[[objects]]
+shape = "mesh"
+file = "meshes/shell_outer.obj"
+inside = "ice"
+outside = "vacuum"
+[[objects]]
+shape = "sphere"
+center = [0.0, 0.0, 0.0]
+radius = 0.7
+inside = "water"
+outside = "ice"
+[[objects]]
+shape = "plane"
+point = [0.0, -1.0, 0.0]
+normal = [0.0, 1.0, 0.0]
+material = "floor"
+[[objects]]
+shape = "box"
+min = [1, 1, 1]
+max = [2, 2, 2]
+material = "shiny"
+)";
+
+TEST(SceneParser, IssueExampleParses) {
+  const SceneDescription s = parse_scene_string(kExample, "example.toml", "/base");
+  EXPECT_EQ(s.image.width, 64);
+  EXPECT_EQ(s.image.height, 48);
+  EXPECT_EQ(s.image.samples_per_pixel, 4);
+  EXPECT_DOUBLE_EQ(s.camera.vertical_fov_deg, 35.0);
+  ASSERT_EQ(s.lights.size(), 1u);
+  EXPECT_EQ(s.lights[0].falloff, LightDescription::Falloff::inverse_square);
+  ASSERT_EQ(s.media.size(), 2u);
+  ASSERT_EQ(s.materials.size(), 2u);
+  EXPECT_EQ(s.materials[0].texture.kind, TextureDescription::Kind::checker);
+  ASSERT_EQ(s.objects.size(), 4u);
+  EXPECT_EQ(s.objects[0].shape, ObjectDescription::Shape::mesh);
+  EXPECT_EQ(s.objects[0].mesh_file, "meshes/shell_outer.obj");
+  EXPECT_TRUE(s.objects[0].is_dielectric());
+  EXPECT_EQ(s.objects[1].inside, "water");
+  EXPECT_EQ(s.objects[2].material, "floor");
+  EXPECT_EQ(s.base_dir, "/base");
+}
+
+/// Replaces the first occurrence of `from` in the example by `to`, parses, and checks the error.
+void expect_error(const std::string& from, const std::string& to, const std::string& key_fragment,
+                  const std::string& problem_fragment) {
+  std::string text = kExample;
+  const auto pos = text.find(from);
+  ASSERT_NE(pos, std::string::npos) << from;
+  text.replace(pos, from.size(), to);
+  try {
+    parse_scene_string(text, "bad.toml");
+    FAIL() << "no error after replacing '" << from << "' by '" << to << "'";
+  } catch (const UserError& e) {
+    EXPECT_EQ(e.file(), "bad.toml");
+    EXPECT_NE(e.where().find(key_fragment), std::string::npos) << e.what();
+    EXPECT_NE(e.where().find("line "), std::string::npos) << e.what();
+    EXPECT_NE(e.problem().find(problem_fragment), std::string::npos) << e.what();
+  }
+}
+
+TEST(SceneParser, UnknownKeysAreErrors) {
+  expect_error("max_depth = 10", "max_detph = 10", "image.max_detph", "unknown key");
+  expect_error("radius = 0.7", "radius = 0.7\nradiu = 1", "objects[1].radiu", "unknown key");
+  expect_error("[ambient]", "[ambiant]", "ambiant", "unknown key");
+}
+
+TEST(SceneParser, UnknownNamesAreErrors) {
+  expect_error("inside = \"water\"", "inside = \"wate\"", "objects[1].inside", "unknown medium 'wate'");
+  expect_error("material = \"floor\"", "material = \"flor\"", "objects[2].material", "unknown material 'flor'");
+  expect_error("kind = \"matte\"", "kind = \"lambert\"", "materials.floor.kind", "unknown material kind");
+  expect_error("shape = \"box\"", "shape = \"cube\"", "objects[3].shape", "unknown shape");
+  expect_error("kind = \"point\"", "kind = \"spot\"", "lights[0].kind", "unknown light kind");
+}
+
+TEST(SceneParser, BadValuesAreErrors) {
+  expect_error("width = 64", "width = 0", "image.width", "between 1 and");
+  expect_error("width = 64", "width = 100000", "image.width", "between 1 and");
+  expect_error("normal = [0.0, 1.0, 0.0]", "normal = [0.0, 2.0, 0.0]", "normal", "unit vector");
+  expect_error("normal = [0.0, 1.0, 0.0]", "normal = [0.0, 0.0, 0.0]", "normal", "zero vector");
+  expect_error("up = [0.0, 1.0, 0.0]", "up = [0.0, 0.0, 0.0]", "camera.up", "zero vector");
+  expect_error("radius = 0.7", "radius = -0.7", "radius", "positive");
+  expect_error("ior = 1.31", "ior = 0.5", "media.ice.ior", "[1, 10)");
+  expect_error("ior = 1.31", "ior = nan", "media.ice.ior", "finite");
+  expect_error("vertical_fov_deg = 35.0", "vertical_fov_deg = 180.0", "vertical_fov_deg", "(0, 180)");
+  expect_error("outside = \"ice\"", "outside = \"water\"", "outside", "different media");
+  expect_error("material = \"floor\"", "inside = \"ice\"\noutside = \"water\"", "inside", "not closed");
+  expect_error("radius = 0.7", "radius = \"big\"", "radius", "expected a number");
+  expect_error("max = [2, 2, 2]", "max = [2, 0, 2]", "max", "must exceed min");
+}
+
+TEST(SceneParser, MalformedTomlNamesTheLine) {
+  try {
+    parse_scene_string("[image]\nwidth = = 3\n", "m.toml");
+    FAIL();
+  } catch (const UserError& e) {
+    EXPECT_NE(e.where().find("line 2"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SceneParser, MissingCameraIsAnError) {
+  EXPECT_THROW(parse_scene_string("[image]\nwidth = 4\n", "c.toml"), UserError);
+}
+
+TEST(SceneParser, MissingFileIsAnError) {
+  EXPECT_THROW(parse_scene_file("/nonexistent/scene.toml"), UserError);
+}
+
+TEST(SceneParser, ShippedScenesParse) {
+  for (const char* name : {"s1_ice_shell", "s1_ice_shell_mesh", "s3_dispersion_nodisp", "s4_spheres16"})
+    EXPECT_NO_THROW(parse_scene_file(std::string(THAW_SOURCE_DIR) + "/data/scenes/" + name + ".toml")) << name;
+}
+
+}  // namespace
+}  // namespace thaw::render
