@@ -9,7 +9,7 @@
 
 namespace thaw::render::media {
 
-/// All presets in file order (parsed once, on first use).
+/// All presets, sorted by name (parsed once, on first use; thread-safe).
 const std::vector<MediumSpec>& medium_presets();
 /// The preset called `name`, or nullptr.
 const MediumSpec* find_medium_preset(const std::string& name);

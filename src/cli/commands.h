@@ -7,6 +7,7 @@ namespace thaw::cli {
 
 // One line per sub-command, in the order shown by --help.
 void register_render(CLI::App& app);   ///< thaw render (command_render.cpp)
+void register_materials(CLI::App& app); ///< thaw materials (command_materials.cpp)
 void register_mesh(CLI::App& app);     ///< thaw mesh (command_mesh.cpp)
 
 }  // namespace thaw::cli

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("thaw ") + THAW_VERSION_STRING);
   app.require_subcommand(1);
   thaw::cli::register_render(app);
+  thaw::cli::register_materials(app);
   thaw::cli::register_mesh(app);
   try {
     app.parse(argc, argv);
