@@ -1,0 +1,111 @@
+// `thaw inspect PATH`: checks a mesh (an OBJ) or every mesh of a simulation folder, and on request
+// writes a ParaView collection, a screenshot and a radius/volume plot. Parsing and help only.
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "src/cli/commands.h"
+#include "src/common/error.h"
+#include "src/common/progress.h"
+#include "src/inspect/mesh_report.h"
+#include "src/inspect/obj_reader.h"
+#include "src/inspect/pvd_writer.h"
+#include "src/inspect/radius_plot.h"
+#include "src/inspect/screenshot.h"
+#include "src/inspect/simulation_folder.h"
+
+namespace thaw::cli {
+namespace fs = std::filesystem;
+namespace {
+
+struct InspectArgs {
+  std::string path;
+  bool json = false;
+  bool quiet = false;
+  std::string pvd, screenshot, plot;
+  std::optional<long> step;
+};
+
+void run_inspect(const InspectArgs& a) {
+  const fs::path path(a.path);
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw UserError(a.path, "", "no such file or folder");
+  if (fs::is_directory(path, ec)) {
+    if (!inspect::is_simulation_folder(path))
+      throw UserError(a.path, "", "not a simulation folder (no interfaces.csv) and not an OBJ file");
+    const inspect::SimulationFolder folder = inspect::read_simulation_folder(path);
+    std::vector<inspect::StepReport> reports;
+    {
+      ProgressReporter progress("inspect", static_cast<std::int64_t>(folder.steps.size()),
+                                a.quiet || folder.steps.size() < 2);
+      reports = inspect::inspect_simulation(folder, progress.callback());
+    }
+    if (a.json) std::cout << inspect::to_json(reports).dump(2) << "\n";
+    else std::cout << inspect::format_table(folder, reports);
+    std::cout.flush();
+    if (!a.pvd.empty()) {
+      ProgressReporter progress("pvd", static_cast<std::int64_t>(folder.steps.size()),
+                                a.quiet || folder.steps.size() < 2);
+      inspect::write_pvd_series(path, a.pvd, progress.callback());
+      progress.finish();
+      if (!a.quiet) std::fprintf(stderr, "thaw inspect: wrote %s\n", a.pvd.c_str());
+    }
+    if (!a.screenshot.empty()) {
+      inspect::write_simulation_screenshot(path, a.screenshot, a.step);
+      if (!a.quiet) std::fprintf(stderr, "thaw inspect: wrote %s\n", a.screenshot.c_str());
+    }
+    if (!a.plot.empty()) {
+      inspect::write_radius_plot(path, a.plot);
+      if (!a.quiet) std::fprintf(stderr, "thaw inspect: wrote %s\n", a.plot.c_str());
+    }
+    return;
+  }
+  if (!a.plot.empty())
+    throw UserError(a.path, "--plot", "needs a simulation folder (interfaces.csv), not one OBJ");
+  if (a.step) throw UserError(a.path, "--step", "only applies to a simulation folder");
+  const inspect::MeshReport report = inspect::inspect_obj(path);
+  if (a.json) std::cout << inspect::to_json(report).dump(2) << "\n";
+  else std::cout << inspect::format_table(report);
+  std::cout.flush();
+  if (!a.pvd.empty()) {
+    inspect::PvdWriter writer(a.pvd);
+    const inspect::TriangleMesh mesh = inspect::read_obj(path);
+    writer.add(0, 0.0, inspect::SurfacePart::outer, &mesh);
+    if (!a.quiet) std::fprintf(stderr, "thaw inspect: wrote %s\n", a.pvd.c_str());
+  }
+  if (!a.screenshot.empty()) {
+    inspect::write_obj_screenshot(path, a.screenshot);
+    if (!a.quiet) std::fprintf(stderr, "thaw inspect: wrote %s\n", a.screenshot.c_str());
+  }
+}
+
+}  // namespace
+
+void register_inspect(CLI::App& app) {
+  auto args = std::make_shared<InspectArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "inspect",
+      "Check meshes with VTK: an OBJ file, or every step of a simulation folder (SIMDIR with "
+      "interfaces.csv and mesh/manifest.json). Prints vertices, triangles, boundary and "
+      "non-manifold edges, orientation, volume, area, bounding box, triangle angles and aspect "
+      "ratios. --screenshot and --plot need an X display; without one thaw starts Xvfb.");
+  cmd->add_option("PATH", args->path, "an OBJ file or a simulation folder")->required();
+  cmd->add_flag("--json", args->json, "print the report as JSON (an array of steps for a folder)");
+  cmd->add_option("--pvd", args->pvd,
+                  "write a ParaView collection OUT.pvd (+ OUT_vtp/ with one .vtp per step and "
+                  "surface; timestep = simulated seconds)");
+  cmd->add_option("--screenshot", args->screenshot,
+                  "write an off-screen rendering (edges shown; outer surface translucent) to PNG");
+  cmd->add_option("--plot", args->plot,
+                  "write inner/outer radius and volumes against time to PNG (simulation folder)");
+  cmd->add_option("--step", args->step,
+                  "with --screenshot on a folder: draw this step only (default: up to 4 steps)");
+  cmd->add_flag("-q,--quiet", args->quiet, "no progress or 'wrote' lines on stderr");
+  cmd->callback([args] { run_inspect(*args); });
+}
+
+}  // namespace thaw::cli

@@ -1,0 +1,332 @@
+#include "src/inspect/mesh_report.h"
+
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkFeatureEdges.h>
+#include <vtkMassProperties.h>
+#include <vtkMeshQuality.h>
+#include <vtkNew.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numeric>
+#include <nlohmann/json.hpp>
+
+#include "src/common/check.h"
+#include "src/common/error.h"
+#include "src/inspect/obj_reader.h"
+#include "src/inspect/vtk_polydata.h"
+
+namespace thaw::inspect {
+namespace {
+
+using Vec3 = std::array<double, 3>;
+
+Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+
+/// Edges used by exactly one triangle (boundary) or by three or more (non-manifold), counted
+/// by vtkFeatureEdges with feature-angle edges switched off (they are on by default).
+std::int64_t count_feature_edges(vtkPolyData* poly, bool boundary) {
+  vtkNew<vtkFeatureEdges> edges;
+  edges->SetInputData(poly);
+  edges->FeatureEdgesOff();
+  edges->ManifoldEdgesOff();
+  edges->SetBoundaryEdges(boundary);
+  edges->SetNonManifoldEdges(!boundary);
+  edges->ColoringOff();
+  edges->Update();
+  return edges->GetOutput()->GetNumberOfLines();
+}
+
+struct QualityStats {
+  double min = 0, mean = 0, max = 0;
+};
+
+/// Per-triangle quality from vtkMeshQuality (measure set by `configure`).
+template <class Configure>
+QualityStats mesh_quality(vtkPolyData* poly, Configure configure) {
+  vtkNew<vtkMeshQuality> quality;
+  quality->SetInputData(poly);
+  configure(quality.Get());
+  quality->Update();
+  vtkDataArray* values = quality->GetOutput()->GetCellData()->GetArray("Quality");
+  QualityStats stats;
+  if (values == nullptr || values->GetNumberOfTuples() == 0) return stats;
+  stats.min = std::numeric_limits<double>::infinity();
+  stats.max = -stats.min;
+  double sum = 0;
+  const vtkIdType n = values->GetNumberOfTuples();
+  for (vtkIdType i = 0; i < n; ++i) {
+    const double q = values->GetTuple1(i);
+    stats.min = std::min(stats.min, q);
+    stats.max = std::max(stats.max, q);
+    sum += q;
+  }
+  stats.mean = sum / static_cast<double>(n);
+  return stats;
+}
+
+std::int64_t find_root(std::vector<std::int64_t>& parent, std::int64_t i) {
+  while (parent[i] != i) {
+    parent[i] = parent[parent[i]];
+    i = parent[i];
+  }
+  return i;
+}
+
+}  // namespace
+
+MeshReport inspect_mesh(const TriangleMesh& mesh, const std::string& source) {
+  MeshReport r;
+  r.source = source;
+  const auto nv = static_cast<std::int64_t>(mesh.vertices.size());
+  r.vertices = nv;
+  r.triangles = static_cast<std::int64_t>(mesh.triangles.size());
+  if (mesh.triangles.empty()) throw UserError(source, "", "empty mesh: no triangles");
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+    for (const std::int64_t i : mesh.triangles[f])
+      if (i < 0 || i >= nv)
+        throw UserError(source, "triangle " + std::to_string(f + 1),
+                        "vertex index " + std::to_string(i + 1) + " out of range 1.." +
+                            std::to_string(nv));
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+    for (const double c : mesh.vertices[v])
+      if (!std::isfinite(c))
+        throw UserError(source, "vertex " + std::to_string(v + 1), "non-finite coordinate");
+
+  // Duplicated positions: sort vertex ids by position and count equal neighbours. Exact equality
+  // is the right test: a mesher that shares vertices writes each position once.
+  {
+    std::vector<std::int64_t> order(static_cast<std::size_t>(nv));
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](std::int64_t a, std::int64_t b) {
+      return mesh.vertices[a] < mesh.vertices[b];
+    });
+    for (std::size_t k = 1; k < order.size(); ++k)
+      if (mesh.vertices[order[k]] == mesh.vertices[order[k - 1]]) ++r.duplicate_vertices;
+  }
+
+  // Triangles with a repeated corner have no edges of their own worth counting: they are reported
+  // as degenerate and left out of the topology; zero-area triangles with distinct corners stay in
+  // the topology but not in the quality statistics.
+  TriangleMesh topo;  // triangles that take part in the topology (vertices shared with `mesh`)
+  TriangleMesh good;  // non-degenerate triangles, for the quality measures
+  topo.triangles.reserve(mesh.triangles.size());
+  good.triangles.reserve(mesh.triangles.size());
+  std::vector<char> used(static_cast<std::size_t>(nv), 0);
+  for (const auto& t : mesh.triangles) {
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+      ++r.degenerate_triangles;
+      continue;
+    }
+    topo.triangles.push_back(t);
+    for (const std::int64_t i : t) used[i] = 1;
+    const Vec3 e0 = sub(mesh.vertices[t[1]], mesh.vertices[t[0]]);
+    const Vec3 e1 = sub(mesh.vertices[t[2]], mesh.vertices[t[1]]);
+    const Vec3 e2 = sub(mesh.vertices[t[0]], mesh.vertices[t[2]]);
+    const double longest2 = std::max({dot(e0, e0), dot(e1, e1), dot(e2, e2)});
+    // |e0 x e1| = 2A = L_max h; below 1e-12 L_max^2 the smallest angle is under ~1e-12 rad,
+    // i.e. the triangle is flat to within a few thousand ulps of double precision.
+    if (norm(cross(e0, e1)) <= 1e-12 * longest2) {
+      ++r.degenerate_triangles;
+      continue;
+    }
+    good.triangles.push_back(t);
+  }
+
+  // Edges: one record per (triangle, side) with the undirected key and the direction it is
+  // traversed in; sorted, equal keys are the triangles sharing that edge.
+  struct HalfEdge {
+    std::int64_t lo, hi;
+    int dir;  // +1 when traversed lo -> hi
+    bool operator<(const HalfEdge& o) const { return lo != o.lo ? lo < o.lo : hi < o.hi; }
+  };
+  std::vector<HalfEdge> half;
+  half.reserve(3 * topo.triangles.size());
+  std::vector<std::int64_t> parent(static_cast<std::size_t>(nv));
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const auto& t : topo.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const std::int64_t a = t[k], b = t[(k + 1) % 3];
+      half.push_back({std::min(a, b), std::max(a, b), a < b ? 1 : -1});
+      const std::int64_t ra = find_root(parent, a), rb = find_root(parent, b);
+      if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
+    }
+  }
+  std::sort(half.begin(), half.end());
+  double edge_sum = 0;
+  r.min_edge_m = std::numeric_limits<double>::infinity();
+  std::int64_t boundary = 0, non_manifold = 0;
+  for (std::size_t k = 0; k < half.size();) {
+    std::size_t j = k;
+    int dir_sum = 0;
+    while (j < half.size() && half[j].lo == half[k].lo && half[j].hi == half[k].hi) {
+      dir_sum += half[j].dir;
+      ++j;
+    }
+    const std::size_t uses = j - k;
+    ++r.edges;
+    if (uses == 1) ++boundary;
+    if (uses >= 3) ++non_manifold;
+    // Two triangles agreeing in orientation traverse their shared edge in opposite directions.
+    if (uses == 2 && dir_sum != 0) ++r.inconsistent_edges;
+    const double len = norm(sub(mesh.vertices[half[k].lo], mesh.vertices[half[k].hi]));
+    edge_sum += len;
+    r.min_edge_m = std::min(r.min_edge_m, len);
+    r.max_edge_m = std::max(r.max_edge_m, len);
+    k = j;
+  }
+  r.mean_edge_m = r.edges > 0 ? edge_sum / static_cast<double>(r.edges) : 0;
+  if (r.edges == 0) r.min_edge_m = 0;
+
+  std::int64_t used_vertices = 0;
+  r.bbox_min = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                std::numeric_limits<double>::infinity()};
+  r.bbox_max = {-r.bbox_min[0], -r.bbox_min[0], -r.bbox_min[0]};
+  for (std::int64_t v = 0; v < nv; ++v) {
+    if (!used[v]) continue;
+    ++used_vertices;
+    if (find_root(parent, v) == v) ++r.components;
+    for (int c = 0; c < 3; ++c) {
+      r.bbox_min[c] = std::min(r.bbox_min[c], mesh.vertices[v][c]);
+      r.bbox_max[c] = std::max(r.bbox_max[c], mesh.vertices[v][c]);
+    }
+  }
+  if (used_vertices == 0) r.bbox_min = r.bbox_max = {0, 0, 0};
+  r.unused_vertices = nv - used_vertices;
+  r.euler_characteristic =
+      used_vertices - r.edges + static_cast<std::int64_t>(topo.triangles.size());
+
+  // Signed volume by the divergence theorem, sum of tetrahedra (origin, a, b, c); independent of
+  // the origin only for a closed surface. Positive when the normals (right-hand rule) point out.
+  long double signed6 = 0;
+  for (const auto& t : topo.triangles)
+    signed6 += dot(mesh.vertices[t[0]], cross(mesh.vertices[t[1]], mesh.vertices[t[2]]));
+  r.signed_volume_m3 = static_cast<double>(signed6 / 6);
+
+  topo.vertices = mesh.vertices;
+  if (!topo.triangles.empty()) {
+    vtkSmartPointer<vtkPolyData> poly = to_polydata(topo);
+    r.boundary_edges = count_feature_edges(poly, true);
+    r.non_manifold_edges = count_feature_edges(poly, false);
+    // vtkFeatureEdges and the edge bookkeeping above define both counts identically.
+    THAW_CHECK(r.boundary_edges == boundary && r.non_manifold_edges == non_manifold,
+               "vtkFeatureEdges disagrees with the edge bookkeeping");
+    vtkNew<vtkMassProperties> mass;
+    mass->SetInputData(poly);
+    mass->Update();
+    r.volume_m3 = mass->GetVolume();
+    r.area_m2 = mass->GetSurfaceArea();
+  }
+  r.closed = r.boundary_edges == 0 && r.non_manifold_edges == 0;
+  r.consistently_oriented = r.inconsistent_edges == 0;
+  if (r.closed && r.consistently_oriented) r.outward = r.signed_volume_m3 > 0;
+
+  if (!good.triangles.empty()) {
+    good.vertices = mesh.vertices;
+    vtkSmartPointer<vtkPolyData> poly = to_polydata(good);
+    const QualityStats min_angle =
+        mesh_quality(poly, [](vtkMeshQuality* q) { q->SetTriangleQualityMeasureToMinAngle(); });
+    const QualityStats max_angle =
+        mesh_quality(poly, [](vtkMeshQuality* q) { q->SetTriangleQualityMeasureToMaxAngle(); });
+    const QualityStats aspect =
+        mesh_quality(poly, [](vtkMeshQuality* q) { q->SetTriangleQualityMeasureToAspectRatio(); });
+    r.min_angle_deg = min_angle.min;
+    r.mean_min_angle_deg = min_angle.mean;
+    r.max_angle_deg = max_angle.max;
+    r.mean_aspect_ratio = aspect.mean;
+    r.max_aspect_ratio = aspect.max;
+  }
+  return r;
+}
+
+MeshReport inspect_obj(const std::filesystem::path& path) {
+  return inspect_mesh(read_obj(path), path.string());
+}
+
+nlohmann::ordered_json to_json(const MeshReport& r) {
+  nlohmann::ordered_json j;
+  j["file"] = r.source;
+  j["vertices"] = r.vertices;
+  j["triangles"] = r.triangles;
+  j["edges"] = r.edges;
+  j["boundary_edges"] = r.boundary_edges;
+  j["non_manifold_edges"] = r.non_manifold_edges;
+  j["inconsistent_edges"] = r.inconsistent_edges;
+  j["duplicate_vertices"] = r.duplicate_vertices;
+  j["unused_vertices"] = r.unused_vertices;
+  j["degenerate_triangles"] = r.degenerate_triangles;
+  j["components"] = r.components;
+  j["euler_characteristic"] = r.euler_characteristic;
+  j["closed"] = r.closed;
+  j["consistently_oriented"] = r.consistently_oriented;
+  j["outward"] = r.outward ? nlohmann::ordered_json(*r.outward) : nlohmann::ordered_json(nullptr);
+  j["volume_m3"] = r.volume_m3;
+  j["signed_volume_m3"] = r.signed_volume_m3;
+  j["area_m2"] = r.area_m2;
+  j["bounding_box"] = {{"min", r.bbox_min}, {"max", r.bbox_max}};
+  j["min_edge_m"] = r.min_edge_m;
+  j["mean_edge_m"] = r.mean_edge_m;
+  j["max_edge_m"] = r.max_edge_m;
+  j["min_angle_deg"] = r.min_angle_deg;
+  j["mean_min_angle_deg"] = r.mean_min_angle_deg;
+  j["max_angle_deg"] = r.max_angle_deg;
+  j["mean_aspect_ratio"] = r.mean_aspect_ratio;
+  j["max_aspect_ratio"] = r.max_aspect_ratio;
+  return j;
+}
+
+std::string format_table(const MeshReport& r) {
+  std::string out;
+  char buf[256];
+  auto row = [&](const char* name, const std::string& value, const char* note = "") {
+    std::snprintf(buf, sizeof buf, "  %-24s %s%s\n", name, value.c_str(), note);
+    out += buf;
+  };
+  auto num = [](double v, const char* fmt = "%.6g") {
+    char b[64];
+    std::snprintf(b, sizeof b, fmt, v);
+    return std::string(b);
+  };
+  auto count = [](std::int64_t v) { return std::to_string(v); };
+  auto flag = [](std::int64_t v) { return v == 0 ? "" : "   <-- problem"; };
+  out += r.source + "\n";
+  row("vertices", count(r.vertices));
+  row("triangles", count(r.triangles));
+  row("edges", count(r.edges));
+  row("boundary edges", count(r.boundary_edges), flag(r.boundary_edges));
+  row("non-manifold edges", count(r.non_manifold_edges), flag(r.non_manifold_edges));
+  row("inconsistent edges", count(r.inconsistent_edges), flag(r.inconsistent_edges));
+  row("duplicate vertices", count(r.duplicate_vertices), flag(r.duplicate_vertices));
+  row("unused vertices", count(r.unused_vertices));
+  row("degenerate triangles", count(r.degenerate_triangles), flag(r.degenerate_triangles));
+  row("components", count(r.components));
+  row("Euler characteristic", count(r.euler_characteristic), "   (2 for a sphere)");
+  row("closed", r.closed ? "yes" : "no");
+  row("consistently oriented", r.consistently_oriented ? "yes" : "no");
+  row("outward", r.outward ? (*r.outward ? "yes" : "no (inside out)") : "undefined");
+  row("volume", num(r.volume_m3) + " m^3");
+  row("signed volume", num(r.signed_volume_m3) + " m^3");
+  row("area", num(r.area_m2) + " m^2");
+  row("bounding box min", num(r.bbox_min[0]) + " " + num(r.bbox_min[1]) + " " +
+                              num(r.bbox_min[2]) + " m");
+  row("bounding box max", num(r.bbox_max[0]) + " " + num(r.bbox_max[1]) + " " +
+                              num(r.bbox_max[2]) + " m");
+  row("edge length min/mean/max",
+      num(r.min_edge_m) + " / " + num(r.mean_edge_m) + " / " + num(r.max_edge_m) + " m");
+  row("angle min/mean-min/max", num(r.min_angle_deg, "%.2f") + " / " +
+                                    num(r.mean_min_angle_deg, "%.2f") + " / " +
+                                    num(r.max_angle_deg, "%.2f") + " deg");
+  row("aspect ratio mean/max",
+      num(r.mean_aspect_ratio, "%.3f") + " / " + num(r.max_aspect_ratio, "%.3f"));
+  return out;
+}
+
+}  // namespace thaw::inspect

@@ -1,0 +1,55 @@
+#pragma once
+// ParaView time series: a .pvd collection (plain XML, written by hand) referencing one .vtp per
+// step and surface, the inner (water|ice) and outer (ice|air) surfaces as separate parts, the
+// timestep being the simulated time in seconds. Every .vtp and every rewrite of the .pvd is atomic
+// (temporary name + rename) and the .pvd is rewritten after each added file, so it is a valid
+// collection of the steps done so far if a run is interrupted. Needs no display.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "src/common/progress.h"
+#include "src/inspect/triangle_mesh.h"
+
+namespace thaw::inspect {
+
+/// The part numbers used in thaw's collections.
+enum class SurfacePart { inner = 0, outer = 1 };
+
+class PvdWriter {
+ public:
+  /// `pvd_path`: the collection file; the .vtp files go in the folder `<stem>_vtp/` beside it
+  /// (created). Throws thaw::UserError if that folder cannot be created.
+  explicit PvdWriter(std::filesystem::path pvd_path);
+
+  /// Writes step `step`'s `part` surface (nullptr: vanished, written as an empty data set so the
+  /// part disappears at that time instead of ParaView holding the last surface) and rewrites the
+  /// .pvd. time_s: simulated time [s].
+  void add(long step, double time_s, SurfacePart part, const TriangleMesh* mesh);
+
+  const std::filesystem::path& pvd_path() const { return m_pvd; }
+  const std::filesystem::path& data_dir() const { return m_data_dir; }
+  /// Number of data sets referenced so far.
+  std::size_t size() const { return m_entries.size(); }
+
+ private:
+  struct Entry {
+    double time_s;
+    int part;
+    std::string file;  // relative to the .pvd's folder, '/'-separated
+  };
+  void rewrite_pvd() const;
+  std::filesystem::path m_pvd, m_data_dir;
+  std::vector<Entry> m_entries;
+};
+
+/// Writes `mesh` as a VTK XML PolyData file atomically (appended raw binary, zlib).
+void write_vtp(const std::filesystem::path& path, const TriangleMesh& mesh);
+
+/// Writes the collection for every meshed step of a simulation folder (see simulation_folder.h);
+/// OBJs are validated as by inspect_obj. progress: (steps done, steps total).
+void write_pvd_series(const std::filesystem::path& simdir, const std::filesystem::path& out_pvd,
+                      const ProgressCallback& progress = {});
+
+}  // namespace thaw::inspect
