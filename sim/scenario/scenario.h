@@ -1,0 +1,68 @@
+#pragma once
+// The plain description of one simulation (parsed from a scenario TOML file, or built in code by
+// tests and the pipeline): geometry, initial state, boundary conditions, materials and the
+// accuracy knobs. Knows nothing of TOML or of how the solver works.
+#include <string>
+
+#include "sim/io/interface_history.h"
+
+namespace thaw::sim {
+
+/// Thermal properties of ice and water (SI). Defaults come from data/materials/ice_water.toml.
+struct Materials {
+  double ice_conductivity_w_mk = 2.22;        ///< k_ice [W/(m K)]
+  double ice_density_kg_m3 = 917.0;           ///< rho_ice [kg/m^3]
+  double ice_specific_heat_j_kgk = 2050.0;    ///< c_ice [J/(kg K)]
+  double water_conductivity_w_mk = 0.56;      ///< k_water [W/(m K)]
+  double water_density_kg_m3 = 1000.0;        ///< rho_water [kg/m^3]
+  double water_specific_heat_j_kgk = 4186.0;  ///< c_water [J/(kg K)]
+  double latent_heat_j_kg = 333400.0;         ///< L [J/kg]
+  double melting_point_c = 0.0;               ///< T_m [C]
+
+  /// Volumetric heat capacities [J/(m^3 K)] and latent heat per unit volume of ice [J/m^3].
+  double ice_heat_capacity() const { return ice_density_kg_m3 * ice_specific_heat_j_kgk; }
+  double water_heat_capacity() const { return water_density_kg_m3 * water_specific_heat_j_kgk; }
+  double latent_heat_per_volume() const { return ice_density_kg_m3 * latent_heat_j_kg; }
+};
+
+enum class InnerBoundary { symmetry, temperature };
+enum class OuterBoundary { temperature, convective, flux, insulated };
+
+const char* to_string(InnerBoundary kind);
+const char* to_string(OuterBoundary kind);
+
+struct Scenario {
+  // [simulation]
+  Geometry geometry = Geometry::sphere;
+  double duration_s = 3600.0;          ///< end time [s]
+  double output_interval_s = 60.0;     ///< rows of interfaces.csv at t = k * interval [s]
+  int cells_per_phase = 48;            ///< finite volumes in each phase (water, ice)
+  /// Time-step error tolerance: the estimated local error of one step in the front positions
+  /// (relative to outer_radius_m) and temperatures (relative to the largest temperature
+  /// difference in the scenario).
+  double time_tolerance = 1e-6;
+
+  // [shell]
+  double inner_radius_m = 0.02;        ///< water|ice front at t = 0 [m]; may be 0
+  double outer_radius_m = 0.03;        ///< ice surface at t = 0 [m]; may equal inner_radius_m
+  double length_m = 0.06;              ///< cylinder: length of the capsule's tube [m] (mesher only)
+  double lateral_size_m = 0.1;         ///< planar: lateral size of the slab [m] (mesher only)
+
+  // [water], [ice]
+  double water_initial_temperature_c = 10.0;
+  double ice_initial_temperature_c = -5.0;
+
+  // [inner_boundary] (planar only may be "temperature")
+  InnerBoundary inner_kind = InnerBoundary::symmetry;
+  double inner_temperature_c = 0.0;    ///< held wall temperature (kind = temperature) [C]
+
+  // [outer_boundary]
+  OuterBoundary outer_kind = OuterBoundary::convective;
+  double outer_temperature_c = 20.0;   ///< held surface temperature or air temperature [C]
+  double heat_transfer_coefficient_w_m2k = 10.0;  ///< h [W/(m^2 K)] (convective)
+  double flux_w_m2 = 0.0;              ///< heat flux into the ice [W/m^2] (flux)
+
+  Materials materials;
+};
+
+}  // namespace thaw::sim

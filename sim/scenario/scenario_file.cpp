@@ -1,0 +1,315 @@
+#include "sim/scenario/scenario_file.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+#include <vector>
+
+#include "embedded/kDefaultScenarioToml.h"
+#include "embedded/kIceWaterMaterialsToml.h"
+#include "src/common/error.h"
+#include "src/common/toml_table.h"
+
+namespace thaw::sim {
+
+const char* to_string(InnerBoundary kind) {
+  return kind == InnerBoundary::symmetry ? "symmetry" : "temperature";
+}
+
+const char* to_string(OuterBoundary kind) {
+  switch (kind) {
+    case OuterBoundary::temperature: return "temperature";
+    case OuterBoundary::convective: return "convective";
+    case OuterBoundary::flux: return "flux";
+    case OuterBoundary::insulated: return "insulated";
+  }
+  return "?";
+}
+
+namespace {
+
+std::string num(double v) {
+  std::ostringstream os;
+  os.precision(17);
+  os << v;
+  return os.str();
+}
+
+struct Problem {
+  std::string key;  ///< dotted key, e.g. "shell.inner_radius_m"
+  std::string message;
+};
+
+/// The physics rules every scenario must satisfy, shared by the parser and validate_scenario.
+std::optional<Problem> find_problem(const Scenario& s) {
+  const Materials& m = s.materials;
+  const double tm = m.melting_point_c;
+  const std::pair<const char*, double> positive_materials[] = {
+      {"materials.ice_conductivity_w_mk", m.ice_conductivity_w_mk},
+      {"materials.ice_density_kg_m3", m.ice_density_kg_m3},
+      {"materials.ice_specific_heat_j_kgk", m.ice_specific_heat_j_kgk},
+      {"materials.water_conductivity_w_mk", m.water_conductivity_w_mk},
+      {"materials.water_density_kg_m3", m.water_density_kg_m3},
+      {"materials.water_specific_heat_j_kgk", m.water_specific_heat_j_kgk},
+      {"materials.latent_heat_j_kg", m.latent_heat_j_kg}};
+  const std::pair<const char*, double> finite[] = {
+      {"simulation.duration_s", s.duration_s},
+      {"simulation.output_interval_s", s.output_interval_s},
+      {"simulation.time_tolerance", s.time_tolerance},
+      {"shell.inner_radius_m", s.inner_radius_m},
+      {"shell.outer_radius_m", s.outer_radius_m},
+      {"shell.length_m", s.length_m},
+      {"shell.lateral_size_m", s.lateral_size_m},
+      {"water.initial_temperature_c", s.water_initial_temperature_c},
+      {"ice.initial_temperature_c", s.ice_initial_temperature_c},
+      {"inner_boundary.temperature_c", s.inner_temperature_c},
+      {"outer_boundary.temperature_c", s.outer_temperature_c},
+      {"outer_boundary.heat_transfer_coefficient_w_m2k", s.heat_transfer_coefficient_w_m2k},
+      {"outer_boundary.flux_w_m2", s.flux_w_m2},
+      {"materials.melting_point_c", tm}};
+  for (auto [key, v] : finite)
+    if (!std::isfinite(v)) return Problem{key, "must be a finite number (got " + num(v) + ")"};
+  for (auto [key, v] : positive_materials)
+    if (!(v > 0) || !std::isfinite(v)) return Problem{key, "must be positive (got " + num(v) + ")"};
+  if (!(s.duration_s > 0)) return Problem{"simulation.duration_s", "must be positive (got " + num(s.duration_s) + ")"};
+  if (!(s.output_interval_s > 0))
+    return Problem{"simulation.output_interval_s", "must be positive (got " + num(s.output_interval_s) + ")"};
+  if (s.output_interval_s > s.duration_s)
+    return Problem{"simulation.output_interval_s", "(" + num(s.output_interval_s) +
+                                                       " s) is longer than the run (duration_s = " +
+                                                       num(s.duration_s) + " s)"};
+  if (s.duration_s / s.output_interval_s > 1e6)
+    return Problem{"simulation.output_interval_s", "gives more than 10^6 output rows; use a longer interval"};
+  if (s.cells_per_phase < 4 || s.cells_per_phase > 100000)
+    return Problem{"simulation.cells_per_phase", "must be between 4 and 100000 (got " + std::to_string(s.cells_per_phase) + ")"};
+  if (!(s.time_tolerance > 0 && s.time_tolerance <= 1e-2))
+    return Problem{"simulation.time_tolerance", "must be in (0, 0.01] (got " + num(s.time_tolerance) + ")"};
+  if (!(s.inner_radius_m >= 0)) return Problem{"shell.inner_radius_m", "must not be negative (got " + num(s.inner_radius_m) + ")"};
+  if (!(s.outer_radius_m > 0)) return Problem{"shell.outer_radius_m", "must be positive (got " + num(s.outer_radius_m) + ")"};
+  if (s.inner_radius_m > s.outer_radius_m)
+    return Problem{"shell.inner_radius_m", "(" + num(s.inner_radius_m) + " m) is larger than outer_radius_m (" +
+                                               num(s.outer_radius_m) + " m)"};
+  if (!(s.length_m > 0)) return Problem{"shell.length_m", "must be positive (got " + num(s.length_m) + ")"};
+  if (!(s.lateral_size_m > 0)) return Problem{"shell.lateral_size_m", "must be positive (got " + num(s.lateral_size_m) + ")"};
+  if (s.inner_radius_m > 0 && s.water_initial_temperature_c < tm)
+    return Problem{"water.initial_temperature_c", "(" + num(s.water_initial_temperature_c) +
+                                                      " C) is below the melting point: supercooled water is not modelled"};
+  if (s.outer_radius_m > s.inner_radius_m && s.ice_initial_temperature_c > tm)
+    return Problem{"ice.initial_temperature_c", "(" + num(s.ice_initial_temperature_c) +
+                                                    " C) is above the melting point"};
+  if (s.geometry != Geometry::planar && s.inner_kind != InnerBoundary::symmetry)
+    return Problem{"inner_boundary.kind", "a held inner temperature needs geometry = \"planar\""};
+  if (s.inner_kind == InnerBoundary::temperature && s.inner_temperature_c < tm)
+    return Problem{"inner_boundary.temperature_c", "(" + num(s.inner_temperature_c) +
+                                                       " C) is below the melting point: water would freeze onto the wall (not modelled)"};
+  if (s.outer_kind == OuterBoundary::temperature && s.outer_temperature_c > tm)
+    return Problem{"outer_boundary.temperature_c",
+                   "(" + num(s.outer_temperature_c) +
+                       " C) is above the melting point: a held temperature above melting on a draining surface is ill-posed (use kind = \"convective\" or \"flux\")"};
+  if (s.outer_kind == OuterBoundary::convective && !(s.heat_transfer_coefficient_w_m2k > 0))
+    return Problem{"outer_boundary.heat_transfer_coefficient_w_m2k",
+                   "must be positive (got " + num(s.heat_transfer_coefficient_w_m2k) + ")"};
+  if (s.inner_radius_m == s.outer_radius_m) {
+    // No ice yet: it must start freezing at once.
+    const bool water_at_melting = s.water_initial_temperature_c == tm;
+    const bool freezes =
+        (s.outer_kind == OuterBoundary::temperature && s.outer_temperature_c < tm) ||
+        (s.outer_kind == OuterBoundary::convective && s.outer_temperature_c < tm && water_at_melting) ||
+        (s.outer_kind == OuterBoundary::flux && s.flux_w_m2 < 0 && water_at_melting);
+    if (!freezes)
+      return Problem{"shell.outer_radius_m",
+                     "equals inner_radius_m (no ice at t = 0), so the outer boundary must freeze the water at once: "
+                     "a held temperature below melting, or convective/flux cooling of water at the melting point"};
+  }
+  return std::nullopt;
+}
+
+/// Throws the problem through the TOML table (with the key's line) when the key is in the file.
+[[noreturn]] void fail_in_table(const TomlTable& root, const Problem& p) {
+  const auto dot = p.key.find('.');
+  const std::string table = p.key.substr(0, dot), key = p.key.substr(dot + 1);
+  if (auto t = root.optional_table(table); t && t->has(key)) t->fail(key, p.message);
+  if (auto t = root.optional_table(table)) t->fail(key, p.message);
+  throw UserError(root.source_name(), "key '" + p.key + "'", p.message);
+}
+
+void reject_unless(const TomlTable& t, const std::string& key, bool allowed, const std::string& why) {
+  if (!allowed && t.has(key)) t.fail(key, why);
+}
+
+/// Unknown tables and keys are reported before anything else: a misspelt key would otherwise
+/// surface as "required key is missing" for the key it was meant to be.
+void check_schema(const TomlTable& root) {
+  static const std::vector<std::pair<std::string, std::vector<std::string>>> schema = {
+      {"simulation", {"geometry", "duration_s", "output_interval_s", "cells_per_phase", "time_tolerance"}},
+      {"shell", {"inner_radius_m", "outer_radius_m", "length_m", "lateral_size_m"}},
+      {"water", {"initial_temperature_c"}},
+      {"ice", {"initial_temperature_c"}},
+      {"inner_boundary", {"kind", "temperature_c"}},
+      {"outer_boundary", {"kind", "temperature_c", "heat_transfer_coefficient_w_m2k", "flux_w_m2"}},
+      {"materials",
+       {"ice_conductivity_w_mk", "ice_density_kg_m3", "ice_specific_heat_j_kgk", "water_conductivity_w_mk",
+        "water_density_kg_m3", "water_specific_heat_j_kgk", "latent_heat_j_kg", "melting_point_c"}}};
+  for (const std::string& name : root.keys()) {
+    const auto it = std::find_if(schema.begin(), schema.end(), [&](const auto& e) { return e.first == name; });
+    if (it == schema.end()) root.fail(name, "unknown key");
+    const auto table = root.optional_table(name);  // throws "expected a table" for a plain key
+    for (const std::string& key : table->keys())
+      if (std::find(it->second.begin(), it->second.end(), key) == it->second.end()) table->fail(key, "unknown key");
+  }
+}
+
+Materials parse_materials(const TomlTable& t, Materials m) {
+  m.ice_conductivity_w_mk = t.get_double("ice_conductivity_w_mk", m.ice_conductivity_w_mk);
+  m.ice_density_kg_m3 = t.get_double("ice_density_kg_m3", m.ice_density_kg_m3);
+  m.ice_specific_heat_j_kgk = t.get_double("ice_specific_heat_j_kgk", m.ice_specific_heat_j_kgk);
+  m.water_conductivity_w_mk = t.get_double("water_conductivity_w_mk", m.water_conductivity_w_mk);
+  m.water_density_kg_m3 = t.get_double("water_density_kg_m3", m.water_density_kg_m3);
+  m.water_specific_heat_j_kgk = t.get_double("water_specific_heat_j_kgk", m.water_specific_heat_j_kgk);
+  m.latent_heat_j_kg = t.get_double("latent_heat_j_kg", m.latent_heat_j_kg);
+  m.melting_point_c = t.get_double("melting_point_c", m.melting_point_c);
+  return m;
+}
+
+}  // namespace
+
+Materials default_materials() {
+  static const Materials m = [] {
+    const TomlTable t = TomlTable::parse_string(std::string(kIceWaterMaterialsToml),
+                                                "<built-in data/materials/ice_water.toml>");
+    Materials out = parse_materials(t, Materials{});
+    // every key of the data file is required: a renamed key must not fall back silently
+    for (const char* key : {"ice_conductivity_w_mk", "ice_density_kg_m3", "ice_specific_heat_j_kgk",
+                            "water_conductivity_w_mk", "water_density_kg_m3", "water_specific_heat_j_kgk",
+                            "latent_heat_j_kg", "melting_point_c"})
+      if (!t.has(key)) t.fail(key, "missing from the built-in material table");
+    t.check_no_unknown_keys();
+    return out;
+  }();
+  return m;
+}
+
+std::string default_scenario_text() { return std::string(kDefaultScenarioToml); }
+
+Scenario default_scenario() {
+  return parse_scenario_string(default_scenario_text(), "<built-in data/scenarios/default.toml>");
+}
+
+Scenario parse_scenario(const TomlTable& root) {
+  Scenario s;
+  s.materials = default_materials();
+  check_schema(root);
+
+  const TomlTable sim = root.table("simulation");
+  const std::string geometry = sim.get_string("geometry");
+  if (!parse_geometry(geometry, s.geometry))
+    sim.fail("geometry", "unknown geometry '" + geometry + "' (expected planar, cylinder or sphere)");
+  s.duration_s = sim.get_double("duration_s");
+  s.output_interval_s = sim.get_double("output_interval_s");
+  const std::int64_t cells = sim.get_int("cells_per_phase", s.cells_per_phase);
+  if (cells < 4 || cells > 100000) sim.fail("cells_per_phase", "must be between 4 and 100000 (got " + std::to_string(cells) + ")");
+  s.cells_per_phase = static_cast<int>(cells);
+  s.time_tolerance = sim.get_double("time_tolerance", s.time_tolerance);
+
+  const TomlTable shell = root.table("shell");
+  s.inner_radius_m = shell.get_double("inner_radius_m");
+  s.outer_radius_m = shell.get_double("outer_radius_m");
+  reject_unless(shell, "length_m", s.geometry == Geometry::cylinder, "only used with geometry = \"cylinder\"");
+  reject_unless(shell, "lateral_size_m", s.geometry == Geometry::planar, "only used with geometry = \"planar\"");
+  // Defaults sized to the shell so that a default capsule or slab looks like one.
+  s.length_m = shell.get_double("length_m", 2.0 * s.outer_radius_m);
+  s.lateral_size_m = shell.get_double("lateral_size_m", 4.0 * s.outer_radius_m);
+
+  s.water_initial_temperature_c = root.table("water").get_double("initial_temperature_c");
+  s.ice_initial_temperature_c = root.table("ice").get_double("initial_temperature_c");
+
+  if (auto inner = root.optional_table("inner_boundary")) {
+    if (s.geometry != Geometry::planar)
+      root.fail("inner_boundary", "only for geometry = \"planar\" (curved shells have a symmetric centre)");
+    const std::string kind = inner->get_string("kind");
+    if (kind == "symmetry") {
+      s.inner_kind = InnerBoundary::symmetry;
+    } else if (kind == "temperature") {
+      s.inner_kind = InnerBoundary::temperature;
+      s.inner_temperature_c = inner->get_double("temperature_c");
+    } else {
+      inner->fail("kind", "unknown inner boundary '" + kind + "' (expected symmetry or temperature)");
+    }
+    reject_unless(*inner, "temperature_c", s.inner_kind == InnerBoundary::temperature, "only used with kind = \"temperature\"");
+  }
+
+  const TomlTable outer = root.table("outer_boundary");
+  const std::string kind = outer.get_string("kind");
+  if (kind == "temperature") s.outer_kind = OuterBoundary::temperature;
+  else if (kind == "convective") s.outer_kind = OuterBoundary::convective;
+  else if (kind == "flux") s.outer_kind = OuterBoundary::flux;
+  else if (kind == "insulated") s.outer_kind = OuterBoundary::insulated;
+  else outer.fail("kind", "unknown outer boundary '" + kind + "' (expected temperature, convective, flux or insulated)");
+  const bool uses_t = s.outer_kind == OuterBoundary::temperature || s.outer_kind == OuterBoundary::convective;
+  reject_unless(outer, "temperature_c", uses_t, "not used with kind = \"" + kind + "\"");
+  reject_unless(outer, "heat_transfer_coefficient_w_m2k", s.outer_kind == OuterBoundary::convective,
+                "only used with kind = \"convective\"");
+  reject_unless(outer, "flux_w_m2", s.outer_kind == OuterBoundary::flux, "only used with kind = \"flux\"");
+  s.outer_temperature_c = uses_t ? outer.get_double("temperature_c") : s.materials.melting_point_c;
+  s.heat_transfer_coefficient_w_m2k =
+      s.outer_kind == OuterBoundary::convective ? outer.get_double("heat_transfer_coefficient_w_m2k") : 0.0;
+  s.flux_w_m2 = s.outer_kind == OuterBoundary::flux ? outer.get_double("flux_w_m2") : 0.0;
+
+  if (auto mat = root.optional_table("materials")) s.materials = parse_materials(*mat, s.materials);
+  if (s.inner_kind == InnerBoundary::symmetry) s.inner_temperature_c = s.materials.melting_point_c;
+  if (!uses_t) s.outer_temperature_c = s.materials.melting_point_c;
+
+  root.check_no_unknown_keys();
+  if (auto p = find_problem(s)) fail_in_table(root, *p);
+  return s;
+}
+
+Scenario parse_scenario_string(const std::string& text, const std::string& source_name) {
+  return parse_scenario(TomlTable::parse_string(text, source_name));
+}
+
+Scenario read_scenario_file(const std::filesystem::path& path) {
+  return parse_scenario(TomlTable::parse_file(path));
+}
+
+void validate_scenario(const Scenario& scenario, const std::string& source_name) {
+  if (auto p = find_problem(scenario)) throw UserError(source_name, "key '" + p->key + "'", p->message);
+}
+
+nlohmann::json scenario_to_json(const Scenario& s) {
+  nlohmann::json j;
+  j["simulation"] = {{"geometry", to_string(s.geometry)},
+                     {"duration_s", s.duration_s},
+                     {"output_interval_s", s.output_interval_s},
+                     {"cells_per_phase", s.cells_per_phase},
+                     {"time_tolerance", s.time_tolerance}};
+  j["shell"] = {{"inner_radius_m", s.inner_radius_m},
+                {"outer_radius_m", s.outer_radius_m},
+                {"length_m", s.length_m},
+                {"lateral_size_m", s.lateral_size_m}};
+  j["water"] = {{"initial_temperature_c", s.water_initial_temperature_c}};
+  j["ice"] = {{"initial_temperature_c", s.ice_initial_temperature_c}};
+  j["inner_boundary"] = {{"kind", to_string(s.inner_kind)}};
+  if (s.inner_kind == InnerBoundary::temperature) j["inner_boundary"]["temperature_c"] = s.inner_temperature_c;
+  nlohmann::json outer = {{"kind", to_string(s.outer_kind)}};
+  if (s.outer_kind == OuterBoundary::temperature || s.outer_kind == OuterBoundary::convective)
+    outer["temperature_c"] = s.outer_temperature_c;
+  if (s.outer_kind == OuterBoundary::convective)
+    outer["heat_transfer_coefficient_w_m2k"] = s.heat_transfer_coefficient_w_m2k;
+  if (s.outer_kind == OuterBoundary::flux) outer["flux_w_m2"] = s.flux_w_m2;
+  j["outer_boundary"] = outer;
+  const Materials& m = s.materials;
+  j["materials"] = {{"ice_conductivity_w_mk", m.ice_conductivity_w_mk},
+                    {"ice_density_kg_m3", m.ice_density_kg_m3},
+                    {"ice_specific_heat_j_kgk", m.ice_specific_heat_j_kgk},
+                    {"water_conductivity_w_mk", m.water_conductivity_w_mk},
+                    {"water_density_kg_m3", m.water_density_kg_m3},
+                    {"water_specific_heat_j_kgk", m.water_specific_heat_j_kgk},
+                    {"latent_heat_j_kg", m.latent_heat_j_kg},
+                    {"melting_point_c", m.melting_point_c}};
+  return j;
+}
+
+}  // namespace thaw::sim

@@ -1,0 +1,45 @@
+#pragma once
+// The simulation as a library call, for `thaw simulate` and the `thaw run` pipeline: run a
+// scenario, sampling the state at exactly the requested output times, and write the result
+// folder (interfaces.csv, profiles/step_NNNNNN.csv, summary.json). Knows nothing of the command
+// line; progress goes through a callback.
+#include <filesystem>
+#include <vector>
+
+#include "sim/io/interface_history.h"
+#include "sim/scenario/scenario.h"
+#include "sim/stefan1d/front_fixing.h"
+#include "src/common/progress.h"
+
+namespace thaw::sim {
+
+struct SimulationResult {
+  Scenario scenario;                     ///< effective parameters (defaults filled in)
+  std::vector<Snapshot> snapshots;       ///< one per output time reached (with profiles)
+  std::vector<Event> events;
+  SolverStatistics statistics;
+  double reference_energy_j = 0;         ///< scale of energy_balance_error [J]
+  double wall_time_s = 0;
+  bool ended_early = false;              ///< no ice left before the last output time
+  /// interfaces.csv rows, step = index into snapshots.
+  std::vector<InterfaceRecord> interface_records() const;
+};
+
+/// The output times of a scenario: 0, interval, 2 interval, ... and duration_s (exactly
+/// k * interval, computed as a product, never by accumulation).
+std::vector<double> output_times(const Scenario& scenario);
+
+/// Runs `scenario` (validated here; throws thaw::UserError if invalid) and samples the state at
+/// each of `times` (increasing, >= 0). If the ice is gone before the last time, the run stops
+/// there and the last snapshot is that instant (ended_early). progress(done, total) is called
+/// after each output time.
+SimulationResult simulate(const Scenario& scenario, const std::vector<double>& times,
+                          const ProgressCallback& progress = {});
+/// simulate(scenario, output_times(scenario), progress).
+SimulationResult simulate(const Scenario& scenario, const ProgressCallback& progress = {});
+
+/// Writes interfaces.csv, profiles/step_NNNNNN.csv and summary.json into `dir` (which must
+/// exist; use a thaw::StagingDirectory for an all-or-nothing result folder).
+void write_simulation_outputs(const std::filesystem::path& dir, const SimulationResult& result);
+
+}  // namespace thaw::sim

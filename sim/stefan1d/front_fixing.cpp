@@ -1,0 +1,812 @@
+#include "sim/stefan1d/front_fixing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "sim/reference/neumann.h"
+#include "src/common/check.h"
+
+namespace thaw::sim {
+
+namespace {
+
+// TR-BDF2 (Bank et al. 1985, IEEE Trans. Electron Devices 32; Hosea & Shampine 1996, Appl. Numer.
+// Math. 20): a trapezoidal stage to t + gamma dt, then BDF2 through t, t + gamma dt, t + dt:
+//   y1 = a y_gamma + b y0 + c dt f(y1).  gamma = 2 - sqrt(2) makes both stages share one
+// Jacobian scaling and the method L-stable.
+constexpr double kGamma = 0.58578643762690485;  // 2 - sqrt(2)
+constexpr double kBdfA = 1.0 / (kGamma * (2.0 - kGamma));
+constexpr double kBdfB = -(1.0 - kGamma) * (1.0 - kGamma) / (kGamma * (2.0 - kGamma));
+constexpr double kBdfC = (1.0 - kGamma) / (2.0 - kGamma);
+
+/// A phase that gets thinner than this fraction of the initial outer radius is removed (its
+/// remaining enthalpy is booked as "removed"); zero-thickness phases start at this thickness.
+constexpr double kRemnantFraction = 1e-6;
+
+/// Radial geometry r^m: planar m = 0, cylinder m = 1, sphere m = 2. Per unit solid angle (and
+/// per unit length / area): face area A(r) = r^m, volume below r W(r) = r^(m+1)/(m+1).
+struct Radial {
+  int m = 2;
+  double omega = 4 * std::numbers::pi;  ///< 1 (planar, per m^2), 2 pi (cylinder, per m), 4 pi
+  double area(double r) const { return m == 0 ? 1.0 : (m == 1 ? r : r * r); }
+  double w(double r) const { return m == 0 ? r : (m == 1 ? 0.5 * r * r : r * r * r / 3.0); }
+};
+
+enum class BcKind { zero_flux, dirichlet, robin, flux };
+struct Bc {
+  BcKind kind = BcKind::zero_flux;
+  double value = 0;  ///< dirichlet: u; robin: u_air; flux: heat flux into the region [W/m^2]
+  double h = 0;      ///< robin: heat transfer coefficient [W/(m^2 K)]
+};
+
+/// Heat rate into a region through one boundary face as an affine form of its two nearest cell
+/// values: Q = q0 + p1 * u(nearest) + p2 * u(next) [W per unit solid angle].
+struct BoundaryForm {
+  double q0 = 0, p1 = 0, p2 = 0;
+  double eval(double u1, double u2) const { return q0 + p1 * u1 + p2 * u2; }
+};
+
+/// One phase between its two ends a < e, n equal cells (Landau transform: faces at a + f h).
+struct Phase {
+  double k = 0, heat_capacity = 0;
+  int n = 0;
+};
+
+double face_r(double a, double e, int n, int f) { return a + (e - a) * f / n; }
+
+// One-sided second-order gradient at a Dirichlet face from the face value and the two nearest
+// cell centres (distances h/2 and 3h/2): du/dn = (-8 u_b + 9 u_1 - u_2) / (3 h) (inward normal).
+// Robin: k du/dn_out = h (u_air - u_b) with the same stencil, solved for u_b.
+BoundaryForm boundary_form(const Bc& bc, double k, double area, double h) {
+  BoundaryForm f;
+  const double kappa = k / (3.0 * h);
+  switch (bc.kind) {
+    case BcKind::zero_flux: break;
+    case BcKind::dirichlet:
+      f.q0 = area * 8.0 * kappa * bc.value;
+      f.p1 = -area * 9.0 * kappa;
+      f.p2 = area * kappa;
+      break;
+    case BcKind::robin: {
+      const double d = bc.h + 8.0 * kappa;
+      f.q0 = area * bc.h * bc.value * (8.0 * kappa / d);
+      f.p1 = -area * bc.h * 9.0 * kappa / d;
+      f.p2 = area * bc.h * kappa / d;
+      break;
+    }
+    case BcKind::flux: f.q0 = area * bc.value; break;
+  }
+  return f;
+}
+
+/// Face value of u at a boundary face (for profiles): Dirichlet value, Robin/flux extrapolation.
+double boundary_value(const Bc& bc, double k, double h, double u1, double u2) {
+  const double kappa = k / (3.0 * h);
+  switch (bc.kind) {
+    case BcKind::dirichlet: return bc.value;
+    case BcKind::robin: return (bc.h * bc.value + kappa * (9.0 * u1 - u2)) / (bc.h + 8.0 * kappa);
+    case BcKind::flux: return (bc.value / kappa + 9.0 * u1 - u2) / 8.0;
+    case BcKind::zero_flux: return (9.0 * u1 - u2) / 8.0;
+  }
+  return 0;
+}
+
+/// Conducted heat into each cell and through both ends of a phase at one state.
+struct OperatorValue {
+  std::vector<double> d;  ///< net conducted heat rate into cell j
+  double q_left = 0, q_right = 0;  ///< heat rate into the phase through its ends
+};
+
+OperatorValue apply_operator(const Radial& g, const Phase& p, double a, double e, const Bc& left,
+                             const Bc& right, const std::vector<double>& u) {
+  const int n = p.n;
+  const double h = (e - a) / n;
+  OperatorValue out;
+  out.d.assign(n, 0.0);
+  for (int f = 1; f < n; ++f) {
+    const double flux = p.k * g.area(face_r(a, e, n, f)) * (u[f] - u[f - 1]) / h;
+    out.d[f - 1] += flux;
+    out.d[f] -= flux;
+  }
+  out.q_left = boundary_form(left, p.k, g.area(a), h).eval(u[0], u[1]);
+  out.q_right = boundary_form(right, p.k, g.area(e), h).eval(u[n - 1], u[n - 2]);
+  out.d[0] += out.q_left;
+  out.d[n - 1] += out.q_right;
+  return out;
+}
+
+/// Solves the tridiagonal system (Thomas algorithm; diagonally dominant here).
+void solve_tridiagonal(std::vector<double>& lower, std::vector<double>& diag,
+                       std::vector<double>& upper, std::vector<double>& rhs,
+                       std::vector<double>& x) {
+  const std::size_t n = diag.size();
+  for (std::size_t i = 1; i < n; ++i) {
+    const double w = lower[i] / diag[i - 1];
+    diag[i] -= w * upper[i - 1];
+    rhs[i] -= w * rhs[i - 1];
+  }
+  x.resize(n);
+  x[n - 1] = rhs[n - 1] / diag[n - 1];
+  for (std::size_t i = n - 1; i-- > 0;) x[i] = (rhs[i] - upper[i] * x[i + 1]) / diag[i];
+}
+
+/// The complete discrete state.
+struct State {
+  double t = 0;
+  double s = 0;          ///< water|ice front [m] (0 without liquid)
+  double b = 0;          ///< ice surface [m]
+  bool liquid = false;   ///< a liquid core exists
+  bool ablating = false; ///< the ice surface is at T_m and recedes (melt drains)
+  std::vector<double> ul, ui;  ///< cell values of u = T - T_m [K]
+};
+
+/// Energy bookkeeping of one stage or step, per unit solid angle [J].
+struct Heat {
+  double in = 0;       ///< heat through the boundaries
+  double drained = 0;  ///< enthalpy carried off by drained melt
+};
+
+}  // namespace
+
+struct FrontFixingSolver::Impl {
+  Scenario sc;
+  Radial geo;
+  Phase water, ice;
+  double latent = 0;         ///< rho_ice L [J/m^3]
+  double t_m = 0;            ///< melting point [C]
+  double length_scale = 0;   ///< b0 [m]
+  double temperature_scale = 1;  ///< [K]
+  double remnant = 0;        ///< thickness below which a phase is removed [m]
+  double tol = 1e-6;
+  Bc inner_bc;               ///< at r = 0
+  Bc outer_bc;               ///< at r = b when not ablating
+  double ablation_heat_flux = 0;  ///< heat flux arriving at a surface held at T_m [W/m^2]
+
+  State st;
+  double dt = 0;
+  bool done = false;
+  std::vector<Event> events;
+  SolverStatistics stats;
+  double e0 = 0;             ///< total enthalpy at t = 0 [J per unit solid angle]
+  double heat_in = 0, drained = 0;  ///< cumulative, per unit solid angle
+
+  // --- per-state helpers -------------------------------------------------------------------
+  double ice_left(const State& x) const { return x.liquid ? x.s : 0.0; }
+  Bc ice_left_bc(const State& x) const { return x.liquid ? Bc{BcKind::dirichlet, 0.0, 0.0} : inner_bc; }
+  Bc ice_right_bc(const State& x) const {
+    return x.ablating ? Bc{BcKind::dirichlet, 0.0, 0.0} : outer_bc;
+  }
+  static Bc front_bc() { return Bc{BcKind::dirichlet, 0.0, 0.0}; }
+
+  double phase_energy(const Phase& p, double a, double e, const std::vector<double>& u) const {
+    double sum = 0;
+    for (int j = 0; j < p.n; ++j)
+      sum += p.heat_capacity * u[j] *
+             (geo.w(face_r(a, e, p.n, j + 1)) - geo.w(face_r(a, e, p.n, j)));
+    return sum;
+  }
+  /// Total enthalpy relative to ice at T_m, per unit solid angle [J].
+  double energy(const State& x) const {
+    double e = phase_energy(ice, ice_left(x), x.b, x.ui);
+    if (x.liquid) e += phase_energy(water, 0.0, x.s, x.ul) + latent * geo.w(x.s);
+    return e;
+  }
+
+  /// Rates at a state: conducted heat per cell, front and ablation heat, boundary heat.
+  struct Rates {
+    OperatorValue wat, ic;
+    double front = 0;     ///< heat absorbed by the front, -(Q_liquid + Q_ice) [W]
+    double ablation = 0;  ///< heat arriving minus heat conducted into the ice at b [W]
+    double boundary = 0;  ///< heat entering through r = 0 (held wall) and r = b [W]
+  };
+  Rates rates(const State& x) const {
+    Rates r;
+    r.ic = apply_operator(geo, ice, ice_left(x), x.b, ice_left_bc(x), ice_right_bc(x), x.ui);
+    double q_inner = 0;
+    if (x.liquid) {
+      r.wat = apply_operator(geo, water, 0.0, x.s, inner_bc, front_bc(), x.ul);
+      r.front = -(r.wat.q_right + r.ic.q_left);
+      q_inner = r.wat.q_left;
+    } else {
+      q_inner = r.ic.q_left;
+    }
+    if (inner_bc.kind != BcKind::dirichlet) q_inner = 0;
+    const double q_ext = geo.area(x.b) * ablation_heat_flux;
+    if (x.ablating) r.ablation = q_ext - r.ic.q_right;
+    r.boundary = q_inner + (x.ablating ? q_ext : r.ic.q_right);
+    return r;
+  }
+
+  double surface_temperature(const State& x) const {
+    const double h = (x.b - ice_left(x)) / ice.n;
+    return boundary_value(ice_right_bc(x), ice.k, h, x.ui[ice.n - 1], x.ui[ice.n - 2]);
+  }
+
+  // --- one implicit stage -------------------------------------------------------------------
+  // Cell j of a phase, with E_j = C u_j V_j and W_f = W(r_f):
+  //   E_j(new) - beta D_j(new) - w_new C [u_f W-sweep]_(j+1) + w_new C [..]_j = rhs_j
+  // where the swept volume of face f is dW_f = W_f(new) - Wref_f; rhs holds the old-time part.
+  struct StageRef {
+    bool trapezoid = true;
+    double beta = 0;               ///< weight of new-time rates [s]
+    const State* s0 = nullptr;     ///< state at t_n
+    const Rates* r0 = nullptr;     ///< rates at t_n (trapezoid)
+    const State* sg = nullptr;     ///< state at t_n + gamma dt (BDF2 stage)
+  };
+
+  /// Solves one phase's cells for given end positions; returns heat through its two ends.
+  void solve_phase(const Phase& p, double a, double e, const Bc& left, const Bc& right,
+                   const StageRef& ref, bool is_water, std::vector<double>& u_out,
+                   double& q_left, double& q_right) {
+    const int n = p.n;
+    const double h = (e - a) / n;
+    const double cap = p.heat_capacity;
+    thread_local std::vector<double> lower, diag, upper, rhs, wref, wnew;
+    lower.assign(n, 0.0);
+    diag.assign(n, 0.0);
+    upper.assign(n, 0.0);
+    rhs.assign(n, 0.0);
+    wnew.resize(n + 1);
+    wref.resize(n + 1);
+    for (int f = 0; f <= n; ++f) wnew[f] = geo.w(face_r(a, e, n, f));
+
+    auto ends_of = [&](const State& x, double& aa, double& ee) {
+      if (is_water) {
+        aa = 0.0;
+        ee = x.s;
+      } else {
+        aa = ice_left(x);
+        ee = x.b;
+      }
+    };
+    const State& x0 = *ref.s0;
+    double a0, e0_;
+    ends_of(x0, a0, e0_);
+    const std::vector<double>& u0 = is_water ? x0.ul : x0.ui;
+    double w_new_adv;
+    if (ref.trapezoid) {
+      const OperatorValue& op0 = is_water ? ref.r0->wat : ref.r0->ic;
+      for (int f = 0; f <= n; ++f) wref[f] = geo.w(face_r(a0, e0_, n, f));
+      for (int j = 0; j < n; ++j)
+        rhs[j] = cap * u0[j] * (wref[j + 1] - wref[j]) + ref.beta * op0.d[j];
+      // explicit half of the swept enthalpy: (1/2) C u_f(t_n) dW_f over interior faces
+      for (int f = 1; f < n; ++f) {
+        const double sweep = 0.5 * cap * 0.5 * (u0[f - 1] + u0[f]) * (wnew[f] - wref[f]);
+        rhs[f - 1] += sweep;
+        rhs[f] -= sweep;
+      }
+      w_new_adv = 0.5;
+    } else {
+      const State& xg = *ref.sg;
+      double ag, eg;
+      ends_of(xg, ag, eg);
+      const std::vector<double>& ug = is_water ? xg.ul : xg.ui;
+      for (int f = 0; f <= n; ++f)
+        wref[f] = kBdfA * geo.w(face_r(ag, eg, n, f)) + kBdfB * geo.w(face_r(a0, e0_, n, f));
+      for (int j = 0; j < n; ++j)
+        rhs[j] = kBdfA * cap * ug[j] * (geo.w(face_r(ag, eg, n, j + 1)) - geo.w(face_r(ag, eg, n, j))) +
+                 kBdfB * cap * u0[j] * (geo.w(face_r(a0, e0_, n, j + 1)) - geo.w(face_r(a0, e0_, n, j)));
+      w_new_adv = 1.0;
+    }
+    for (int j = 0; j < n; ++j) diag[j] = cap * (wnew[j + 1] - wnew[j]);
+    for (int f = 1; f < n; ++f) {
+      const double c = ref.beta * p.k * geo.area(face_r(a, e, n, f)) / h;
+      diag[f - 1] += c;
+      upper[f - 1] -= c;
+      diag[f] += c;
+      lower[f] -= c;
+      const double adv = w_new_adv * cap * 0.5 * (wnew[f] - wref[f]);
+      diag[f - 1] -= adv;
+      upper[f - 1] -= adv;
+      lower[f] += adv;
+      diag[f] += adv;
+    }
+    const BoundaryForm fl = boundary_form(left, p.k, geo.area(a), h);
+    const BoundaryForm fr = boundary_form(right, p.k, geo.area(e), h);
+    diag[0] -= ref.beta * fl.p1;
+    upper[0] -= ref.beta * fl.p2;
+    rhs[0] += ref.beta * fl.q0;
+    diag[n - 1] -= ref.beta * fr.p1;
+    lower[n - 1] -= ref.beta * fr.p2;
+    rhs[n - 1] += ref.beta * fr.q0;
+    solve_tridiagonal(lower, diag, upper, rhs, u_out);
+    ++stats.linear_solves;
+    q_left = fl.eval(u_out[0], u_out[1]);
+    q_right = fr.eval(u_out[n - 1], u_out[n - 2]);
+  }
+
+  /// Front and ablation residuals for the new positions in x (x.s, x.b); fills x's cells.
+  /// Returns false if the positions are not admissible.
+  bool residual(const StageRef& ref, State& x, double res[2], Heat& heat) {
+    const State& x0 = *ref.s0;
+    if (x.liquid && !(x.s > 0 && x.s < x.b)) return false;
+    if (!(x.b > ice_left(x))) return false;
+    double ql_w = 0, qr_w = 0, ql_i = 0, qr_i = 0;
+    if (x.liquid) solve_phase(water, 0.0, x.s, inner_bc, front_bc(), ref, true, x.ul, ql_w, qr_w);
+    solve_phase(ice, ice_left(x), x.b, ice_left_bc(x), ice_right_bc(x), ref, false, x.ui, ql_i, qr_i);
+    auto wref = [&](double State::*member) {
+      if (ref.trapezoid) return geo.w(x0.*member);
+      return kBdfA * geo.w(ref.sg->*member) + kBdfB * geo.w(x0.*member);
+    };
+    const double q_ext = geo.area(x.b) * ablation_heat_flux;
+    double q_inner = x.liquid ? ql_w : ql_i;
+    if (inner_bc.kind != BcKind::dirichlet) q_inner = 0;
+    const double q_boundary = q_inner + (x.ablating ? q_ext : qr_i);
+    heat.in = ref.beta * q_boundary + (ref.trapezoid ? ref.beta * ref.r0->boundary : 0.0);
+    heat.drained = 0;
+    res[0] = res[1] = 0;
+    if (x.liquid) {
+      const double front_heat = -(qr_w + ql_i);
+      res[0] = latent * (geo.w(x.s) - wref(&State::s)) - ref.beta * front_heat -
+               (ref.trapezoid ? ref.beta * ref.r0->front : 0.0);
+    }
+    if (x.ablating) {
+      const double abl = q_ext - qr_i;
+      const double melted = -(geo.w(x.b) - wref(&State::b));  // volume drained this stage
+      res[1] = -latent * melted + ref.beta * abl + (ref.trapezoid ? ref.beta * ref.r0->ablation : 0.0);
+      heat.drained = latent * melted;
+    }
+    return true;
+  }
+
+  /// Newton on (s, b) with temperatures eliminated; x holds the predictor on entry.
+  bool solve_stage(const StageRef& ref, State& x, Heat& heat) {
+    int idx[2];
+    int nz = 0;
+    if (x.liquid) idx[nz++] = 0;
+    if (x.ablating) idx[nz++] = 1;
+    auto get = [&](const State& y, int i) { return i == 0 ? y.s : y.b; };
+    auto set = [&](State& y, int i, double v) { (i == 0 ? y.s : y.b) = v; };
+    double res[2];
+    if (!residual(ref, x, res, heat)) return false;
+    if (nz == 0) return true;
+    double jac[2][2] = {{0, 0}, {0, 0}};
+    bool have_jac = false;
+    for (int it = 0; it < 30; ++it) {
+      ++stats.newton_iterations;
+      if (!have_jac || it % 6 == 5) {
+        // finite-difference columns; the perturbation is a small fraction of the adjacent
+        // phase thickness so the perturbed geometry stays admissible.
+        for (int c = 0; c < nz; ++c) {
+          State y = x;
+          const double thick = idx[c] == 0 ? std::min(x.s, x.b - x.s) : x.b - ice_left(x);
+          const double delta = (idx[c] == 0 ? 1e-7 : -1e-7) * thick;
+          set(y, idx[c], get(x, idx[c]) + delta);
+          double r2[2];
+          Heat h2;
+          if (!residual(ref, y, r2, h2)) return false;
+          for (int rr = 0; rr < nz; ++rr) jac[rr][c] = (r2[idx[rr]] - res[idx[rr]]) / delta;
+        }
+        have_jac = true;
+      }
+      double step[2] = {0, 0};
+      if (nz == 1) {
+        step[0] = -res[idx[0]] / jac[0][0];
+      } else {
+        const double det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
+        step[0] = -(jac[1][1] * res[idx[0]] - jac[0][1] * res[idx[1]]) / det;
+        step[1] = -(-jac[1][0] * res[idx[0]] + jac[0][0] * res[idx[1]]) / det;
+      }
+      bool converged = true;
+      for (int c = 0; c < nz; ++c) {
+        if (!std::isfinite(step[c])) return false;
+        const double z = get(x, idx[c]);
+        if (std::abs(step[c]) > 1e-14 * std::abs(z) + 1e-18 * length_scale) converged = false;
+      }
+      if (converged) return true;
+      for (int c = 0; c < nz; ++c) set(x, idx[c], get(x, idx[c]) + step[c]);
+      if (!residual(ref, x, res, heat)) return false;
+    }
+    return false;
+  }
+
+  /// One TR-BDF2 step of size h from x0 (same regime throughout).
+  bool trbdf2(const State& x0, double h, State& x1, Heat& heat) {
+    const Rates r0 = rates(x0);
+    // predictor: front velocities from the rates at t_n
+    auto predict = [&](State& y, double tau) {
+      if (y.liquid) y.s = x0.s + tau * r0.front / (latent * geo.area(x0.s));
+      if (y.ablating) y.b = x0.b - tau * r0.ablation / (latent * geo.area(x0.b));
+      // keep the predictor admissible
+      if (y.liquid) y.s = std::clamp(y.s, 0.5 * x0.s, x0.s + 0.5 * (x0.b - x0.s));
+      if (y.ablating) y.b = std::max(y.b, ice_left(y) + 0.5 * (x0.b - ice_left(x0)));
+    };
+    State xg = x0;
+    xg.t = x0.t + kGamma * h;
+    predict(xg, kGamma * h);
+    StageRef tr{true, 0.5 * kGamma * h, &x0, &r0, nullptr};
+    Heat h_tr;
+    if (!solve_stage(tr, xg, h_tr)) return false;
+    x1 = xg;
+    x1.t = x0.t + h;
+    if (x1.liquid) x1.s = x0.s + (xg.s - x0.s) / kGamma;
+    if (x1.ablating) x1.b = x0.b + (xg.b - x0.b) / kGamma;
+    if (x1.liquid && !(x1.s > 0 && x1.s < x1.b)) x1.s = xg.s;
+    if (x1.ablating && !(x1.b > ice_left(x1))) x1.b = xg.b;
+    StageRef bdf{false, kBdfC * h, &x0, nullptr, &xg};
+    Heat h_bdf;
+    if (!solve_stage(bdf, x1, h_bdf)) return false;
+    // E1 - E0 = a (Eg - E0) + (E1 - a Eg - b E0), a + b = 1
+    heat.in = kBdfA * h_tr.in + h_bdf.in;
+    heat.drained = kBdfA * h_tr.drained + h_bdf.drained;
+    return true;
+  }
+
+  // --- construction ---------------------------------------------------------------------------
+  SolverOptions opt;
+
+  Impl(const Scenario& scenario, SolverOptions options) : sc(scenario), opt(std::move(options)) {
+    const Materials& m = sc.materials;
+    geo.m = sc.geometry == Geometry::planar ? 0 : (sc.geometry == Geometry::cylinder ? 1 : 2);
+    geo.omega = geo.m == 0 ? 1.0 : (geo.m == 1 ? 2 * std::numbers::pi : 4 * std::numbers::pi);
+    water = Phase{m.water_conductivity_w_mk, m.water_heat_capacity(), sc.cells_per_phase};
+    ice = Phase{m.ice_conductivity_w_mk, m.ice_heat_capacity(), sc.cells_per_phase};
+    THAW_CHECK(water.n >= 3, "at least 3 cells per phase");
+    latent = m.latent_heat_per_volume();
+    t_m = m.melting_point_c;
+    length_scale = sc.outer_radius_m;
+    THAW_CHECK(length_scale > 0, "outer radius > 0");
+    remnant = kRemnantFraction * length_scale;
+    tol = sc.time_tolerance;
+    const double u_water = sc.water_initial_temperature_c - t_m;
+    const double u_ice = sc.ice_initial_temperature_c - t_m;
+    const double u_out = sc.outer_temperature_c - t_m;
+    const double u_inner = sc.inner_temperature_c - t_m;
+    temperature_scale = std::max({1.0, std::abs(u_water), std::abs(u_ice)});
+    if (sc.inner_kind == InnerBoundary::temperature) {
+      inner_bc = Bc{BcKind::dirichlet, u_inner, 0};
+      temperature_scale = std::max(temperature_scale, std::abs(u_inner));
+    }
+    switch (sc.outer_kind) {
+      case OuterBoundary::temperature:
+        outer_bc = Bc{BcKind::dirichlet, u_out, 0};
+        temperature_scale = std::max(temperature_scale, std::abs(u_out));
+        break;
+      case OuterBoundary::convective:
+        outer_bc = Bc{BcKind::robin, u_out, sc.heat_transfer_coefficient_w_m2k};
+        ablation_heat_flux = sc.heat_transfer_coefficient_w_m2k * u_out;
+        temperature_scale = std::max(temperature_scale, std::abs(u_out));
+        break;
+      case OuterBoundary::flux:
+        outer_bc = Bc{BcKind::flux, sc.flux_w_m2, 0};
+        ablation_heat_flux = sc.flux_w_m2;
+        break;
+      case OuterBoundary::insulated: outer_bc = Bc{BcKind::flux, 0.0, 0}; break;
+    }
+    initialise(u_water, u_ice, u_inner);
+    if (opt.initial_temperature_c) {
+      st.t = opt.start_time_s;
+      fill_from_profile(st, [&](double r) { return opt.initial_temperature_c(r) - t_m; });
+      e0 = energy(st);
+    }
+    dt = std::min(sc.output_interval_s, sc.duration_s) * 1e-4;
+    if (stats.start_time_s > 0) dt = std::min(dt, 0.25 * stats.start_time_s);
+  }
+
+  void initialise(double u_water, double u_ice, double u_inner) {
+    const double s0 = sc.inner_radius_m, b0 = sc.outer_radius_m;
+    st.t = 0;
+    st.s = s0;
+    st.b = b0;
+    st.liquid = s0 > 0;
+    st.ablating = false;
+    st.ul.assign(water.n, u_water);
+    st.ui.assign(ice.n, u_ice);
+    // Energy at t = 0 of the state as given (before any small-time start).
+    e0 = latent * geo.w(s0) + water.heat_capacity * u_water * geo.w(s0) +
+         ice.heat_capacity * u_ice * (geo.w(b0) - geo.w(s0));
+    const double delta = remnant;
+    if (!st.liquid && sc.inner_kind == InnerBoundary::temperature && u_inner > 0) {
+      // Planar ice block heated on a face, no liquid yet: start from the Neumann melting
+      // solution at the time t0 when its front is `delta` from the face.
+      const NeumannSolution n = solve_neumann(water.k, water.heat_capacity, ice.k, ice.heat_capacity,
+                                              latent, sc.inner_temperature_c, t_m,
+                                              sc.ice_initial_temperature_c);
+      const double t0 = n.time_of_front(delta);
+      st.liquid = true;
+      st.s = delta;
+      fill_from_profile(st, [&](double r) { return n.temperature(r, t0) - t_m; });
+      start_at(t0);
+    } else if (st.liquid && b0 - s0 <= 0) {
+      // No ice yet. Held cold surface: Neumann freezing from the face r = b0 (planar to
+      // O(delta / b0)). Convective / flux cooling of water at T_m: thin ice with a linear
+      // profile carrying the surface heat loss (validation guarantees one of these).
+      if (outer_bc.kind == BcKind::dirichlet) {
+        const NeumannSolution n = solve_neumann(ice.k, ice.heat_capacity, water.k, water.heat_capacity,
+                                                latent, sc.outer_temperature_c, t_m,
+                                                sc.water_initial_temperature_c);
+        const double t0 = n.time_of_front(delta);
+        st.s = b0 - delta;
+        fill_from_profile(st, [&](double r) { return n.temperature(b0 - r, t0) - t_m; });
+        start_at(t0);
+      } else {
+        const double q_out = -ablation_heat_flux;  // heat leaving at T_m [W/m^2], > 0
+        THAW_CHECK(q_out > 0 && u_water == 0, "validated zero-ice start");
+        double u_surface;
+        if (outer_bc.kind == BcKind::robin)
+          u_surface = outer_bc.h * outer_bc.value / (outer_bc.h + ice.k / delta);
+        else
+          u_surface = outer_bc.value * delta / ice.k;
+        const double q = outer_bc.kind == BcKind::robin ? outer_bc.h * (u_surface - outer_bc.value) : q_out;
+        st.s = b0 - delta;
+        fill_from_profile(st, [&](double r) {
+          return r <= st.s ? 0.0 : u_surface * (r - st.s) / delta;
+        });
+        start_at(latent * delta / q);
+      }
+    }
+    // Ice already at T_m under arriving heat: the surface ablates from the start.
+    if (!done && (outer_bc.kind == BcKind::robin || outer_bc.kind == BcKind::flux) &&
+        ablation_heat_flux > 0 && surface_temperature(st) >= 0) {
+      st.ablating = true;
+      events.push_back({"melt_onset", st.t, st.b});
+    }
+  }
+
+  template <class F>
+  void fill_from_profile(State& x, F&& u_of_r) {
+    // cell averages by 8-point Gauss-Legendre on each cell, weighted by r^m
+    static const double xg[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
+                                 0.9602898564975363};
+    static const double wg[4] = {0.3626837833783620, 0.3137066524011369, 0.2223810344533745,
+                                 0.1012285362903763};
+    auto average = [&](double r0, double r1) {
+      const double c = 0.5 * (r0 + r1), hw = 0.5 * (r1 - r0);
+      double num = 0, den = 0;
+      for (int i = 0; i < 4; ++i)
+        for (double sgn : {-1.0, 1.0}) {
+          const double r = c + sgn * hw * xg[i];
+          num += wg[i] * geo.area(r) * u_of_r(r);
+          den += wg[i] * geo.area(r);
+        }
+      return num / den;
+    };
+    if (x.liquid)
+      for (int j = 0; j < water.n; ++j)
+        x.ul[j] = average(face_r(0, x.s, water.n, j), face_r(0, x.s, water.n, j + 1));
+    const double a = ice_left(x);
+    for (int j = 0; j < ice.n; ++j)
+      x.ui[j] = average(face_r(a, x.b, ice.n, j), face_r(a, x.b, ice.n, j + 1));
+  }
+
+  void start_at(double t0) {
+    // The analytic start's heat is booked as the discrete enthalpy it adds (see header).
+    st.t = t0;
+    stats.start_time_s = t0;
+    stats.start_energy_j = geo.omega * (energy(st) - e0);
+    heat_in += energy(st) - e0;
+  }
+
+  // --- events ---------------------------------------------------------------------------------
+  void remove_liquid() {
+    // The core has frozen to a remnant of thickness < remnant: map the ice onto [0, b]
+    // conservatively (overlap of old and new cells) and book the liquid's enthalpy as removed.
+    const double removed = phase_energy(water, 0.0, st.s, st.ul) + latent * geo.w(st.s);
+    std::vector<double> energy_new(ice.n, 0.0);
+    for (int j = 0; j < ice.n; ++j) {
+      const double r0 = face_r(st.s, st.b, ice.n, j), r1 = face_r(st.s, st.b, ice.n, j + 1);
+      const double e = ice.heat_capacity * st.ui[j] * (geo.w(r1) - geo.w(r0));
+      for (int i = 0; i < ice.n; ++i) {
+        const double n0 = face_r(0, st.b, ice.n, i), n1 = face_r(0, st.b, ice.n, i + 1);
+        const double lo = std::max(r0, n0), hi = std::min(r1, n1);
+        if (hi > lo) energy_new[i] += e * (geo.w(hi) - geo.w(lo)) / (geo.w(r1) - geo.w(r0));
+      }
+    }
+    events.push_back({"core_frozen", st.t, st.s});
+    st.liquid = false;
+    st.s = 0;
+    for (int i = 0; i < ice.n; ++i)
+      st.ui[i] = energy_new[i] /
+                 (ice.heat_capacity * (geo.w(face_r(0, st.b, ice.n, i + 1)) - geo.w(face_r(0, st.b, ice.n, i))));
+    stats.removed_energy_j += geo.omega * removed;
+    heat_in -= removed;  // booked so that the balance stays exact
+  }
+
+  void remove_ice() {
+    const double removed = phase_energy(ice, ice_left(st), st.b, st.ui);
+    events.push_back({st.liquid ? "break_through" : "fully_melted", st.t, st.liquid ? st.s : 0.0});
+    stats.removed_energy_j += geo.omega * removed;
+    heat_in -= removed;
+    st.b = st.liquid ? st.s : 0.0;
+    done = true;
+  }
+
+  // --- time stepping ------------------------------------------------------------------------
+  struct Trial {
+    State x;
+    Heat heat;
+    double err = 0;
+  };
+
+  bool trial(const State& x0, double h, Trial& out) {
+    State full, half, two;
+    Heat hf, h1, h2;
+    if (opt.fixed_step_s > 0) {
+      out.err = 0;
+      return trbdf2(x0, h, out.x, out.heat);
+    }
+    if (!trbdf2(x0, h, full, hf)) return false;
+    if (!trbdf2(x0, 0.5 * h, half, h1)) return false;
+    if (!trbdf2(half, 0.5 * h, two, h2)) return false;
+    // Step doubling: for a second-order method the half-step result's error is about
+    // (full - two) / (2^2 - 1).
+    double err = 0;
+    if (two.liquid) err = std::max(err, std::abs(full.s - two.s) / length_scale);
+    err = std::max(err, std::abs(full.b - two.b) / length_scale);
+    for (std::size_t j = 0; j < two.ui.size(); ++j)
+      err = std::max(err, std::abs(full.ui[j] - two.ui[j]) / temperature_scale);
+    if (two.liquid)
+      for (std::size_t j = 0; j < two.ul.size(); ++j)
+        err = std::max(err, std::abs(full.ul[j] - two.ul[j]) / temperature_scale);
+    out.x = two;
+    out.err = err / 3.0;
+    out.heat.in = h1.in + h2.in;
+    out.heat.drained = h1.drained + h2.drained;
+    return true;
+  }
+
+  void accept(const Trial& tr, double h, bool land_on, double t_target) {
+    const double e_before = energy(st);
+    st = tr.x;
+    if (land_on) st.t = t_target;
+    heat_in += tr.heat.in;
+    drained += tr.heat.drained;
+    const double step_error = std::abs(energy(st) - e_before - (tr.heat.in - tr.heat.drained)) /
+                              (latent * geo.w(length_scale));
+    stats.max_step_energy_error = std::max(stats.max_step_energy_error, step_error);
+    ++stats.steps;
+    stats.min_step_s = stats.steps == 1 ? h : std::min(stats.min_step_s, h);
+    stats.max_step_s = std::max(stats.max_step_s, h);
+  }
+
+  enum class Crossing { none, onset, stop, liquid, ice };
+
+  /// Switches regime at the current state (an event located to within the time floor).
+  void fire(Crossing c) {
+    if (c == Crossing::onset && !st.ablating) {
+      st.ablating = true;
+      events.push_back({"melt_onset", st.t, st.b});
+    } else if (c == Crossing::stop && st.ablating) {
+      st.ablating = false;
+      events.push_back({"ablation_stop", st.t, st.b});
+    }
+  }
+
+  double advance_to(double t_target) {
+    THAW_CHECK(t_target >= st.t, "advance_to goes forward");
+    const double t_floor = 1e-13 * std::max(sc.duration_s, t_target);
+    const double tol_u = 1e-9 * temperature_scale;
+    const bool can_ablate = ablation_heat_flux > 0 &&
+                            (outer_bc.kind == BcKind::robin || outer_bc.kind == BcKind::flux);
+    int event_retries = 0;
+    while (!done && st.t < t_target) {
+      double h = opt.fixed_step_s > 0 ? opt.fixed_step_s : dt;
+      bool land = false;
+      if (st.t + h >= t_target || t_target - (st.t + h) < 1e-3 * h) {
+        h = t_target - st.t;
+        land = true;
+      }
+      Trial tr;
+      if (!trial(st, h, tr)) {
+        ++stats.rejected_steps;
+        dt = 0.25 * h;
+        if (dt < t_floor)
+          throw std::runtime_error("Stefan solver: Newton failed at t = " + std::to_string(st.t) + " s");
+        continue;
+      }
+      // Error per step (relative to b0 and the temperature scale). Error per unit step would
+      // make the step collapse at the sqrt(t) start of a front from discontinuous data, where
+      // the local error shrinks only like sqrt(h). Local error ~ h^3 for smooth solutions.
+      const double allowed = tol;
+      const double factor = tr.err > 0 ? 0.9 * std::cbrt(allowed / tr.err) : 3.0;
+      if (tr.err > allowed && h > 64 * t_floor) {
+        ++stats.rejected_steps;
+        dt = h * std::clamp(factor, 0.1, 0.9);
+        continue;
+      }
+      // Event location: the earliest crossing inside the step (linear estimate) shortens it;
+      // a step that ends inside the crossing's tolerance band is accepted and fires it.
+      const State& x1 = tr.x;
+      double shrink = 1.0;
+      Crossing which = Crossing::none, fire_after = Crossing::none;
+      auto consider = [&](double fraction, Crossing c) {
+        if (fraction < shrink) {
+          shrink = std::max(fraction, 0.0);
+          which = c;
+        }
+      };
+      if (!st.ablating && can_ablate) {
+        const double u0 = surface_temperature(st), u1 = surface_temperature(x1);
+        if (u1 > tol_u) consider(u0 >= 0 ? 0.0 : -u0 / (u1 - u0), Crossing::onset);
+        else if (u1 >= -tol_u) fire_after = Crossing::onset;
+      }
+      if (st.ablating) {
+        const double g0 = rates(st).ablation, g1 = rates(x1).ablation;
+        const double tol_g = 1e-9 * geo.area(st.b) * std::abs(ablation_heat_flux);
+        if (g1 < -tol_g) consider(g0 <= 0 ? 0.0 : g0 / (g0 - g1), Crossing::stop);
+        else if (g1 <= tol_g && g0 > tol_g) fire_after = Crossing::stop;
+      }
+      if (x1.liquid && x1.s < 0.5 * remnant && st.s > remnant)
+        consider((st.s - 0.75 * remnant) / (st.s - x1.s), Crossing::liquid);
+      const double th0 = st.b - ice_left(st), th1 = x1.b - ice_left(x1);
+      if (th1 < 0.5 * remnant && th0 > remnant)
+        consider((th0 - 0.75 * remnant) / (th0 - th1), Crossing::ice);
+      if (which != Crossing::none) {
+        if (h * shrink > t_floor && event_retries < 60) {
+          ++stats.rejected_steps;
+          ++event_retries;
+          dt = h * shrink;
+          continue;
+        }
+        // The crossing is at the current time to within the floor: switch now, step again.
+        if (which == Crossing::onset || which == Crossing::stop) {
+          fire(which);
+          event_retries = 0;
+          dt = std::max(h * 1e-3, 64 * t_floor);
+          continue;
+        }
+      }
+      event_retries = 0;
+      accept(tr, h, land, t_target);
+      fire(fire_after);
+      if (st.liquid && st.s < remnant) remove_liquid();
+      if (!done && st.b - ice_left(st) < remnant) remove_ice();
+      const double next = std::max(h * std::clamp(factor, 0.2, 3.0), 64 * t_floor);
+      dt = (land && h < dt) ? std::max(next, std::min(dt, 3.0 * h)) : next;
+    }
+    return st.t;
+  }
+
+  Snapshot snapshot(bool with_profile) const {
+    Snapshot out;
+    out.time_s = st.t;
+    out.inner_radius_m = st.liquid || done ? st.s : 0.0;
+    out.outer_radius_m = done ? out.inner_radius_m : st.b;
+    out.liquid_volume_m3 = st.liquid ? geo.omega * geo.w(st.s) : 0.0;
+    out.ice_volume_m3 = done ? 0.0 : geo.omega * (geo.w(st.b) - geo.w(ice_left(st)));
+    const double e = energy_now();
+    out.enthalpy_j = geo.omega * e;
+    out.heat_in_j = geo.omega * heat_in;
+    out.drained_j = geo.omega * drained;
+    out.energy_balance_error = std::abs(e - e0 - heat_in + drained) / (latent * geo.w(length_scale));
+    out.ablating = st.ablating;
+    if (!with_profile) return out;
+    if (st.liquid) {
+      const double h = st.s / water.n;
+      if (inner_bc.kind == BcKind::dirichlet) out.profile.push_back({0.0, inner_bc.value + t_m, "water"});
+      for (int j = 0; j < water.n; ++j) out.profile.push_back({(j + 0.5) * h, st.ul[j] + t_m, "water"});
+      out.profile.push_back({st.s, t_m, "water"});
+    }
+    if (!done) {
+      const double a = ice_left(st), h = (st.b - a) / ice.n;
+      if (st.liquid) out.profile.push_back({st.s, t_m, "ice"});
+      else if (inner_bc.kind == BcKind::dirichlet) out.profile.push_back({0.0, inner_bc.value + t_m, "ice"});
+      for (int j = 0; j < ice.n; ++j) out.profile.push_back({a + (j + 0.5) * h, st.ui[j] + t_m, "ice"});
+      out.profile.push_back({st.b, surface_temperature(st) + t_m, "ice"});
+    }
+    return out;
+  }
+
+  /// Enthalpy of the current state; after the ice is removed only the liquid remains.
+  double energy_now() const {
+    if (!done) return energy(st);
+    return st.liquid ? phase_energy(water, 0.0, st.s, st.ul) + latent * geo.w(st.s) : 0.0;
+  }
+};
+
+FrontFixingSolver::FrontFixingSolver(const Scenario& scenario, SolverOptions options)
+    : m_impl(std::make_unique<Impl>(scenario, std::move(options))) {}
+FrontFixingSolver::~FrontFixingSolver() = default;
+double FrontFixingSolver::advance_to(double t) { return m_impl->advance_to(t); }
+double FrontFixingSolver::time() const { return m_impl->st.t; }
+bool FrontFixingSolver::finished() const { return m_impl->done; }
+Snapshot FrontFixingSolver::snapshot(bool with_profile) const { return m_impl->snapshot(with_profile); }
+const std::vector<Event>& FrontFixingSolver::events() const { return m_impl->events; }
+const SolverStatistics& FrontFixingSolver::statistics() const { return m_impl->stats; }
+double FrontFixingSolver::reference_energy() const {
+  return m_impl->geo.omega * m_impl->latent * m_impl->geo.w(m_impl->length_scale);
+}
+
+}  // namespace thaw::sim

@@ -1,0 +1,388 @@
+// Validation of the front-fixing Stefan solver (sim/stefan1d/front_fixing.h) against exact
+// solutions, with the observed order of convergence asserted. Every tolerance is derived in a
+// comment from the method's order or from the quantity's own error bound; none is tuned.
+#include "sim/stefan1d/front_fixing.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "sim/reference/neumann.h"
+#include "sim/scenario/scenario_file.h"
+
+namespace thaw::sim {
+namespace {
+
+const Materials kMat{};
+
+// --- the planar Neumann problems --------------------------------------------------------------
+// Melting: a water layer grows from a face held at T_m + dT_face into ice at T_m - dT_far.
+// Freezing: ice grows from a face held at T_m - dT_face into water at T_m + dT_far.
+// Both start at t0 = 100 s from the exact profile (physics.md: a comparison starts at t0 > 0) and
+// run to t1 = 1000 s; the far boundary (held at T_far or a symmetry plane) is 6 sqrt(alpha t1)
+// beyond the front, where the exact solution differs from T_far by erfc(3) ~ 2e-5 of dT_far
+// times exp(-...) -- below 1e-8 K for these cases, far under the discretisation errors measured.
+struct NeumannCase {
+  bool melting;
+  double dt_face, dt_far;
+};
+
+struct NeumannRun {
+  double front = 0, exact = 0;       ///< front (distance from the face) at t1 [m]
+  double temperature_error = 0;      ///< max |T - T_exact| over the profile points [K]
+  double energy_error = 0;           ///< cumulative balance error (relative)
+  long steps = 0;
+};
+
+constexpr double kT0 = 100.0, kT1 = 1000.0;
+
+NeumannSolution neumann_of(const NeumannCase& c) {
+  const Materials& m = kMat;
+  return c.melting ? solve_neumann(m.water_conductivity_w_mk, m.water_heat_capacity(), m.ice_conductivity_w_mk,
+                                   m.ice_heat_capacity(), m.latent_heat_per_volume(), c.dt_face, 0.0, -c.dt_far)
+                   : solve_neumann(m.ice_conductivity_w_mk, m.ice_heat_capacity(), m.water_conductivity_w_mk,
+                                   m.water_heat_capacity(), m.latent_heat_per_volume(), -c.dt_face, 0.0, c.dt_far);
+}
+
+NeumannRun run_neumann(const NeumannCase& c, int cells, double tolerance, double fixed_step = 0) {
+  const NeumannSolution ne = neumann_of(c);
+  const double far = ne.front(kT1) + 6 * std::sqrt(std::max(ne.alpha1(), ne.alpha2()) * kT1);
+  Scenario sc;
+  sc.geometry = Geometry::planar;
+  sc.materials = kMat;
+  sc.duration_s = kT1;
+  sc.output_interval_s = kT1;
+  sc.cells_per_phase = cells;
+  sc.time_tolerance = tolerance;
+  sc.outer_kind = OuterBoundary::temperature;
+  SolverOptions opt;
+  opt.fixed_step_s = fixed_step;
+  opt.start_time_s = kT0;
+  // position measured from the face: melting face at x = 0 (inner wall), freezing face at x = far
+  auto from_face = [&](double x) { return c.melting ? x : far - x; };
+  if (c.melting) {
+    sc.inner_kind = InnerBoundary::temperature;
+    sc.inner_temperature_c = c.dt_face;
+    sc.inner_radius_m = ne.front(kT0);
+    sc.outer_temperature_c = -c.dt_far;
+    sc.water_initial_temperature_c = c.dt_face;
+    sc.ice_initial_temperature_c = -c.dt_far;
+  } else {
+    sc.inner_radius_m = far - ne.front(kT0);
+    sc.outer_temperature_c = -c.dt_face;
+    sc.water_initial_temperature_c = c.dt_far;
+    sc.ice_initial_temperature_c = -c.dt_face;
+  }
+  sc.outer_radius_m = far;
+  opt.initial_temperature_c = [&](double x) { return ne.temperature(from_face(x), kT0); };
+  validate_scenario(sc);
+  FrontFixingSolver solver(sc, opt);
+  solver.advance_to(kT1);
+  const Snapshot snap = solver.snapshot(true);
+  NeumannRun run;
+  run.front = from_face(snap.inner_radius_m);
+  run.exact = ne.front(kT1);
+  for (const ProfilePoint& p : snap.profile)
+    run.temperature_error =
+        std::max(run.temperature_error, std::abs(p.temperature_c - ne.temperature(from_face(p.r_m), kT1)));
+  run.energy_error = snap.energy_balance_error;
+  run.steps = solver.statistics().steps;
+  return run;
+}
+
+// Melting and freezing, liquid Stefan numbers C dT / L_v from 0.14 to 0.55 and subcooling from
+// none to 0.06: the fronts move from ~5 to ~20 mm.
+const NeumannCase kCases[] = {{true, 10.0, 5.0}, {true, 40.0, 10.0}, {false, 10.0, 3.0}, {false, 30.0, 0.0}};
+
+// Time error made negligible in the space study: tolerance 1e-11 per step gives front errors
+// ~1e-9 relative, < 1 % of the smallest spatial error measured at 160 cells (~1e-7).
+constexpr double kTightTolerance = 1e-11;
+
+TEST(FrontFixing, NeumannFrontAndProfileConvergeAtSecondOrderInSpace) {
+  for (const NeumannCase& c : kCases) {
+    double prev_front = 0, prev_temp = 0;
+    for (int n : {40, 80, 160}) {
+      const NeumannRun r = run_neumann(c, n, kTightTolerance);
+      const double e = std::abs(r.front - r.exact) / r.exact;
+      std::printf("  %s dT=(%g,%g) N=%3d front error %.3e, T error %.3e K\n", c.melting ? "melt" : "freeze",
+                  c.dt_face, c.dt_far, n, e, r.temperature_error);
+      if (prev_front > 0) {
+        // the bar: observed order >= 1.8 for the front position
+        EXPECT_GE(std::log2(prev_front / e), 1.8) << "front, N = " << n;
+        // Profiles (max norm over all cells and boundary points) measured at 1.7-2.3 between
+        // 40..160 cells: the cells beside the front see the 3-point one-sided stencil, whose
+        // error constant is larger, so the max norm is pre-asymptotic. Asserted: >= 1.6.
+        EXPECT_GE(std::log2(prev_temp / r.temperature_error), 1.6) << "profile, N = " << n;
+      }
+      prev_front = e;
+      prev_temp = r.temperature_error;
+      // energy: round-off per step (see EnergyBalance below), summed over the steps
+      EXPECT_LT(r.energy_error, 1e-15 * 100 * r.steps + 1e-12);
+    }
+  }
+}
+
+TEST(FrontFixing, NeumannFrontConvergesAtSecondOrderInTime) {
+  // Constant steps; the error is measured against a run with 64x smaller steps on the same grid,
+  // so the spatial error cancels and only the time error remains (its own error is 64^2 = 4096x
+  // smaller than the coarsest step's, i.e. negligible for the order).
+  for (const NeumannCase& c : kCases) {
+    const double span = kT1 - kT0;
+    const double reference = run_neumann(c, 40, 1e-6, span / 2048).front;
+    double prev = 0;
+    for (int steps : {16, 32, 64}) {
+      const NeumannRun r = run_neumann(c, 40, 1e-6, span / steps);
+      const double e = std::abs(r.front - reference) / r.exact;
+      std::printf("  %s dT=(%g,%g) %3d steps: front error %.3e\n", c.melting ? "melt" : "freeze", c.dt_face,
+                  c.dt_far, steps, e);
+      if (prev > 0) {
+        EXPECT_GE(std::log2(prev / e), 1.8) << steps << " steps";
+      }
+      prev = e;
+    }
+  }
+}
+
+// --- energy -----------------------------------------------------------------------------------
+TEST(FrontFixing, EnergyBalanceHoldsToRoundOffEveryStep) {
+  // The ALE finite-volume scheme changes the discrete enthalpy exactly by the discrete boundary
+  // heat and drained melt; what is left is the Newton tolerance on the fronts (1e-14 relative)
+  // and round-off in sums of ~100 terms: per step ~1e-13 of the reference energy. Asserted per
+  // step 1e-12 and cumulative 1e-10 (the bar is 1e-8).
+  for (Geometry g : {Geometry::sphere, Geometry::cylinder, Geometry::planar}) {
+    Scenario sc = default_scenario();
+    sc.geometry = g;
+    if (g == Geometry::planar) sc.lateral_size_m = 0.1;
+    FrontFixingSolver solver(sc);
+    double worst = 0;
+    for (double t = 0; t < sc.duration_s && !solver.finished();) {
+      t += sc.output_interval_s;
+      solver.advance_to(t);
+      worst = std::max(worst, solver.snapshot(false).energy_balance_error);
+    }
+    EXPECT_LT(solver.statistics().max_step_energy_error, 1e-12) << to_string(g);
+    EXPECT_LT(worst, 1e-10) << to_string(g);
+    EXPECT_GT(solver.statistics().steps, 10);
+  }
+}
+
+TEST(FrontFixing, WarmWaterInAMeltingPointCavityStopsAtEnergyBalanceRadius) {
+  // Sphere of water at T_m + dT, radius s0, in ice at T_m, outer surface insulated: the water's
+  // sensible heat C_w dT (4/3) pi s0^3 melts ice at L_v = rho_ice L per volume; when the water has
+  // cooled to T_m, L_v (4/3) pi (s^3 - s0^3) = C_w dT (4/3) pi s0^3, so
+  //   s = s0 (1 + St)^(1/3),  St = C_w dT / (rho_ice L)
+  // (the water's volumetric heat capacity over the latent heat per volume of ice). The slowest
+  // cooling mode decays like exp(-pi^2 alpha_w t / s^2) ~ exp(-40) at t = 3000 s for s0 = 5 mm,
+  // and the energy balance holds to ~1e-12, so s is exact to ~1e-12 relative: assert 1e-10.
+  for (double dt : {5.0, 20.0, 60.0}) {
+    Scenario sc;
+    sc.materials = kMat;
+    sc.inner_radius_m = 0.005;
+    sc.outer_radius_m = 0.01;
+    sc.water_initial_temperature_c = dt;
+    sc.ice_initial_temperature_c = 0.0;
+    sc.outer_kind = OuterBoundary::insulated;
+    sc.duration_s = 3000;
+    sc.output_interval_s = 3000;
+    sc.cells_per_phase = 24;
+    FrontFixingSolver solver(sc);
+    solver.advance_to(3000);
+    const double st = kMat.water_heat_capacity() * dt / kMat.latent_heat_per_volume();
+    EXPECT_NEAR(solver.snapshot(false).inner_radius_m, 0.005 * std::cbrt(1 + st), 1e-10 * 0.005) << dt;
+  }
+}
+
+// --- inward freezing: small-Stefan-number limits ------------------------------------------------
+TEST(FrontFixing, InwardFreezingTimeTendsToQuasiSteadyLimit) {
+  // Water at T_m in a cylinder / sphere of radius R, surface held at T_m - dT from t = 0 (the
+  // ice starts with zero thickness). As St = C_ice dT / L_v -> 0 conduction is quasi-steady:
+  //   cylinder t_f = R^2 / (4 St alpha), sphere t_f = R^2 / (6 St alpha)  (alpha = alpha_ice).
+  // The first correction is O(St) (the ice's sensible heat, C_ice dT per volume at most, i.e. a
+  // fraction St of the latent heat, plus the conduction lag), so |t_f / t_qs - 1| <= 2 St,
+  // and it must shrink with St.
+  for (Geometry g : {Geometry::cylinder, Geometry::sphere}) {
+    double prev = 1;
+    for (double st : {0.02, 0.01, 0.005}) {
+      Scenario sc;
+      sc.geometry = g;
+      sc.materials = kMat;
+      const double r = 0.01, dt = st * kMat.latent_heat_per_volume() / kMat.ice_heat_capacity();
+      const double alpha = kMat.ice_conductivity_w_mk / kMat.ice_heat_capacity();
+      const double t_qs = r * r / ((g == Geometry::sphere ? 6 : 4) * st * alpha);
+      sc.inner_radius_m = r;
+      sc.outer_radius_m = r;
+      sc.water_initial_temperature_c = 0;
+      sc.ice_initial_temperature_c = 0;
+      sc.outer_kind = OuterBoundary::temperature;
+      sc.outer_temperature_c = -dt;
+      sc.duration_s = 1.5 * t_qs;
+      sc.output_interval_s = sc.duration_s;
+      sc.cells_per_phase = 32;
+      sc.time_tolerance = 1e-7;
+      FrontFixingSolver solver(sc);
+      solver.advance_to(sc.duration_s);
+      double t_f = -1;
+      for (const Event& e : solver.events())
+        if (e.kind == "core_frozen") t_f = e.time_s;
+      ASSERT_GT(t_f, 0) << "no core_frozen event";
+      const double dev = std::abs(t_f / t_qs - 1);
+      std::printf("  %s St=%g: t_f / t_qs = %.6f\n", to_string(g), st, t_f / t_qs);
+      EXPECT_LT(dev, 2 * st) << to_string(g) << " St=" << st;
+      EXPECT_LT(dev, prev);
+      prev = dev;
+      // After the core froze the run goes on with solid ice only, to the end time.
+      const Snapshot end = solver.snapshot(false);
+      EXPECT_EQ(end.time_s, sc.duration_s);
+      EXPECT_EQ(end.inner_radius_m, 0.0);
+      EXPECT_EQ(end.liquid_volume_m3, 0.0);
+      EXPECT_FALSE(solver.finished());
+      EXPECT_LT(end.energy_balance_error, 1e-10);
+    }
+  }
+}
+
+// --- events -------------------------------------------------------------------------------------
+/// Runs with n and 2n cells and checks that the value converges to `exact`: with an observed
+/// order p >= 1 the finer error is at most |v(n) - v(2n)| / (2^p - 1) <= |v(n) - v(2n)|.
+void expect_converges_to(double coarse, double fine, double exact, const char* what) {
+  const double diff = std::abs(coarse - fine);
+  EXPECT_LE(std::abs(fine - exact), diff + 1e-12 * std::abs(exact)) << what << ": coarse " << coarse
+                                                                     << " fine " << fine << " exact " << exact;
+  EXPECT_LT(std::abs(fine - exact), std::abs(coarse - exact)) << what;
+}
+
+TEST(FrontFixing, ZeroInitialLiquidStartsFromTheNeumannSolution) {
+  // An ice block at -5 C (planar, no liquid yet) whose face is held at 20 C from t = 0: the
+  // exact answer is the Neumann melting solution while the far side is not yet reached.
+  const NeumannSolution ne = neumann_of({true, 20.0, 5.0});
+  auto front_at_end = [&](int cells) {
+    Scenario sc;
+    sc.geometry = Geometry::planar;
+    sc.materials = kMat;
+    sc.inner_kind = InnerBoundary::temperature;
+    sc.inner_temperature_c = 20.0;
+    sc.inner_radius_m = 0.0;
+    sc.outer_radius_m = 0.2;  // 6 sqrt(alpha_ice 600 s) = 160 mm beyond the 6 mm front
+    sc.ice_initial_temperature_c = -5.0;
+    sc.water_initial_temperature_c = 20.0;
+    sc.outer_kind = OuterBoundary::insulated;
+    sc.duration_s = 600;
+    sc.output_interval_s = 600;
+    sc.cells_per_phase = cells;
+    sc.time_tolerance = 1e-9;
+    FrontFixingSolver solver(sc);
+    EXPECT_GT(solver.statistics().start_time_s, 0.0);
+    solver.advance_to(600);
+    EXPECT_LT(solver.snapshot(false).energy_balance_error, 1e-10);
+    return solver.snapshot(false).inner_radius_m;
+  };
+  const double coarse = front_at_end(40), fine = front_at_end(80);
+  std::printf("  zero liquid: front %.10f / %.10f, exact %.10f\n", coarse, fine, ne.front(600));
+  expect_converges_to(coarse, fine, ne.front(600), "front");
+}
+
+TEST(FrontFixing, ZeroInitialIceStartsFromTheNeumannSolution) {
+  // Water at 3 C (planar slab, symmetric mid-plane 100 mm from the face, i.e. 6 sqrt(alpha_w t)
+  // beyond the 9 mm of ice at 600 s) whose surface is held at -10 C from t = 0, no ice yet:
+  // Neumann freezing from the face.
+  const NeumannSolution ne = neumann_of({false, 10.0, 3.0});
+  auto ice_at_end = [&](int cells) {
+    Scenario sc;
+    sc.geometry = Geometry::planar;
+    sc.materials = kMat;
+    sc.inner_radius_m = 0.1;
+    sc.outer_radius_m = 0.1;
+    sc.water_initial_temperature_c = 3.0;
+    sc.ice_initial_temperature_c = 0.0;
+    sc.outer_kind = OuterBoundary::temperature;
+    sc.outer_temperature_c = -10.0;
+    sc.duration_s = 600;
+    sc.output_interval_s = 600;
+    sc.cells_per_phase = cells;
+    sc.time_tolerance = 1e-9;
+    FrontFixingSolver solver(sc);
+    solver.advance_to(600);
+    EXPECT_LT(solver.snapshot(false).energy_balance_error, 1e-10);
+    return 0.1 - solver.snapshot(false).inner_radius_m;
+  };
+  const double coarse = ice_at_end(40), fine = ice_at_end(80);
+  std::printf("  zero ice: thickness %.10f / %.10f, exact %.10f\n", coarse, fine, ne.front(600));
+  expect_converges_to(coarse, fine, ne.front(600), "ice thickness");
+}
+
+TEST(FrontFixing, MeltOnsetMatchesSemiInfiniteRobinSolution) {
+  // Ice at -10 C (no liquid) whose surface sees air at 20 C through h = 200 W/(m^2 K): the
+  // surface of a semi-infinite solid warms as (Carslaw & Jaeger 2.7 (1))
+  //   T_s - T_i = (T_air - T_i) [1 - exp(beta^2) erfc(beta)],  beta = h sqrt(alpha t) / k,
+  // and melting starts when T_s = T_m. Solved for beta by bisection; the slab (40 mm) is ten
+  // thermal lengths sqrt(alpha t) thick at onset, so it is semi-infinite to ~erfc(5).
+  const double ti = -10, tair = 20, h = 200;
+  const double k = kMat.ice_conductivity_w_mk, alpha = k / kMat.ice_heat_capacity();
+  double lo = 0, hi = 10;
+  for (int i = 0; i < 200; ++i) {
+    const double beta = 0.5 * (lo + hi);
+    const double ts = ti + (tair - ti) * (1 - std::exp(beta * beta) * std::erfc(beta));
+    (ts < 0 ? lo : hi) = beta;
+  }
+  const double beta = 0.5 * (lo + hi), t_exact = std::pow(beta * k / h, 2) / alpha;
+  auto onset = [&](int cells) {
+    Scenario sc;
+    sc.geometry = Geometry::planar;
+    sc.materials = kMat;
+    sc.inner_radius_m = 0.0;
+    sc.outer_radius_m = 0.04;
+    sc.ice_initial_temperature_c = ti;
+    sc.water_initial_temperature_c = 0;
+    sc.outer_kind = OuterBoundary::convective;
+    sc.outer_temperature_c = tair;
+    sc.heat_transfer_coefficient_w_m2k = h;
+    sc.duration_s = 2 * t_exact;
+    sc.output_interval_s = sc.duration_s;
+    sc.cells_per_phase = cells;
+    sc.time_tolerance = 1e-9;
+    FrontFixingSolver solver(sc);
+    solver.advance_to(sc.duration_s);
+    double t = -1;
+    for (const Event& e : solver.events())
+      if (e.kind == "melt_onset") {
+        t = e.time_s;
+        EXPECT_EQ(e.radius_m, 0.04);
+      }
+    // after the onset the surface ablates: b has receded, energy still balances
+    EXPECT_LT(solver.snapshot(false).outer_radius_m, 0.04);
+    EXPECT_TRUE(solver.snapshot(false).ablating);
+    EXPECT_LT(solver.snapshot(false).energy_balance_error, 1e-10);
+    return t;
+  };
+  const double coarse = onset(80), fine = onset(160);
+  std::printf("  melt onset: %.8f / %.8f s, exact %.8f s\n", coarse, fine, t_exact);
+  expect_converges_to(coarse, fine, t_exact, "onset time");
+}
+
+TEST(FrontFixing, DefaultScenarioBreaksThroughAndEndsCleanly) {
+  const Scenario sc = default_scenario();
+  FrontFixingSolver solver(sc);
+  solver.advance_to(sc.duration_s);
+  ASSERT_TRUE(solver.finished());
+  std::vector<std::string> kinds;
+  for (const Event& e : solver.events()) kinds.push_back(e.kind);
+  ASSERT_EQ(kinds, (std::vector<std::string>{"melt_onset", "break_through"}));
+  const Event& onset = solver.events()[0];
+  const Event& bt = solver.events()[1];
+  EXPECT_GT(onset.time_s, 0.0);
+  EXPECT_EQ(onset.radius_m, sc.outer_radius_m);
+  // the film should show the break-through: in the middle of the run
+  EXPECT_GT(bt.time_s, 0.4 * sc.duration_s);
+  EXPECT_LT(bt.time_s, 0.8 * sc.duration_s);
+  const Snapshot end = solver.snapshot(true);
+  EXPECT_EQ(end.time_s, bt.time_s);
+  EXPECT_EQ(end.inner_radius_m, end.outer_radius_m);
+  EXPECT_NEAR(end.inner_radius_m, bt.radius_m, 1e-6 * sc.outer_radius_m);
+  EXPECT_EQ(end.ice_volume_m3, 0.0);
+  EXPECT_LT(end.energy_balance_error, 1e-10);
+  for (const ProfilePoint& p : end.profile) EXPECT_STREQ(p.phase, "water");
+}
+
+}  // namespace
+}  // namespace thaw::sim
