@@ -209,6 +209,12 @@ std::vector<TomlTable> TomlTable::array_of_tables(const std::string& key) const 
   return out;
 }
 
+std::string TomlTable::canonical_text() const {
+  std::ostringstream os;
+  os << *m_table;
+  return os.str();
+}
+
 double TomlTable::require_positive(const std::string& key, double value) const {
   if (!(value > 0)) fail(key, "must be positive (got " + number_text(value) + ")");
   return value;

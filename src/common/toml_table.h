@@ -57,6 +57,10 @@ class TomlTable {
   /// An array of tables ([[objects]]); empty if absent.
   std::vector<TomlTable> array_of_tables(const std::string& key) const;
 
+  /// This table re-serialised by toml++ (keys sorted, comments and layout dropped): a canonical
+  /// text for fingerprinting a section, so only real edits change it. Marks nothing as read.
+  std::string canonical_text() const;
+
   /// Throws UserError for the first key anywhere in the document that was never read.
   void check_no_unknown_keys() const;
 

@@ -79,3 +79,15 @@ TEST(TomlTable, RangeHelpersQuoteTheValue) {
 
 }  // namespace
 }  // namespace thaw
+
+namespace thaw {
+namespace {
+TEST(TomlTable, CanonicalTextIgnoresLayoutButNotValues) {
+  auto a = TomlTable::parse_string("[r]\nx = 1.0 # comment\ny = [1, 2]\n", "a.toml");
+  auto b = TomlTable::parse_string("[r]\ny = [ 1,2 ]\n\nx = 1.0\n", "b.toml");
+  auto c = TomlTable::parse_string("[r]\nx = 1.5\ny = [1, 2]\n", "c.toml");
+  EXPECT_EQ(a.table("r").canonical_text(), b.table("r").canonical_text());
+  EXPECT_NE(a.table("r").canonical_text(), c.table("r").canonical_text());
+}
+}  // namespace
+}  // namespace thaw
