@@ -47,11 +47,11 @@ class SampledWavelengths {
       double l = hero + i * (kRangeNm / kSpectrumSamples);
       if (l > kLambdaMaxNm) l -= kRangeNm;  // rotate within the range (Wilkie et al. eq. 6)
       w.m_lambda_nm[i] = static_cast<float>(l);
-      pdf_sum += hero_pdf(l, density);
+      const double p = hero_pdf(l, density);
+      if (i == 0) w.m_hero_pdf = static_cast<float>(p);
+      pdf_sum += p;
     }
-    const auto pdf = static_cast<float>(pdf_sum / kSpectrumSamples);
-    w.m_pdf = SampledSpectrum(pdf);
-    w.m_hero_pdf = static_cast<float>(hero_pdf(hero, density));
+    w.m_pdf = SampledSpectrum(static_cast<float>(pdf_sum / kSpectrumSamples));
     return w;
   }
 
@@ -98,12 +98,13 @@ class SampledWavelengths {
   static constexpr double kVisibleA = 0.0072;          // [1/nm]
   static constexpr double kVisibleCentreNm = 538.0;    // [nm]
   static double visible_tanh_span() {
-    return std::tanh(kVisibleA * (kLambdaMaxNm - kVisibleCentreNm)) -
-           std::tanh(kVisibleA * (kLambdaMinNm - kVisibleCentreNm));
+    static const double span = std::tanh(kVisibleA * (kLambdaMaxNm - kVisibleCentreNm)) -
+                               std::tanh(kVisibleA * (kLambdaMinNm - kVisibleCentreNm));
+    return span;
   }
   /// Inverse CDF of the truncated 1/cosh^2 density: the CDF is proportional to tanh.
   static double sample_visible_nm(double u) {
-    const double t0 = std::tanh(kVisibleA * (kLambdaMinNm - kVisibleCentreNm));
+    static const double t0 = std::tanh(kVisibleA * (kLambdaMinNm - kVisibleCentreNm));
     const double l = kVisibleCentreNm + std::atanh(t0 + u * visible_tanh_span()) / kVisibleA;
     return std::fmin(std::fmax(l, kLambdaMinNm), kLambdaMaxNm);
   }
