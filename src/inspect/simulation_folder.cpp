@@ -71,6 +71,9 @@ std::vector<MeshedStep> read_mesh_manifest(const fs::path& manifest,
         throw UserError(name, where + "." + key, "expected a file name or null");
       return base / s[key].get<std::string>();
     };
+    for (auto [key, out] : {std::pair{"inner_exact_volume_m3", &m.inner_exact_volume_m3},
+                            std::pair{"outer_exact_volume_m3", &m.outer_exact_volume_m3}})
+      if (s.contains(key) && !s[key].is_null()) *out = number(key, 0);
     m.inner = surface("inner");
     m.outer = surface("outer");
     if (!steps.empty() && m.step <= steps.back().step)
@@ -116,11 +119,15 @@ std::vector<StepReport> inspect_simulation(const SimulationFolder& folder,
     r.step = s;
     if (s.inner) {
       r.inner = inspect_obj(*s.inner);
-      r.inner_exact_volume_m3 = exact_volume_m3(folder.geometry, s.inner_radius_m);
+      r.inner_exact_volume_m3 = s.inner_exact_volume_m3
+                                    ? s.inner_exact_volume_m3
+                                    : exact_volume_m3(folder.geometry, s.inner_radius_m);
     }
     if (s.outer) {
       r.outer = inspect_obj(*s.outer);
-      r.outer_exact_volume_m3 = exact_volume_m3(folder.geometry, s.outer_radius_m);
+      r.outer_exact_volume_m3 = s.outer_exact_volume_m3
+                                    ? s.outer_exact_volume_m3
+                                    : exact_volume_m3(folder.geometry, s.outer_radius_m);
     }
     out.push_back(std::move(r));
     if (progress) progress(static_cast<std::int64_t>(out.size()), total);

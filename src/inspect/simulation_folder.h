@@ -25,6 +25,8 @@ struct MeshedStep {
   double outer_radius_m = 0;          ///< ice|air surface [m]
   std::optional<std::filesystem::path> inner;  ///< absolute OBJ path; nullopt when vanished
   std::optional<std::filesystem::path> outer;  ///< absolute OBJ path; nullopt when vanished
+  /// The mesher's exact solid volumes ("inner_exact_volume_m3" ...) when the manifest has them.
+  std::optional<double> inner_exact_volume_m3, outer_exact_volume_m3;
 };
 
 struct SimulationFolder {
@@ -55,7 +57,8 @@ std::optional<double> exact_volume_m3(const std::optional<sim::ShellGeometry>& g
 struct StepReport {
   MeshedStep step;
   std::optional<MeshReport> inner, outer;            ///< nullopt when the surface vanished
-  std::optional<double> inner_exact_volume_m3, outer_exact_volume_m3;  ///< see exact_volume_m3
+  /// From the manifest when present, else exact_volume_m3() [m^3].
+  std::optional<double> inner_exact_volume_m3, outer_exact_volume_m3;
 };
 
 /// Inspects every surface of every meshed step; `progress` gets (steps done, steps total).
