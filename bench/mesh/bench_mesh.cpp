@@ -1,0 +1,155 @@
+// Benchmarks of the CGAL mesher (src/mesh) against the issue-4 targets, and against VTK's
+// vtkFlyingEdges3D, the fast marching-cubes baseline users know. Figures: docs/benchmarks.md.
+//   Sphere40k        default criteria, sphere radius chosen so that it has ~40k triangles
+//                    (target: < 1 s on one core)
+//   Series100/jobs   100 steps of a 3 cm sphere shell (200 surfaces) with 1 and 2 threads
+//                    (target: 2 threads >= 1.8x the 1-thread rate)
+//   FlyingEdges      the 3 cm sphere's signed distance sampled on the smallest N^3 grid whose
+//                    marching-cubes volume error is at most the CGAL default mesh's, then
+//                    vtkFlyingEdges3D; time includes sampling (reported separately too)
+#include <benchmark/benchmark.h>
+#include <vtkFlyingEdges3D.h>
+#include <vtkImageData.h>
+#include <vtkMassProperties.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkTriangleFilter.h>
+#include <vtkFloatArray.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "src/common/atomic_file.h"
+#include "src/mesh/mesh_series.h"
+#include "src/mesh/surface_mesher.h"
+
+namespace {
+using namespace thaw;
+namespace fs = std::filesystem;
+
+mesh::ShellShape sphere(double r) {
+  mesh::ShellShape s;
+  s.radius_m = r;
+  return s;
+}
+
+void Sphere40k(benchmark::State& state) {
+  const mesh::ShellShape s = sphere(0.07);  // default edge 2.5 mm: ~39k triangles at R = 7 cm
+  const mesh::MeshOptions o;
+  std::size_t triangles = 0;
+  for (auto _ : state) {
+    const mesh::TriangleMesh m = mesh::mesh_surface(s, o);
+    triangles = m.faces.size();
+    benchmark::DoNotOptimize(m.vertices.data());
+  }
+  state.counters["triangles"] = static_cast<double>(triangles);
+  state.counters["triangles_per_s"] =
+      benchmark::Counter(static_cast<double>(triangles), benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(Sphere40k)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+fs::path series_folder() {
+  const fs::path dir = fs::temp_directory_path() / "thaw_bench_mesh_series";
+  fs::create_directories(dir);
+  std::vector<sim::InterfaceRecord> rows;
+  for (int i = 0; i < 100; ++i) {
+    sim::InterfaceRecord r;
+    r.step = i;
+    r.time_s = 60.0 * i;
+    r.inner_radius_m = 0.010 + 0.018 * i / 99.0;  // the liquid core grows 1 -> 2.8 cm
+    r.outer_radius_m = 0.030 - 0.001 * i / 99.0;  // the outside ablates 3 -> 2.9 cm
+    rows.push_back(r);
+  }
+  sim::write_interfaces_csv(dir / "interfaces.csv", rows);
+  write_file_atomic(dir / "summary.json",
+                    R"({"parameters":{"simulation":{"geometry":"sphere"},"shell":{},"inner_boundary":{"kind":"heated"}}})");
+  return dir;
+}
+
+void Series100(benchmark::State& state) {
+  const fs::path dir = series_folder();
+  mesh::MeshOptions o;
+  o.jobs = static_cast<int>(state.range(0));
+  long triangles = 0;
+  for (auto _ : state) {
+    const mesh::MeshManifest m = mesh::mesh_simulation_folder(dir, o);
+    triangles = 0;
+    for (const auto& s : m.steps) triangles += s.inner.triangles + s.outer.triangles;
+  }
+  state.counters["triangles"] = static_cast<double>(triangles);
+  state.counters["triangles_per_s"] =
+      benchmark::Counter(static_cast<double>(triangles), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["steps_per_s"] = benchmark::Counter(100, benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(Series100)->Arg(1)->Arg(2)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+
+struct McResult {
+  double volume_error = 0, sample_s = 0, extract_s = 0;
+  long triangles = 0;
+};
+
+McResult marching_cubes(const mesh::ShellShape& s, int n) {
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  const double half = 1.1 * s.radius_m, h = 2 * half / (n - 1);
+  vtkNew<vtkImageData> grid;
+  grid->SetDimensions(n, n, n);
+  grid->SetOrigin(-half, -half, -half);
+  grid->SetSpacing(h, h, h);
+  vtkNew<vtkFloatArray> values;
+  values->SetNumberOfTuples(static_cast<vtkIdType>(n) * n * n);
+  vtkIdType id = 0;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        values->SetValue(id++, static_cast<float>(s.signed_distance({-half + i * h, -half + j * h, -half + k * h})));
+  grid->GetPointData()->SetScalars(values);
+  const auto t1 = clock::now();
+  vtkNew<vtkFlyingEdges3D> fe;
+  fe->SetInputData(grid);
+  fe->SetValue(0, 0.0);
+  fe->ComputeNormalsOff();
+  fe->ComputeGradientsOff();
+  fe->Update();
+  const auto t2 = clock::now();
+  vtkNew<vtkMassProperties> mass;
+  mass->SetInputConnection(fe->GetOutputPort());
+  mass->Update();
+  McResult r;
+  r.volume_error = std::abs(mass->GetVolume() / s.volume() - 1);
+  r.sample_s = std::chrono::duration<double>(t1 - t0).count();
+  r.extract_s = std::chrono::duration<double>(t2 - t1).count();
+  r.triangles = static_cast<long>(fe->GetOutput()->GetNumberOfPolys());
+  return r;
+}
+
+void FlyingEdgesAtCgalVolumeError(benchmark::State& state) {
+  const mesh::ShellShape s = sphere(0.03);
+  const mesh::MeshOptions o;
+  const auto c0 = std::chrono::steady_clock::now();
+  const mesh::TriangleMesh cgal = mesh::mesh_surface(s, o);
+  const double cgal_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
+  const double target = std::abs(mesh::enclosed_volume(cgal) / s.volume() - 1);
+  int n = 16;
+  while (marching_cubes(s, n).volume_error > target && n < 1024) n += 8;
+  McResult r;
+  for (auto _ : state) r = marching_cubes(s, n);
+  state.counters["grid_n"] = n;
+  state.counters["mc_triangles"] = static_cast<double>(r.triangles);
+  state.counters["mc_volume_error"] = r.volume_error;
+  state.counters["mc_extract_tri_per_s"] = static_cast<double>(r.triangles) / r.extract_s;
+  state.counters["mc_total_tri_per_s"] = static_cast<double>(r.triangles) / (r.sample_s + r.extract_s);
+  state.counters["mc_total_s"] = r.sample_s + r.extract_s;
+  state.counters["cgal_triangles"] = static_cast<double>(cgal.faces.size());
+  state.counters["cgal_volume_error"] = target;
+  state.counters["cgal_s"] = cgal_s;
+  state.counters["cgal_tri_per_s"] = static_cast<double>(cgal.faces.size()) / cgal_s;
+}
+BENCHMARK(FlyingEdgesAtCgalVolumeError)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+}  // namespace
+
+BENCHMARK_MAIN();
