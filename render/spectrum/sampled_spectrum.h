@@ -92,8 +92,9 @@ constexpr bool operator==(const SampledSpectrum& a, const SampledSpectrum& b) {
   return true;
 }
 
-/// Element-wise exp: Beer-Lambert transmittance is exp(-alpha * d) per wavelength.
-inline SampledSpectrum exp(const SampledSpectrum& s) {
+/// Element-wise exp (Beer-Lambert: exp(-alpha * d) per wavelength). Not called `exp` so that an
+/// unqualified exp(double) inside namespace thaw::render still finds std::exp.
+inline SampledSpectrum exp_elementwise(const SampledSpectrum& s) {
   SampledSpectrum r;
   for (int i = 0; i < kSpectrumSamples; ++i) r[i] = std::exp(s[i]);
   return r;
