@@ -1,6 +1,7 @@
 #include "sim/scenario/scenario_file.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -30,11 +31,11 @@ const char* to_string(OuterBoundary kind) {
 
 namespace {
 
+/// Shortest text that reads back as the same double ("0.04", not "0.040000000000000001").
 std::string num(double v) {
-  std::ostringstream os;
-  os.precision(17);
-  os << v;
-  return os.str();
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
 }
 
 struct Problem {

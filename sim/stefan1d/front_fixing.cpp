@@ -1,5 +1,6 @@
 #include "sim/stefan1d/front_fixing.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -381,13 +382,17 @@ struct FrontFixingSolver::Impl {
         }
         have_jac = true;
       }
+      // The Schur complement of the bordered system: the temperatures are already eliminated
+      // (exact tridiagonal solves), so Newton's matrix is nz x nz.
       double step[2] = {0, 0};
       if (nz == 1) {
         step[0] = -res[idx[0]] / jac[0][0];
       } else {
-        const double det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
-        step[0] = -(jac[1][1] * res[idx[0]] - jac[0][1] * res[idx[1]]) / det;
-        step[1] = -(-jac[1][0] * res[idx[0]] + jac[0][0] * res[idx[1]]) / det;
+        Eigen::Matrix2d j;
+        j << jac[0][0], jac[0][1], jac[1][0], jac[1][1];
+        const Eigen::Vector2d d = j.partialPivLu().solve(Eigen::Vector2d(-res[idx[0]], -res[idx[1]]));
+        step[0] = d[0];
+        step[1] = d[1];
       }
       bool converged = true;
       for (int c = 0; c < nz; ++c) {

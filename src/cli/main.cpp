@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   thaw::cli::register_inspect(app);
   thaw::cli::register_render(app);
+  thaw::cli::register_simulate(app);
   thaw::cli::register_materials(app);
   thaw::cli::register_mesh(app);
   try {

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -151,6 +152,16 @@ TEST(ScenarioFile, ErrorsCarryTheLineOfTheKey) {
     parse_scenario_string(with(kMinimal, "inner_radius_m = 0.01", "inner_radius_m = 0.05"), "bad.toml");
   });
   EXPECT_NE(msg.find("line 7"), std::string::npos) << msg;
+}
+
+TEST(ScenarioFile, EveryShippedScenarioParses) {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(THAW_SOURCE_DIR) + "/data/scenarios")) {
+    if (entry.path().extension() != ".toml") continue;
+    EXPECT_NO_THROW(read_scenario_file(entry.path())) << entry.path();
+    ++count;
+  }
+  EXPECT_GE(count, 2);
 }
 
 TEST(ScenarioFile, MissingFileIsAUserError) {

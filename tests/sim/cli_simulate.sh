@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# Smoke and bad-input tests of `thaw simulate` (registered by tests/sim/CMakeLists.txt).
+#   cli_simulate.sh THAW SOURCE_DIR WORK_DIR
+# Good runs: the result folder holds interfaces.csv, profiles/ and summary.json. Bad input: exit
+# code 2, exactly one line on stderr naming the file and the key or problem, and the result
+# folder untouched (absent if it was absent, unchanged if it existed).
+set -u
+thaw=$1 src=$2 work=$3
+rm -rf "$work" && mkdir -p "$work"
+fail=0
+note() { echo "FAIL: $*" >&2; fail=1; }
+
+check_good() {  # name, args...
+  local name=$1; shift
+  local out="$work/$name"
+  if ! "$thaw" simulate "$@" --out "$out" -q; then note "$name: exit code $?"; return; fi
+  for f in interfaces.csv summary.json profiles/step_000000.csv; do
+    [ -s "$out/$f" ] || note "$name: missing $f"
+  done
+  head -1 "$out/interfaces.csv" | grep -q '^step,time_s,inner_radius_m,outer_radius_m,liquid_volume_m3,ice_volume_m3,energy_balance_error' \
+    || note "$name: interfaces.csv header"
+  ls -A "$work" | grep -q "^$name\.tmp-" && note "$name: staging folder left behind"
+}
+
+check_bad() {  # name, expected substring 1, expected substring 2, scenario text (or @path)
+  local name=$1 want1=$2 want2=$3 text=$4
+  local scenario="$work/$name.toml" out="$work/$name-out"
+  if [ "${text:0:1}" = "@" ]; then scenario=${text:1}; else printf '%s\n' "$text" > "$scenario"; fi
+  mkdir -p "$out" && echo keep > "$out/marker"
+  "$thaw" simulate "$scenario" --out "$out" -q 2> "$work/$name.err"
+  local code=$?
+  [ $code -eq 2 ] || note "$name: exit code $code, expected 2"
+  [ "$(wc -l < "$work/$name.err")" -eq 1 ] || note "$name: stderr is not one line: $(cat "$work/$name.err")"
+  grep -qF -- "$want1" "$work/$name.err" || note "$name: stderr lacks '$want1': $(cat "$work/$name.err")"
+  grep -qF -- "$want2" "$work/$name.err" || note "$name: stderr lacks '$want2': $(cat "$work/$name.err")"
+  [ "$(ls -A "$out")" = "marker" ] || note "$name: result folder changed: $(ls -A "$out")"
+  # and with no result folder at all, none appears
+  rm -rf "$out"
+  "$thaw" simulate "$scenario" --out "$out" -q 2>/dev/null
+  [ -e "$out" ] && note "$name: result folder created on bad input"
+  ls -A "$work" | grep -q "^$name-out\.tmp-" && note "$name: temporary folder left behind"
+}
+
+check_good default
+check_good drop "$src/data/scenarios/water_drop_freezing.toml"
+grep -q '"kind": "core_frozen"' "$work/drop/summary.json" || note "drop: no core_frozen event"
+grep -q '"kind": "break_through"' "$work/default/summary.json" || note "default: no break_through event"
+
+base=$("$thaw" simulate --print-default)
+check_bad missing_file "nonexistent.toml" "file not found" "@$work/nonexistent.toml"
+check_bad malformed "malformed TOML" "line" "[simulation"
+check_bad unknown_key "shell.inner_radus_m" "unknown key" "${base/inner_radius_m/inner_radus_m}"
+check_bad negative "shell.inner_radius_m" "must not be negative" "${base/inner_radius_m = 0.02/inner_radius_m = -0.02}"
+check_bad nan "shell.outer_radius_m" "finite" "${base/outer_radius_m = 0.03/outer_radius_m = nan}"
+check_bad inf "simulation.duration_s" "finite" "${base/duration_s = 3600.0/duration_s = inf}"
+check_bad inner_gt_outer "inner_radius_m" "larger than outer_radius_m" "${base/inner_radius_m = 0.02/inner_radius_m = 0.04}"
+check_bad zero_duration "simulation.duration_s" "must be positive" "${base/duration_s = 3600.0/duration_s = 0.0}"
+check_bad long_interval "simulation.output_interval_s" "longer than the run" "${base/output_interval_s = 60.0/output_interval_s = 7200.0}"
+hot=${base/kind = \"convective\"/kind = \"temperature\"}
+hot=${hot/heat_transfer_coefficient_w_m2k = 50.0/}
+check_bad hot_surface "outer_boundary.temperature_c" "ill-posed" "$hot"
+exit $fail
