@@ -40,12 +40,18 @@ void expect_accurate(const ShellShape& shape) {
   double worst = 0;
   for (const auto& v : m.vertices) worst = std::max(worst, std::abs(shape.signed_distance(v)));
   EXPECT_LE(worst, c.facet_distance_m);
-  // Normals: unit, and the exact outward normal (gradient) where the vertex is.
+  // Normals: unit, and on the same side as every face using the vertex (the renderer
+  // interpolates them across faces wound counter-clockwise from outside).
   ASSERT_EQ(m.normals.size(), m.vertices.size());
-  for (std::size_t i = 0; i < m.vertices.size(); ++i) {
-    const auto& n = m.normals[i];
-    EXPECT_NEAR(n[0] * n[0] + n[1] * n[1] + n[2] * n[2], 1.0, 1e-12);
+  for (const auto& n : m.normals) EXPECT_NEAR(n[0] * n[0] + n[1] * n[1] + n[2] * n[2], 1.0, 1e-12);
+  int disagreeing = 0;
+  for (const auto& f : m.faces) {
+    const auto &a = m.vertices[f[0]], &b = m.vertices[f[1]], &c = m.vertices[f[2]];
+    const Vec3 u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const Vec3 g{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    for (int i : f) disagreeing += g[0] * m.normals[i][0] + g[1] * m.normals[i][1] + g[2] * m.normals[i][2] <= 0;
   }
+  EXPECT_EQ(disagreeing, 0);
 }
 
 TEST(SurfaceMesher, SphereAtDefaults) {
