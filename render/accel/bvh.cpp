@@ -28,6 +28,12 @@ struct Builder {
   std::vector<BuildNode>& slots;
   BvhBuildOptions options;
 
+  /// SAH intersection cost of n primitives tested block_size at a time.
+  float blocks(std::uint32_t n) const {
+    const auto b = static_cast<std::uint32_t>(std::max(1, options.block_size));
+    return float((n + b - 1) / b);
+  }
+
   // Builds the subtree for order[begin, end) into slots[slot, slot + 2 (end - begin) - 1):
   // a subtree of m primitives has at most 2m - 1 nodes, so children get disjoint slot ranges and
   // parallel subtrees never write to the same slot (the gaps are squeezed out when flattening).
@@ -80,7 +86,7 @@ struct Builder {
           acc.extend(bin_box[b]);
           cnt += bin_count[b];
           if (cnt == 0 || right_count[b + 1] == 0) continue;
-          const float cost = acc.area() * float(cnt) + right_area[b + 1] * float(right_count[b + 1]);
+          const float cost = acc.area() * blocks(cnt) + right_area[b + 1] * blocks(right_count[b + 1]);
           if (cost < best_cost) {
             best_cost = cost;
             best_axis = axis;
@@ -90,8 +96,8 @@ struct Builder {
       }
       if (best_axis >= 0) {
         const float area = box.area();
-        const float split_cost = options.traversal_cost + (area > 0.0f ? best_cost / area : float(m));
-        if (m <= static_cast<std::uint32_t>(options.max_leaf_size) && float(m) <= split_cost) {
+        const float split_cost = options.traversal_cost + (area > 0.0f ? best_cost / area : blocks(m));
+        if (m <= static_cast<std::uint32_t>(options.max_leaf_size) && blocks(m) <= split_cost) {
           node.leaf = true;
           return 1;
         }
@@ -182,6 +188,70 @@ Bvh::Bvh(std::span<const Aabb> bounds, const BvhBuildOptions& options) {
       todo.push_back({item.slot + 1, -1});   // left: next in the array
     }
   }
+  m_wide.reserve(m_nodes.size() / 2 + 1);
+  collapse(0);
+}
+
+std::uint32_t Bvh::collapse(std::uint32_t binary_index) {
+  // Gather up to four subtrees under this node by repeatedly opening the interior candidate with
+  // the largest surface area (the one most likely to be entered), then recurse.
+  std::uint32_t candidates[4];
+  int n = 0;
+  const BvhNode& b = m_nodes[binary_index];
+  if (b.count > 0) {
+    candidates[n++] = binary_index;  // the whole tree is one leaf
+  } else {
+    candidates[n++] = binary_index + 1;
+    candidates[n++] = b.offset;
+  }
+  while (n < 4) {
+    int best = -1;
+    float best_area = -1.0f;
+    for (int i = 0; i < n; ++i) {
+      const BvhNode& c = m_nodes[candidates[i]];
+      if (c.count > 0) continue;
+      Aabb box;
+      box.lo = c.lo;
+      box.hi = c.hi;
+      if (box.area() > best_area) {
+        best_area = box.area();
+        best = i;
+      }
+    }
+    if (best < 0) break;
+    const std::uint32_t open = candidates[best];
+    candidates[best] = open + 1;
+    candidates[n++] = m_nodes[open].offset;
+  }
+  const auto index = static_cast<std::uint32_t>(m_wide.size());
+  m_wide.emplace_back();
+  for (int i = 0; i < 4; ++i) {
+    float lo[3] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity(),
+                   std::numeric_limits<float>::infinity()};
+    float hi[3] = {-lo[0], -lo[1], -lo[2]};
+    std::uint32_t child = 0, count = 0;
+    if (i < n) {
+      const BvhNode& c = m_nodes[candidates[i]];
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = c.lo[k];
+        hi[k] = c.hi[k];
+      }
+      if (c.count > 0) {
+        child = c.offset;
+        count = c.count;
+      } else {
+        child = collapse(candidates[i]);  // may reallocate m_wide: index, not reference
+      }
+    }
+    Bvh4Node& w = m_wide[index];
+    for (int k = 0; k < 3; ++k) {
+      w.planes[2 * k][i] = lo[k];
+      w.planes[2 * k + 1][i] = hi[k];
+    }
+    w.child[i] = child;
+    w.count[i] = count;
+  }
+  return index;
 }
 
 }  // namespace thaw::render

@@ -248,6 +248,25 @@ Scene build_scene(const SceneDescription& desc) {
   s.m_bvh = Bvh(bounds);
   s.m_primitives.resize(prims.size());
   for (std::size_t i = 0; i < prims.size(); ++i) s.m_primitives[i] = prims[s.m_bvh.order()[i]];
+  s.m_leaf_block.assign(s.m_primitives.size(), Scene::kNoBlock);
+  for (const Bvh4Node& n : s.m_bvh.wide_nodes()) {
+    for (int i = 0; i < 4; ++i) {
+      const std::uint32_t first = n.child[i], count = n.count[i];
+      if (count == 0 || count > 4) continue;
+      bool all_triangles = true;
+      for (std::uint32_t k = first; k < first + count; ++k)
+        all_triangles = all_triangles && s.m_primitives[k].kind == PrimitiveKind::triangle;
+      if (!all_triangles) continue;
+      Triangle4 block{};
+      for (std::uint32_t lane = 0; lane < 4; ++lane) {
+        const std::uint32_t k = first + (lane < count ? lane : 0);  // unused lanes repeat lane 0
+        const Primitive& p = s.m_primitives[k];
+        block.set(static_cast<int>(lane), p.a, p.b, p.c, k);
+      }
+      s.m_leaf_block[first] = static_cast<std::uint32_t>(s.m_leaf_triangles.size());
+      s.m_leaf_triangles.push_back(block);
+    }
+  }
   s.m_stats.bvh_nodes = s.m_bvh.nodes().size();
   s.m_stats.bvh_depth = s.m_bvh.depth();
   s.m_stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -262,6 +281,18 @@ bool Scene::intersect(const Ray& ray, Hit& hit) const {
     const ShearedRay sr(ray);
     const Primitive* prims = m_primitives.data();
     found = m_bvh.intersect(rd, t_max, [&](std::uint32_t first, std::uint32_t count, float& tm) {
+      const std::uint32_t block = m_leaf_block[first];
+      if (block != kNoBlock) {
+        TriangleHit th;
+        int lane;
+        if (!intersect_triangle4(sr, m_leaf_triangles[block], tm, th, lane)) return false;
+        tm = th.t;
+        hit.t = th.t;
+        hit.b1 = th.b1;
+        hit.b2 = th.b2;
+        hit.prim = m_leaf_triangles[block].prim[lane];
+        return true;
+      }
       bool any = false;
       for (std::uint32_t i = first; i < first + count; ++i) {
         const Primitive& p = prims[i];
@@ -323,6 +354,12 @@ bool Scene::occluded(const Ray& ray) const {
   const ShearedRay sr(ray);
   const Primitive* prims = m_primitives.data();
   return m_bvh.occluded(rd, ray.t_max, [&](std::uint32_t first, std::uint32_t count, float tm) {
+    const std::uint32_t block = m_leaf_block[first];
+    if (block != kNoBlock) {
+      TriangleHit th;
+      int lane;
+      return intersect_triangle4(sr, m_leaf_triangles[block], tm, th, lane, true);
+    }
     for (std::uint32_t i = first; i < first + count; ++i) {
       const Primitive& p = prims[i];
       float t;

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "render/accel/bvh.h"
-#include "render/geometry/triangle.h"
+#include "render/geometry/triangle4.h"
 #include "render/material/ior_model.h"
 #include "render/material/material.h"
 #include "render/math/color.h"
@@ -123,6 +123,11 @@ class Scene {
   std::vector<NormalSet> m_normal_sets;
   std::vector<std::uint32_t> m_planes;  // object indices
   Bvh m_bvh;
+  // BVH leaves made only of triangles, packed four-wide; m_leaf_block[first primitive of a leaf]
+  // is its index in m_leaf_triangles, or kNoBlock for leaves with other shapes.
+  static constexpr std::uint32_t kNoBlock = 0xffffffffu;
+  std::vector<Triangle4> m_leaf_triangles;
+  std::vector<std::uint32_t> m_leaf_block;
   std::uint32_t m_camera_medium = 0;
   SceneStatistics m_stats;
 };
