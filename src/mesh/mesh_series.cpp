@@ -196,10 +196,12 @@ MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& r
       if (!manifest.thinnest_contained_shell_m || shell < *manifest.thinnest_contained_shell_m)
         manifest.thinnest_contained_shell_m = shell;
     } else {
-      if (shell > rec.outer.distance_bound_m)
+      // CGAL bounds the deviation at facet circumcentres; elsewhere on a capsule or slab facet it
+      // was measured up to ~1.2x that, so only a shell over twice the bound must be contained.
+      if (shell > 2 * rec.outer.distance_bound_m)
         throw UserError((final_dir / surface_file_name(rec.step, false)).string(), "",
                         "inner mesh not strictly inside the outer mesh although the shell (" +
-                            std::to_string(shell) + " m) is thicker than the distance bound");
+                            std::to_string(shell) + " m) is over twice the distance bound");
       manifest.steps_inner_touching_outer.push_back(rec.step);
     }
   }
