@@ -31,7 +31,7 @@ struct NeumannComparison {
 
 /// The exact solution of a problem.
 NeumannSolution neumann_solution(const NeumannProblem& problem);
-/// Runs the solver on the problem: planar domain reaching 6 sqrt(alpha_max t1) beyond the exact
+/// Runs the solver on the problem: planar domain reaching 10 sqrt(alpha_far t1) beyond the exact
 /// front at t1 (held at T_far, or a symmetry plane for freezing), started at t0 from the exact
 /// profile, compared at t1.
 NeumannComparison run_neumann_problem(const NeumannProblem& problem);
