@@ -1,0 +1,90 @@
+#!/usr/bin/env bash
+# thaw render vs POV-Ray 3.7 (Debian `povray`, scripts/setup-bench) on the reference scenes of
+# ../shared/scenes, side by side in one run with hyperfine: whole process, same size, depth 10,
+# 1 ray per pixel, 2 threads. Then the reports' studies: time vs image size (128..2000) at 1 and
+# 2 threads, and time vs object count (2, 4, 8, 16 spheres of S4) at 1000x1000.
+# usage: bench/render/compare_povray.sh [THAW_EXECUTABLE] [SHARED_SCENES_DIR] [RUNS]
+# Writes markdown tables to stdout and hyperfine JSON to $OUT (default /tmp/thaw-bench-render).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/../.." && pwd)
+thaw=$(realpath "${1:-$root/build/thaw}")
+shared=$(realpath "${2:-$root/../shared/scenes}")
+runs=${3:-5}
+out=${OUT:-/tmp/thaw-bench-render}
+for tool in povray hyperfine; do
+  command -v "$tool" >/dev/null || { echo "$tool not installed: run scripts/setup-bench" >&2; exit 1; }
+done
+mkdir -p "$out"
+pov="$out/pov"
+rm -rf "$pov" && cp -r "$shared/pov" "$pov" && chmod -R u+w "$pov"
+scenes="$root/data/scenes"
+
+# povray_cmd NAME WxH THREADS: the command line of ../shared/scenes/run_povray.sh (no anti-aliasing,
+# adaptive depth control 1/255, max_trace_level 10, sRGB), run in the folder holding the .pov.
+povray_cmd() {
+  echo "cd $pov && povray +I$1.pov +O$out/$1_pov.png +FN +W${2%x*} +H${2#*x} -A +WT$3 -D -V File_Gamma=sRGB 2>/dev/null"
+}
+thaw_cmd() {  # SCENE WxH THREADS
+  echo "$thaw render $1 -o $out/$(basename "$1" .toml)_thaw.png --width ${2%x*} --height ${2#*x} --threads $3 --quiet"
+}
+# mean [s] of command 0 and 1 in a hyperfine JSON file, and their ratio
+ratio() {
+  python3 -c "import json,sys; r=json.load(open(sys.argv[1]))['results']; a,b=r[0]['mean'],r[1]['mean']; print(f'{a:.3f} | {b:.3f} | {a/b:.2f}x')" "$1"
+}
+
+echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores; load $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "thaw $("$thaw" --version | cut -d' ' -f2), $(povray --version 2>&1 | grep -m1 -o 'POV-Ray [0-9.]*' || echo POV-Ray 3.7)"
+echo
+echo "| scene | size | POV-Ray [s] | thaw [s] | thaw speed-up |"
+echo "|---|---|---|---|---|"
+for spec in "s1_ice_shell_mesh:s1_ice_shell_mesh:640x640" "s1_ice_shell:s1_ice_shell:640x640" \
+            "s4_spheres16:s4_spheres16:2000x2000" "s3_dispersion_nodisp:s3_dispersion_nodisp:1000x1000"; do
+  IFS=: read -r povname toml size <<<"$spec"
+  hyperfine --style none --warmup 1 --runs "$runs" --export-json "$out/$povname.json" \
+    "$(povray_cmd "$povname" "$size" 2)" "$(thaw_cmd "$scenes/$toml.toml" "$size" 2)" >/dev/null
+  echo "| $povname | $size | $(ratio "$out/$povname.json") |"
+done
+
+[ "${STUDIES:-1}" = 1 ] || exit 0
+echo
+echo "Study 1: S4, time vs image size (whole process)."
+echo
+echo "| size | threads | POV-Ray [s] | thaw [s] | thaw speed-up |"
+echo "|---|---|---|---|---|"
+for n in 128 256 512 1000 2000; do
+  for t in 1 2; do
+    f="$out/size_${n}_$t.json"
+    hyperfine --style none --warmup 1 --runs "$runs" --export-json "$f" \
+      "$(povray_cmd s4_spheres16 "${n}x$n" "$t")" "$(thaw_cmd "$scenes/s4_spheres16.toml" "${n}x$n" "$t")" >/dev/null
+    echo "| ${n}x$n | $t | $(ratio "$f") |"
+  done
+done
+
+echo
+echo "Study 2: S4 with the first N spheres, 1000x1000, 2 threads."
+echo
+echo "| spheres | POV-Ray [s] | thaw [s] | thaw speed-up |"
+echo "|---|---|---|---|"
+for n in 2 4 8 16; do
+  # Keep the first n sphere objects of both scene files (each sphere is one '// sphereNN' block).
+  python3 - "$pov/s4_spheres16.pov" "$pov/s4_n$n.pov" "$scenes/s4_spheres16.toml" "$out/s4_n$n.toml" "$n" <<'PY'
+import re, sys
+pov_in, pov_out, toml_in, toml_out, n = sys.argv[1:6]; n = int(n)
+lines = open(pov_in).read().split('\n'); keep = []; skip = False
+for i, l in enumerate(lines):
+    m = re.match(r'// sphere(\d+):', l)
+    if m: skip = int(m.group(1)) >= n
+    elif l.startswith('// floor'): skip = False
+    if not skip: keep.append(l)
+open(pov_out, 'w').write('\n'.join(keep))
+blocks = open(toml_in).read().split('[[objects]]')
+kept = [b for b in blocks[1:] if not re.search(r'name = "sphere(\d+)"', b) or int(re.search(r'name = "sphere(\d+)"', b).group(1)) < n]
+open(toml_out, 'w').write(blocks[0] + ''.join('[[objects]]' + b for b in kept))
+PY
+  # (unused materials are fine in thaw; mesh files resolve next to the scene file)
+  ln -sfn "$scenes/meshes" "$out/meshes"
+  f="$out/objects_$n.json"
+  hyperfine --style none --warmup 1 --runs "$runs" --export-json "$f" \
+    "$(povray_cmd "s4_n$n" 1000x1000 2)" "$(thaw_cmd "$out/s4_n$n.toml" 1000x1000 2)" >/dev/null
+  echo "| $n | $(ratio "$f") |"
+done
