@@ -7,6 +7,7 @@
 
 #include "sim/scenario/scenario_file.h"
 #include "src/common/atomic_file.h"
+#include "src/common/check.h"
 #include "src/common/error.h"
 
 namespace thaw::sim {
@@ -34,6 +35,7 @@ std::vector<double> output_times(const Scenario& sc) {
 SimulationResult simulate(const Scenario& scenario, const std::vector<double>& times,
                           const ProgressCallback& progress) {
   validate_scenario(scenario);
+  if (times.empty()) throw UserError("", "output times", "at least one output time is needed");
   for (std::size_t i = 0; i < times.size(); ++i)
     if (!std::isfinite(times[i]) || times[i] < 0 || (i > 0 && !(times[i] > times[i - 1])))
       throw UserError("", "output times", "must be finite, >= 0 and increasing");
@@ -73,6 +75,7 @@ SimulationResult simulate(const Scenario& scenario, const ProgressCallback& prog
 }
 
 void write_simulation_outputs(const std::filesystem::path& dir, const SimulationResult& r) {
+  THAW_CHECK(!r.snapshots.empty(), "a simulation result has at least one snapshot");
   write_interfaces_csv(dir / "interfaces.csv", r.interface_records());
   const auto profiles = dir / "profiles";
   ensure_directory(profiles);

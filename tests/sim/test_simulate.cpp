@@ -45,6 +45,8 @@ TEST(Simulate, SamplesExactlyAtArbitraryRequestedTimes) {
   for (std::size_t i = 0; i < times.size(); ++i) EXPECT_EQ(r.snapshots[i].time_s, times[i]);
   EXPECT_FALSE(r.ended_early);
   EXPECT_THROW(simulate(sc, {0.0, 2.0, 1.0}), UserError);
+  EXPECT_THROW(simulate(sc, std::vector<double>{}), UserError);
+  EXPECT_THROW(simulate(sc, {-1.0, 2.0}), UserError);
 }
 
 TEST(Simulate, RunEndsAtBreakThroughWithOneLastRow) {
