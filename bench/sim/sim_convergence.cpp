@@ -71,6 +71,54 @@ int main(int argc, char** argv) {
     }
   }
 
+  std::printf("\n## Zero-thickness starts against Neumann at 600 s (planar, time tolerance 1e-10)\n\n");
+  std::printf("| cells/phase | no ice yet: water 3 C, face -10 C | order | no water yet: ice -5 C, face 20 C | order |\n");
+  std::printf("|---|---|---|---|---|\n");
+  {
+    NeumannProblem freeze;
+    freeze.melting = false;
+    freeze.face_excess_k = 10;
+    freeze.far_excess_k = 3;
+    NeumannProblem melt;
+    melt.face_excess_k = 20;
+    melt.far_excess_k = 5;
+    const double exact_freeze = neumann_solution(freeze).front(600), exact_melt = neumann_solution(melt).front(600);
+    double pf = 0, pm = 0;
+    for (int n : quick ? std::vector<int>{20, 40, 80} : std::vector<int>{20, 40, 80, 160, 320}) {
+      Scenario a;  // water slab 100 mm (10 thermal lengths of water at 600 s), no ice
+      a.geometry = Geometry::planar;
+      a.inner_radius_m = a.outer_radius_m = 0.1;
+      a.water_initial_temperature_c = 3;
+      a.ice_initial_temperature_c = 0;
+      a.outer_kind = OuterBoundary::temperature;
+      a.outer_temperature_c = -10;
+      a.duration_s = a.output_interval_s = 600;
+      a.cells_per_phase = n;
+      a.time_tolerance = 1e-10;
+      FrontFixingSolver sa(a);
+      sa.advance_to(600);
+      const double ef = std::abs(0.1 - sa.snapshot(false).inner_radius_m - exact_freeze) / exact_freeze;
+      Scenario b;  // ice slab 300 mm (10 thermal lengths of ice), no water, face held at 20 C
+      b.geometry = Geometry::planar;
+      b.inner_kind = InnerBoundary::temperature;
+      b.inner_temperature_c = 20;
+      b.inner_radius_m = 0;
+      b.outer_radius_m = 0.3;
+      b.ice_initial_temperature_c = -5;
+      b.water_initial_temperature_c = 20;
+      b.outer_kind = OuterBoundary::insulated;
+      b.duration_s = b.output_interval_s = 600;
+      b.cells_per_phase = n;
+      b.time_tolerance = 1e-10;
+      FrontFixingSolver sb(b);
+      sb.advance_to(600);
+      const double em = std::abs(sb.snapshot(false).inner_radius_m - exact_melt) / exact_melt;
+      std::printf("| %d | %.3e | %.2f | %.3e | %.2f |\n", n, ef, order(pf, ef), em, order(pm, em));
+      pf = ef;
+      pm = em;
+    }
+  }
+
   std::printf("\n## Inward freezing of water at T_m, surface held at T_m - dT (zero initial ice), 128 cells\n\n");
   std::printf("| geometry | St | t_f / t_quasi-steady | (t_f/t_qs - 1) / St |\n|---|---|---|---|\n");
   for (Geometry g : {Geometry::cylinder, Geometry::sphere})
