@@ -21,21 +21,64 @@ std::uint8_t to_srgb8(float v, float scale) {
   return static_cast<std::uint8_t>(std::lround(linear_to_srgb(v * scale) * 255.0f));
 }
 
+namespace {
+
+/// The same mapping as to_srgb8 without a pow per channel: thresholds[k] is the smallest linear
+/// value that to_srgb8 maps to k + 1 or more (found by bisection on to_srgb8 itself, so the two
+/// agree exactly), and a value's code is the number of thresholds it reaches.
+class SrgbEncoder {
+ public:
+  SrgbEncoder() {
+    for (int k = 0; k < 255; ++k) {
+      float lo = 0.0f, hi = 1.0f;  // to_srgb8(lo) <= k < to_srgb8(hi)
+      for (int it = 0; it < 40; ++it) {
+        const float mid = 0.5f * (lo + hi);
+        if (mid == lo || mid == hi) break;
+        (to_srgb8(mid) <= k ? lo : hi) = mid;
+      }
+      m_thresholds[k] = hi;
+    }
+  }
+  std::uint8_t operator()(float v) const {
+    if (!(v == v)) return 0;
+    // Branch-free binary search over the 255 sorted thresholds.
+    int k = 0;
+    for (int step = 128; step > 0; step /= 2)
+      if (k + step <= 255 && v >= m_thresholds[k + step - 1]) k += step;
+    return static_cast<std::uint8_t>(k);
+  }
+
+ private:
+  float m_thresholds[255];
+};
+
+}  // namespace
+
+std::uint8_t srgb8_by_table(float v) {
+  static const SrgbEncoder encode;
+  return encode(v);
+}
+
 std::string encode_png(const Image& image, double exposure) {
+  static const SrgbEncoder encode;
   const float scale = static_cast<float>(std::exp2(exposure));
   const int w = image.width(), h = image.height();
-  // A 4096-entry table would be faster, but exact rounding per pixel costs < 10 ms for 4 Mpixel.
   std::vector<std::uint8_t> rgb(std::size_t(w) * h * 3);
-  for (std::size_t i = 0; i < image.pixels().size(); ++i) {
-    const Rgb& c = image.pixels()[i];
-    rgb[3 * i] = to_srgb8(c.r, scale);
-    rgb[3 * i + 1] = to_srgb8(c.g, scale);
-    rgb[3 * i + 2] = to_srgb8(c.b, scale);
+  const auto n = static_cast<std::int64_t>(image.pixels().size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const Rgb& c = image.pixels()[static_cast<std::size_t>(i)];
+    rgb[3 * i] = encode(c.r * scale);
+    rgb[3 * i + 1] = encode(c.g * scale);
+    rgb[3 * i + 2] = encode(c.b * scale);
   }
   std::string out;
   auto sink = [](void* ctx, void* data, int size) {
     static_cast<std::string*>(ctx)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
   };
+  // zlib effort 8 (stb's default) costs ~0.5 s per 4 Mpixel frame here; 2 is 4x faster for files
+  // ~10 % larger, which suits one frame per simulation step.
+  stbi_write_png_compression_level = 2;
   if (!stbi_write_png_to_func(sink, &out, w, h, 3, rgb.data(), w * 3))
     throw UserError("", "", "PNG encoding failed");
   return out;

@@ -15,6 +15,8 @@ namespace thaw::render {
 float linear_to_srgb(float v);
 /// 8-bit sRGB of linear `v` scaled by `scale` (clamped, rounded to nearest).
 std::uint8_t to_srgb8(float v, float scale = 1.0f);
+/// to_srgb8(v) by a table of the 255 rounding thresholds (no pow): what encode_png uses.
+std::uint8_t srgb8_by_table(float v);
 
 /// PNG file bytes of `image` (8-bit sRGB, exposure in stops).
 std::string encode_png(const Image& image, double exposure = 0.0);

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <unistd.h>
@@ -58,6 +59,35 @@ TEST(ImageIo, WritesAtomicallyAndChecksPaths) {
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++files;
   EXPECT_EQ(files, 2);
   std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace thaw::render
+
+namespace thaw::render {
+namespace {
+
+TEST(ImageIo, TableEncoderAgreesWithSrgbCurveEverywhere) {
+  // encode_png uses a threshold table; it must give to_srgb8's code for every value, including
+  // the floats on both sides of each of the 255 rounding boundaries.
+  int checked = 0;
+  for (int i = -100; i <= 1100000; ++i) {
+    const float v = i / 1000000.0f;
+    ASSERT_EQ(srgb8_by_table(v), to_srgb8(v)) << v;
+    ++checked;
+  }
+  for (int k = 1; k < 256; ++k) {
+    // bisect for the boundary of code k and check the floats next to it
+    float lo = 0.0f, hi = 1.0f;
+    for (int it = 0; it < 60; ++it) {
+      const float mid = 0.5f * (lo + hi);
+      (to_srgb8(mid) < k ? lo : hi) = mid;
+    }
+    for (float v : {lo, hi, std::nextafter(lo, 0.0f), std::nextafter(hi, 1.0f)}) ASSERT_EQ(srgb8_by_table(v), to_srgb8(v)) << v;
+  }
+  EXPECT_EQ(srgb8_by_table(std::nanf("")), 0);
+  EXPECT_EQ(srgb8_by_table(5.0f), 255);
+  EXPECT_GT(checked, 1000000);
 }
 
 }  // namespace
