@@ -27,16 +27,17 @@ povray_cmd() {
 thaw_cmd() {  # SCENE WxH THREADS
   echo "$thaw render $1 -o $out/$(basename "$1" .toml)_thaw.png --width ${2%x*} --height ${2#*x} --threads $3 --quiet"
 }
-# mean [s] of command 0 and 1 in a hyperfine JSON file, and their ratio
+# wall-time means [s] of command 0 (POV-Ray) and 1 (thaw) in a hyperfine JSON file, their ratio,
+# and the ratio of CPU time (user + system): the fairer figure when the machine is shared.
 ratio() {
-  python3 -c "import json,sys; r=json.load(open(sys.argv[1]))['results']; a,b=r[0]['mean'],r[1]['mean']; print(f'{a:.3f} | {b:.3f} | {a/b:.2f}x')" "$1"
+  python3 -c "import json,sys; r=json.load(open(sys.argv[1]))['results']; a,b=r[0]['mean'],r[1]['mean']; ca,cb=r[0]['user']+r[0]['system'],r[1]['user']+r[1]['system']; print(f'{a:.3f} | {b:.3f} | {a/b:.2f}x | {ca/cb:.2f}x')" "$1"
 }
 
 echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores; load $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "thaw $("$thaw" --version | cut -d' ' -f2), $(povray --version 2>&1 | grep -m1 -o 'POV-Ray [0-9.]*' || echo POV-Ray 3.7)"
 echo
-echo "| scene | size | POV-Ray [s] | thaw [s] | thaw speed-up |"
-echo "|---|---|---|---|---|"
+echo "| scene | size | POV-Ray [s] | thaw [s] | speed-up (wall) | speed-up (CPU) |"
+echo "|---|---|---|---|---|---|"
 for spec in "s1_ice_shell_mesh:s1_ice_shell_mesh:640x640" "s1_ice_shell:s1_ice_shell:640x640" \
             "s4_spheres16:s4_spheres16:2000x2000" "s3_dispersion_nodisp:s3_dispersion_nodisp:1000x1000"; do
   IFS=: read -r povname toml size <<<"$spec"
@@ -49,8 +50,8 @@ done
 echo
 echo "Study 1: S4, time vs image size (whole process)."
 echo
-echo "| size | threads | POV-Ray [s] | thaw [s] | thaw speed-up |"
-echo "|---|---|---|---|---|"
+echo "| size | threads | POV-Ray [s] | thaw [s] | speed-up (wall) | speed-up (CPU) |"
+echo "|---|---|---|---|---|---|"
 for n in 128 256 512 1000 2000; do
   for t in 1 2; do
     f="$out/size_${n}_$t.json"
@@ -63,8 +64,8 @@ done
 echo
 echo "Study 2: S4 with the first N spheres, 1000x1000, 2 threads."
 echo
-echo "| spheres | POV-Ray [s] | thaw [s] | thaw speed-up |"
-echo "|---|---|---|---|"
+echo "| spheres | POV-Ray [s] | thaw [s] | speed-up (wall) | speed-up (CPU) |"
+echo "|---|---|---|---|---|"
 for n in 2 4 8 16; do
   # Keep the first n sphere objects of both scene files (each sphere is one '// sphereNN' block).
   python3 - "$pov/s4_spheres16.pov" "$pov/s4_n$n.pov" "$scenes/s4_spheres16.toml" "$out/s4_n$n.toml" "$n" <<'PY'

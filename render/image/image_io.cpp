@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <mutex>
 
 #include "src/common/atomic_file.h"
 #include "src/common/error.h"
@@ -78,7 +79,8 @@ std::string encode_png(const Image& image, double exposure) {
   };
   // zlib effort 8 (stb's default) costs ~0.5 s per 4 Mpixel frame here; 2 is 4x faster for files
   // ~10 % larger, which suits one frame per simulation step.
-  stbi_write_png_compression_level = 2;
+  static std::once_flag level_set;  // a process-wide stb setting: written once, never raced
+  std::call_once(level_set, [] { stbi_write_png_compression_level = 2; });
   if (!stbi_write_png_to_func(sink, &out, w, h, 3, rgb.data(), w * 3))
     throw UserError("", "", "PNG encoding failed");
   return out;
