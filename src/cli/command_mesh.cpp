@@ -25,7 +25,6 @@ void run_mesh(MeshArgs& a, const CLI::App& sub) {
   options.normals = !a.no_normals;
   options.keep_distance = sub.count("--distance") > 0 || sub.count("--relative-distance") > 0;
   mesh::validate(options);
-  if (!a.quiet) std::printf("thaw mesh: %s\n", mesh::describe(options).c_str()), std::fflush(stdout);
   // The reporter's total is only known once the folder is read: created on the first callback.
   std::unique_ptr<ProgressReporter> reporter;
   const mesh::MeshManifest manifest = mesh::mesh_simulation_folder(
@@ -40,6 +39,8 @@ void run_mesh(MeshArgs& a, const CLI::App& sub) {
       if (r->file) triangles += r->triangles, ++files;
   std::printf("thaw mesh: %zu steps, %ld surfaces, %ld triangles -> %s\n", manifest.steps.size(), files,
               triangles, (std::filesystem::path(a.simdir) / "mesh").string().c_str());
+  // The effective options (a --triangles target is resolved only once the radii are known).
+  std::printf("thaw mesh: options: %s\n", mesh::describe(manifest.options).c_str());
   if (!manifest.steps_inner_touching_outer.empty())
     std::fprintf(stderr,
                  "thaw mesh: warning: %zu steps have a shell too thin for the inner mesh to stay strictly "

@@ -104,10 +104,11 @@ nlohmann::ordered_json to_json(const MeshOptions& o) {
 std::string describe(const MeshOptions& o) {
   char buf[256];
   std::snprintf(buf, sizeof buf,
-                "edge %.3g mm, angle >= %.3g deg, distance <= %.3g um (and <= %.3g x size)%s%s",
+                "edge %.3g mm, angle >= %.3g deg, distance <= %.3g um (and <= %.3g x size)%s, "
+                "at most %ld triangles per surface%s",
                 o.edge_length_m * 1e3, o.angle_deg, o.distance_m * 1e6, o.relative_distance,
                 o.triangles > 0 ? (", target " + std::to_string(o.triangles) + " triangles").c_str() : "",
-                o.normals ? ", normals" : "");
+                o.max_triangles, o.normals ? ", normals" : "");
   return buf;
 }
 
