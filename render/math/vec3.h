@@ -3,6 +3,7 @@
 // Vec3 is the one geometric type (points, directions and normals are all Vec3; the functions that
 // need a distinction say which in their names and comments). Knows nothing about rays or scenes.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -62,14 +63,21 @@ constexpr float gamma_bound(int n) {
   return (static_cast<float>(n) * u) / (1.0f - static_cast<float>(n) * u);
 }
 
-/// Next float up / down (pbrt-v4 NextFloatUp/Down), used to push ray origins off surfaces.
+/// Next float up / down (pbrt-v4 NextFloatUp/Down, by stepping the bit pattern: inline, unlike
+/// std::nextafter), used to push ray origins off surfaces.
 inline float next_float_up(float v) {
   if (std::isinf(v) && v > 0.0f) return v;
-  return std::nextafter(v, std::numeric_limits<float>::infinity());
+  if (v == -0.0f) v = 0.0f;
+  auto bits = std::bit_cast<std::uint32_t>(v);
+  bits = v >= 0.0f ? bits + 1 : bits - 1;
+  return std::bit_cast<float>(bits);
 }
 inline float next_float_down(float v) {
   if (std::isinf(v) && v < 0.0f) return v;
-  return std::nextafter(v, -std::numeric_limits<float>::infinity());
+  if (v == 0.0f) v = -0.0f;
+  auto bits = std::bit_cast<std::uint32_t>(v);
+  bits = v > 0.0f ? bits - 1 : bits + 1;
+  return std::bit_cast<float>(bits);
 }
 
 }  // namespace thaw::render
