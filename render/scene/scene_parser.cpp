@@ -95,8 +95,14 @@ MaterialDescription parse_material(const std::string& name, const TomlTable& m) 
 SceneDescription parse_scene_string(const std::string& text, const std::string& source_name,
                                     const std::filesystem::path& base_dir) {
   const TomlTable root = TomlTable::parse_string(text, source_name);
+  SceneDescription s = parse_scene_table(root, base_dir);
+  root.check_no_unknown_keys();
+  return s;
+}
+
+SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem::path& base_dir) {
   SceneDescription s;
-  s.source_name = source_name;
+  s.source_name = root.source_name();
   s.base_dir = base_dir;
 
   if (auto img = root.optional_table("image")) {
@@ -218,7 +224,6 @@ SceneDescription parse_scene_string(const std::string& text, const std::string& 
     }
     s.objects.push_back(std::move(obj));
   }
-  root.check_no_unknown_keys();
   return s;
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "render/scene/scene_description.h"
+#include "src/common/toml_table.h"
 
 namespace thaw::render {
 
@@ -16,6 +17,11 @@ SceneDescription parse_scene_file(const std::filesystem::path& path);
 /// Parses scene text; `source_name` names it in errors, `base_dir` resolves mesh files.
 SceneDescription parse_scene_string(const std::string& text, const std::string& source_name,
                                     const std::filesystem::path& base_dir = {});
+
+/// Reads the scene keys of `table` (a document's root, or e.g. a scenario's [render] table: keys
+/// are then reported as "render.camera.up"). Every key it reads is marked, but unknown keys are
+/// not checked here: the owner of the document calls check_no_unknown_keys() once at the end.
+SceneDescription parse_scene_table(const TomlTable& table, const std::filesystem::path& base_dir);
 
 /// Largest accepted image side [pixels] and pixel count.
 inline constexpr int kMaxImageSide = 16384;

@@ -143,6 +143,22 @@ TEST(SceneParser, MalformedTomlNamesTheLine) {
   }
 }
 
+TEST(SceneParser, SceneInsideAnotherDocument) {
+  // A scenario's [render] table holding a scene: keys are named with their full path, and the
+  // document's owner finds unknown keys anywhere, including inside the scene.
+  const std::string text = "[render.camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n"
+                           "vertical_fov_deg = 40\n[render.image]\nwidth = 8\nheigth = 8\n";
+  const TomlTable doc = TomlTable::parse_string(text, "scenario.toml");
+  const SceneDescription s = parse_scene_table(doc.table("render"), "/b");
+  EXPECT_EQ(s.image.width, 8);
+  try {
+    doc.check_no_unknown_keys();
+    FAIL();
+  } catch (const UserError& e) {
+    EXPECT_NE(e.where().find("render.image.heigth"), std::string::npos) << e.what();
+  }
+}
+
 TEST(SceneParser, MissingCameraIsAnError) {
   EXPECT_THROW(parse_scene_string("[image]\nwidth = 4\n", "c.toml"), UserError);
 }
