@@ -173,6 +173,28 @@ TEST(MeshReport, DegenerateAndUnusedAreCountedAndKeptOutOfQuality) {
   EXPECT_EQ(r.non_manifold_edges, 1);        // edge 0-1 now used 3 times
 }
 
+TEST(MeshReport, RandomTriangleSoupsDoNotUpsetTheEdgeBookkeeping) {
+  // Triangles drawn at random among 7 vertices: edges used 1 to ~10 times, repeated corners,
+  // duplicated triangles. inspect_mesh checks (THAW_CHECK) that vtkFeatureEdges and its own edge
+  // bookkeeping agree on boundary and non-manifold counts; here they must also add up.
+  std::uint64_t state = 12345;
+  auto next = [&] {  // 64-bit LCG (Knuth MMIX constants); deterministic across platforms
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<std::int64_t>((state >> 33) % 7);
+  };
+  for (int trial = 0; trial < 50; ++trial) {
+    TriangleMesh m = testing::icosphere(1.0, 0);
+    m.vertices.resize(7);
+    m.triangles.clear();
+    for (int f = 0; f < 3 + trial; ++f) m.triangles.push_back({next(), next(), next()});
+    if (trial == 0) m.triangles.push_back({0, 1, 2});  // make sure one proper triangle exists
+    const MeshReport r = inspect_mesh(m, "soup");
+    EXPECT_LE(r.boundary_edges + r.non_manifold_edges, r.edges);
+    EXPECT_LE(r.edges, 21);  // 7 choose 2
+    EXPECT_LE(r.degenerate_triangles, r.triangles);
+  }
+}
+
 TEST(MeshReport, InMemoryBadInputIsUserError) {
   EXPECT_THROW(inspect_mesh(TriangleMesh{}, "empty"), UserError);
   TriangleMesh m = testing::icosphere(1.0, 0);
