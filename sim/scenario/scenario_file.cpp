@@ -142,7 +142,7 @@ void reject_unless(const TomlTable& t, const std::string& key, bool allowed, con
 
 /// Unknown tables and keys are reported before anything else: a misspelt key would otherwise
 /// surface as "required key is missing" for the key it was meant to be.
-void check_schema(const TomlTable& root) {
+void check_schema(const TomlTable& root, const std::set<std::string>& foreign_sections) {
   static const std::vector<std::pair<std::string, std::vector<std::string>>> schema = {
       {"simulation", {"geometry", "duration_s", "output_interval_s", "cells_per_phase", "time_tolerance"}},
       {"shell", {"inner_radius_m", "outer_radius_m", "length_m", "lateral_size_m"}},
@@ -154,6 +154,7 @@ void check_schema(const TomlTable& root) {
        {"ice_conductivity_w_mk", "ice_density_kg_m3", "ice_specific_heat_j_kgk", "water_conductivity_w_mk",
         "water_density_kg_m3", "water_specific_heat_j_kgk", "latent_heat_j_kg", "melting_point_c"}}};
   for (const std::string& name : root.keys()) {
+    if (foreign_sections.count(name)) continue;
     const auto it = std::find_if(schema.begin(), schema.end(), [&](const auto& e) { return e.first == name; });
     if (it == schema.end()) root.fail(name, "unknown key");
     const auto table = root.optional_table(name);  // throws "expected a table" for a plain key
@@ -195,13 +196,25 @@ Materials default_materials() {
 std::string default_scenario_text() { return std::string(kDefaultScenarioToml); }
 
 Scenario default_scenario() {
-  return parse_scenario_string(default_scenario_text(), "<built-in data/scenarios/default.toml>");
+  // The built-in scenario also drives `thaw run`, whose sections src/pipeline checks.
+  return parse_scenario(TomlTable::parse_string(default_scenario_text(), "<built-in data/scenarios/default.toml>"),
+                        other_stage_tables());
 }
 
-Scenario parse_scenario(const TomlTable& root) {
+/// Top-level tables of a scenario file that belong to later stages of `thaw run` (film,
+/// meshing, rendering): `thaw simulate` skips them, unread, so their owner still reports
+/// their unknown keys with its own check.
+const std::set<std::string>& other_stage_tables() {
+  static const std::set<std::string> tables = {"film", "mesh", "render"};
+  return tables;
+}
+
+Scenario parse_scenario(const TomlTable& root) { return parse_scenario(root, other_stage_tables()); }
+
+Scenario parse_scenario(const TomlTable& root, const std::set<std::string>& foreign_sections) {
   Scenario s;
   s.materials = default_materials();
-  check_schema(root);
+  check_schema(root, foreign_sections);
 
   const TomlTable sim = root.table("simulation");
   const std::string geometry = sim.get_string("geometry");
@@ -262,7 +275,8 @@ Scenario parse_scenario(const TomlTable& root) {
   if (s.inner_kind == InnerBoundary::symmetry) s.inner_temperature_c = s.materials.melting_point_c;
   if (!uses_t) s.outer_temperature_c = s.materials.melting_point_c;
 
-  root.check_no_unknown_keys();
+  // check_schema() has already rejected every unknown key outside the foreign sections.
+  if (foreign_sections.empty()) root.check_no_unknown_keys();
   if (auto p = find_problem(s)) fail_in_table(root, *p);
   return s;
 }

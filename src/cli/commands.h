@@ -6,10 +6,11 @@
 namespace thaw::cli {
 
 // One line per sub-command, in the order shown by --help.
-void register_inspect(CLI::App& app);  ///< thaw inspect (command_inspect.cpp)
-void register_render(CLI::App& app);   ///< thaw render (command_render.cpp)
-void register_simulate(CLI::App& app); ///< thaw simulate (command_simulate.cpp)
-void register_materials(CLI::App& app); ///< thaw materials (command_materials.cpp)
-void register_mesh(CLI::App& app);     ///< thaw mesh (command_mesh.cpp)
+void register_simulate(CLI::App& app);   ///< thaw simulate (command_simulate.cpp)
+void register_mesh(CLI::App& app);       ///< thaw mesh (command_mesh.cpp)
+void register_render(CLI::App& app);     ///< thaw render (command_render.cpp)
+void register_inspect(CLI::App& app);    ///< thaw inspect (command_inspect.cpp)
+void register_materials(CLI::App& app);  ///< thaw materials (command_materials.cpp)
+void register_run(CLI::App& app);        ///< thaw run (command_run.cpp)
 
 }  // namespace thaw::cli

@@ -14,11 +14,12 @@ int main(int argc, char** argv) {
       "every step with refraction through air | ice | water."};
   app.set_version_flag("--version", std::string("thaw ") + THAW_VERSION_STRING);
   app.require_subcommand(1);
-  thaw::cli::register_inspect(app);
-  thaw::cli::register_render(app);
   thaw::cli::register_simulate(app);
-  thaw::cli::register_materials(app);
   thaw::cli::register_mesh(app);
+  thaw::cli::register_render(app);
+  thaw::cli::register_inspect(app);
+  thaw::cli::register_materials(app);
+  thaw::cli::register_run(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

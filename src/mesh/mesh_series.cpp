@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
 
@@ -261,6 +262,33 @@ nlohmann::ordered_json to_json(const MeshManifest& m) {
   }
   j["steps"] = steps;
   return j;
+}
+
+MeshManifest read_mesh_manifest(const std::filesystem::path& manifest_json) {
+  const std::string name = manifest_json.string();
+  std::ifstream in(manifest_json);
+  if (!in) throw UserError(name, "", std::filesystem::exists(manifest_json) ? "cannot be read" : "file not found");
+  MeshManifest m;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    if (j.at("format").get<std::string>() != "thaw-mesh/1")
+      throw UserError(name, "format", "not a thaw-mesh/1 manifest");
+    for (const auto& e : j.at("steps")) {
+      StepRecord s;
+      s.step = e.at("step").get<long>();
+      s.time_s = e.at("time_s").get<double>();
+      s.inner_radius_m = e.at("inner_radius_m").get<double>();
+      s.outer_radius_m = e.at("outer_radius_m").get<double>();
+      if (!e.at("inner").is_null()) s.inner.file = e.at("inner").get<std::string>();
+      if (!e.at("outer").is_null()) s.outer.file = e.at("outer").get<std::string>();
+      s.inner.triangles = e.at("inner_triangles").get<long>();
+      s.outer.triangles = e.at("outer_triangles").get<long>();
+      m.steps.push_back(std::move(s));
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw UserError(name, "", std::string("malformed mesh manifest: ") + e.what());
+  }
+  return m;
 }
 
 }  // namespace thaw::mesh

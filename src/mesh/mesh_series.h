@@ -62,4 +62,9 @@ MeshManifest mesh_simulation_folder(const std::filesystem::path& simdir, const M
 /// The manifest as written to manifest.json.
 nlohmann::ordered_json to_json(const MeshManifest& manifest);
 
+/// Reads the steps of a manifest.json written by mesh_simulation_folder (step, time, radii, the
+/// surface files and triangle counts; options and statistics are not read back). Throws
+/// thaw::UserError naming the file if it is missing, malformed or not "thaw-mesh/1".
+MeshManifest read_mesh_manifest(const std::filesystem::path& manifest_json);
+
 }  // namespace thaw::mesh

@@ -1,0 +1,50 @@
+#pragma once
+// `thaw run`: scenario -> simulate -> mesh -> render -> film -> inspect, each stage reading the
+// previous stage's files (the only place where sim, mesh, render and inspect meet). Resumable:
+// DIR/run_manifest.json fingerprints each stage's inputs and lists finished items; a rerun skips
+// what is up to date and redoes only what changed (editing the camera re-renders but neither
+// re-simulates nor re-meshes). Every file is written under a temporary name and renamed.
+//
+// DIR/scenario.toml        the scenario as given (or the built-in default)
+// DIR/sim/                 interfaces.csv, profiles/, summary.json (one row per film frame)
+// DIR/sim/mesh/            step_NNNNNN_inner.obj / _outer.obj, manifest.json
+// DIR/frames/frame_NNNNNN.png
+// DIR/melt.mp4 (+ melt.gif), DIR/plot.png, DIR/meshes.pvd (+ meshes_vtp/)
+#include <filesystem>
+#include <string>
+
+#include "src/pipeline/run_scenario.h"
+
+namespace thaw::pipeline {
+
+struct RunOptions {
+  std::filesystem::path out_dir = "thaw-out";
+  /// redo every stage
+  bool force = false;
+  /// worker threads for meshing and rendering; 0 = all cores
+  int jobs = 0;
+  /// no progress display
+  bool quiet = false;
+  /// the scenario file's text, copied to DIR/scenario.toml ("" = built-in default)
+  std::string scenario_text;
+};
+
+struct StageTiming {
+  std::string stage;
+  double seconds = 0;
+  bool skipped = false;   ///< up to date: nothing was done
+  int items_done = 0;     ///< items produced in this run (frames rendered, ...)
+};
+
+struct RunReport {
+  std::filesystem::path film, gif, plot, pvd;
+  std::vector<StageTiming> stages;
+  int frames = 0;
+  double total_seconds = 0;
+};
+
+/// Runs every stage that is not up to date. Throws thaw::UserError (one line) on bad input or a
+/// failed stage; work already finished stays on disk and in the manifest.
+RunReport run_pipeline(const RunScenario& scenario, const RunOptions& options);
+
+}  // namespace thaw::pipeline
