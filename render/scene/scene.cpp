@@ -65,6 +65,7 @@ Material build_material(const MaterialDescription& d) {
   return m;
 }
 
+bool finite3f(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 bool finite3(const Vec3d& v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
 
 }  // namespace
@@ -87,6 +88,7 @@ Scene build_scene(const SceneDescription& desc) {
   if (!finite3(cam.position) || !finite3(cam.look_at) || !finite3(cam.up))
     throw UserError(src, "camera", "camera vectors must be finite");
   const Vec3 pos = to_vec3(cam.position), at = to_vec3(cam.look_at), up = to_vec3(cam.up);
+  if (!finite3f(pos) || !finite3f(at)) throw UserError(src, "camera", "camera coordinates are beyond single precision");
   if (!(length(at - pos) > 0.0f)) throw UserError(src, "camera.look_at", "must differ from the camera position");
   if (!(length(up) > 0.0f)) throw UserError(src, "camera.up", "must not be the zero vector");
   if (!(length(cross(normalize(at - pos), normalize(up))) > 1e-6f))
@@ -95,9 +97,12 @@ Scene build_scene(const SceneDescription& desc) {
     throw UserError(src, "camera.vertical_fov_deg", "must be in (0, 180) degrees");
   s.m_camera = Camera(pos, at, up, cam.vertical_fov_deg, img.width, img.height);
 
-  for (const auto& l : desc.lights)
+  for (const auto& l : desc.lights) {
+    if (!finite3f(to_vec3(l.position)) || !std::isfinite(float(l.intensity)))
+      throw UserError(src, "lights", "light position or intensity beyond single precision");
     s.m_lights.push_back({to_vec3(l.position), to_rgb(l.color) * static_cast<float>(l.intensity),
                           l.falloff == LightDescription::Falloff::inverse_square});
+  }
   s.m_ambient = to_rgb(desc.ambient.color) * static_cast<float>(desc.ambient.intensity);
   s.m_background = to_rgb(img.background);
 
@@ -142,6 +147,7 @@ Scene build_scene(const SceneDescription& desc) {
       obj.material = m->second;
     }
     const auto object_id = static_cast<std::uint32_t>(s.m_objects.size());
+    const std::size_t first_bound = bounds.size();
     switch (od.shape) {
       case ObjectDescription::Shape::sphere: {
         if (!finite3(od.center) || !(od.radius > 0.0) || !std::isfinite(od.radius))
@@ -224,6 +230,9 @@ Scene build_scene(const SceneDescription& desc) {
         break;
       }
     }
+    for (std::size_t b = first_bound; b < bounds.size(); ++b)
+      if (!finite3f(bounds[b].lo) || !finite3f(bounds[b].hi))
+        throw UserError(src, label, "coordinates are too large (beyond single precision) or not finite");
     s.m_objects.push_back(std::move(obj));
   }
 

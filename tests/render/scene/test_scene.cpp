@@ -124,6 +124,20 @@ TEST(Scene, PackedTriangleLeavesMatchBruteForce) {
   EXPECT_GT(hits, 10000);
 }
 
+TEST(Scene, CoordinatesBeyondFloatAreRejected) {
+  SceneDescription d = shell_scene();
+  ObjectDescription o;
+  o.shape = ObjectDescription::Shape::sphere;
+  o.radius = 1e39;  // finite in double, infinite in float
+  o.inside = "water";
+  o.outside = "air";
+  d.objects.push_back(o);
+  EXPECT_THROW(build_scene(d), UserError);
+  d = shell_scene();
+  d.objects[0].scale = 1e39;  // the mesh's vertices overflow after the transform
+  EXPECT_THROW(build_scene(d), UserError);
+}
+
 TEST(Scene, BadImageSizeIsRejected) {
   SceneDescription d = shell_scene();
   d.image.width = 0;

@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <sstream>
+
+#include "render/scene/scene.h"
 #include "src/common/error.h"
 
 namespace thaw::render {
@@ -157,6 +160,36 @@ TEST(SceneParser, SceneInsideAnotherDocument) {
   } catch (const UserError& e) {
     EXPECT_NE(e.where().find("render.image.heigth"), std::string::npos) << e.what();
   }
+}
+
+TEST(SceneParser, MutatedScenesFailCleanly) {
+  // Bad input never crashes: every line of the example deleted, or its value replaced by a wrong
+  // type, a non-finite, negative, huge or empty value, gives a scene or a UserError, nothing else
+  // (building included: the example's mesh file does not exist, so building must fail cleanly too).
+  std::vector<std::string> lines;
+  std::istringstream in(kExample);
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  const char* values[] = {"nan", "-1", "1e30", "[]", "\"x\"", "[1, 2]", "0", "{}", "true"};
+  int variants = 0, errors = 0;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    std::vector<std::string> edits = {""};
+    const auto eq = lines[i].find(" = ");
+    if (eq != std::string::npos)
+      for (const char* v : values) edits.push_back(lines[i].substr(0, eq) + " = " + v);
+    for (const auto& edit : edits) {
+      std::string text;
+      for (std::size_t j = 0; j < lines.size(); ++j) text += (j == i ? edit : lines[j]) + "\n";
+      ++variants;
+      try {
+        const SceneDescription d = parse_scene_string(text, "m.toml", "/nonexistent");
+        build_scene(d);
+      } catch (const UserError&) {
+        ++errors;
+      }
+    }
+  }
+  EXPECT_GT(variants, 300);
+  EXPECT_GT(errors, variants / 2);
 }
 
 TEST(SceneParser, MissingCameraIsAnError) {
