@@ -1,0 +1,192 @@
+// End-to-end tests of `thaw run` on a tiny scenario (tests/src/pipeline/data/tiny.toml): the real
+// thaw binary, real CGAL, renderer, ffmpeg and VTK (under Xvfb), run as a separate process so a
+// run can be killed like a user would.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include "src/common/subprocess.h"
+#include "src/pipeline/film_encoder.h"
+
+extern char** environ;
+
+namespace thaw::pipeline {
+namespace {
+namespace fs = std::filesystem;
+
+const fs::path kThaw = fs::path(THAW_BINARY_DIR) / "thaw";
+const fs::path kTiny = fs::path(THAW_SOURCE_DIR) / "tests/src/pipeline/data/tiny.toml";
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::map<std::string, std::string> frames_of(const fs::path& out) {
+  std::map<std::string, std::string> frames;
+  for (const auto& e : fs::directory_iterator(out / "frames")) frames[e.path().filename()] = read_file(e.path());
+  return frames;
+}
+
+/// A variant of tiny.toml with `from` replaced by `to`, written to `dir`.
+fs::path variant(const fs::path& dir, const std::string& from, const std::string& to) {
+  std::string text = read_file(kTiny);
+  const auto pos = text.find(from);
+  EXPECT_NE(pos, std::string::npos) << from;
+  text.replace(pos, from.size(), to);
+  const fs::path p = dir / "scenario.toml";
+  std::ofstream(p) << text;
+  return p;
+}
+
+class ThawRun : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    m_dir = fs::temp_directory_path() / ("thaw_test_run_" + std::to_string(::getpid()) + "_" +
+                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(m_dir);
+    fs::create_directories(m_dir);
+  }
+  void TearDown() override { fs::remove_all(m_dir); }
+  ProcessResult thaw(std::vector<std::string> args) {
+    args.insert(args.begin(), kThaw.string());
+    return run_process(args);
+  }
+  fs::path m_dir;
+};
+
+TEST_F(ThawRun, TinyScenarioEndToEndThenNothingToDo) {
+  const fs::path out = m_dir / "out";
+  const auto first = thaw({"run", kTiny.string(), "--out", out.string()});
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  EXPECT_EQ(count_video_frames(out / "melt.mp4"), 4);
+  EXPECT_GT(fs::file_size(out / "plot.png"), 1000u);
+  EXPECT_NE(read_file(out / "meshes.pvd").find("<VTKFile type=\"Collection\""), std::string::npos);
+  for (const char* path : {"melt.mp4", "plot.png", "meshes.pvd"})
+    EXPECT_NE(first.output.find((out / path).string()), std::string::npos) << path;
+  const auto frames = frames_of(out);
+  EXPECT_EQ(frames.size(), 4u);
+  const auto manifest_before = read_file(out / "run_manifest.json");
+  const auto film_time = fs::last_write_time(out / "melt.mp4");
+
+  const auto second = thaw({"run", kTiny.string(), "--out", out.string()});
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  // Every stage reports "up to date" and nothing was rewritten.
+  std::size_t up_to_date = 0;
+  for (std::size_t p = second.output.find("up to date"); p != std::string::npos; p = second.output.find("up to date", p + 1))
+    ++up_to_date;
+  EXPECT_GE(up_to_date, 5u) << second.output;
+  EXPECT_EQ(fs::last_write_time(out / "melt.mp4"), film_time);
+  EXPECT_EQ(read_file(out / "run_manifest.json"), manifest_before);
+  EXPECT_EQ(frames_of(out), frames);
+}
+
+TEST_F(ThawRun, ChangingOnlyTheCameraReRendersWithoutReSimulatingOrReMeshing) {
+  const fs::path out = m_dir / "out";
+  ASSERT_EQ(thaw({"run", kTiny.string(), "--out", out.string(), "-q"}).exit_code, 0);
+  const auto sim_time = fs::last_write_time(out / "sim/interfaces.csv");
+  const auto mesh_time = fs::last_write_time(out / "sim/mesh/manifest.json");
+  const auto frames = frames_of(out);
+  const fs::path moved = variant(m_dir, "position = [0.0, 0.03, 0.09]", "position = [0.02, 0.03, 0.09]");
+  const auto r = thaw({"run", moved.string(), "--out", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(fs::last_write_time(out / "sim/interfaces.csv"), sim_time);
+  EXPECT_EQ(fs::last_write_time(out / "sim/mesh/manifest.json"), mesh_time);
+  const auto new_frames = frames_of(out);
+  ASSERT_EQ(new_frames.size(), frames.size());
+  for (const auto& [name, bytes] : frames) EXPECT_NE(new_frames.at(name), bytes) << name;
+  // A comment or layout edit is not a change.
+  std::string text = read_file(moved);
+  text.replace(text.find("[render.ambient]"), 16, "# a comment\n\n[render.ambient]");
+  const fs::path commented = m_dir / "commented.toml";
+  std::ofstream(commented) << text;
+  const auto frame_time = fs::last_write_time(out / "frames/frame_000000.png");
+  const auto again = thaw({"run", commented.string(), "--out", out.string()});
+  ASSERT_EQ(again.exit_code, 0);
+  EXPECT_NE(again.output.find("render: up to date"), std::string::npos) << again.output;
+  EXPECT_EQ(fs::last_write_time(out / "frames/frame_000000.png"), frame_time);
+}
+
+TEST_F(ThawRun, KilledDuringRenderAndRestartedGivesByteIdenticalFrames) {
+  // Heavier frames so the render stage lasts long enough to be interrupted.
+  const fs::path heavy = variant(m_dir, "frames = 4", "frames = 6");
+  std::string text = read_file(heavy);
+  text.replace(text.find("width = 64"), 10, "width = 200");
+  text.replace(text.find("height = 64"), 11, "height = 200");
+  text.replace(text.find("samples_per_pixel = 1"), 21, "samples_per_pixel = 9");
+  std::ofstream(heavy) << text;
+
+  const fs::path reference = m_dir / "reference", killed = m_dir / "killed";
+  ASSERT_EQ(thaw({"run", heavy.string(), "--out", reference.string(), "-q"}).exit_code, 0);
+
+  const std::string out_arg = killed.string(), scenario_arg = heavy.string(), exe = kThaw.string();
+  std::vector<char*> argv = {const_cast<char*>(exe.c_str()), const_cast<char*>("run"),
+                             const_cast<char*>(scenario_arg.c_str()), const_cast<char*>("--out"),
+                             const_cast<char*>(out_arg.c_str()), const_cast<char*>("-q"), nullptr};
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, exe.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (!fs::exists(killed / "frames/frame_000001.png") && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  ::kill(pid, SIGKILL);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the run finished before it could be killed";
+  EXPECT_FALSE(fs::exists(killed / "melt.mp4"));
+
+  const auto resumed = thaw({"run", heavy.string(), "--out", killed.string()});
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("simulate: up to date"), std::string::npos) << resumed.output;
+  EXPECT_EQ(frames_of(killed), frames_of(reference));
+  EXPECT_EQ(count_video_frames(killed / "melt.mp4"), 6);
+  for (const auto& e : fs::recursive_directory_iterator(killed))
+    EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos) << e.path();
+}
+
+TEST_F(ThawRun, MissingFfmpegIsAClearErrorAndTheFramesAreKept) {
+  const fs::path empty_path = m_dir / "bin";
+  fs::create_directories(empty_path);
+  const fs::path out = m_dir / "out";
+  const auto r = run_process({"env", "PATH=" + empty_path.string(), kThaw.string(), "run", kTiny.string(),
+                              "--out", out.string(), "-q"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("ffmpeg not found"), std::string::npos) << r.output;
+  EXPECT_EQ(frames_of(out).size(), 4u);
+  EXPECT_FALSE(fs::exists(out / "melt.mp4"));
+}
+
+TEST_F(ThawRun, InvalidScenarioIsReportedBeforeAnyWork) {
+  const fs::path bad = variant(m_dir, "[film]\nfps = 4.0", "[film]\nfsp = 4.0");
+  const fs::path out = m_dir / "out";
+  const auto r = thaw({"run", bad.string(), "--out", out.string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("film.fsp"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("unknown key"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+
+  const fs::path bad_medium = variant(m_dir, "[render.shell]", "[render.shell]\nice_medium = \"glass\"");
+  const auto m = thaw({"run", bad_medium.string(), "--out", out.string()});
+  EXPECT_EQ(m.exit_code, 2);
+  EXPECT_NE(m.output.find("render.shell.ice_medium"), std::string::npos) << m.output;
+}
+
+TEST_F(ThawRun, OutputFolderThatIsAFile) {
+  const fs::path file = m_dir / "file";
+  std::ofstream(file) << "x";
+  const auto r = thaw({"run", kTiny.string(), "--out", file.string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("not a directory"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace thaw::pipeline
