@@ -147,6 +147,18 @@ TEST(ScenarioFile, RejectsBadInputNamingKeyAndProblem) {
   }
 }
 
+TEST(ScenarioFile, OtherStagesTablesAreLeftUnreadForTheirOwners) {
+  const std::string text = kMinimal + std::string("[film]\nfps = 12.0\n[render.image]\nwidth = 640\n[mesh]\nx = 1\n");
+  const TomlTable t = TomlTable::parse_string(text, "run.toml");
+  EXPECT_NO_THROW(parse_scenario(t));
+  // the owner's own check (thaw run) still sees them as unread
+  EXPECT_NE(error_of([&] { t.check_no_unknown_keys(); }).find("film"), std::string::npos);
+  // a typo among the simulation's tables or keys is still an error
+  EXPECT_NE(error_of([&] { parse_scenario_string(with(text, "[water]", "[watr]"), "run.toml"); }).find("watr"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { parse_scenario_string(text + "[films]\n", "run.toml"); }).find("films"), std::string::npos);
+}
+
 TEST(ScenarioFile, ErrorsCarryTheLineOfTheKey) {
   const std::string msg = error_of([&] {
     parse_scenario_string(with(kMinimal, "inner_radius_m = 0.01", "inner_radius_m = 0.05"), "bad.toml");
