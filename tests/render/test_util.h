@@ -1,12 +1,21 @@
 #pragma once
-// Helpers shared by the render tests: small in-memory meshes.
+// Helpers shared by the render tests: small in-memory meshes, media built in code.
 #include <cmath>
 #include <map>
 #include <utility>
 
 #include "render/geometry/triangle_mesh.h"
+#include "render/scene/scene_description.h"
 
 namespace thaw::render::test {
+
+/// A medium of constant index `ior` (by field, so added members keep their defaults).
+inline MediumDescription medium(const std::string& name, double ior) {
+  MediumDescription m;
+  m.name = name;
+  m.ior = ior;
+  return m;
+}
 
 /// Icosphere of `subdivisions` levels (20 * 4^s triangles), radius r, outward CCW, shared vertices.
 inline TriangleMesh icosphere(int subdivisions, float r = 1.0f, Vec3 center = {0, 0, 0}) {

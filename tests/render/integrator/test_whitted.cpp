@@ -124,7 +124,7 @@ SceneDescription furnace_scene(double shell_thickness, bool meshes) {
   d.camera.position = {0.0, 0.3, 3.0};
   d.camera.look_at = {0.0, 0.0, 0.0};
   d.camera.vertical_fov_deg = 45.0;
-  d.media = {{"air", 1.0}, {"ice", 1.31}, {"water", 1.33}};
+  d.media = {test::medium("air", 1.0), test::medium("ice", 1.31), test::medium("water", 1.33)};
   const double inner = 1.0 - shell_thickness;
   if (meshes) {
     d.add_dielectric_mesh(std::make_shared<TriangleMesh>(test::icosphere(4, 1.0f)), "ice", "air", "outer");

@@ -15,7 +15,7 @@ SceneDescription shell_scene() {
   SceneDescription d;
   d.camera.position = {0, 0, 5};
   d.camera.look_at = {0, 0, 0};
-  d.media = {{"air", 1.0}, {"ice", 1.31}, {"water", 1.33}};
+  d.media = {test::medium("air", 1.0), test::medium("ice", 1.31), test::medium("water", 1.33)};
   d.add_dielectric_mesh(std::make_shared<TriangleMesh>(test::icosphere(3, 1.0f)), "ice", "air", "outer");
   d.add_dielectric_mesh(std::make_shared<TriangleMesh>(test::icosphere(3, 0.7f)), "water", "ice", "inner");
   return d;
