@@ -13,8 +13,9 @@
 //    the discrete boundary heat (+ drained melt), to Newton tolerance.
 //  * TR-BDF2 in time (Bank et al. 1985; Hosea & Shampine 1996): second order and L-stable, so
 //    the discontinuous initial data of a warm core in a cold shell does not ring.
-//  * Newton on the front positions with the temperatures eliminated (each phase's temperatures
-//    are a tridiagonal solve for given front positions): exactly Newton on the coupled system.
+//  * Newton (finite-difference Jacobian, refreshed every few iterations) on the front positions
+//    with the temperatures eliminated: each phase's temperatures are one tridiagonal solve for
+//    given front positions, so this is Newton on the Schur complement of the coupled system.
 //  * Adaptive steps by step doubling on front positions and temperatures; steps are clipped to
 //    land exactly on requested output times; events are located to tolerance.
 // Knows nothing of files, TOML or the command line.
@@ -27,7 +28,9 @@
 
 namespace thaw::sim {
 
-/// A time-stamped change of regime: "melt_onset", "core_frozen", "break_through".
+/// A time-stamped change of regime: "melt_onset", "core_frozen", "break_through", and the
+/// rarer "ablation_stop" (net heat at the ablating surface turned negative) and "fully_melted"
+/// (a block without liquid ablated away).
 struct Event {
   std::string kind;
   double time_s = 0;    ///< when it happened [s]

@@ -343,6 +343,47 @@ TEST(FrontFixing, MeltOnsetMatchesSemiInfiniteRobinSolution) {
   expect_converges_to(coarse, fine, t_exact, "onset time");
 }
 
+TEST(FrontFixing, IsothermalIceAblatesAtHeatFluxOverLatentHeat) {
+  // Ice (and water) at T_m under an imposed flux q or air at T_air: no conduction anywhere,
+  // every watt melts ice at the surface and drains, so L_v db/dt = -q exactly, in every
+  // geometry (the surface area cancels): b(t) = b0 - q t / L_v. The ablating surface is held
+  // at T_m from t = 0 (melt_onset at 0). The discrete solution carries no gradient either.
+  // Planar: the scheme integrates L_v dW/dt = -q with W = b exactly (linear), so b is exact to
+  // Newton tolerance: 1e-12 relative. Curved: TR-BDF2 integrates dW/dt = -q A(W) / L_v with a
+  // nonlinear A, so the only error is the time error, at most the controlled local error
+  // (time_tolerance * b0 per step) times the number of steps taken.
+  const double lv = kMat.latent_heat_per_volume();
+  for (Geometry g : {Geometry::planar, Geometry::cylinder, Geometry::sphere})
+    for (OuterBoundary kind : {OuterBoundary::flux, OuterBoundary::convective}) {
+      Scenario sc;
+      sc.geometry = g;
+      sc.materials = kMat;
+      sc.inner_radius_m = 0.01;
+      sc.outer_radius_m = 0.03;
+      sc.water_initial_temperature_c = 0;
+      sc.ice_initial_temperature_c = 0;
+      sc.outer_kind = kind;
+      sc.flux_w_m2 = 2000;
+      sc.outer_temperature_c = 20;
+      sc.heat_transfer_coefficient_w_m2k = 100;  // the same 2000 W/m^2 at T_m
+      sc.duration_s = 1000;
+      sc.output_interval_s = 100;
+      FrontFixingSolver solver(sc);
+      ASSERT_FALSE(solver.events().empty());
+      EXPECT_EQ(solver.events()[0].kind, "melt_onset");
+      EXPECT_EQ(solver.events()[0].time_s, 0.0);
+      for (int k = 1; k <= 10; ++k) {
+        solver.advance_to(100.0 * k);
+        const Snapshot snap = solver.snapshot(false);
+        const double bound = g == Geometry::planar
+                                 ? 1e-12 * 0.03
+                                 : solver.statistics().steps * sc.time_tolerance * 0.03;
+        EXPECT_NEAR(snap.outer_radius_m, 0.03 - 2000 * 100.0 * k / lv, bound) << to_string(g);
+        EXPECT_NEAR(snap.inner_radius_m, 0.01, 1e-12 * 0.03) << to_string(g);
+      }
+    }
+}
+
 TEST(FrontFixing, DefaultScenarioBreaksThroughAndEndsCleanly) {
   const Scenario sc = default_scenario();
   FrontFixingSolver solver(sc);
