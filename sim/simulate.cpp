@@ -46,10 +46,11 @@ SimulationResult simulate(const Scenario& scenario, const std::vector<double>& t
   result.reference_energy_j = solver.reference_energy();
   const auto total = static_cast<std::int64_t>(times.size());
   for (std::size_t i = 0; i < times.size(); ++i) {
-    // A small-time analytic start may begin the integration at t0 > 0: the state at earlier
-    // output times is the start state (t0 is a tiny fraction of a second).
+    // A small-time analytic start (zero-thickness phase) begins the integration at t0 > 0,
+    // at most 5 % of an output interval: t = 0 shows the scenario's own initial state, any
+    // other output time before t0 the start state.
     if (times[i] > solver.time()) solver.advance_to(times[i]);
-    Snapshot snap = solver.snapshot(true);
+    Snapshot snap = times[i] == 0 && solver.time() > 0 ? solver.initial_snapshot(true) : solver.snapshot(true);
     if (solver.finished() && solver.time() < times[i]) {
       result.snapshots.push_back(std::move(snap));
       result.ended_early = true;

@@ -30,7 +30,8 @@ struct SimulationResult {
 std::vector<double> output_times(const Scenario& scenario);
 
 /// Runs `scenario` (validated here; throws thaw::UserError if invalid) and samples the state at
-/// each of `times` (increasing, >= 0). If the ice is gone before the last time, the run stops
+/// each of `times` (increasing, >= 0); t = 0 is the scenario's initial state even when a phase
+/// of zero thickness is started analytically a moment later. If the ice is gone before the last time, the run stops
 /// there and the last snapshot is that instant (ended_early). progress(done, total) is called
 /// after each output time.
 SimulationResult simulate(const Scenario& scenario, const std::vector<double>& times,

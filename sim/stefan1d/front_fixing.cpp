@@ -817,6 +817,30 @@ struct FrontFixingSolver::Impl {
     return out;
   }
 
+  /// The state at t = 0 exactly as the scenario gives it (before a small-time start).
+  Snapshot initial_snapshot(bool with_profile) const {
+    Snapshot out;
+    const double s0 = sc.inner_radius_m, b0 = sc.outer_radius_m;
+    out.inner_radius_m = s0;
+    out.outer_radius_m = b0;
+    out.liquid_volume_m3 = geo.omega * geo.w(s0);
+    out.ice_volume_m3 = geo.omega * (geo.w(b0) - geo.w(s0));
+    out.enthalpy_j = geo.omega * e0;
+    if (!with_profile) return out;
+    const double tw = sc.water_initial_temperature_c, ti = sc.ice_initial_temperature_c;
+    if (s0 > 0) {
+      if (inner_bc.kind == BcKind::dirichlet) out.profile.push_back({0.0, inner_bc.value + t_m, "water"});
+      for (int j = 0; j < water.n; ++j) out.profile.push_back({(j + 0.5) * s0 / water.n, tw, "water"});
+      out.profile.push_back({s0, tw, "water"});
+    }
+    if (b0 > s0) {
+      if (s0 == 0 && inner_bc.kind == BcKind::dirichlet) out.profile.push_back({0.0, inner_bc.value + t_m, "ice"});
+      for (int j = 0; j < ice.n; ++j) out.profile.push_back({s0 + (j + 0.5) * (b0 - s0) / ice.n, ti, "ice"});
+      out.profile.push_back({b0, outer_bc.kind == BcKind::dirichlet ? outer_bc.value + t_m : ti, "ice"});
+    }
+    return out;
+  }
+
   /// Enthalpy of the current state; after the ice is removed only the liquid remains.
   double energy_now() const {
     if (!done) return energy(st);
@@ -831,6 +855,9 @@ double FrontFixingSolver::advance_to(double t) { return m_impl->advance_to(t); }
 double FrontFixingSolver::time() const { return m_impl->st.t; }
 bool FrontFixingSolver::finished() const { return m_impl->done; }
 Snapshot FrontFixingSolver::snapshot(bool with_profile) const { return m_impl->snapshot(with_profile); }
+Snapshot FrontFixingSolver::initial_snapshot(bool with_profile) const {
+  return m_impl->initial_snapshot(with_profile);
+}
 const std::vector<Event>& FrontFixingSolver::events() const { return m_impl->events; }
 const SolverStatistics& FrontFixingSolver::statistics() const { return m_impl->stats; }
 double FrontFixingSolver::reference_energy() const {

@@ -99,6 +99,10 @@ class FrontFixingSolver {
   /// True once no ice is left (break-through or fully ablated): nothing more to simulate.
   bool finished() const;
   Snapshot snapshot(bool with_profile) const;
+  /// The state at t = 0 exactly as the scenario gives it, with uniform temperatures: differs
+  /// from the first snapshot() only when a phase of zero thickness was started analytically at
+  /// statistics().start_time_s > 0.
+  Snapshot initial_snapshot(bool with_profile) const;
   const std::vector<Event>& events() const;
   const SolverStatistics& statistics() const;
   /// Energy scale of the relative balance error: latent heat of the whole initial volume [J].

@@ -60,6 +60,20 @@ TEST(Simulate, RunEndsAtBreakThroughWithOneLastRow) {
     EXPECT_EQ(r.snapshots[i].time_s, static_cast<double>(i) * sc.output_interval_s);
 }
 
+TEST(Simulate, FirstRowIsTheInitialStateEvenWithAnAnalyticStart) {
+  // A water drop with no ice yet: the ice is started from the Neumann solution at t0 > 0, but
+  // the row at t = 0 must show no ice (inner == outer), the next rows a growing shell.
+  const Scenario sc = read_scenario_file(std::string(THAW_SOURCE_DIR) + "/data/scenarios/water_drop_freezing.toml");
+  const SimulationResult r = simulate(sc);
+  ASSERT_GT(r.statistics.start_time_s, 0.0);
+  EXPECT_EQ(r.snapshots[0].time_s, 0.0);
+  EXPECT_EQ(r.snapshots[0].inner_radius_m, sc.inner_radius_m);
+  EXPECT_EQ(r.snapshots[0].outer_radius_m, sc.outer_radius_m);
+  EXPECT_EQ(r.snapshots[0].ice_volume_m3, 0.0);
+  EXPECT_LT(r.snapshots[1].inner_radius_m, sc.inner_radius_m);
+  for (const ProfilePoint& p : r.snapshots[0].profile) EXPECT_EQ(p.temperature_c, sc.water_initial_temperature_c);
+}
+
 TEST(Simulate, WrittenFolderReadsBackThroughTheSharedContract) {
   for (Geometry g : {Geometry::sphere, Geometry::cylinder, Geometry::planar}) {
     Scenario sc = default_scenario();
