@@ -58,7 +58,8 @@ void register_mesh(CLI::App& app) {
       "with CGAL: SIMDIR/mesh/step_NNNNNN_{inner,outer}.obj + manifest.json.");
   sub->add_option("SIMDIR", args->simdir, "simulation folder (interfaces.csv, summary.json)")->required();
   sub->add_option("--edge-length", args->options.edge_length_m,
-                  "target triangle edge length on flat or gently curved parts [m]")
+                  "target triangle edge length on flat or gently curved parts [m]; 0 = scene radius / 12 "
+                  "(2.5 mm for a 3 cm shell)")
       ->capture_default_str();
   sub->add_option("--triangles", args->options.triangles,
                   "target triangle count of the largest surface (replaces --edge-length; relaxes the "
@@ -66,7 +67,8 @@ void register_mesh(CLI::App& app) {
   sub->add_option("--angle", args->options.angle_deg, "minimum triangle angle [deg], <= 30")
       ->capture_default_str();
   sub->add_option("--distance", args->options.distance_m,
-                  "maximum distance between a triangle and the true surface [m]")
+                  "maximum distance between a triangle and the true surface [m]; 0 = scene radius / 1000 "
+                  "(30 um for a 3 cm shell)")
       ->capture_default_str();
   sub->add_option("--relative-distance", args->options.relative_distance,
                   "distance bound as a fraction of the surface radius (slab: half lateral size)")

@@ -15,8 +15,13 @@ void validate(const MeshOptions& o) {
     if (!std::isfinite(v) || !(v > 0))
       throw UserError("", name, "must be a finite number > 0, got " + std::to_string(v));
   };
-  positive("edge_length_m", o.edge_length_m);
-  positive("distance_m", o.distance_m);
+  auto non_negative = [](const char* name, double v) {
+    if (!std::isfinite(v) || v < 0)
+      throw UserError("", name, "must be a finite number >= 0 (0 = automatic), got " + std::to_string(v));
+  };
+  non_negative("edge_length_m", o.edge_length_m);
+  non_negative("distance_m", o.distance_m);
+  non_negative("scene_radius_m", o.scene_radius_m);
   positive("relative_distance", o.relative_distance);
   positive("relative_error_bound", o.relative_error_bound);
   if (!std::isfinite(o.min_radius_m) || o.min_radius_m < 0)
@@ -31,6 +36,27 @@ void validate(const MeshOptions& o) {
   if (o.jobs < 0 || o.jobs > 4096) throw UserError("", "jobs", "must be in [0, 4096], got " + std::to_string(o.jobs));
   if (o.relative_error_bound > 1e-2)
     throw UserError("", "relative_error_bound", "must be <= 1e-2, got " + std::to_string(o.relative_error_bound));
+}
+
+namespace {
+// The automatic edge length and distance for a scene of radius R: a 640 x 640 render that frames
+// the whole shell (diameter 2R over ~500 px) has pixels of ~R / 250; the distance R / 1000 is a
+// quarter pixel and the edge R / 12 about ten pixels (2.5 mm and 30 um for R = 3 cm).
+double auto_edge(double scene_radius) { return scene_radius / 12; }
+double auto_distance(double scene_radius) { return 1e-3 * scene_radius; }
+double scene_of(const ShellShape& shape, const MeshOptions& o) {
+  return o.scene_radius_m > 0 ? o.scene_radius_m : shape.bounding_radius();
+}
+double edge_of(const ShellShape& shape, const MeshOptions& o) {
+  return o.edge_length_m > 0 ? o.edge_length_m : auto_edge(scene_of(shape, o));
+}
+}  // namespace
+
+MeshOptions resolve_scene(MeshOptions o, double scene_radius_m) {
+  o.scene_radius_m = scene_radius_m;
+  if (o.edge_length_m == 0) o.edge_length_m = auto_edge(scene_radius_m);
+  if (o.distance_m == 0) o.distance_m = auto_distance(scene_radius_m);
+  return o;
 }
 
 MeshOptions resolve_triangle_target(MeshOptions o, double largest_area_m2) {
@@ -51,8 +77,9 @@ MeshOptions resolve_triangle_target(MeshOptions o, double largest_area_m2) {
 SurfaceCriteria criteria_for(const ShellShape& shape, const MeshOptions& o, double max_distance_m) {
   SurfaceCriteria c;
   c.facet_angle_deg = o.angle_deg;
-  c.facet_size_m = o.edge_length_m / std::sqrt(3.0);
-  c.facet_distance_m = std::min(o.distance_m, o.relative_distance * shape.accuracy_length());
+  const double distance = o.distance_m > 0 ? o.distance_m : auto_distance(scene_of(shape, o));
+  c.facet_size_m = edge_of(shape, o) / std::sqrt(3.0);
+  c.facet_distance_m = std::min(distance, o.relative_distance * shape.accuracy_length());
   if (max_distance_m > 0) c.facet_distance_m = std::min(c.facet_distance_m, max_distance_m);
   if (o.max_triangles > 0) {
     // Beyond size^2 / (2 radius) the distance bound no longer changes anything.
@@ -81,12 +108,13 @@ double estimate_triangles(const ShellShape& s, const SurfaceCriteria& c) {
 bool too_thin_to_mesh(const ShellShape& s, const MeshOptions& o) {
   if (o.max_triangles <= 0 || s.geometry != sim::Geometry::planar) return false;
   const double a = 2 * s.core_half_size_m;
-  const double rf = std::min(o.edge_length_m / std::sqrt(3.0), 2 * s.radius_m);
+  const double rf = std::min(edge_of(s, o) / std::sqrt(3.0), 2 * s.radius_m);
   return 1.32 * 2 * a * a / (rf * rf) > static_cast<double>(o.max_triangles);
 }
 
 nlohmann::ordered_json to_json(const MeshOptions& o) {
   nlohmann::ordered_json j;
+  j["scene_radius_m"] = o.scene_radius_m;
   j["edge_length_m"] = o.edge_length_m;
   j["triangles"] = o.triangles;
   j["angle_deg"] = o.angle_deg;
@@ -104,9 +132,9 @@ nlohmann::ordered_json to_json(const MeshOptions& o) {
 std::string describe(const MeshOptions& o) {
   char buf[256];
   std::snprintf(buf, sizeof buf,
-                "edge %.3g mm, angle >= %.3g deg, distance <= %.3g um (and <= %.3g x size)%s, "
-                "at most %ld triangles per surface%s",
-                o.edge_length_m * 1e3, o.angle_deg, o.distance_m * 1e6, o.relative_distance,
+                "scene radius %.3g mm, edge %.3g mm, angle >= %.3g deg, distance <= %.3g um (and <= %.3g x "
+                "size)%s, at most %ld triangles per surface%s",
+                o.scene_radius_m * 1e3, o.edge_length_m * 1e3, o.angle_deg, o.distance_m * 1e6, o.relative_distance,
                 o.triangles > 0 ? (", target " + std::to_string(o.triangles) + " triangles").c_str() : "",
                 o.max_triangles, o.normals ? ", normals" : "");
   return buf;

@@ -13,7 +13,8 @@ namespace thaw::mesh {
 struct MeshOptions {
   /// Target triangle edge length where the surface is flat or gently curved [m]
   /// (CGAL facet_size = edge / sqrt(3), the circumradius of an equilateral triangle).
-  double edge_length_m = 2.5e-3;
+  /// 0 = auto: scene radius / 12 (2.5 mm for a 3 cm shell).
+  double edge_length_m = 0;
   /// If > 0: replaces edge_length_m by the edge length that gives the largest surface of the
   /// series about this many triangles; distance bounds not given explicitly are then relaxed so
   /// that they do not add triangles (see resolve_triangle_target).
@@ -21,7 +22,13 @@ struct MeshOptions {
   /// Lower bound on triangle angles [deg], CGAL facet_angle; (0, 30] (30 guarantees termination).
   double angle_deg = 30;
   /// Upper bound on the distance between a triangle and the true surface [m], CGAL facet_distance.
-  double distance_m = 3e-5;
+  /// 0 = auto: 1e-3 x scene radius (30 um for a 3 cm shell: a quarter pixel when a 640 x 640
+  /// render frames the whole shell).
+  double distance_m = 0;
+  /// Radius of a sphere about the origin holding every surface of the series [m], the scale of
+  /// the automatic edge length and distance; 0 = each surface's own bounding radius.
+  /// mesh_simulation_folder sets it from the largest outer surface.
+  double scene_radius_m = 0;
   /// The distance bound is also at most this fraction of the surface's accuracy length
   /// (ShellShape::accuracy_length), so small surfaces keep their relative volume accuracy.
   double relative_distance = 1e-3;
@@ -50,6 +57,10 @@ struct MeshOptions {
 /// Throws thaw::UserError (file "", where = option name) for a non-finite or out-of-range option.
 void validate(const MeshOptions& options);
 
+/// Returns options with scene_radius_m set and the automatic (0) edge length and distance
+/// replaced by their values for that scene radius [m].
+MeshOptions resolve_scene(MeshOptions options, double scene_radius_m);
+
 /// If options.triangles > 0, returns options with edge_length_m set so that a surface of area
 /// `largest_area_m2` gets about `triangles` triangles (Delaunay surface meshes with facet_angle 30
 /// have about 1.32 A / facet_size^2 triangles, measured on spheres: 16.6 (R / facet_size)^2),
@@ -64,7 +75,8 @@ struct SurfaceCriteria {
   double facet_distance_m = 0;  ///< distance of facet circumcentres to the surface [m]
 };
 
-/// facet_size = edge / sqrt(3); facet_distance = min(distance_m, relative_distance *
+/// Automatic values (0) are taken for the scene radius, or the shape's bounding radius if that
+/// is 0 too. facet_size = edge / sqrt(3); facet_distance = min(distance_m, relative_distance *
 /// shape.accuracy_length()), further capped at `max_distance_m` (> 0: used to keep an outer
 /// surface's triangles off the inner surface), then relaxed (multiplied by 1.25 until it fits)
 /// if estimate_triangles exceeds options.max_triangles.

@@ -39,14 +39,17 @@ struct TaskResult {
   std::string error;  // "" if fine
   long triangles = 0;
   double volume_m3 = 0;
-  // Containment of the inner mesh in the outer one, by support functions of the shared convex
-  // core C: the inner mesh lies within max_core_distance of C; the outer mesh's convex hull
-  // contains {x : dist(x, C) < min_face_offset}, min over faces of (n . a - h_C(n)).
+  // Containment of the inner mesh in the outer one, through f(x) = dist(x, C) to the convex core
+  // C the two surfaces share. The inner mesh lies in {f <= max_core_distance} (its vertices do,
+  // and that set is convex). f is convex, so on an outer triangle T with centroid p,
+  // f(x) >= f(p) + grad f(p) . (x - p) >= f(p) + min over T's vertices v of grad f(p) . (v - p):
+  // min_face_core_distance is that lower bound minimised over the outer triangles. If it exceeds
+  // max_core_distance, no outer triangle meets the inner mesh's convex neighbourhood, which is
+  // connected and holds the core, hence lies strictly inside the closed outer mesh. (Facet
+  // planes are no use here: on the cylindrical parts a Delaunay mesh is not exactly convex.)
   double max_core_distance = 0;
-  double min_face_offset = 0;
+  double min_face_core_distance = 0;
 };
-
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 void measure(const ShellShape& shape, const TriangleMesh& m, TaskResult& r) {
   r.triangles = static_cast<long>(m.faces.size());
@@ -54,15 +57,16 @@ void measure(const ShellShape& shape, const TriangleMesh& m, TaskResult& r) {
   r.max_core_distance = 0;
   for (const auto& v : m.vertices)
     r.max_core_distance = std::max(r.max_core_distance, shape.signed_distance(v) + shape.radius_m);
-  r.min_face_offset = std::numeric_limits<double>::infinity();
+  r.min_face_core_distance = std::numeric_limits<double>::infinity();
   for (const auto& f : m.faces) {
     const Vec3 &a = m.vertices[f[0]], &b = m.vertices[f[1]], &c = m.vertices[f[2]];
-    const Vec3 u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    Vec3 n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-    const double len = std::sqrt(dot(n, n));
-    if (!(len > 0)) continue;  // a degenerate face cannot bound anything (checks reject those)
-    for (double& x : n) x /= len;
-    r.min_face_offset = std::min(r.min_face_offset, dot(n, a) - shape.core_support(n));
+    const Vec3 p{(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3, (a[2] + b[2] + c[2]) / 3};
+    const double fp = shape.signed_distance(p) + shape.radius_m;
+    const Vec3 g = shape.outward_normal(p);
+    double lowest = 0;
+    for (const Vec3* v : {&a, &b, &c})
+      lowest = std::min(lowest, g[0] * ((*v)[0] - p[0]) + g[1] * ((*v)[1] - p[1]) + g[2] * ((*v)[2] - p[2]));
+    r.min_face_core_distance = std::min(r.min_face_core_distance, fp > 0 ? fp + lowest : 0.0);
   }
 }
 
@@ -82,10 +86,14 @@ MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& r
   const auto geometry = sim::read_shell_geometry(summary);
   validate_geometry(geometry, summary);
 
-  double largest_area = 0;
-  for (const auto& r : rows)
-    largest_area = std::max(largest_area, ShellShape::from_geometry(geometry, r.outer_radius_m).area());
-  const MeshOptions options = resolve_triangle_target(requested, largest_area);
+  double largest_area = 0, scene_radius = 0;
+  for (const auto& r : rows) {
+    const ShellShape outer = ShellShape::from_geometry(geometry, r.outer_radius_m);
+    largest_area = std::max(largest_area, outer.area());
+    scene_radius = std::max(scene_radius, outer.bounding_radius());
+  }
+  if (!(scene_radius > 0)) scene_radius = 1;  // nothing to mesh: any positive scale will do
+  const MeshOptions options = resolve_triangle_target(resolve_scene(requested, scene_radius), largest_area);
 
   MeshManifest manifest;
   manifest.options = options;
@@ -190,7 +198,7 @@ MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& r
   for (std::size_t i = 0; i < manifest.steps.size(); ++i) {
     if (!inner_of[i] || !outer_of[i]) continue;
     StepRecord& rec = manifest.steps[i];
-    const bool inside = inner_of[i]->max_core_distance < outer_of[i]->min_face_offset;
+    const bool inside = inner_of[i]->max_core_distance < outer_of[i]->min_face_core_distance;
     rec.inner_inside_outer = inside;
     const double shell = rec.outer_radius_m - rec.inner_radius_m;
     if (inside) {
