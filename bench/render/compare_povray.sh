@@ -46,6 +46,30 @@ for spec in "s1_ice_shell_mesh:s1_ice_shell_mesh:640x640" "s1_ice_shell:s1_ice_s
   echo "| $povname | $size | $(ratio "$out/$povname.json") |"
 done
 
+# Dispersion (issue 5): S3 with the N-SF10 Sellmeier glass. POV-Ray 3.7 through
+# ../shared/scenes/run_povray.sh (dispersion_samples 25, 1 ray per pixel), thaw spectral at the
+# scene's 16 samples per pixel (hero wavelengths), 1000x1000, 2 threads, whole process. Colour
+# noise of both against a 256-spp thaw reference (bench/render/dispersion_noise.py).
+if [ "${DISPERSION:-1}" = 1 ]; then
+  echo
+  echo "Dispersion: S3 (N-SF10 Sellmeier sphere), 1000x1000, 2 threads."
+  echo
+  echo "| scene | size | POV-Ray [s] | thaw [s] | speed-up (wall) | speed-up (CPU) |"
+  echo "|---|---|---|---|---|---|"
+  f="$out/s3_dispersion.json"
+  hyperfine --style none --warmup 1 --runs "$runs" --export-json "$f" \
+    "$shared/run_povray.sh s3_dispersion 1000x1000 2 $out/s3_dispersion_pov.png >/dev/null 2>&1" \
+    "$(thaw_cmd "$scenes/s3_dispersion.toml" 1000x1000 2)" >/dev/null
+  echo "| s3_dispersion (thaw 16 spp) | 1000x1000 | $(ratio "$f") |"
+  sed 's/^samples_per_pixel = 16$/samples_per_pixel = 256/' "$scenes/s3_dispersion.toml" > "$out/s3_reference.toml"
+  "$thaw" render "$out/s3_reference.toml" -o "$out/s3_reference.png" --threads 2 --quiet
+  echo
+  echo "Colour noise over the glass sphere's disk (8-bit sRGB units; reference: thaw at 256 spp):"
+  echo
+  python3 "$root/bench/render/dispersion_noise.py" "$out/s3_reference.png" \
+    "$out/s3_dispersion_thaw.png" "$out/s3_dispersion_pov.png" | sed 's/^/    /'
+fi
+
 [ "${STUDIES:-1}" = 1 ] || exit 0
 echo
 echo "Study 1: S4, time vs image size (whole process)."

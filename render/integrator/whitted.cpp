@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "render/integrator/spectral_whitted.h"
 #include "render/material/fresnel.h"
 #include "render/math/rng.h"
 
@@ -20,7 +21,7 @@ class Tracer {
       : m_scene(scene),
         m_max_depth(scene.settings().max_depth),
         m_min_weight(static_cast<float>(scene.settings().min_weight)) {
-    for (const auto& m : scene.media()) m_ior.push_back(static_cast<float>(m.ior.n_d()));
+    for (const auto& m : scene.media()) m_ior.push_back(static_cast<float>(m.optics.n_at(media::kFraunhoferD_nm)));
   }
 
   /// Radiance arriving along `ray` (unit direction), at tree level `depth` (primary = 1), with
@@ -163,6 +164,7 @@ Rgb trace_ray(const Scene& scene, const Ray& ray, std::uint32_t medium, RenderSt
 }
 
 RenderResult render(const Scene& scene, const RenderOptions& options, const ProgressCallback& progress) {
+  if (scene.spectral()) return render_spectral(scene, options, progress);
   const auto start = std::chrono::steady_clock::now();
   const ImageSettings& st = scene.settings();
   const int w = st.width, h = st.height, spp = st.samples_per_pixel;

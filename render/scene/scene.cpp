@@ -107,13 +107,21 @@ Scene build_scene(const SceneDescription& desc) {
   s.m_background = to_rgb(img.background);
 
   std::map<std::string, std::uint32_t> media{{"vacuum", 0}};
-  s.m_media.push_back({"vacuum", IorModel::constant(1.0)});
+  s.m_media.push_back({"vacuum", media::Medium("vacuum", media::IorModel::constant(1.0), media::Absorption())});
+  bool wavelength_dependent = false;
   for (const auto& m : desc.media) {
     if (media.count(m.name)) throw UserError(src, "media." + m.name, "medium defined twice (or redefines vacuum)");
     if (!(m.ior >= 1.0 && m.ior < 10.0)) throw UserError(src, "media." + m.name + ".ior", "must be in [1, 10)");
     media[m.name] = static_cast<std::uint32_t>(s.m_media.size());
-    s.m_media.push_back({m.name, IorModel::constant(m.ior)});
+    // A full spec (preset, Sellmeier, absorption, ...) is resolved and validated over 380-780 nm
+    // by render/media; a bare constant index stays exactly the RGB path's number.
+    media::Medium optics = m.spec ? media::build_medium(*m.spec)
+                                  : media::Medium(m.name, media::IorModel::constant(m.ior), media::Absorption());
+    wavelength_dependent = wavelength_dependent || optics.is_dispersive() || optics.absorbs();
+    s.m_media.push_back({m.name, std::move(optics)});
   }
+  s.m_spectral = img.spectral == ImageSettings::Spectral::on ||
+                 (img.spectral == ImageSettings::Spectral::automatic && wavelength_dependent);
   std::map<std::string, std::uint32_t> materials;
   for (const auto& m : desc.materials) {
     if (materials.count(m.name)) throw UserError(src, "materials." + m.name, "material defined twice");

@@ -10,8 +10,8 @@
 
 #include "render/accel/bvh.h"
 #include "render/geometry/triangle4.h"
-#include "render/material/ior_model.h"
 #include "render/material/material.h"
+#include "render/media/medium.h"
 #include "render/math/color.h"
 #include "render/scene/camera.h"
 #include "render/scene/scene_description.h"
@@ -34,7 +34,9 @@ static_assert(sizeof(Primitive) == 48);
 
 struct Medium {
   std::string name;
-  IorModel ior;
+  /// n(lambda) and Beer-Lambert absorption (render/media); the RGB integrator uses n at the
+  /// helium d line (media::kFraunhoferD_nm), which is the number itself for a constant index
+  media::Medium optics;
 };
 
 struct SceneObject {
@@ -98,6 +100,8 @@ class Scene {
   /// medium the camera sits in (index into media())
   std::uint32_t camera_medium() const { return m_camera_medium; }
   const SceneStatistics& statistics() const { return m_stats; }
+  /// whether render() uses spectral transport ([image] spectral, resolved by build_scene)
+  bool spectral() const { return m_spectral; }
 
   /// Closest hit with 0 < t < ray.t_max.
   bool intersect(const Ray& ray, Hit& hit) const;
@@ -129,6 +133,7 @@ class Scene {
   std::vector<Triangle4> m_leaf_triangles;
   std::vector<std::uint32_t> m_leaf_block;
   std::uint32_t m_camera_medium = 0;
+  bool m_spectral = false;
   SceneStatistics m_stats;
 };
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "render/geometry/triangle_mesh.h"
+#include "render/media/medium.h"
 
 namespace thaw::render {
 
@@ -29,6 +30,11 @@ struct ImageSettings {
   double min_weight = 1.0 / 255.0;
   /// 2^exposure scales radiance before PNG encoding [stops]
   double exposure = 0.0;
+  /// spectral transport (render/integrator/spectral_whitted.h): automatic = on iff some medium
+  /// is dispersive or absorbs (build_scene decides); off renders RGB with each medium's n_d
+  /// and no absorption
+  enum class Spectral { automatic, on, off };
+  Spectral spectral = Spectral::automatic;
 };
 
 struct CameraDescription {
@@ -58,8 +64,11 @@ struct LightDescription {
 
 struct MediumDescription {
   std::string name;
-  /// index of refraction (constant; issue 5 adds dispersive models)
+  /// constant index of refraction, used when `spec` is empty (media built in code)
   double ior = 1.0;
+  /// a full [media.NAME] description (preset, Sellmeier, ..., absorption): see
+  /// render/media/medium.h; build_scene() resolves and validates it
+  std::optional<media::MediumSpec> spec;
 };
 
 struct TextureDescription {

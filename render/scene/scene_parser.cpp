@@ -39,6 +39,22 @@ int int_in(const TomlTable& t, const std::string& key, int fallback, int lo, int
   return static_cast<int>(v);
 }
 
+/// [image] spectral = "auto" | true | false.
+ImageSettings::Spectral parse_spectral(const TomlTable& img) {
+  // TomlTable has no type query: try the two accepted types in turn.
+  try {
+    return img.get_bool("spectral", false) ? ImageSettings::Spectral::on : ImageSettings::Spectral::off;
+  } catch (const UserError&) {
+  }
+  std::string text;
+  try {
+    text = img.get_string("spectral");
+  } catch (const UserError&) {
+  }
+  if (text != "auto") img.fail("spectral", "must be \"auto\", true or false");
+  return ImageSettings::Spectral::automatic;
+}
+
 TextureDescription parse_texture(const TomlTable& m) {
   TextureDescription tex;
   if (m.has("checker")) {
@@ -115,6 +131,7 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
     s.image.background = color3(*img, "background", s.image.background);
     s.image.min_weight = img->require_non_negative("min_weight", img->get_double("min_weight", 1.0 / 255.0));
     s.image.exposure = img->get_double("exposure", 0.0);
+    if (img->has("spectral")) s.image.spectral = parse_spectral(*img);
   }
   if (auto cam = root.optional_table("camera")) {
     s.camera.position = cam->get_vec3("position");
@@ -156,9 +173,13 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
       const TomlTable m = med->table(name);
       MediumDescription md;
       md.name = name;
-      md.ior = m.get_double("ior");
-      if (!(md.ior >= 1.0 && md.ior < 10.0)) m.fail("ior", "must be in [1, 10) (got " + std::to_string(md.ior) + ")");
-      if (name == "vacuum") m.fail("ior", "'vacuum' is predefined (n = 1) and cannot be redefined");
+      if (m.has("ior")) {
+        md.ior = m.get_double("ior");
+        if (!(md.ior >= 1.0 && md.ior < 10.0)) m.fail("ior", "must be in [1, 10) (got " + std::to_string(md.ior) + ")");
+      }
+      if (name == "vacuum") m.fail(m.has("ior") ? "ior" : "", "'vacuum' is predefined (n = 1) and cannot be redefined");
+      // Everything else a medium may say (preset, sellmeier, ..., absorption): render/media.
+      md.spec = media::parse_medium_spec(m, name);
       media.insert(name);
       s.media.push_back(md);
     }

@@ -1,0 +1,326 @@
+#include "render/integrator/spectral_whitted.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "render/material/fresnel.h"
+#include "render/math/rng.h"
+#include "render/spectrum/colour.h"
+#include "render/spectrum/rgb_uplift.h"
+
+namespace thaw::render {
+
+namespace {
+
+LinearSrgb to_srgb(const Rgb& c) { return {c.r, c.g, c.b}; }
+
+/// Largest throughput over the wavelengths still carried (after termination only the hero's
+/// value enters the estimator): the pruning weight, as Rgb::max_component() in RGB mode.
+float live_max(const SampledSpectrum& s, const SampledWavelengths& w) {
+  return w.secondary_terminated() ? s[0] : s.max_component();
+}
+
+/// Re-expresses radiance estimated with `terminated` (hero only, pdf p(l0)/N) in the caller's
+/// wavelengths `w` (all live, common pdf q = (1/N) sum_k p(l_k)): the film's average
+/// (1/N) sum_i L_i cmf_i / pdf_i must give the hero-only estimate L_0 cmf_0 / p(l0), so element
+/// 0 becomes L_0 * pdf_w(0) / pdf_terminated(0) and the others 0. Identity when `w` is already
+/// terminated.
+SampledSpectrum to_caller_wavelengths(const SampledSpectrum& l, const SampledWavelengths& terminated,
+                                      const SampledWavelengths& w) {
+  if (w.secondary_terminated()) return l;
+  SampledSpectrum out;
+  out[0] = l[0] * (w.pdf(0) / terminated.pdf(0));
+  return out;
+}
+
+class SpectralTracer {
+ public:
+  explicit SpectralTracer(const Scene& scene)
+      : m_scene(scene),
+        m_max_depth(scene.settings().max_depth),
+        m_min_weight(static_cast<float>(scene.settings().min_weight)),
+        m_background(to_srgb(scene.background())),
+        m_ambient(to_srgb(scene.ambient())) {
+    for (const auto& l : scene.lights()) m_lights.emplace_back(to_srgb(l.radiance));
+    for (const auto& m : scene.materials()) m_emission.emplace_back(to_srgb(m.emission));
+    for (const auto& m : scene.media()) {
+      m_dispersive.push_back(m.optics.is_dispersive());
+      m_absorbs.push_back(m.optics.absorbs());
+      m_ior_constant.push_back(m.optics.n_at(media::kFraunhoferD_nm));
+    }
+  }
+
+  /// Radiance along `ray` (unit direction) at tree level `depth` with throughput `beta`,
+  /// travelling in `medium`, at wavelengths `w`.
+  SampledSpectrum trace(const Ray& ray, int depth, const SampledSpectrum& beta, std::uint32_t medium,
+                        const SampledWavelengths& w) {
+    ++rays;
+    Hit hit;
+    const bool absorbs = m_absorbs[medium] != 0;
+    if (!m_scene.intersect(ray, hit)) {
+      SampledSpectrum bg = m_background.sample(w);
+      // Escaping inside an absorbing medium: an infinite path keeps nothing where alpha > 0
+      // (a huge finite distance avoids 0 * inf where alpha = 0).
+      if (absorbs) bg *= m_scene.media()[medium].optics.transmittance(1e30, w);
+      return bg;
+    }
+    SampledSpectrum transmittance(1.0f);
+    SampledSpectrum b = beta;
+    if (absorbs) {
+      // Beer-Lambert over this segment: |direction| = 1, so t is the distance (scene units = m).
+      transmittance = m_scene.media()[medium].optics.transmittance(hit.t, w);
+      b *= transmittance;
+    }
+    const SurfaceInteraction si = m_scene.interaction(ray, hit);
+    const SceneObject& obj = m_scene.objects()[si.object];
+    SampledSpectrum l;
+    if (obj.dielectric) {
+      l = dielectric(ray, si, obj, depth, b, medium, w);
+    } else {
+      const Material& mat = m_scene.materials()[obj.material];
+      switch (mat.kind) {
+        case Material::Kind::emissive:
+          l = m_emission[obj.material].sample(w);
+          break;
+        case Material::Kind::metal:
+          l = metal(ray, si, mat, depth, b, medium, w);
+          break;
+        case Material::Kind::matte:
+        case Material::Kind::phong:
+          l = phong(ray, si, mat, depth, b, medium, w);
+          break;
+      }
+    }
+    return absorbs ? l * transmittance : l;
+  }
+
+  std::uint64_t rays = 0, mismatches = 0;
+
+ private:
+  SampledSpectrum dielectric(const Ray& ray, const SurfaceInteraction& si, const SceneObject& obj, int depth,
+                             const SampledSpectrum& beta, std::uint32_t medium, const SampledWavelengths& w) {
+    const Vec3& d = ray.direction;
+    const bool entering = dot(d, si.ng) < 0.0f;
+    const std::uint32_t from = entering ? obj.outside : obj.inside;
+    const std::uint32_t to = entering ? obj.inside : obj.outside;
+    if (medium != from) ++mismatches;
+    const Vec3 ng = entering ? si.ng : -si.ng;
+    Vec3 ns = entering ? si.ns : -si.ns;
+    if (dot(ns, d) >= 0.0f) ns = ng;
+    const float cos_i = -dot(d, ns);
+    SampledSpectrum result;
+    if (depth >= m_max_depth) return result;
+    const bool dispersive = (m_dispersive[from] | m_dispersive[to]) != 0;
+    // Relative index per carried wavelength (one number for a non-dispersive interface).
+    SampledSpectrum r;
+    float eta_hero;
+    if (!dispersive) {
+      eta_hero = static_cast<float>(m_ior_constant[to] / m_ior_constant[from]);
+      r = SampledSpectrum(fresnel_dielectric(cos_i, eta_hero));
+    } else {
+      const SampledSpectrum n_from = m_scene.media()[from].optics.n(w);
+      const SampledSpectrum n_to = m_scene.media()[to].optics.n(w);
+      for (int i = 0; i < kSpectrumSamples; ++i) r[i] = fresnel_dielectric(cos_i, n_to[i] / n_from[i]);
+      eta_hero = n_to[0] / n_from[0];
+    }
+    // Reflected branch: every carried wavelength, each with its own Fresnel reflectance.
+    if (!r.is_black() && live_max(beta * r, w) >= m_min_weight) {
+      Vec3 dir = reflect(d, ns);
+      if (dot(dir, ng) <= 0.0f) dir = reflect(d, ng);
+      const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
+      result += trace(next, depth + 1, beta * r, from, w) * r;
+    }
+    const SampledSpectrum t = SampledSpectrum(1.0f) - r;
+    Vec3 dir;
+    bool ok = refract(d, ns, eta_hero, dir) && dot(dir, ng) < 0.0f;
+    if (!ok) ok = refract(d, ng, eta_hero, dir);
+    if (!ok) return result;
+    const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
+    if (!dispersive || w.secondary_terminated()) {
+      if (live_max(beta * t, w) >= m_min_weight) result += trace(next, depth + 1, beta * t, to, w) * t;
+      return result;
+    }
+    // Dispersive refraction: the wavelengths part ways; follow the hero only (Wilkie et al.).
+    SampledWavelengths hero = w;
+    hero.terminate_secondary();
+    if (beta[0] * t[0] >= m_min_weight) {
+      const SampledSpectrum lt = trace(next, depth + 1, beta * t, to, hero) * t;
+      result += to_caller_wavelengths(lt, hero, w);
+    }
+    return result;
+  }
+
+  SampledSpectrum metal(const Ray& ray, const SurfaceInteraction& si, const Material& mat, int depth,
+                        const SampledSpectrum& beta, std::uint32_t medium, const SampledWavelengths& w) {
+    const SampledSpectrum tint = RgbReflectanceSpectrum(to_srgb(mat.texture.eval(si.p))).sample(w);
+    const SampledSpectrum b = beta * tint;
+    const float wmax = live_max(b, w);
+    if (depth >= m_max_depth || wmax < m_min_weight || wmax == 0.0f) return {};
+    const Vec3 ng = face_forward(si.ng, -ray.direction);
+    Vec3 ns = face_forward(si.ns, ng);
+    Vec3 dir = reflect(ray.direction, ns);
+    if (dot(dir, ng) <= 0.0f) dir = reflect(ray.direction, ng);
+    const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
+    return tint * trace(next, depth + 1, b, medium, w);
+  }
+
+  SampledSpectrum phong(const Ray& ray, const SurfaceInteraction& si, const Material& mat, int depth,
+                        const SampledSpectrum& beta, std::uint32_t medium, const SampledWavelengths& w) {
+    const Vec3& d = ray.direction;
+    const Vec3 ng = face_forward(si.ng, -d);
+    const Vec3 ns = face_forward(si.ns, ng);
+    const SampledSpectrum albedo = RgbReflectanceSpectrum(to_srgb(mat.texture.eval(si.p))).sample(w);
+    SampledSpectrum result = albedo * m_ambient.sample(w) * mat.ka;
+    const auto& lights = m_scene.lights();
+    for (std::size_t li_index = 0; li_index < lights.size(); ++li_index) {
+      const PointLight& light = lights[li_index];
+      const Vec3 to_light = light.position - si.p;
+      const float dist2 = dot(to_light, to_light);
+      if (!(dist2 > 0.0f)) continue;
+      const Vec3 l = to_light / std::sqrt(dist2);
+      if (dot(l, ng) <= 0.0f) continue;
+      const float cos_l = dot(ns, l);
+      if (cos_l <= 0.0f) continue;
+      const Vec3 origin = offset_ray_origin(si.p, si.p_error, ng, l);
+      const Ray shadow{origin, light.position - origin, 1.0f - 1e-4f};
+      ++rays;
+      if (m_scene.occluded(shadow)) continue;
+      SampledSpectrum li = m_lights[li_index].sample(w);
+      if (light.inverse_square) li *= 1.0f / dist2;
+      result += albedo * li * (mat.kd * cos_l);
+      if (mat.ks > 0.0f) {
+        const float s = dot(reflect(-l, ns), -d);
+        if (s > 0.0f) result += li * (mat.ks * std::pow(s, mat.shininess));
+      }
+    }
+    if (mat.kind != Material::Kind::phong || depth >= m_max_depth) return result;
+    if (mat.reflectance > 0.0f && live_max(beta, w) * mat.reflectance >= m_min_weight) {
+      Vec3 dir = reflect(d, ns);
+      if (dot(dir, ng) <= 0.0f) dir = reflect(d, ng);
+      const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
+      result += trace(next, depth + 1, beta * mat.reflectance, medium, w) * mat.reflectance;
+    }
+    if (mat.transmittance > 0.0f && live_max(beta, w) * mat.transmittance >= m_min_weight) {
+      // The classic model: a constant ior relative to the front side (not dispersive).
+      const bool entering = dot(d, si.ng) < 0.0f;
+      const float eta = entering ? mat.ior : 1.0f / mat.ior;
+      Vec3 dir;
+      if (refract(d, ns, eta, dir) && dot(dir, ng) < 0.0f) {
+        const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
+        result += trace(next, depth + 1, beta * mat.transmittance, medium, w) * mat.transmittance;
+      }
+    }
+    return result;
+  }
+
+  const Scene& m_scene;
+  int m_max_depth;
+  float m_min_weight;
+  RgbIlluminantSpectrum m_background, m_ambient;
+  std::vector<RgbIlluminantSpectrum> m_lights, m_emission;
+  std::vector<char> m_dispersive, m_absorbs;
+  std::vector<double> m_ior_constant;
+};
+
+}  // namespace
+
+bool spectral_refraction(const Vec3& d, const Vec3& n, double n_from, double n_to, Vec3& out) {
+  return refract(d, n, static_cast<float>(static_cast<float>(n_to) / static_cast<float>(n_from)), out);
+}
+
+SampledSpectrum trace_spectral_ray(const Scene& scene, const Ray& ray, std::uint32_t medium,
+                                   const SampledWavelengths& wavelengths, RenderStats* stats) {
+  SpectralTracer tracer(scene);
+  const SampledSpectrum l = tracer.trace(ray, 1, SampledSpectrum(1.0f), medium, wavelengths);
+  if (stats) {
+    stats->rays += tracer.rays;
+    stats->medium_mismatches += tracer.mismatches;
+  }
+  return l;
+}
+
+RenderResult render_spectral(const Scene& scene, const RenderOptions& options, const ProgressCallback& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const ImageSettings& st = scene.settings();
+  const int w = st.width, h = st.height, spp = st.samples_per_pixel;
+  const int tile = std::max(1, options.tile_size);
+  const int tiles_x = (w + tile - 1) / tile, tiles_y = (h + tile - 1) / tile;
+  const int tiles = tiles_x * tiles_y;
+  RenderResult result;
+  result.image = Image(w, h);
+  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  // Pixel positions stratified as in RGB mode; the hero wavelength gets its own spp strata in a
+  // random order per pixel, so position and wavelength strata are not correlated.
+  const int grid = static_cast<int>(std::lround(std::sqrt(double(spp))));
+  const bool square = grid * grid == spp;
+  std::uint64_t rays = 0, mismatches = 0;
+  std::atomic<std::int64_t> tiles_done{0};
+#pragma omp parallel num_threads(threads) reduction(+ : rays, mismatches)
+  {
+    SpectralTracer tracer(scene);
+    std::vector<int> perm(static_cast<std::size_t>(spp)), lambda_perm(static_cast<std::size_t>(spp));
+    auto shuffle = [](std::vector<int>& p, Pcg32& rng) {
+      for (std::size_t i = 0; i < p.size(); ++i) p[i] = static_cast<int>(i);
+      for (std::size_t i = p.size() - 1; i > 0; --i)
+        std::swap(p[i], p[rng.next_u32() % static_cast<std::uint32_t>(i + 1)]);
+    };
+#pragma omp for schedule(dynamic, 1)
+    for (int t = 0; t < tiles; ++t) {
+      const int x0 = (t % tiles_x) * tile, y0 = (t / tiles_x) * tile;
+      const int x1 = std::min(x0 + tile, w), y1 = std::min(y0 + tile, h);
+      for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x) {
+          Pcg32 rng(std::uint64_t(y) * std::uint64_t(w) + std::uint64_t(x), options.seed);
+          if (!square && spp > 1) shuffle(perm, rng);
+          shuffle(lambda_perm, rng);
+          double sr = 0, sg = 0, sb = 0;
+          for (int s = 0; s < spp; ++s) {
+            float sx = 0.5f, sy = 0.5f;  // one sample: the pixel centre (as RGB mode and POV-Ray)
+            if (spp > 1 && square) {
+              sx = (float(s % grid) + rng.next_float()) / float(grid);
+              sy = (float(s / grid) + rng.next_float()) / float(grid);
+            } else if (spp > 1) {
+              sx = (float(s) + rng.next_float()) / float(spp);
+              sy = (float(perm[static_cast<std::size_t>(s)]) + rng.next_float()) / float(spp);
+            }
+            const double u = (double(lambda_perm[static_cast<std::size_t>(s)]) + rng.next_float()) / double(spp);
+            const SampledWavelengths wl = SampledWavelengths::sample(std::min(u, 1.0 - 1e-12));
+            const SampledSpectrum l = tracer.trace(scene.camera().generate(float(x) + sx, float(y) + sy), 1,
+                                                   SampledSpectrum(1.0f), scene.camera_medium(), wl);
+            // Box filter: the mean of the samples' colours. Negative sRGB (out-of-gamut spectral
+            // colours) is kept here and clamped at output, so the mean stays unbiased.
+            const LinearSrgb c = spectrum_to_linear_srgb(l, wl);
+            sr += c.r;
+            sg += c.g;
+            sb += c.b;
+          }
+          const double inv = 1.0 / spp;
+          result.image.at(x, y) = Rgb(float(sr * inv), float(sg * inv), float(sb * inv));
+        }
+      }
+      const std::int64_t done = ++tiles_done;
+      if (progress) {
+        try {
+          progress(done, tiles);
+        } catch (...) {
+          // A progress display must never abort a render (and nothing may leave an OpenMP loop).
+        }
+      }
+    }
+    rays += tracer.rays;
+    mismatches += tracer.mismatches;
+  }
+  result.stats.rays = rays;
+  result.stats.medium_mismatches = mismatches;
+  result.stats.threads = threads;
+  result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.stats.rays_per_second = result.stats.seconds > 0 ? double(rays) / result.stats.seconds : 0.0;
+  return result;
+}
+
+}  // namespace thaw::render

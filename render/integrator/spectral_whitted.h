@@ -1,0 +1,41 @@
+#pragma once
+// Spectral Whitted ray tracing: the RGB integrator (render/integrator/whitted.h) with radiance
+// carried at kSpectrumSamples wavelengths per camera sample (hero-wavelength sampling, Wilkie et
+// al. 2014; render/spectrum/sampled_wavelengths.h), so that dispersion (n(lambda), render/media)
+// and Beer-Lambert absorption come out of the physics. RGB albedos are uplifted with Smits'
+// method, light, ambient, emission and background colours become RGB illuminant spectra (white =
+// D65), the film converts each sample with the CIE 1931 observer to linear sRGB.
+// - Non-dispersive interfaces keep all wavelengths on one ray (one spectral ray per RGB ray).
+// - At a refraction into or out of a dispersive medium the transmitted branch continues with the
+//   hero wavelength only (terminate_secondary() on a copy; its result is re-expressed in the
+//   caller's wavelengths, see dispersive_branch_weight), its direction from the hero's n. The
+//   reflected branch keeps every wavelength with its own Fresnel reflectance.
+// - Every segment travelled inside an absorbing medium (also after total internal reflection)
+//   keeps exp(-alpha(lambda) d), d in scene units taken as metres.
+// Same determinism as the RGB path: per-pixel RNG streams, image independent of thread count.
+// Called by render() when Scene::spectral() is set; knows nothing about TOML or files.
+#include <cstdint>
+
+#include "render/integrator/whitted.h"
+#include "render/math/vec3.h"
+#include "render/spectrum/sampled_spectrum.h"
+#include "render/spectrum/sampled_wavelengths.h"
+
+namespace thaw::render {
+
+/// Spectral render of `scene` (same contract as render()): image in linear sRGB.
+RenderResult render_spectral(const Scene& scene, const RenderOptions& options = {},
+                             const ProgressCallback& progress = {});
+
+/// Spectral radiance along one ray (for tests), traced as a primary ray starting in `medium`,
+/// expressed in `wavelengths` (convert with spectrum_to_linear_srgb(L, wavelengths)).
+SampledSpectrum trace_spectral_ray(const Scene& scene, const Ray& ray, std::uint32_t medium,
+                                   const SampledWavelengths& wavelengths, RenderStats* stats = nullptr);
+
+/// The transmitted direction the spectral integrator takes at a dielectric interface for
+/// wavelength `lambda_nm`: unit incident `d`, unit normal `n` facing the incident side, indices
+/// of the media on the incident and far side evaluated at lambda. False on total internal
+/// reflection. (The integrator's own Snell step, exposed so tests can check it against optics.)
+bool spectral_refraction(const Vec3& d, const Vec3& n, double n_from, double n_to, Vec3& out);
+
+}  // namespace thaw::render
