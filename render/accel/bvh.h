@@ -112,24 +112,6 @@ class Bvh {
   /// (0, t_max); its entry distance is t_enter[i].
   static int hit_children(const Bvh4Node& n, const RayData& r, float t_max, float t_enter[4]);
 
-  /// Slab test of one node: entry distance in `t_enter` if the ray meets it within (0, t_max).
-  static bool hit_node(const BvhNode& n, const RayData& r, float t_max, float& t_enter) {
-    const float tx0 = (n.lo.x - r.origin.x) * r.inv_direction.x;
-    const float tx1 = (n.hi.x - r.origin.x) * r.inv_direction.x;
-    const float ty0 = (n.lo.y - r.origin.y) * r.inv_direction.y;
-    const float ty1 = (n.hi.y - r.origin.y) * r.inv_direction.y;
-    const float tz0 = (n.lo.z - r.origin.z) * r.inv_direction.z;
-    const float tz1 = (n.hi.z - r.origin.z) * r.inv_direction.z;
-    const float t_near = std::max(std::max(std::min(tx0, tx1), std::min(ty0, ty1)),
-                                  std::max(std::min(tz0, tz1), 0.0f));
-    float t_far = std::min(std::min(std::max(tx0, tx1), std::max(ty0, ty1)),
-                           std::min(std::max(tz0, tz1), t_max));
-    // Conservative: rounding in the slab distances must not cull a primitive the exact test hits.
-    t_far *= 1.0f + 2.0f * gamma_bound(3);
-    t_enter = t_near;
-    return t_near <= t_far;
-  }
-
  private:
   std::uint32_t collapse(std::uint32_t binary_index);
   std::vector<BvhNode> m_nodes;

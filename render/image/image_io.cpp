@@ -53,15 +53,17 @@ class SrgbEncoder {
   float m_thresholds[255];
 };
 
-}  // namespace
-
-std::uint8_t srgb8_by_table(float v) {
-  static const SrgbEncoder encode;
-  return encode(v);
+const SrgbEncoder& srgb_encoder() {
+  static const SrgbEncoder encoder;  // built once, thread-safe (magic static)
+  return encoder;
 }
 
+}  // namespace
+
+std::uint8_t srgb8_by_table(float v) { return srgb_encoder()(v); }
+
 std::string encode_png(const Image& image, double exposure) {
-  static const SrgbEncoder encode;
+  const SrgbEncoder& encode = srgb_encoder();
   const float scale = static_cast<float>(std::exp2(exposure));
   const int w = image.width(), h = image.height();
   std::vector<std::uint8_t> rgb(std::size_t(w) * h * 3);

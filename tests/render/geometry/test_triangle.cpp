@@ -58,7 +58,7 @@ TEST(Triangle, DegenerateTriangleNeverHit) {
   EXPECT_FALSE(intersect_triangle(ShearedRay(r), p1, p1, p1, r.t_max, h));             // a point
 }
 
-TEST(Triangle, SharedEdgeHitByExactlyOneSideOrBoth) {
+TEST(Triangle, SharedDiagonalIsNeverMissed) {
   // Quad split along its diagonal: a ray through a point of the diagonal must hit at least one of
   // the two triangles (watertightness), for many directions.
   const Vec3 q0{0, 0, 0}, q1{1, 0, 0}, q2{1, 1, 0}, q3{0, 1, 0};
