@@ -97,13 +97,17 @@ void register_inspect(CLI::App& app) {
   cmd->add_flag("--json", args->json, "print the report as JSON (an array of steps for a folder)");
   cmd->add_option("--pvd", args->pvd,
                   "write a ParaView collection OUT.pvd (+ OUT_vtp/ with one .vtp per step and "
-                  "surface; timestep = simulated seconds)");
+                  "surface; timestep = simulated seconds)")
+      ->type_name("OUT.pvd");
   cmd->add_option("--screenshot", args->screenshot,
-                  "write an off-screen rendering (edges shown; outer surface translucent) to PNG");
+                  "write an off-screen rendering (edges shown; outer surface translucent) to PNG")
+      ->type_name("OUT.png");
   cmd->add_option("--plot", args->plot,
-                  "write inner/outer radius and volumes against time to PNG (simulation folder)");
+                  "write inner/outer radius and volumes against time to PNG (simulation folder)")
+      ->type_name("OUT.png");
   cmd->add_option("--step", args->step,
-                  "with --screenshot on a folder: draw this step only (default: up to 4 steps)");
+                  "with --screenshot on a folder: draw this step only (default: up to 4 steps)")
+      ->type_name("N");
   cmd->add_flag("-q,--quiet", args->quiet, "no progress or 'wrote' lines on stderr");
   cmd->callback([args] { run_inspect(*args); });
 }

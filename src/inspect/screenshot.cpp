@@ -248,9 +248,15 @@ void write_simulation_screenshot(const fs::path& simdir, const fs::path& out_png
     if (picks.empty())
       throw UserError(simdir.string(), "--step", "step " + std::to_string(*step) + " is not meshed");
   } else {
-    const std::size_t count = std::min<std::size_t>(4, folder.steps.size());
+    // Spread over the steps that still have a surface: a last step where everything has melted
+    // would only show an empty panel.
+    std::vector<std::size_t> candidates;
+    for (std::size_t k = 0; k < folder.steps.size(); ++k)
+      if (folder.steps[k].inner || folder.steps[k].outer) candidates.push_back(k);
+    if (candidates.empty()) candidates.push_back(folder.steps.size() - 1);
+    const std::size_t count = std::min<std::size_t>(4, candidates.size());
     for (std::size_t i = 0; i < count; ++i)
-      picks.push_back(count == 1 ? 0 : i * (folder.steps.size() - 1) / (count - 1));
+      picks.push_back(candidates[count == 1 ? 0 : i * (candidates.size() - 1) / (count - 1)]);
   }
   std::vector<ScreenshotPanel> panels;
   const double length_scale = folder.steps.front().outer_radius_m < 0.1 ? 1e3 : 1.0;

@@ -41,7 +41,7 @@ void write_screenshot(const std::vector<ScreenshotPanel>& panels, const std::fil
 void write_obj_screenshot(const std::filesystem::path& obj, const std::filesystem::path& out_png);
 
 /// A simulation folder: `step` alone if given, else up to four steps evenly spread over the
-/// meshed steps (first and last included). Throws UserError when the folder is not meshed or
+/// meshed steps that still have a surface (first and last of those included). Throws UserError when the folder is not meshed or
 /// `step` is not one of its meshed steps.
 void write_simulation_screenshot(const std::filesystem::path& simdir,
                                  const std::filesystem::path& out_png,
