@@ -44,6 +44,7 @@ class SpectralTracer {
       : m_scene(scene),
         m_max_depth(scene.settings().max_depth),
         m_min_weight(static_cast<float>(scene.settings().min_weight)),
+        m_split(scene.settings().dispersion == ImageSettings::Dispersion::split),
         m_background(to_srgb(scene.background())),
         m_ambient(to_srgb(scene.ambient())) {
     for (const auto& l : scene.lights()) m_lights.emplace_back(to_srgb(l.radiance));
@@ -56,9 +57,11 @@ class SpectralTracer {
   }
 
   /// Radiance along `ray` (unit direction) at tree level `depth` with throughput `beta`,
-  /// travelling in `medium`, at wavelengths `w`.
+  /// travelling in `medium`, at wavelengths `w`. `lane` >= 0: the ray belongs to that carried
+  /// wavelength alone (after a split dispersive refraction; beta is zero elsewhere and the caller
+  /// keeps only that element of the result), -1: to every live wavelength.
   SampledSpectrum trace(const Ray& ray, int depth, const SampledSpectrum& beta, std::uint32_t medium,
-                        const SampledWavelengths& w) {
+                        const SampledWavelengths& w, int lane = -1) {
     ++rays;
     Hit hit;
     const bool absorbs = m_absorbs[medium] != 0;
@@ -80,7 +83,7 @@ class SpectralTracer {
     const SceneObject& obj = m_scene.objects()[si.object];
     SampledSpectrum l;
     if (obj.dielectric) {
-      l = dielectric(ray, si, obj, depth, b, medium, w);
+      l = dielectric(ray, si, obj, depth, b, medium, w, lane);
     } else {
       const Material& mat = m_scene.materials()[obj.material];
       switch (mat.kind) {
@@ -88,11 +91,11 @@ class SpectralTracer {
           l = m_emission[obj.material].sample(w);
           break;
         case Material::Kind::metal:
-          l = metal(ray, si, mat, depth, b, medium, w);
+          l = metal(ray, si, mat, depth, b, medium, w, lane);
           break;
         case Material::Kind::matte:
         case Material::Kind::phong:
-          l = phong(ray, si, mat, depth, b, medium, w);
+          l = phong(ray, si, mat, depth, b, medium, w, lane);
           break;
       }
     }
@@ -103,7 +106,8 @@ class SpectralTracer {
 
  private:
   SampledSpectrum dielectric(const Ray& ray, const SurfaceInteraction& si, const SceneObject& obj, int depth,
-                             const SampledSpectrum& beta, std::uint32_t medium, const SampledWavelengths& w) {
+                             const SampledSpectrum& beta, std::uint32_t medium, const SampledWavelengths& w,
+                             int lane) {
     const Vec3& d = ray.direction;
     const bool entering = dot(d, si.ng) < 0.0f;
     const std::uint32_t from = entering ? obj.outside : obj.inside;
@@ -117,32 +121,53 @@ class SpectralTracer {
     if (depth >= m_max_depth) return result;
     const bool dispersive = (m_dispersive[from] | m_dispersive[to]) != 0;
     // Relative index per carried wavelength (one number for a non-dispersive interface).
-    SampledSpectrum r;
+    SampledSpectrum r, n_from(1.0f), n_to(1.0f);
     float eta_hero;
     if (!dispersive) {
       eta_hero = static_cast<float>(m_ior_constant[to] / m_ior_constant[from]);
       r = SampledSpectrum(fresnel_dielectric(cos_i, eta_hero));
     } else {
-      const SampledSpectrum n_from = m_scene.media()[from].optics.n(w);
-      const SampledSpectrum n_to = m_scene.media()[to].optics.n(w);
+      n_from = m_scene.media()[from].optics.n(w);
+      n_to = m_scene.media()[to].optics.n(w);
       for (int i = 0; i < kSpectrumSamples; ++i) r[i] = fresnel_dielectric(cos_i, n_to[i] / n_from[i]);
-      eta_hero = n_to[0] / n_from[0];
+      // A ray of one wavelength refracts with that wavelength's index.
+      const int k = lane >= 0 ? lane : 0;
+      eta_hero = n_to[k] / n_from[k];
     }
     // Reflected branch: every carried wavelength, each with its own Fresnel reflectance.
     if (!r.is_black() && live_max(beta * r, w) >= m_min_weight) {
       Vec3 dir = reflect(d, ns);
       if (dot(dir, ng) <= 0.0f) dir = reflect(d, ng);
       const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
-      result += trace(next, depth + 1, beta * r, from, w) * r;
+      result += trace(next, depth + 1, beta * r, from, w, lane) * r;
     }
     const SampledSpectrum t = SampledSpectrum(1.0f) - r;
+    if (dispersive && lane < 0 && m_split && !w.secondary_terminated()) {
+      // Split: each carried wavelength refracts its own way on its own ray (4 rays). Every
+      // wavelength's radiance is then exact, so the film estimator keeps all four: no colour
+      // noise beyond the wavelength sampling itself.
+      for (int i = 0; i < kSpectrumSamples; ++i) {
+        SampledSpectrum mask;
+        mask[i] = t[i];
+        const SampledSpectrum b = beta * mask;
+        if (!(b[i] >= m_min_weight) || b[i] == 0.0f) continue;
+        Vec3 dir;
+        const float eta = n_to[i] / n_from[i];
+        bool ok = refract(d, ns, eta, dir) && dot(dir, ng) < 0.0f;
+        if (!ok) ok = refract(d, ng, eta, dir);
+        if (!ok) continue;
+        const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
+        result += trace(next, depth + 1, b, to, w, i) * mask;
+      }
+      return result;
+    }
     Vec3 dir;
     bool ok = refract(d, ns, eta_hero, dir) && dot(dir, ng) < 0.0f;
     if (!ok) ok = refract(d, ng, eta_hero, dir);
     if (!ok) return result;
     const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
-    if (!dispersive || w.secondary_terminated()) {
-      if (live_max(beta * t, w) >= m_min_weight) result += trace(next, depth + 1, beta * t, to, w) * t;
+    if (!dispersive || w.secondary_terminated() || lane >= 0) {
+      if (live_max(beta * t, w) >= m_min_weight) result += trace(next, depth + 1, beta * t, to, w, lane) * t;
       return result;
     }
     // Dispersive refraction: the wavelengths part ways; follow the hero only (Wilkie et al.).
@@ -156,7 +181,8 @@ class SpectralTracer {
   }
 
   SampledSpectrum metal(const Ray& ray, const SurfaceInteraction& si, const Material& mat, int depth,
-                        const SampledSpectrum& beta, std::uint32_t medium, const SampledWavelengths& w) {
+                        const SampledSpectrum& beta, std::uint32_t medium, const SampledWavelengths& w,
+                        int lane) {
     const SampledSpectrum tint = RgbReflectanceSpectrum(to_srgb(mat.texture.eval(si.p))).sample(w);
     const SampledSpectrum b = beta * tint;
     const float wmax = live_max(b, w);
@@ -166,11 +192,12 @@ class SpectralTracer {
     Vec3 dir = reflect(ray.direction, ns);
     if (dot(dir, ng) <= 0.0f) dir = reflect(ray.direction, ng);
     const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
-    return tint * trace(next, depth + 1, b, medium, w);
+    return tint * trace(next, depth + 1, b, medium, w, lane);
   }
 
   SampledSpectrum phong(const Ray& ray, const SurfaceInteraction& si, const Material& mat, int depth,
-                        const SampledSpectrum& beta, std::uint32_t medium, const SampledWavelengths& w) {
+                        const SampledSpectrum& beta, std::uint32_t medium, const SampledWavelengths& w,
+                        int lane) {
     const Vec3& d = ray.direction;
     const Vec3 ng = face_forward(si.ng, -d);
     const Vec3 ns = face_forward(si.ns, ng);
@@ -203,7 +230,7 @@ class SpectralTracer {
       Vec3 dir = reflect(d, ns);
       if (dot(dir, ng) <= 0.0f) dir = reflect(d, ng);
       const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
-      result += trace(next, depth + 1, beta * mat.reflectance, medium, w) * mat.reflectance;
+      result += trace(next, depth + 1, beta * mat.reflectance, medium, w, lane) * mat.reflectance;
     }
     if (mat.transmittance > 0.0f && live_max(beta, w) * mat.transmittance >= m_min_weight) {
       // The classic model: a constant ior relative to the front side (not dispersive).
@@ -212,7 +239,7 @@ class SpectralTracer {
       Vec3 dir;
       if (refract(d, ns, eta, dir) && dot(dir, ng) < 0.0f) {
         const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
-        result += trace(next, depth + 1, beta * mat.transmittance, medium, w) * mat.transmittance;
+        result += trace(next, depth + 1, beta * mat.transmittance, medium, w, lane) * mat.transmittance;
       }
     }
     return result;
@@ -221,6 +248,7 @@ class SpectralTracer {
   const Scene& m_scene;
   int m_max_depth;
   float m_min_weight;
+  bool m_split;
   RgbIlluminantSpectrum m_background, m_ambient;
   std::vector<RgbIlluminantSpectrum> m_lights, m_emission;
   std::vector<char> m_dispersive, m_absorbs;

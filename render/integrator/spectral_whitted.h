@@ -6,10 +6,12 @@
 // method, light, ambient, emission and background colours become RGB illuminant spectra (white =
 // D65), the film converts each sample with the CIE 1931 observer to linear sRGB.
 // - Non-dispersive interfaces keep all wavelengths on one ray (one spectral ray per RGB ray).
-// - At a refraction into or out of a dispersive medium the transmitted branch continues with the
-//   hero wavelength only (terminate_secondary() on a copy; its result is re-expressed in the
-//   caller's wavelengths, see dispersive_branch_weight), its direction from the hero's n. The
-//   reflected branch keeps every wavelength with its own Fresnel reflectance.
+// - At a refraction into or out of a dispersive medium the reflected branch keeps every
+//   wavelength with its own Fresnel reflectance; the transmitted branch ([image] dispersion)
+//   either splits into one ray per carried wavelength, each refracted with its own n ("split",
+//   default: exact radiance for all four, low colour noise), or continues with the hero
+//   wavelength only ("hero": terminate_secondary() on a copy, direction from the hero's n, result
+//   re-expressed in the caller's wavelengths; one ray, more colour noise).
 // - Every segment travelled inside an absorbing medium (also after total internal reflection)
 //   keeps exp(-alpha(lambda) d), d in scene units taken as metres.
 // Same determinism as the RGB path: per-pixel RNG streams, image independent of thread count.

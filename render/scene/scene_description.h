@@ -35,6 +35,11 @@ struct ImageSettings {
   /// and no absorption
   enum class Spectral { automatic, on, off };
   Spectral spectral = Spectral::automatic;
+  /// at a refraction into or out of a dispersive medium: split = one ray per carried wavelength
+  /// (4 rays, every wavelength's radiance exact, low colour noise); hero = continue with the hero
+  /// wavelength only (terminate_secondary(), one ray, more colour noise)
+  enum class Dispersion { split, hero };
+  Dispersion dispersion = Dispersion::split;
 };
 
 struct CameraDescription {

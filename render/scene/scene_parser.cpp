@@ -132,6 +132,10 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
     s.image.min_weight = img->require_non_negative("min_weight", img->get_double("min_weight", 1.0 / 255.0));
     s.image.exposure = img->get_double("exposure", 0.0);
     if (img->has("spectral")) s.image.spectral = parse_spectral(*img);
+    const std::string dispersion = img->get_string("dispersion", "split");
+    if (dispersion == "split") s.image.dispersion = ImageSettings::Dispersion::split;
+    else if (dispersion == "hero") s.image.dispersion = ImageSettings::Dispersion::hero;
+    else img->fail("dispersion", "must be \"split\" or \"hero\" (got \"" + dispersion + "\")");
   }
   if (auto cam = root.optional_table("camera")) {
     s.camera.position = cam->get_vec3("position");

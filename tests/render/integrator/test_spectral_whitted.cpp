@@ -130,9 +130,12 @@ TEST(SpectralWhitted, MatchesRgbOnNonDispersiveSceneWithin1Over255) {
 // interface), so the sphere must be invisible. Statistical: the dispersive branches follow the
 // hero only, so each sample is noisy; the mean of M samples must lie within 4 standard errors
 // of the environment colour (plus the pruned weight, < 1e-6 per branch, negligible).
-TEST(SpectralWhitted, DispersiveSphereInWhiteEnvironmentIsInvisible) {
+class DispersionModes : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(DispersionModes, DispersiveSphereInWhiteEnvironmentIsInvisible) {
   const Scene scene = scene_from(R"(
 [image]
+dispersion = ")" + GetParam() + R"("
 width = 8
 height = 8
 max_depth = 64
@@ -177,11 +180,13 @@ outside = "vacuum"
     for (int k = 0; k < 3; ++k) {
       const double mean = sum[k] / kSamples;
       const double se = std::sqrt(std::max(0.0, sum2[k] / kSamples - mean * mean) / (kSamples - 1));
-      EXPECT_GT(se, 0.0) << "the hero-only branch must add wavelength noise";
+      EXPECT_GT(se, 0.0) << "wavelength sampling is noisy";
       EXPECT_NEAR(mean, env[k], 4 * se + 1e-5) << "channel " << k << " target " << target.x << "," << target.y;
     }
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(SpectralWhitted, DispersionModes, ::testing::Values("split", "hero"));
 
 /// Triangular prism, apex angle 60 degrees, apex up at (0, 1), base at y = -1, extruded along z
 /// over [-5, 5]; closed and outward oriented.
@@ -254,6 +259,17 @@ material = "lamp"
         EXPECT_GT(l, 0.5f * float(illuminant_d65(lambdas[j]))) << lambdas[j] << " nm hits its target";
       } else {
         EXPECT_EQ(l, 0.0f) << lambdas[j] << " nm must miss the " << lambdas[k] << " nm target";
+      }
+    }
+    // Split mode: the three wavelengths carried together part at the prism, each on its own ray.
+    const auto w = SampledWavelengths::from(SampledSpectrum({450.0f, 550.0f, 650.0f, 750.0f}),
+                                            SampledSpectrum(1.0f / 400));
+    const SampledSpectrum l = trace_spectral_ray(scene, ray, 0, w);
+    for (int j = 0; j < 3; ++j) {
+      if (j == k) {
+        EXPECT_GT(l[j], 0.5f * float(illuminant_d65(lambdas[j]))) << "split: " << lambdas[j] << " nm";
+      } else {
+        EXPECT_EQ(l[j], 0.0f) << "split: " << lambdas[j] << " nm vs the " << lambdas[k] << " nm target";
       }
     }
   }
