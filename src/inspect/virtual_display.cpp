@@ -101,6 +101,14 @@ bool display_available() {
   return true;
 }
 
+bool rendering_possible() {
+  {
+    std::lock_guard<std::mutex> lock(server().mutex);
+    if (server().leases > 0) return true;
+  }
+  return display_available() || find_executable("Xvfb").has_value();
+}
+
 DisplayLease::DisplayLease(const std::string& purpose) {
   VirtualServer& s = server();
   std::lock_guard<std::mutex> lock(s.mutex);

@@ -30,4 +30,8 @@ class DisplayLease {
 /// True when $DISPLAY is set and an X connection to it opens.
 bool display_available();
 
+/// True when a DisplayLease can be had: a usable $DISPLAY or Xvfb on PATH (so a caller such as
+/// `thaw run` can skip pictures with a note instead of failing).
+bool rendering_possible();
+
 }  // namespace thaw::inspect

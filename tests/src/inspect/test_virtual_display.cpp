@@ -35,6 +35,7 @@ class ScopedEnv {
 TEST(VirtualDisplay, NeitherDisplayNorXvfbIsAClearUserError) {
   ScopedEnv display("DISPLAY", nullptr);
   ScopedEnv path("PATH", "/nonexistent");
+  EXPECT_FALSE(rendering_possible());
   try {
     DisplayLease lease("--screenshot");
     FAIL() << "expected a UserError";
@@ -48,6 +49,7 @@ TEST(VirtualDisplay, NeitherDisplayNorXvfbIsAClearUserError) {
 TEST(VirtualDisplay, StartsAndStopsXvfbWhenNoDisplay) {
   if (!find_executable("Xvfb")) GTEST_SKIP() << "Xvfb not installed";
   ScopedEnv display("DISPLAY", nullptr);
+  EXPECT_TRUE(rendering_possible());
   std::string used;
   {
     DisplayLease lease("test");
