@@ -286,6 +286,18 @@ RenderResult render_spectral(const Scene& scene, const RenderOptions& options, c
   // random order per pixel, so position and wavelength strata are not correlated.
   const int grid = static_cast<int>(std::lround(std::sqrt(double(spp))));
   const bool square = grid * grid == spp;
+  // Ratio film: white's exact XYZ under the film's own estimator (midpoint quadrature over the
+  // hero, 4000 cells: D65 and the CIE functions are smooth, error < 1e-6).
+  const bool ratio = st.spectral_film == ImageSettings::SpectralFilm::ratio;
+  Xyz white;
+  if (ratio) {
+    constexpr int kCells = 4000;
+    for (int i = 0; i < kCells; ++i) {
+      const auto wl = SampledWavelengths::sample((i + 0.5) / kCells);
+      const Xyz c = spectrum_to_xyz(illuminant_d65(wl), wl);
+      white.x += c.x / kCells, white.y += c.y / kCells, white.z += c.z / kCells;
+    }
+  }
   std::uint64_t rays = 0, mismatches = 0;
   std::atomic<std::int64_t> tiles_done{0};
 #pragma omp parallel num_threads(threads) reduction(+ : rays, mismatches)
@@ -306,7 +318,7 @@ RenderResult render_spectral(const Scene& scene, const RenderOptions& options, c
           Pcg32 rng(std::uint64_t(y) * std::uint64_t(w) + std::uint64_t(x), options.seed);
           if (!square && spp > 1) shuffle(perm, rng);
           shuffle(lambda_perm, rng);
-          double sr = 0, sg = 0, sb = 0;
+          Xyz sum, white_sum;
           for (int s = 0; s < spp; ++s) {
             float sx = 0.5f, sy = 0.5f;  // one sample: the pixel centre (as RGB mode and POV-Ray)
             if (spp > 1 && square) {
@@ -320,15 +332,23 @@ RenderResult render_spectral(const Scene& scene, const RenderOptions& options, c
             const SampledWavelengths wl = SampledWavelengths::sample(std::min(u, 1.0 - 1e-12));
             const SampledSpectrum l = tracer.trace(scene.camera().generate(float(x) + sx, float(y) + sy), 1,
                                                    SampledSpectrum(1.0f), scene.camera_medium(), wl);
-            // Box filter: the mean of the samples' colours. Negative sRGB (out-of-gamut spectral
-            // colours) is kept here and clamped at output, so the mean stays unbiased.
-            const LinearSrgb c = spectrum_to_linear_srgb(l, wl);
-            sr += c.r;
-            sg += c.g;
-            sb += c.b;
+            // Box filter: the mean of the samples' XYZ. Negative sRGB (out-of-gamut spectral
+            // colours) is kept and clamped at output, so the mean stays unbiased.
+            const Xyz c = spectrum_to_xyz(l, wl);
+            sum.x += c.x, sum.y += c.y, sum.z += c.z;
+            if (ratio) {
+              const Xyz d = spectrum_to_xyz(illuminant_d65(wl), wl);
+              white_sum.x += d.x, white_sum.y += d.y, white_sum.z += d.z;
+            }
           }
-          const double inv = 1.0 / spp;
-          result.image.at(x, y) = Rgb(float(sr * inv), float(sg * inv), float(sb * inv));
+          Xyz mean{sum.x / spp, sum.y / spp, sum.z / spp};
+          if (ratio) {
+            // white_sum > 0: D65 and the CIE functions are positive over 380-780 nm.
+            mean = Xyz{sum.x / white_sum.x * white.x, sum.y / white_sum.y * white.y,
+                       sum.z / white_sum.z * white.z};
+          }
+          const LinearSrgb c = xyz_to_linear_srgb(mean);
+          result.image.at(x, y) = Rgb(float(c.r), float(c.g), float(c.b));
         }
       }
       const std::int64_t done = ++tiles_done;

@@ -40,6 +40,13 @@ struct ImageSettings {
   /// wavelength only (terminate_secondary(), one ray, more colour noise)
   enum class Dispersion { split, hero };
   Dispersion dispersion = Dispersion::split;
+  /// spectral film: ratio = each pixel's XYZ is divided, channel by channel, by the same
+  /// samples' estimate of white (D65) and multiplied by white's exact XYZ (a self-normalised
+  /// estimator: exact for spectra proportional to D65, i.e. grey surfaces under white light, so
+  /// the wavelength sampling's colour noise cancels there; consistent, bias O(1/(4 spp)));
+  /// unbiased = the plain average of the samples' XYZ
+  enum class SpectralFilm { ratio, unbiased };
+  SpectralFilm spectral_film = SpectralFilm::ratio;
 };
 
 struct CameraDescription {

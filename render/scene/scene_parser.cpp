@@ -136,6 +136,10 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
     if (dispersion == "split") s.image.dispersion = ImageSettings::Dispersion::split;
     else if (dispersion == "hero") s.image.dispersion = ImageSettings::Dispersion::hero;
     else img->fail("dispersion", "must be \"split\" or \"hero\" (got \"" + dispersion + "\")");
+    const std::string film = img->get_string("spectral_film", "ratio");
+    if (film == "ratio") s.image.spectral_film = ImageSettings::SpectralFilm::ratio;
+    else if (film == "unbiased") s.image.spectral_film = ImageSettings::SpectralFilm::unbiased;
+    else img->fail("spectral_film", "must be \"ratio\" or \"unbiased\" (got \"" + film + "\")");
   }
   if (auto cam = root.optional_table("camera")) {
     s.camera.position = cam->get_vec3("position");
