@@ -36,6 +36,7 @@ ratio() {
 echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores; load $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "thaw $("$thaw" --version | cut -d' ' -f2), $(povray --version 2>&1 | grep -m1 -o 'POV-Ray [0-9.]*' || echo POV-Ray 3.7)"
 echo
+if [ "${MAIN:-1}" = 1 ]; then  # MAIN=0 skips the reference-scene table
 echo "| scene | size | POV-Ray [s] | thaw [s] | speed-up (wall) | speed-up (CPU) |"
 echo "|---|---|---|---|---|---|"
 for spec in "s1_ice_shell_mesh:s1_ice_shell_mesh:640x640" "s1_ice_shell:s1_ice_shell:640x640" \
@@ -45,6 +46,7 @@ for spec in "s1_ice_shell_mesh:s1_ice_shell_mesh:640x640" "s1_ice_shell:s1_ice_s
     "$(povray_cmd "$povname" "$size" 2)" "$(thaw_cmd "$scenes/$toml.toml" "$size" 2)" >/dev/null
   echo "| $povname | $size | $(ratio "$out/$povname.json") |"
 done
+fi
 
 # Dispersion (issue 5): S3 with the N-SF10 Sellmeier glass. POV-Ray 3.7 through
 # ../shared/scenes/run_povray.sh (dispersion_samples 25, 1 ray per pixel) against thaw spectral
