@@ -116,17 +116,18 @@ MeshReport inspect_mesh(const TriangleMesh& mesh, const std::string& source) {
   // Triangles with a repeated corner have no edges of their own worth counting: they are reported
   // as degenerate and left out of the topology; zero-area triangles with distinct corners stay in
   // the topology but not in the quality statistics.
-  TriangleMesh topo;  // triangles that take part in the topology (vertices shared with `mesh`)
-  TriangleMesh good;  // non-degenerate triangles, for the quality measures
-  topo.triangles.reserve(mesh.triangles.size());
-  good.triangles.reserve(mesh.triangles.size());
+  using Triangles = std::vector<std::array<std::int64_t, 3>>;
+  Triangles topo;  // triangles that take part in the topology
+  Triangles good;  // non-degenerate triangles, for the quality measures
+  topo.reserve(mesh.triangles.size());
+  good.reserve(mesh.triangles.size());
   std::vector<char> used(static_cast<std::size_t>(nv), 0);
   for (const auto& t : mesh.triangles) {
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
       ++r.degenerate_triangles;
       continue;
     }
-    topo.triangles.push_back(t);
+    topo.push_back(t);
     for (const std::int64_t i : t) used[i] = 1;
     const Vec3 e0 = sub(mesh.vertices[t[1]], mesh.vertices[t[0]]);
     const Vec3 e1 = sub(mesh.vertices[t[2]], mesh.vertices[t[1]]);
@@ -138,7 +139,7 @@ MeshReport inspect_mesh(const TriangleMesh& mesh, const std::string& source) {
       ++r.degenerate_triangles;
       continue;
     }
-    good.triangles.push_back(t);
+    good.push_back(t);
   }
 
   // Edges: one record per (triangle, side) with the undirected key and the direction it is
@@ -149,10 +150,10 @@ MeshReport inspect_mesh(const TriangleMesh& mesh, const std::string& source) {
     bool operator<(const HalfEdge& o) const { return lo != o.lo ? lo < o.lo : hi < o.hi; }
   };
   std::vector<HalfEdge> half;
-  half.reserve(3 * topo.triangles.size());
+  half.reserve(3 * topo.size());
   std::vector<std::int64_t> parent(static_cast<std::size_t>(nv));
   std::iota(parent.begin(), parent.end(), 0);
-  for (const auto& t : topo.triangles) {
+  for (const auto& t : topo) {
     for (int k = 0; k < 3; ++k) {
       const std::int64_t a = t[k], b = t[(k + 1) % 3];
       half.push_back({std::min(a, b), std::max(a, b), a < b ? 1 : -1});
@@ -202,18 +203,18 @@ MeshReport inspect_mesh(const TriangleMesh& mesh, const std::string& source) {
   if (used_vertices == 0) r.bbox_min = r.bbox_max = {0, 0, 0};
   r.unused_vertices = nv - used_vertices;
   r.euler_characteristic =
-      used_vertices - r.edges + static_cast<std::int64_t>(topo.triangles.size());
+      used_vertices - r.edges + static_cast<std::int64_t>(topo.size());
 
   // Signed volume by the divergence theorem, sum of tetrahedra (origin, a, b, c); independent of
   // the origin only for a closed surface. Positive when the normals (right-hand rule) point out.
   long double signed6 = 0;
-  for (const auto& t : topo.triangles)
+  for (const auto& t : topo)
     signed6 += dot(mesh.vertices[t[0]], cross(mesh.vertices[t[1]], mesh.vertices[t[2]]));
   r.signed_volume_m3 = static_cast<double>(signed6 / 6);
 
-  topo.vertices = mesh.vertices;
-  if (!topo.triangles.empty()) {
-    vtkSmartPointer<vtkPolyData> poly = to_polydata(topo);
+  vtkSmartPointer<vtkPolyData> poly;
+  if (!topo.empty()) {
+    poly = to_polydata(mesh.vertices, topo);
     r.boundary_edges = count_feature_edges(poly, true);
     r.non_manifold_edges = count_feature_edges(poly, false);
     // vtkFeatureEdges and the edge bookkeeping above define both counts identically.
@@ -229,9 +230,9 @@ MeshReport inspect_mesh(const TriangleMesh& mesh, const std::string& source) {
   r.consistently_oriented = r.inconsistent_edges == 0;
   if (r.closed && r.consistently_oriented) r.outward = r.signed_volume_m3 > 0;
 
-  if (!good.triangles.empty()) {
-    good.vertices = mesh.vertices;
-    vtkSmartPointer<vtkPolyData> poly = to_polydata(good);
+  if (!good.empty()) {
+    // Usually nothing is degenerate and the topology's data set serves as it is.
+    if (good.size() != topo.size()) poly = to_polydata(mesh.vertices, good);
     const QualityStats min_angle =
         mesh_quality(poly, [](vtkMeshQuality* q) { q->SetTriangleQualityMeasureToMinAngle(); });
     const QualityStats max_angle =

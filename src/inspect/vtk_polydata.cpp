@@ -8,15 +8,20 @@
 namespace thaw::inspect {
 
 vtkSmartPointer<vtkPolyData> to_polydata(const TriangleMesh& mesh) {
+  return to_polydata(mesh.vertices, mesh.triangles);
+}
+
+vtkSmartPointer<vtkPolyData> to_polydata(const std::vector<std::array<double, 3>>& vertices,
+                                         const std::vector<std::array<std::int64_t, 3>>& triangles) {
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.vertices.size()));
-  for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
-    points->SetPoint(static_cast<vtkIdType>(i), mesh.vertices[i].data());
+  points->SetNumberOfPoints(static_cast<vtkIdType>(vertices.size()));
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    points->SetPoint(static_cast<vtkIdType>(i), vertices[i].data());
   vtkNew<vtkCellArray> polys;
-  polys->AllocateExact(static_cast<vtkIdType>(mesh.triangles.size()),
-                       static_cast<vtkIdType>(3 * mesh.triangles.size()));
-  for (const auto& t : mesh.triangles) {
+  polys->AllocateExact(static_cast<vtkIdType>(triangles.size()),
+                       static_cast<vtkIdType>(3 * triangles.size()));
+  for (const auto& t : triangles) {
     const vtkIdType ids[3] = {static_cast<vtkIdType>(t[0]), static_cast<vtkIdType>(t[1]),
                               static_cast<vtkIdType>(t[2])};
     polys->InsertNextCell(3, ids);

@@ -11,4 +11,8 @@ namespace thaw::inspect {
 /// A vtkPolyData with all vertices and the triangles of `mesh` (indices must be in range).
 vtkSmartPointer<vtkPolyData> to_polydata(const TriangleMesh& mesh);
 
+/// The same from the parts: `vertices` [m], `triangles` 0-based (a subset of a mesh's faces).
+vtkSmartPointer<vtkPolyData> to_polydata(const std::vector<std::array<double, 3>>& vertices,
+                                         const std::vector<std::array<std::int64_t, 3>>& triangles);
+
 }  // namespace thaw::inspect
