@@ -1,10 +1,12 @@
 #include "src/common/atomic_file.h"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cstring>
 #include <system_error>
+#include <vector>
 
 #include "src/common/error.h"
 
@@ -16,6 +18,25 @@ fs::path temporary_sibling(const fs::path& final_path) {
   fs::path p = final_path;
   p += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
   return p;
+}
+
+int remove_stale_temporaries(const fs::path& dir) {
+  std::error_code ec;
+  std::vector<fs::path> stale;
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec)) {
+    // temporary_sibling() names: <final>.tmp-<pid>-<counter>
+    const std::string name = it->path().filename().string();
+    const auto pos = name.rfind(".tmp-");
+    if (pos == std::string::npos) continue;
+    const long pid = std::strtol(name.c_str() + pos + 5, nullptr, 10);
+    if (pid <= 0 || (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)) {
+      stale.push_back(it->path());
+      if (it->is_directory(ec)) it.disable_recursion_pending();
+    }
+  }
+  for (const auto& p : stale) fs::remove_all(p, ec);
+  return static_cast<int>(stale.size());
 }
 
 void ensure_directory(const fs::path& dir) {

@@ -15,6 +15,11 @@ std::filesystem::path temporary_sibling(const std::filesystem::path& final_path)
 /// Writes `contents` to `path` atomically; throws UserError naming the path on failure.
 void write_file_atomic(const std::filesystem::path& path, std::string_view contents);
 
+/// Removes, anywhere under `dir`, temporary files and folders left by thaw processes that no
+/// longer exist (a run killed while writing); those of live processes are kept. Returns how many
+/// were removed.
+int remove_stale_temporaries(const std::filesystem::path& dir);
+
 /// Creates `dir` (and parents) or throws UserError naming it if that is impossible or it is a file.
 void ensure_directory(const std::filesystem::path& dir);
 

@@ -116,6 +116,8 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
   RunReport report;
   const fs::path out = opt.out_dir;
   ensure_directory(out);
+  // A run killed while writing leaves its temporary file behind; the finished outputs are intact.
+  remove_stale_temporaries(out);
   const fs::path simdir = out / "sim", mesh_dir = simdir / "mesh", frames_dir = out / "frames";
   RunManifest manifest(out / "run_manifest.json");
   if (opt.force) manifest.clear();

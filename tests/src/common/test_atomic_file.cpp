@@ -85,3 +85,23 @@ TEST(StagingDirectory, TargetThatIsAFileIsAUserError) {
 
 }  // namespace
 }  // namespace thaw
+
+namespace thaw {
+namespace {
+TEST(AtomicFile, StaleTemporariesOfDeadProcessesAreRemoved) {
+  const std::filesystem::path dir = scratch("stale");
+  std::filesystem::create_directories(dir / "sub" / "x.tmp-999999999-1");  // no such process
+  std::ofstream(dir / "sub" / "x.tmp-999999999-1" / "inner") << "partial";
+  std::ofstream(dir / "m.json.tmp-999999999-0") << "partial";
+  const std::string live = "n.json.tmp-" + std::to_string(::getpid()) + "-0";
+  std::ofstream(dir / live) << "being written";
+  std::ofstream(dir / "keep.json") << "done";
+  EXPECT_EQ(remove_stale_temporaries(dir), 2);
+  EXPECT_TRUE(std::filesystem::exists(dir / live));
+  EXPECT_TRUE(std::filesystem::exists(dir / "keep.json"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "m.json.tmp-999999999-0"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "sub" / "x.tmp-999999999-1"));
+  std::filesystem::remove_all(dir);
+}
+}  // namespace
+}  // namespace thaw
