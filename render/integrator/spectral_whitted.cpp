@@ -66,7 +66,7 @@ class SpectralTracer {
     Hit hit;
     const bool absorbs = m_absorbs[medium] != 0;
     if (!m_scene.intersect(ray, hit)) {
-      SampledSpectrum bg = m_background.sample(w);
+      SampledSpectrum bg = spectra(w).background;
       // Escaping inside an absorbing medium: an infinite path keeps nothing where alpha > 0
       // (a huge finite distance avoids 0 * inf where alpha = 0).
       if (absorbs) bg *= m_scene.media()[medium].optics.transmittance(1e30, w);
@@ -88,7 +88,7 @@ class SpectralTracer {
       const Material& mat = m_scene.materials()[obj.material];
       switch (mat.kind) {
         case Material::Kind::emissive:
-          l = m_emission[obj.material].sample(w);
+          l = spectra(w).emission[obj.material];
           break;
         case Material::Kind::metal:
           l = metal(ray, si, mat, depth, b, medium, w, lane);
@@ -103,6 +103,12 @@ class SpectralTracer {
   }
 
   std::uint64_t rays = 0, mismatches = 0;
+
+  /// Set when some dispersive refraction was split into lanes (render_spectral then traces the
+  /// camera sample's remaining wavelength packets). Before its first dispersive refraction a ray
+  /// tree is the same for every wavelength, so this depends on the camera ray alone, never on
+  /// the sampled wavelengths: refining where it is set keeps the estimator unbiased.
+  bool split_seen = false;
 
  private:
   SampledSpectrum dielectric(const Ray& ray, const SurfaceInteraction& si, const SceneObject& obj, int depth,
@@ -127,12 +133,18 @@ class SpectralTracer {
       eta_hero = static_cast<float>(m_ior_constant[to] / m_ior_constant[from]);
       r = SampledSpectrum(fresnel_dielectric(cos_i, eta_hero));
     } else {
-      n_from = m_scene.media()[from].optics.n(w);
-      n_to = m_scene.media()[to].optics.n(w);
-      for (int i = 0; i < kSpectrumSamples; ++i) r[i] = fresnel_dielectric(cos_i, n_to[i] / n_from[i]);
-      // A ray of one wavelength refracts with that wavelength's index.
+      const PacketSpectra& ps = spectra(w);
+      n_from = ps.n[from];
+      n_to = ps.n[to];
+      // A ray of one wavelength refracts with that wavelength's index; its tree's other elements
+      // are discarded by the caller, so their reflectances need not be computed.
       const int k = lane >= 0 ? lane : 0;
       eta_hero = n_to[k] / n_from[k];
+      if (lane >= 0) {
+        r[lane] = fresnel_dielectric(cos_i, eta_hero);
+      } else {
+        for (int i = 0; i < kSpectrumSamples; ++i) r[i] = fresnel_dielectric(cos_i, n_to[i] / n_from[i]);
+      }
     }
     // Reflected branch: every carried wavelength, each with its own Fresnel reflectance.
     if (!r.is_black() && live_max(beta * r, w) >= m_min_weight) {
@@ -143,6 +155,7 @@ class SpectralTracer {
     }
     const SampledSpectrum t = SampledSpectrum(1.0f) - r;
     if (dispersive && lane < 0 && m_split && !w.secondary_terminated()) {
+      split_seen = true;
       // Split: each carried wavelength refracts its own way on its own ray (4 rays). Every
       // wavelength's radiance is then exact, so the film estimator keeps all four: no colour
       // noise beyond the wavelength sampling itself.
@@ -202,7 +215,8 @@ class SpectralTracer {
     const Vec3 ng = face_forward(si.ng, -d);
     const Vec3 ns = face_forward(si.ns, ng);
     const SampledSpectrum albedo = RgbReflectanceSpectrum(to_srgb(mat.texture.eval(si.p))).sample(w);
-    SampledSpectrum result = albedo * m_ambient.sample(w) * mat.ka;
+    const PacketSpectra& ps = spectra(w);
+    SampledSpectrum result = albedo * ps.ambient * mat.ka;
     const auto& lights = m_scene.lights();
     for (std::size_t li_index = 0; li_index < lights.size(); ++li_index) {
       const PointLight& light = lights[li_index];
@@ -217,7 +231,7 @@ class SpectralTracer {
       const Ray shadow{origin, light.position - origin, 1.0f - 1e-4f};
       ++rays;
       if (m_scene.occluded(shadow)) continue;
-      SampledSpectrum li = m_lights[li_index].sample(w);
+      SampledSpectrum li = ps.lights[li_index];
       if (light.inverse_square) li *= 1.0f / dist2;
       result += albedo * li * (mat.kd * cos_l);
       if (mat.ks > 0.0f) {
@@ -251,6 +265,36 @@ class SpectralTracer {
   bool m_split;
   RgbIlluminantSpectrum m_background, m_ambient;
   std::vector<RgbIlluminantSpectrum> m_lights, m_emission;
+
+  /// Everything that depends on the wavelengths alone, evaluated once per wavelength packet
+  /// (every ray of a camera sample's tree carries the same wavelengths; only their pdfs change
+  /// after termination) instead of at every hit: the Sellmeier sums and the illuminant uplifts
+  /// were a fifth of a dispersive render's time.
+  struct PacketSpectra {
+    SampledSpectrum lambda_nm{-1.0f};
+    SampledSpectrum background, ambient;
+    std::vector<SampledSpectrum> lights, emission, n;
+  };
+  PacketSpectra m_packet;
+
+  const PacketSpectra& spectra(const SampledWavelengths& w) {
+    const SampledSpectrum& l = w.lambdas_nm();
+    bool same = true;
+    for (int i = 0; i < kSpectrumSamples; ++i) same = same && l[i] == m_packet.lambda_nm[i];
+    if (same) return m_packet;
+    m_packet.lambda_nm = l;
+    m_packet.background = m_background.sample(w);
+    m_packet.ambient = m_ambient.sample(w);
+    m_packet.lights.resize(m_lights.size());
+    for (std::size_t i = 0; i < m_lights.size(); ++i) m_packet.lights[i] = m_lights[i].sample(w);
+    m_packet.emission.resize(m_emission.size());
+    for (std::size_t i = 0; i < m_emission.size(); ++i) m_packet.emission[i] = m_emission[i].sample(w);
+    m_packet.n.resize(m_scene.media().size());
+    for (std::size_t i = 0; i < m_packet.n.size(); ++i)
+      m_packet.n[i] = m_dispersive[i] ? m_scene.media()[i].optics.n(w)
+                                       : SampledSpectrum(static_cast<float>(m_ior_constant[i]));
+    return m_packet;
+  }
   std::vector<char> m_dispersive, m_absorbs;
   std::vector<double> m_ior_constant;
 };
@@ -298,9 +342,18 @@ RenderResult render_spectral(const Scene& scene, const RenderOptions& options, c
       white.x += c.x / kCells, white.y += c.y / kCells, white.z += c.z / kCells;
     }
   }
-  std::uint64_t rays = 0, mismatches = 0;
+  // Wavelength packets of kSpectrumSamples per camera sample where dispersion splits the rays.
+  const int packets = st.dispersion == ImageSettings::Dispersion::split
+                          ? std::max(1, st.dispersion_wavelengths / kSpectrumSamples)
+                          : 1;
+  // Shared wavelength pattern: one sub-stratum and one offset for the whole image, from the seed.
+  const bool pattern_shared = st.wavelength_pattern == ImageSettings::WavelengthPattern::shared;
+  Pcg32 pattern_rng(0x7468617770617474ULL, options.seed);  // stream "thawpatt"
+  const int shared_first = int(pattern_rng.next_u32() % std::uint32_t(packets));
+  const double shared_jitter = pattern_rng.next_float();
+  std::uint64_t rays = 0, mismatches = 0, refined = 0;
   std::atomic<std::int64_t> tiles_done{0};
-#pragma omp parallel num_threads(threads) reduction(+ : rays, mismatches)
+#pragma omp parallel num_threads(threads) reduction(+ : rays, mismatches, refined)
   {
     SpectralTracer tracer(scene);
     std::vector<int> perm(static_cast<std::size_t>(spp)), lambda_perm(static_cast<std::size_t>(spp));
@@ -328,18 +381,39 @@ RenderResult render_spectral(const Scene& scene, const RenderOptions& options, c
               sx = (float(s) + rng.next_float()) / float(spp);
               sy = (float(perm[static_cast<std::size_t>(s)]) + rng.next_float()) / float(spp);
             }
-            const double u = (double(lambda_perm[static_cast<std::size_t>(s)]) + rng.next_float()) / double(spp);
-            const SampledWavelengths wl = SampledWavelengths::sample(std::min(u, 1.0 - 1e-12));
-            const SampledSpectrum l = tracer.trace(scene.camera().generate(float(x) + sx, float(y) + sy), 1,
-                                                   SampledSpectrum(1.0f), scene.camera_medium(), wl);
-            // Box filter: the mean of the samples' XYZ. Negative sRGB (out-of-gamut spectral
-            // colours) is kept and clamped at output, so the mean stays unbiased.
-            const Xyz c = spectrum_to_xyz(l, wl);
-            sum.x += c.x, sum.y += c.y, sum.z += c.z;
-            if (ratio) {
-              const Xyz d = spectrum_to_xyz(illuminant_d65(wl), wl);
-              white_sum.x += d.x, white_sum.y += d.y, white_sum.z += d.z;
+            // Wavelength packets: the first always, all of them when the first met a split
+            // dispersive refraction. Packet k takes sub-stratum (first + k) mod packets of the
+            // sample's hero stratum, at offset `jitter` in it. Per pixel, `first` and `jitter` are
+            // random for each sample; shared, they are the same for every pixel (drawn once from
+            // the seed): each is uniform, so an unrefined sample's hero is uniform in its stratum
+            // and a refined sample's heroes are stratified, in both patterns.
+            const int first = pattern_shared ? shared_first : packets > 1 ? int(rng.next_u32() % std::uint32_t(packets)) : 0;
+            const Ray camera_ray = scene.camera().generate(float(x) + sx, float(y) + sy);
+            Xyz sample_sum, sample_white;
+            int traced = 0;
+            for (int k = 0; k < packets; ++k) {
+              const double jitter = pattern_shared ? shared_jitter : double(rng.next_float());
+              const double sub = (double((first + k) % packets) + jitter) / double(packets);
+              const double u = (double(lambda_perm[static_cast<std::size_t>(s)]) + sub) / double(spp);
+              const SampledWavelengths wl = SampledWavelengths::sample(std::min(u, 1.0 - 1e-12));
+              tracer.split_seen = false;
+              const SampledSpectrum l =
+                  tracer.trace(camera_ray, 1, SampledSpectrum(1.0f), scene.camera_medium(), wl);
+              // Box filter: the mean of the samples' XYZ. Negative sRGB (out-of-gamut spectral
+              // colours) is kept and clamped at output, so the mean stays unbiased.
+              const Xyz c = spectrum_to_xyz(l, wl);
+              sample_sum.x += c.x, sample_sum.y += c.y, sample_sum.z += c.z;
+              if (ratio) {
+                const Xyz d = spectrum_to_xyz(illuminant_d65(wl), wl);
+                sample_white.x += d.x, sample_white.y += d.y, sample_white.z += d.z;
+              }
+              ++traced;
+              if (k == 0 && !tracer.split_seen) break;
             }
+            if (traced > 1) ++refined;
+            sum.x += sample_sum.x / traced, sum.y += sample_sum.y / traced, sum.z += sample_sum.z / traced;
+            white_sum.x += sample_white.x / traced, white_sum.y += sample_white.y / traced;
+            white_sum.z += sample_white.z / traced;
           }
           Xyz mean{sum.x / spp, sum.y / spp, sum.z / spp};
           if (ratio) {
@@ -365,6 +439,7 @@ RenderResult render_spectral(const Scene& scene, const RenderOptions& options, c
   }
   result.stats.rays = rays;
   result.stats.medium_mismatches = mismatches;
+  result.stats.refined_samples = refined;
   result.stats.threads = threads;
   result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.stats.rays_per_second = result.stats.seconds > 0 ? double(rays) / result.stats.seconds : 0.0;

@@ -31,6 +31,8 @@ struct RenderStats {
   std::uint64_t rays = 0;
   /// rays that reached an interface from a side whose medium differs from the one they carry
   std::uint64_t medium_mismatches = 0;
+  /// spectral mode: camera samples traced with all [image] dispersion_wavelengths (fringes)
+  std::uint64_t refined_samples = 0;
   /// wall time of the tracing [s]
   double seconds = 0;
   double rays_per_second = 0;

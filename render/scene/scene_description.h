@@ -40,6 +40,17 @@ struct ImageSettings {
   /// wavelength only (terminate_secondary(), one ray, more colour noise)
   enum class Dispersion { split, hero };
   Dispersion dispersion = Dispersion::split;
+  /// split mode: wavelengths traced per camera sample that meets a dispersive refraction (a
+  /// multiple of 4, the wavelengths one packet carries: the sample is traced once per packet);
+  /// samples that meet none trace one packet. The colour error of dispersed light falls with it.
+  int dispersion_wavelengths = 8;
+  /// which wavelengths the camera samples carry: shared = the same stratified set in every pixel
+  /// (one random offset per image, from the seed: a spectral quadrature whose error is smooth
+  /// banding across the image and stable from frame to frame, as POV-Ray's dispersion_samples);
+  /// per_pixel = drawn independently per pixel (the error is colour speckle instead). Unbiased
+  /// over the offset either way.
+  enum class WavelengthPattern { shared, per_pixel };
+  WavelengthPattern wavelength_pattern = WavelengthPattern::shared;
   /// spectral film: ratio = each pixel's XYZ is divided, channel by channel, by the same
   /// samples' estimate of white (D65) and multiplied by white's exact XYZ (a self-normalised
   /// estimator: exact for spectra proportional to D65, i.e. grey surfaces under white light, so

@@ -5,6 +5,7 @@
 #include <set>
 #include <sstream>
 
+#include "render/spectrum/sampled_spectrum.h"
 #include "src/common/error.h"
 #include "src/common/toml_table.h"
 
@@ -136,6 +137,14 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
     if (dispersion == "split") s.image.dispersion = ImageSettings::Dispersion::split;
     else if (dispersion == "hero") s.image.dispersion = ImageSettings::Dispersion::hero;
     else img->fail("dispersion", "must be \"split\" or \"hero\" (got \"" + dispersion + "\")");
+    s.image.dispersion_wavelengths = int_in(*img, "dispersion_wavelengths", s.image.dispersion_wavelengths, 4, 1024);
+    if (s.image.dispersion_wavelengths % kSpectrumSamples != 0)
+      img->fail("dispersion_wavelengths", "must be a multiple of " + std::to_string(kSpectrumSamples) +
+                                              " (got " + std::to_string(s.image.dispersion_wavelengths) + ")");
+    const std::string pattern = img->get_string("wavelength_pattern", "shared");
+    if (pattern == "shared") s.image.wavelength_pattern = ImageSettings::WavelengthPattern::shared;
+    else if (pattern == "per_pixel") s.image.wavelength_pattern = ImageSettings::WavelengthPattern::per_pixel;
+    else img->fail("wavelength_pattern", "must be \"shared\" or \"per_pixel\" (got \"" + pattern + "\")");
     const std::string film = img->get_string("spectral_film", "ratio");
     if (film == "ratio") s.image.spectral_film = ImageSettings::SpectralFilm::ratio;
     else if (film == "unbiased") s.image.spectral_film = ImageSettings::SpectralFilm::unbiased;

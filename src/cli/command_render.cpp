@@ -20,8 +20,9 @@ namespace {
 
 struct RenderArgs {
   std::string scene, output;
-  std::optional<int> width, height, spp, max_depth, threads;
+  std::optional<int> width, height, spp, max_depth, threads, dispersion_wavelengths;
   std::optional<double> exposure;
+  std::optional<std::string> wavelength_pattern;
   bool quiet = false;
 };
 
@@ -41,6 +42,18 @@ void run_render(const RenderArgs& a) {
   if (static_cast<long long>(desc.image.width) * desc.image.height > render::kMaxImagePixels)
     throw UserError("", "--width/--height", "image has too many pixels");
   if (a.spp) desc.image.samples_per_pixel = checked("--spp", *a.spp, 1, 65536);
+  if (a.dispersion_wavelengths) {
+    desc.image.dispersion_wavelengths = checked("--dispersion-wavelengths", *a.dispersion_wavelengths, 4, 1024);
+    if (*a.dispersion_wavelengths % 4 != 0)
+      throw UserError("", "--dispersion-wavelengths",
+                      "must be a multiple of 4 (got " + std::to_string(*a.dispersion_wavelengths) + ")");
+  }
+  if (a.wavelength_pattern) {
+    if (*a.wavelength_pattern == "shared") desc.image.wavelength_pattern = render::ImageSettings::WavelengthPattern::shared;
+    else if (*a.wavelength_pattern == "per_pixel")
+      desc.image.wavelength_pattern = render::ImageSettings::WavelengthPattern::per_pixel;
+    else throw UserError("", "--wavelength-pattern", "must be shared or per_pixel (got '" + *a.wavelength_pattern + "')");
+  }
   if (a.max_depth) desc.image.max_depth = checked("--max-depth", *a.max_depth, 1, 64);
   if (a.exposure) desc.image.exposure = *a.exposure;
   render::RenderOptions options;
@@ -67,6 +80,10 @@ void run_render(const RenderArgs& a) {
     std::printf("  rays traced: %llu in %.3f s on %d threads (%.2f Mrays/s); total time %.3f s\n",
                 static_cast<unsigned long long>(st.rays), st.seconds, st.threads, st.rays_per_second * 1e-6, total);
     std::printf("  medium mismatches: %llu\n", static_cast<unsigned long long>(st.medium_mismatches));
+    if (scene.spectral() && desc.image.dispersion == render::ImageSettings::Dispersion::split &&
+        desc.image.dispersion_wavelengths > 4)
+      std::printf("  dispersion: %llu camera samples traced at %d wavelengths\n",
+                  static_cast<unsigned long long>(st.refined_samples), desc.image.dispersion_wavelengths);
   }
 }
 
@@ -82,6 +99,12 @@ void register_render(CLI::App& app) {
   cmd->add_option("--width", args->width, "image width [pixels] (overrides [image] width)");
   cmd->add_option("--height", args->height, "image height [pixels] (overrides [image] height)");
   cmd->add_option("--spp", args->spp, "samples per pixel, stratified (overrides [image] samples_per_pixel)");
+  cmd->add_option("--dispersion-wavelengths", args->dispersion_wavelengths,
+                  "wavelengths per camera sample at dispersion fringes, a multiple of 4 (overrides [image] "
+                  "dispersion_wavelengths)");
+  cmd->add_option("--wavelength-pattern", args->wavelength_pattern,
+                  "shared (the same wavelengths in every pixel: smooth fringes) or per_pixel (overrides "
+                  "[image] wavelength_pattern)");
   cmd->add_option("--max-depth", args->max_depth, "levels of the ray tree, primary = 1 (overrides [image] max_depth)");
   cmd->add_option("--threads", args->threads, "render threads (default: all cores)");
   cmd->add_option("--exposure", args->exposure, "PNG exposure [stops] (overrides [image] exposure)");
