@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include "render/material/fresnel.h"
@@ -38,13 +39,84 @@ SampledSpectrum to_caller_wavelengths(const SampledSpectrum& l, const SampledWav
   return out;
 }
 
+/// int_a^b D65(l) cmf(l) dl (D65 with unit luminance, as illuminant_d65), from prefix sums on a
+/// 0.25 nm grid (midpoint rule on functions piecewise linear at 5 nm: error < 1e-7 relative).
+Xyz d65_xyz_integral(double a_nm, double b_nm) {
+  constexpr double kStep = 0.25;
+  constexpr int kCells = static_cast<int>((kLambdaMaxNm - kLambdaMinNm) / kStep);
+  static const std::vector<Xyz> prefix = [] {
+    std::vector<Xyz> p(kCells + 1);
+    for (int i = 0; i < kCells; ++i) {
+      const double l = kLambdaMinNm + (i + 0.5) * kStep;
+      const Xyz bar = cie_xyz_bar(l);
+      const double e = illuminant_d65(l) * kStep;
+      p[i + 1] = Xyz{p[i].x + e * bar.x, p[i].y + e * bar.y, p[i].z + e * bar.z};
+    }
+    return p;
+  }();
+  auto at = [&](double l) {
+    const double x = std::clamp((l - kLambdaMinNm) / kStep, 0.0, double(kCells));
+    const int i = std::min(static_cast<int>(x), kCells - 1);
+    const double t = x - i;
+    return Xyz{prefix[i].x + t * (prefix[i + 1].x - prefix[i].x), prefix[i].y + t * (prefix[i + 1].y - prefix[i].y),
+               prefix[i].z + t * (prefix[i + 1].z - prefix[i].z)};
+  };
+  const Xyz hi = at(b_nm), lo = at(a_nm);
+  return {hi.x - lo.x, hi.y - lo.y, hi.z - lo.z};
+}
+
+/// The spectral shape a segment of adaptive dispersion is expected to have: D65 times the Smits
+/// uplift of the colour its light ends on (normalised to a maximum of 1; white if black), so
+/// a matte surface under white light seen through the glass is integrated exactly.
+class ReferenceSpectrum {
+ public:
+  explicit ReferenceSpectrum(const Rgb& c) : m_shape(normalised(c)) {}
+  /// shape at l (the factor multiplying D65)
+  double operator()(double l) const { return m_shape(l); }
+  /// int_a^b D65 shape cmf dl: the shape is constant on Smits' 10 nm bins, so exact from the
+  /// D65 prefix sums.
+  Xyz d65_xyz_integral(double a, double b) const {
+    Xyz out;
+    for (int k = 0; k < smits::kBins; ++k) {
+      const double lo = std::max(a, smits::kBinStartNm + k * smits::kBinWidthNm);
+      const double hi = std::min(b, smits::kBinStartNm + (k + 1) * smits::kBinWidthNm);
+      if (!(hi > lo)) continue;
+      const double v = m_shape(0.5 * (lo + hi));
+      const Xyz part = thaw::render::d65_xyz_integral(lo, hi);
+      out.x += v * part.x, out.y += v * part.y, out.z += v * part.z;
+    }
+    return out;
+  }
+  /// Middle of the 10 nm bin within [a, b] where D65 x shape x y-bar is largest.
+  double brightest_nm(double a, double b) const {
+    double best = 0.5 * (a + b), best_value = -1;
+    for (int k = 0; k < smits::kBins; ++k) {
+      const double lo = std::max(a, smits::kBinStartNm + k * smits::kBinWidthNm);
+      const double hi = std::min(b, smits::kBinStartNm + (k + 1) * smits::kBinWidthNm);
+      if (!(hi > lo)) continue;
+      const double l = 0.5 * (lo + hi);
+      const double v = m_shape(l) * illuminant_d65(l) * (cie_xyz_bar(l).y + 1e-3);
+      if (v > best_value) best_value = v, best = l;
+    }
+    return best;
+  }
+
+ private:
+  static LinearSrgb normalised(const Rgb& c) {
+    const double m = std::max({double(c.r), double(c.g), double(c.b)});
+    if (!(m > 0) || !std::isfinite(m)) return {1, 1, 1};
+    return {c.r / m, c.g / m, c.b / m};
+  }
+  RgbReflectanceSpectrum m_shape;
+};
+
 class SpectralTracer {
  public:
   explicit SpectralTracer(const Scene& scene)
       : m_scene(scene),
         m_max_depth(scene.settings().max_depth),
         m_min_weight(static_cast<float>(scene.settings().min_weight)),
-        m_split(scene.settings().dispersion == ImageSettings::Dispersion::split),
+        m_split(scene.settings().dispersion != ImageSettings::Dispersion::hero),
         m_background(to_srgb(scene.background())),
         m_ambient(to_srgb(scene.ambient())) {
     for (const auto& l : scene.lights()) m_lights.emplace_back(to_srgb(l.radiance));
@@ -110,7 +182,243 @@ class SpectralTracer {
   /// the sampled wavelengths: refining where it is set keeps the estimator unbiased.
   bool split_seen = false;
 
+  /// Adaptive spectral integration of the light transmitted at split dispersive refractions
+  /// (dispersion = "adaptive"; see adaptive_transmission). Its XYZ goes to `side_xyz`, not into
+  /// the returned spectrum; render_spectral adds it to the film outside the ratio normalisation.
+  bool adaptive = false;
+  double resolution_nm = 4.0;
+  int probe_count = 8;
+  Xyz side_xyz;
+
  private:
+  struct SpectralNode {
+    double lambda_nm;
+    std::uint64_t signature;
+    double f;  // transmitted radiance t(l) L(l) at this wavelength; valid where traced
+    bool traced;
+    Rgb end_colour;  // colour the signature's chain ends on (reference spectrum of its segment)
+  };
+  std::vector<SpectralNode> m_nodes;
+
+  double index_at(std::uint32_t medium, double lambda_nm) const {
+    return m_dispersive[medium] ? m_scene.media()[medium].optics.n_at(lambda_nm) : m_ior_constant[medium];
+  }
+
+  /// Snell's direction with the shading normal, falling back to the geometric one (as the lanes
+  /// do); false on total internal reflection.
+  static bool refraction_direction(const Vec3& d, const Vec3& ns, const Vec3& ng, float eta, Vec3& dir) {
+    if (refract(d, ns, eta, dir) && dot(dir, ng) < 0.0f) return true;
+    return refract(d, ng, eta, dir);
+  }
+
+  static bool is_grey(const SampledSpectrum& s) {
+    for (int i = 1; i < kSpectrumSamples; ++i)
+      if (s[i] != s[0]) return false;
+    return true;
+  }
+
+  static std::uint64_t mix(std::uint64_t h, std::uint64_t v) {
+    // FNV-1a over 64-bit words: order-sensitive, cheap; collisions only merge segments.
+    return (h ^ v) * 1099511628211ULL;
+  }
+  static std::uint64_t bits(float v) {
+    std::uint32_t u;
+    std::memcpy(&u, &v, sizeof u);
+    return u;
+  }
+
+  /// What the light of one wavelength refracted at a dispersive interface (incident direction d,
+  /// normals facing the incident side) ends on, along its main chain: refraction through every
+  /// further dielectric (reflection where that one is total), mirror reflection off metals, up to
+  /// the first diffuse or emissive surface; hashed with the objects met, that surface's texture
+  /// colour and which lights it sees. Two wavelengths with the same signature see the same
+  /// colours through the same chain, so the transmitted radiance is a smooth function of the
+  /// wavelength between them; where signatures differ the spectrum has a jump (a fringe).
+  std::uint64_t signature(const Vec3& d, const SurfaceInteraction& at, const Vec3& ns, const Vec3& ng,
+                          std::uint32_t from, std::uint32_t to, int depth, double lambda_nm, Rgb& end_colour) {
+    constexpr std::uint64_t kTotalReflection = 0x9e3779b97f4a7c15ULL, kEscaped = 0x632be59bd9b4e019ULL,
+                            kCut = 0x85ebca77c2b2ae63ULL;
+    end_colour = Rgb(1.0f, 1.0f, 1.0f);
+    Vec3 dir;
+    if (!refraction_direction(d, ns, ng, static_cast<float>(index_at(to, lambda_nm) / index_at(from, lambda_nm)),
+                              dir))
+      return kTotalReflection;
+    Ray ray{offset_ray_origin(at.p, at.p_error, ng, dir), dir};
+    std::uint64_t h = 1469598103934665603ULL;
+    for (int level = depth + 1; level <= m_max_depth; ++level) {
+      ++rays;
+      Hit hit;
+      if (!m_scene.intersect(ray, hit)) {
+        end_colour = m_scene.background();
+        return mix(h, kEscaped);
+      }
+      const SurfaceInteraction si = m_scene.interaction(ray, hit);
+      const SceneObject& obj = m_scene.objects()[si.object];
+      h = mix(h, si.object);
+      const Vec3& rd = ray.direction;
+      if (obj.dielectric) {
+        const bool entering = dot(rd, si.ng) < 0.0f;
+        const std::uint32_t f = entering ? obj.outside : obj.inside, t = entering ? obj.inside : obj.outside;
+        const Vec3 g = entering ? si.ng : -si.ng;
+        Vec3 s = entering ? si.ns : -si.ns;
+        if (dot(s, rd) >= 0.0f) s = g;
+        Vec3 next;
+        const float eta = static_cast<float>(index_at(t, lambda_nm) / index_at(f, lambda_nm));
+        // The chain follows the stronger branch: refraction unless Fresnel reflects most.
+        if (fresnel_dielectric(-dot(rd, s), eta) > 0.5f || !refraction_direction(rd, s, g, eta, next)) {
+          h = mix(h, kTotalReflection);
+          next = reflect(rd, s);
+          if (dot(next, g) <= 0.0f) next = reflect(rd, g);
+        }
+        ray = Ray{offset_ray_origin(si.p, si.p_error, g, next), next};
+        continue;
+      }
+      const Material& mat = m_scene.materials()[obj.material];
+      const Vec3 g = face_forward(si.ng, -rd);
+      const Vec3 s = face_forward(si.ns, g);
+      if (mat.kind == Material::Kind::metal) {
+        Vec3 next = reflect(rd, s);
+        if (dot(next, g) <= 0.0f) next = reflect(rd, g);
+        ray = Ray{offset_ray_origin(si.p, si.p_error, g, next), next};
+        continue;
+      }
+      const Rgb c = mat.texture.eval(si.p);
+      h = mix(mix(mix(h, bits(c.r)), bits(c.g)), bits(c.b));
+      end_colour = mat.kind == Material::Kind::emissive ? m_scene.materials()[obj.material].emission : c;
+      if (mat.kind == Material::Kind::emissive) return h;
+      const auto& lights = m_scene.lights();
+      for (std::size_t i = 0; i < lights.size(); ++i) {
+        const Vec3 to_light = lights[i].position - si.p;
+        const float dist2 = dot(to_light, to_light);
+        if (!(dist2 > 0.0f)) continue;
+        const Vec3 l = to_light / std::sqrt(dist2);
+        if (dot(l, g) <= 0.0f || dot(s, l) <= 0.0f) continue;
+        const Vec3 origin = offset_ray_origin(si.p, si.p_error, g, l);
+        ++rays;
+        const bool seen = !m_scene.occluded(Ray{origin, lights[i].position - origin, 1.0f - 1e-4f});
+        h = mix(h, (std::uint64_t{i} << 1) | (seen ? 1u : 0u));
+      }
+      return h;
+    }
+    return mix(h, kCut);
+  }
+
+  /// t(l) L(l): the light of wavelength `lambda_nm` refracted at the interface, with upstream
+  /// throughput `b`, traced as lane `lane` of the packet `w` (whose wavelength `lane` must be
+  /// lambda_nm: the packet's spectra stay cached) or, lane < 0, of a packet of that wavelength.
+  double transmitted_at(const Vec3& d, const SurfaceInteraction& si, const Vec3& ns, const Vec3& ng,
+                        float cos_i, std::uint32_t from, std::uint32_t to, int depth, float b, double lambda_nm,
+                        const SampledWavelengths& w, int lane) {
+    const float eta = static_cast<float>(index_at(to, lambda_nm) / index_at(from, lambda_nm));
+    const float t = 1.0f - fresnel_dielectric(cos_i, eta);
+    if (!(b * t >= m_min_weight)) return 0.0;
+    Vec3 dir;
+    if (!refraction_direction(d, ns, ng, eta, dir)) return 0.0;
+    const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
+    SampledSpectrum beta;
+    if (lane >= 0) {
+      beta[lane] = b * t;
+      return double(t) * double(trace(next, depth + 1, beta, to, w, lane)[lane]);
+    }
+    const SampledWavelengths single =
+        SampledWavelengths::from(SampledSpectrum(static_cast<float>(lambda_nm)), SampledSpectrum(1.0f));
+    beta[0] = b * t;
+    return double(t) * double(trace(next, depth + 1, beta, to, single, 0)[0]);
+  }
+
+  /// Adaptive spectral integration of the transmitted light (dispersion = "adaptive"), for a
+  /// split whose upstream throughput `b` is the same at every wavelength. The transmitted
+  /// radiance f(l) = t(l) L(l) is smooth in l except where the refracted light starts to see
+  /// something else (a checker edge, a silhouette, a shadow): the fringes. So:
+  /// 1. signatures (render/integrator: signature()) on a grid of probe_count + 1 wavelengths
+  ///    spanning 380-780 nm and at the packet's hero wavelength, whose f is traced (one lane);
+  /// 2. wherever neighbouring signatures differ, bisection (signatures only: a few rays each)
+  ///    locates each jump to within resolution_nm;
+  /// 3. the range falls into segments of one signature each; a segment without a traced
+  ///    wavelength gets one lane where its reference spectrum (below) is largest;
+  /// 4. each segment's XYZ is the exact integral of its reference spectrum E = D65 x (Smits
+  ///    uplift of the colour the signature ends on) against the CIE functions, times the ratio
+  ///    sum f(l_i) cmf(l_i) / sum E(l_i) cmf(l_i) of its traced wavelengths: exact where f is
+  ///    proportional to E (a matte surface under white light seen through the glass), a ratio
+  ///    estimate otherwise.
+  /// Colour error then comes from the jumps' positions (< resolution_nm / 2), from jumps that
+  /// come and go between two grid wavelengths, and from f's departure from E inside a segment;
+  /// not from which wavelengths were drawn: fringes without colour noise.
+  void adaptive_transmission(const Vec3& d, const SurfaceInteraction& si, const Vec3& ns, const Vec3& ng,
+                             float cos_i, std::uint32_t from, std::uint32_t to, int depth, float b,
+                             const SampledWavelengths& w) {
+    m_nodes.clear();
+    auto probe = [&](double l, bool traced, double f) {
+      Rgb colour;
+      const std::uint64_t sig = signature(d, si, ns, ng, from, to, depth, l, colour);
+      m_nodes.push_back({l, sig, f, traced, colour});
+    };
+    probe(w.lambda_nm(0), true, transmitted_at(d, si, ns, ng, cos_i, from, to, depth, b, w.lambda_nm(0), w, 0));
+    for (int g = 0; g <= probe_count; ++g)
+      probe(kLambdaMinNm + (kLambdaMaxNm - kLambdaMinNm) * g / probe_count, false, 0.0);
+    auto by_lambda = [](const SpectralNode& a, const SpectralNode& c) { return a.lambda_nm < c.lambda_nm; };
+    std::sort(m_nodes.begin(), m_nodes.end(), by_lambda);
+    // Bisection between neighbours whose signatures differ, both halves (several jumps may lie
+    // between two wavelengths); at most kMaxProbes signatures per split bound the cost where
+    // the refracted light crosses many edges (grazing views near a sphere's rim).
+    constexpr int kMaxProbes = 64;
+    int probes = 0;
+    const std::size_t initial = m_nodes.size();
+    auto bisect = [&](auto&& self, std::size_t ia, std::size_t ic) -> void {
+      const double la = m_nodes[ia].lambda_nm, lc = m_nodes[ic].lambda_nm;
+      if (lc - la <= resolution_nm || probes >= kMaxProbes) return;
+      ++probes;
+      probe(0.5 * (la + lc), false, 0.0);
+      const std::size_t im = m_nodes.size() - 1;
+      if (m_nodes[im].signature != m_nodes[ia].signature) self(self, ia, im);
+      if (m_nodes[im].signature != m_nodes[ic].signature) self(self, im, ic);
+    };
+    for (std::size_t i = 0; i + 1 < initial; ++i)
+      if (m_nodes[i].signature != m_nodes[i + 1].signature) bisect(bisect, i, i + 1);
+    if (m_nodes.size() > initial) std::sort(m_nodes.begin(), m_nodes.end(), by_lambda);
+    // Segments: runs of equal signature, bounded halfway between the last node of one run and
+    // the first of the next.
+    Xyz sum;
+    std::size_t begin = 0;
+    double lower = kLambdaMinNm;
+    while (begin < m_nodes.size()) {
+      std::size_t end = begin + 1;
+      while (end < m_nodes.size() && m_nodes[end].signature == m_nodes[begin].signature) ++end;
+      const double upper =
+          end < m_nodes.size() ? 0.5 * (m_nodes[end - 1].lambda_nm + m_nodes[end].lambda_nm) : kLambdaMaxNm;
+      const ReferenceSpectrum reference(m_nodes[begin].end_colour);
+      Xyz num, den;
+      double f_sum = 0, e_sum = 0;
+      auto add = [&](double l, double f) {
+        const Xyz bar = cie_xyz_bar(l);
+        const double e = illuminant_d65(l) * reference(l);
+        num.x += f * bar.x, num.y += f * bar.y, num.z += f * bar.z;
+        den.x += e * bar.x, den.y += e * bar.y, den.z += e * bar.z;
+        f_sum += f;
+        e_sum += e;
+      };
+      for (std::size_t i = begin; i < end; ++i)
+        if (m_nodes[i].traced) add(m_nodes[i].lambda_nm, m_nodes[i].f);
+      if (!(e_sum > 1e-6)) {
+        // No traced wavelength here, or only where the reference is dark: one lane where the
+        // reference is brightest (kept inside the run's probed span, so on its signature).
+        const double l = std::clamp(reference.brightest_nm(lower, upper), m_nodes[begin].lambda_nm,
+                                    m_nodes[end - 1].lambda_nm);
+        add(l, transmitted_at(d, si, ns, ng, cos_i, from, to, depth, b, l, w, -1));
+      }
+      const Xyz weight = reference.d65_xyz_integral(lower, upper);
+      const double ratio = e_sum > 0 ? f_sum / e_sum : 0.0;
+      sum.x += weight.x * (den.x > 1e-9 ? num.x / den.x : ratio);
+      sum.y += weight.y * (den.y > 1e-9 ? num.y / den.y : ratio);
+      sum.z += weight.z * (den.z > 1e-9 ? num.z / den.z : ratio);
+      lower = upper;
+      begin = end;
+    }
+    side_xyz.x += double(b) * sum.x;
+    side_xyz.y += double(b) * sum.y;
+    side_xyz.z += double(b) * sum.z;
+  }
+
   SampledSpectrum dielectric(const Ray& ray, const SurfaceInteraction& si, const SceneObject& obj, int depth,
                              const SampledSpectrum& beta, std::uint32_t medium, const SampledWavelengths& w,
                              int lane) {
@@ -156,6 +464,12 @@ class SpectralTracer {
     const SampledSpectrum t = SampledSpectrum(1.0f) - r;
     if (dispersive && lane < 0 && m_split && !w.secondary_terminated()) {
       split_seen = true;
+      if (adaptive && is_grey(beta)) {
+        // Upstream throughput independent of the wavelength: integrate the transmitted light
+        // over the whole spectrum here (its XYZ goes to side_xyz).
+        adaptive_transmission(d, si, ns, ng, cos_i, from, to, depth, beta[0], w);
+        return result;
+      }
       // Split: each carried wavelength refracts its own way on its own ray (4 rays). Every
       // wavelength's radiance is then exact, so the film estimator keeps all four: no colour
       // noise beyond the wavelength sampling itself.
@@ -356,6 +670,9 @@ RenderResult render_spectral(const Scene& scene, const RenderOptions& options, c
 #pragma omp parallel num_threads(threads) reduction(+ : rays, mismatches, refined)
   {
     SpectralTracer tracer(scene);
+    tracer.adaptive = st.dispersion == ImageSettings::Dispersion::adaptive;
+    tracer.resolution_nm = st.dispersion_resolution_nm;
+    tracer.probe_count = st.dispersion_wavelengths;
     std::vector<int> perm(static_cast<std::size_t>(spp)), lambda_perm(static_cast<std::size_t>(spp));
     auto shuffle = [](std::vector<int>& p, Pcg32& rng) {
       for (std::size_t i = 0; i < p.size(); ++i) p[i] = static_cast<int>(i);
@@ -371,7 +688,9 @@ RenderResult render_spectral(const Scene& scene, const RenderOptions& options, c
           Pcg32 rng(std::uint64_t(y) * std::uint64_t(w) + std::uint64_t(x), options.seed);
           if (!square && spp > 1) shuffle(perm, rng);
           shuffle(lambda_perm, rng);
-          Xyz sum, white_sum;
+          // side_sum: light integrated over the spectrum at adaptive dispersive refractions; it
+          // carries no wavelength-sampling noise, so it is added after the ratio normalisation.
+          Xyz sum, white_sum, side_sum;
           for (int s = 0; s < spp; ++s) {
             float sx = 0.5f, sy = 0.5f;  // one sample: the pixel centre (as RGB mode and POV-Ray)
             if (spp > 1 && square) {
@@ -389,7 +708,7 @@ RenderResult render_spectral(const Scene& scene, const RenderOptions& options, c
             // and a refined sample's heroes are stratified, in both patterns.
             const int first = pattern_shared ? shared_first : packets > 1 ? int(rng.next_u32() % std::uint32_t(packets)) : 0;
             const Ray camera_ray = scene.camera().generate(float(x) + sx, float(y) + sy);
-            Xyz sample_sum, sample_white;
+            Xyz sample_sum, sample_white, sample_side;
             int traced = 0;
             for (int k = 0; k < packets; ++k) {
               const double jitter = pattern_shared ? shared_jitter : double(rng.next_float());
@@ -397,12 +716,15 @@ RenderResult render_spectral(const Scene& scene, const RenderOptions& options, c
               const double u = (double(lambda_perm[static_cast<std::size_t>(s)]) + sub) / double(spp);
               const SampledWavelengths wl = SampledWavelengths::sample(std::min(u, 1.0 - 1e-12));
               tracer.split_seen = false;
+              tracer.side_xyz = Xyz{};
               const SampledSpectrum l =
                   tracer.trace(camera_ray, 1, SampledSpectrum(1.0f), scene.camera_medium(), wl);
               // Box filter: the mean of the samples' XYZ. Negative sRGB (out-of-gamut spectral
               // colours) is kept and clamped at output, so the mean stays unbiased.
               const Xyz c = spectrum_to_xyz(l, wl);
               sample_sum.x += c.x, sample_sum.y += c.y, sample_sum.z += c.z;
+              sample_side.x += tracer.side_xyz.x, sample_side.y += tracer.side_xyz.y;
+              sample_side.z += tracer.side_xyz.z;
               if (ratio) {
                 const Xyz d = spectrum_to_xyz(illuminant_d65(wl), wl);
                 sample_white.x += d.x, sample_white.y += d.y, sample_white.z += d.z;
@@ -414,6 +736,8 @@ RenderResult render_spectral(const Scene& scene, const RenderOptions& options, c
             sum.x += sample_sum.x / traced, sum.y += sample_sum.y / traced, sum.z += sample_sum.z / traced;
             white_sum.x += sample_white.x / traced, white_sum.y += sample_white.y / traced;
             white_sum.z += sample_white.z / traced;
+            side_sum.x += sample_side.x / traced, side_sum.y += sample_side.y / traced;
+            side_sum.z += sample_side.z / traced;
           }
           Xyz mean{sum.x / spp, sum.y / spp, sum.z / spp};
           if (ratio) {
@@ -421,6 +745,7 @@ RenderResult render_spectral(const Scene& scene, const RenderOptions& options, c
             mean = Xyz{sum.x / white_sum.x * white.x, sum.y / white_sum.y * white.y,
                        sum.z / white_sum.z * white.z};
           }
+          mean.x += side_sum.x / spp, mean.y += side_sum.y / spp, mean.z += side_sum.z / spp;
           const LinearSrgb c = xyz_to_linear_srgb(mean);
           result.image.at(x, y) = Rgb(float(c.r), float(c.g), float(c.b));
         }

@@ -38,8 +38,13 @@ struct ImageSettings {
   /// at a refraction into or out of a dispersive medium: split = one ray per carried wavelength
   /// (4 rays, every wavelength's radiance exact, low colour noise); hero = continue with the hero
   /// wavelength only (terminate_secondary(), one ray, more colour noise)
-  enum class Dispersion { split, hero };
-  Dispersion dispersion = Dispersion::split;
+  /// adaptive = split, and where the throughput up to the refraction is the same at every
+  /// wavelength, the transmitted light is integrated over the whole spectrum with its jumps
+  /// (fringes) located to within dispersion_resolution_nm: fringes without colour noise
+  enum class Dispersion { adaptive, split, hero };
+  Dispersion dispersion = Dispersion::adaptive;
+  /// adaptive mode: width [nm] to which the wavelength of a fringe's colour jump is located
+  double dispersion_resolution_nm = 4.0;
   /// split mode: wavelengths traced per camera sample that meets a dispersive refraction (a
   /// multiple of 4, the wavelengths one packet carries: the sample is traced once per packet);
   /// samples that meet none trace one packet. The colour error of dispersed light falls with it.

@@ -133,10 +133,15 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
     s.image.min_weight = img->require_non_negative("min_weight", img->get_double("min_weight", 1.0 / 255.0));
     s.image.exposure = img->get_double("exposure", 0.0);
     if (img->has("spectral")) s.image.spectral = parse_spectral(*img);
-    const std::string dispersion = img->get_string("dispersion", "split");
-    if (dispersion == "split") s.image.dispersion = ImageSettings::Dispersion::split;
+    const std::string dispersion = img->get_string("dispersion", "adaptive");
+    if (dispersion == "adaptive") s.image.dispersion = ImageSettings::Dispersion::adaptive;
+    else if (dispersion == "split") s.image.dispersion = ImageSettings::Dispersion::split;
     else if (dispersion == "hero") s.image.dispersion = ImageSettings::Dispersion::hero;
-    else img->fail("dispersion", "must be \"split\" or \"hero\" (got \"" + dispersion + "\")");
+    else img->fail("dispersion", "must be \"adaptive\", \"split\" or \"hero\" (got \"" + dispersion + "\")");
+    const double resolution = img->get_double("dispersion_resolution_nm", s.image.dispersion_resolution_nm);
+    if (!(resolution >= 0.05 && resolution <= 100.0))
+      img->fail("dispersion_resolution_nm", "must be between 0.05 and 100 nm (got " + std::to_string(resolution) + ")");
+    s.image.dispersion_resolution_nm = resolution;
     s.image.dispersion_wavelengths = int_in(*img, "dispersion_wavelengths", s.image.dispersion_wavelengths, 4, 1024);
     if (s.image.dispersion_wavelengths % kSpectrumSamples != 0)
       img->fail("dispersion_wavelengths", "must be a multiple of " + std::to_string(kSpectrumSamples) +

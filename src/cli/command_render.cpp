@@ -21,7 +21,8 @@ namespace {
 struct RenderArgs {
   std::string scene, output;
   std::optional<int> width, height, spp, max_depth, threads, dispersion_wavelengths;
-  std::optional<double> exposure;
+  std::optional<double> exposure, dispersion_resolution_nm;
+  std::optional<std::string> dispersion;
   std::optional<std::string> wavelength_pattern;
   bool quiet = false;
 };
@@ -47,6 +48,17 @@ void run_render(const RenderArgs& a) {
     if (*a.dispersion_wavelengths % 4 != 0)
       throw UserError("", "--dispersion-wavelengths",
                       "must be a multiple of 4 (got " + std::to_string(*a.dispersion_wavelengths) + ")");
+  }
+  if (a.dispersion) {
+    if (*a.dispersion == "adaptive") desc.image.dispersion = render::ImageSettings::Dispersion::adaptive;
+    else if (*a.dispersion == "split") desc.image.dispersion = render::ImageSettings::Dispersion::split;
+    else if (*a.dispersion == "hero") desc.image.dispersion = render::ImageSettings::Dispersion::hero;
+    else throw UserError("", "--dispersion", "must be adaptive, split or hero (got '" + *a.dispersion + "')");
+  }
+  if (a.dispersion_resolution_nm) {
+    if (!(*a.dispersion_resolution_nm >= 0.05 && *a.dispersion_resolution_nm <= 100.0))
+      throw UserError("", "--dispersion-resolution-nm", "must be between 0.05 and 100 nm");
+    desc.image.dispersion_resolution_nm = *a.dispersion_resolution_nm;
   }
   if (a.wavelength_pattern) {
     if (*a.wavelength_pattern == "shared") desc.image.wavelength_pattern = render::ImageSettings::WavelengthPattern::shared;
@@ -102,6 +114,12 @@ void register_render(CLI::App& app) {
   cmd->add_option("--dispersion-wavelengths", args->dispersion_wavelengths,
                   "wavelengths per camera sample at dispersion fringes, a multiple of 4 (overrides [image] "
                   "dispersion_wavelengths)");
+  cmd->add_option("--dispersion", args->dispersion,
+                  "adaptive, split or hero: how light is traced through dispersive refractions (overrides "
+                  "[image] dispersion)");
+  cmd->add_option("--dispersion-resolution-nm", args->dispersion_resolution_nm,
+                  "adaptive dispersion: width [nm] to which fringes' colour jumps are located (overrides "
+                  "[image] dispersion_resolution_nm)");
   cmd->add_option("--wavelength-pattern", args->wavelength_pattern,
                   "shared (the same wavelengths in every pixel: smooth fringes) or per_pixel (overrides "
                   "[image] wavelength_pattern)");
