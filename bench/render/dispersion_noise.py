@@ -1,67 +1,69 @@
-#!/usr/bin/env python3
-"""Colour noise of S3 renders (the glass sphere's disk), for bench/render/compare_povray.sh.
+#!/usr/bin/python3
+"""Colour error of S3 renders over the glass sphere's disk, for bench/render/compare_povray.sh.
 
 usage: dispersion_noise.py REFERENCE.png IMAGE.png [IMAGE.png ...]
+       dispersion_noise.py --header
 
-For each IMAGE, over the disk of the glass sphere (centre (500, 500), radius 340 px of a
-1000x1000 S3 render, where the dispersed checker is seen):
-  rms_ref    RMS difference to REFERENCE (a high-spp thaw render) per channel, 8-bit sRGB units:
-             noise plus any difference of model (for POV-Ray: its own dispersion model, 25
-             fixed wavelengths and no anti-aliasing, so this is an upper bound of its noise);
-  chroma_hp  RMS of the high-passed chroma (R-G, B-G minus their 3x3 box mean), 8-bit units:
-             pixel-to-pixel colour speckle, whatever the reference (fringes add a little).
-Decodes PNGs with ffmpeg (rawvideo rgb24); plain Python, no numpy.
+REFERENCE is the same renderer's converged image at the same pixel centres (POV-Ray with
+dispersion_samples 250; thaw with 256 wavelengths), so what is measured is the error of the
+wavelength sampling alone, not the difference between the two renderers' models. Over the disk
+where the dispersed checker is seen (centre of the image, radius 0.34 of its width; RADIUS
+overrides), in 8-bit sRGB units:
+  rgb_rms     RMS difference per channel;
+  chroma_rms  RMS difference of the chroma (R-G, B-G): the colour error;
+  chroma_hp   RMS of that chroma difference high-passed (minus its 3x3 box mean): speckle;
+  fringe      RMS chroma of the reference itself: how colourful the fringes are;
+  relative    chroma_rms / fringe: colour error relative to the colour there is to get right.
+Needs numpy (Debian python3-numpy, installed by scripts/setup-bench); decodes PNG with ffmpeg.
 """
+import os
 import subprocess
 import sys
+
+import numpy as np
 
 
 def load(path):
     out = subprocess.run(["ffmpeg", "-v", "error", "-i", path, "-f", "rawvideo", "-pix_fmt", "rgb24", "-"],
                          check=True, capture_output=True).stdout
-    probe = subprocess.run(["ffprobe", "-v", "error", "-select_streams", "v:0", "-show_entries",
-                            "stream=width,height", "-of", "csv=p=0", path],
-                           check=True, capture_output=True, text=True).stdout.strip().split(",")
-    return int(probe[0]), int(probe[1]), out
+    size = subprocess.run(["ffprobe", "-v", "error", "-select_streams", "v:0", "-show_entries",
+                           "stream=width,height", "-of", "csv=p=0", path],
+                          check=True, capture_output=True, text=True).stdout.strip().split(",")
+    w, h = int(size[0]), int(size[1])
+    return np.frombuffer(out, np.uint8).astype(np.float64).reshape(h, w, 3)
 
 
-def disk(w, h):
-    cx, cy, r = w * 0.5, h * 0.5, 0.34 * w
-    return [(x, y) for y in range(1, h - 1) for x in range(1, w - 1) if (x - cx) ** 2 + (y - cy) ** 2 < r * r]
+def chroma(img):
+    return np.stack([img[..., 0] - img[..., 1], img[..., 2] - img[..., 1]], -1)
+
+
+def box3(x):
+    p = np.pad(x, ((1, 1), (1, 1), (0, 0)), mode="edge")
+    return sum(p[dy:dy + x.shape[0], dx:dx + x.shape[1]] for dy in range(3) for dx in range(3)) / 9
 
 
 def main():
-    ref_path, images = sys.argv[1], sys.argv[2:]
-    w, h, ref = load(ref_path)
-    pts = disk(w, h)
-    for path in images:
-        iw, ih, img = load(path)
-        if (iw, ih) != (w, h):
-            sys.exit(f"{path}: size {iw}x{ih} differs from the reference {w}x{h}")
-        se = 0.0
-        for x, y in pts:
-            i = 3 * (y * w + x)
-            for k in range(3):
-                d = img[i + k] - ref[i + k]
-                se += d * d
-        rms_ref = (se / (3 * len(pts))) ** 0.5
-
-        def chroma(x, y):
-            i = 3 * (y * w + x)
-            return img[i] - img[i + 1], img[i + 2] - img[i + 1]
-
-        hp = 0.0
-        for x, y in pts:
-            c = chroma(x, y)
-            m0 = m1 = 0.0
-            for dy in (-1, 0, 1):
-                for dx in (-1, 0, 1):
-                    a, b = chroma(x + dx, y + dy)
-                    m0 += a
-                    m1 += b
-            hp += (c[0] - m0 / 9) ** 2 + (c[1] - m1 / 9) ** 2
-        chroma_hp = (hp / (2 * len(pts))) ** 0.5
-        print(f"{path}: rms_ref {rms_ref:.2f} chroma_hp {chroma_hp:.2f}")
+    if sys.argv[1:] == ["--header"]:
+        print("| image | rgb_rms | chroma_rms | chroma_hp | fringe | relative |")
+        print("|---|---:|---:|---:|---:|---:|")
+        return
+    ref = load(sys.argv[1])
+    h, w, _ = ref.shape
+    yy, xx = np.mgrid[0:h, 0:w]
+    radius = float(os.environ.get("RADIUS", "0.34")) * w
+    disk = (xx + 0.5 - w / 2) ** 2 + (yy + 0.5 - h / 2) ** 2 < radius ** 2
+    fringe = np.sqrt((chroma(ref)[disk] ** 2).mean())
+    for path in sys.argv[2:]:
+        img = load(path)
+        if img.shape != ref.shape:
+            sys.exit(f"{path}: size differs from the reference")
+        e = img - ref
+        ce = chroma(img) - chroma(ref)
+        rgb_rms = np.sqrt((e[disk] ** 2).mean())
+        chroma_rms = np.sqrt((ce[disk] ** 2).mean())
+        chroma_hp = np.sqrt(((ce - box3(ce))[disk] ** 2).mean())
+        print(f"| {os.path.basename(path)} | {rgb_rms:.2f} | {chroma_rms:.2f} | {chroma_hp:.2f} | {fringe:.2f} | "
+              f"{chroma_rms / fringe:.3f} |")
 
 
 if __name__ == "__main__":

@@ -70,12 +70,13 @@ Xyz d65_xyz_integral(double a_nm, double b_nm) {
 /// a matte surface under white light seen through the glass is integrated exactly.
 class ReferenceSpectrum {
  public:
-  explicit ReferenceSpectrum(const Rgb& c) : m_shape(normalised(c)) {}
+  explicit ReferenceSpectrum(const Rgb& c) : m_grey(c.r == c.g && c.g == c.b), m_shape(normalised(c)) {}
   /// shape at l (the factor multiplying D65)
   double operator()(double l) const { return m_shape(l); }
   /// int_a^b D65 shape cmf dl: the shape is constant on Smits' 10 nm bins, so exact from the
   /// D65 prefix sums.
   Xyz d65_xyz_integral(double a, double b) const {
+    if (m_grey) return thaw::render::d65_xyz_integral(a, b);  // the white basis is 1 everywhere
     Xyz out;
     for (int k = 0; k < smits::kBins; ++k) {
       const double lo = std::max(a, smits::kBinStartNm + k * smits::kBinWidthNm);
@@ -107,6 +108,7 @@ class ReferenceSpectrum {
     if (!(m > 0) || !std::isfinite(m)) return {1, 1, 1};
     return {c.r / m, c.g / m, c.b / m};
   }
+  bool m_grey;
   RgbReflectanceSpectrum m_shape;
 };
 
@@ -126,6 +128,7 @@ class SpectralTracer {
       m_absorbs.push_back(m.optics.absorbs());
       m_ior_constant.push_back(m.optics.n_at(media::kFraunhoferD_nm));
     }
+    set_probe_count(probe_count);
   }
 
   /// Radiance along `ray` (unit direction) at tree level `depth` with throughput `beta`,
@@ -187,7 +190,7 @@ class SpectralTracer {
   /// the returned spectrum; render_spectral adds it to the film outside the ratio normalisation.
   bool adaptive = false;
   double resolution_nm = 4.0;
-  int probe_count = 8;
+  int probe_count = 10;
   Xyz side_xyz;
 
  private:
@@ -199,6 +202,18 @@ class SpectralTracer {
     Rgb end_colour;  // colour the signature's chain ends on (reference spectrum of its segment)
   };
   std::vector<SpectralNode> m_nodes;
+  std::vector<double> m_grid_nm;
+
+ public:
+  /// Signature grid of adaptive dispersion: probe_count intervals over 380-780 nm.
+  void set_probe_count(int count) {
+    probe_count = std::max(1, count);
+    m_grid_nm.assign(static_cast<std::size_t>(probe_count) + 1, 0.0);
+    for (int g = 0; g <= probe_count; ++g)
+      m_grid_nm[static_cast<std::size_t>(g)] = SampledWavelengths::sample(std::min(double(g) / probe_count, 1.0 - 1e-12)).lambda_nm(0);
+  }
+
+ private:
 
   double index_at(std::uint32_t medium, double lambda_nm) const {
     return m_dispersive[medium] ? m_scene.media()[medium].optics.n_at(lambda_nm) : m_ior_constant[medium];
@@ -264,8 +279,7 @@ class SpectralTracer {
         if (dot(s, rd) >= 0.0f) s = g;
         Vec3 next;
         const float eta = static_cast<float>(index_at(t, lambda_nm) / index_at(f, lambda_nm));
-        // The chain follows the stronger branch: refraction unless Fresnel reflects most.
-        if (fresnel_dielectric(-dot(rd, s), eta) > 0.5f || !refraction_direction(rd, s, g, eta, next)) {
+        if (!refraction_direction(rd, s, g, eta, next)) {
           h = mix(h, kTotalReflection);
           next = reflect(rd, s);
           if (dot(next, g) <= 0.0f) next = reflect(rd, g);
@@ -354,8 +368,10 @@ class SpectralTracer {
       m_nodes.push_back({l, sig, f, traced, colour});
     };
     probe(w.lambda_nm(0), true, transmitted_at(d, si, ns, ng, cos_i, from, to, depth, b, w.lambda_nm(0), w, 0));
+    // The grid follows the visible hero density (equal steps of its CDF), so it is densest
+    // where the eye is most sensitive to a misplaced jump; it includes both ends of the range.
     for (int g = 0; g <= probe_count; ++g)
-      probe(kLambdaMinNm + (kLambdaMaxNm - kLambdaMinNm) * g / probe_count, false, 0.0);
+      probe(g == 0 ? kLambdaMinNm : g == probe_count ? kLambdaMaxNm : m_grid_nm[g], false, 0.0);
     auto by_lambda = [](const SpectralNode& a, const SpectralNode& c) { return a.lambda_nm < c.lambda_nm; };
     std::sort(m_nodes.begin(), m_nodes.end(), by_lambda);
     // Bisection between neighbours whose signatures differ, both halves (several jumps may lie
@@ -658,7 +674,7 @@ RenderResult render_spectral(const Scene& scene, const RenderOptions& options, c
   }
   // Wavelength packets of kSpectrumSamples per camera sample where dispersion splits the rays.
   const int packets = st.dispersion == ImageSettings::Dispersion::split
-                          ? std::max(1, st.dispersion_wavelengths / kSpectrumSamples)
+                          ? std::max(1, (st.dispersion_wavelengths + kSpectrumSamples - 1) / kSpectrumSamples)
                           : 1;
   // Shared wavelength pattern: one sub-stratum and one offset for the whole image, from the seed.
   const bool pattern_shared = st.wavelength_pattern == ImageSettings::WavelengthPattern::shared;
@@ -672,7 +688,7 @@ RenderResult render_spectral(const Scene& scene, const RenderOptions& options, c
     SpectralTracer tracer(scene);
     tracer.adaptive = st.dispersion == ImageSettings::Dispersion::adaptive;
     tracer.resolution_nm = st.dispersion_resolution_nm;
-    tracer.probe_count = st.dispersion_wavelengths;
+    tracer.set_probe_count(st.dispersion_wavelengths);
     std::vector<int> perm(static_cast<std::size_t>(spp)), lambda_perm(static_cast<std::size_t>(spp));
     auto shuffle = [](std::vector<int>& p, Pcg32& rng) {
       for (std::size_t i = 0; i < p.size(); ++i) p[i] = static_cast<int>(i);

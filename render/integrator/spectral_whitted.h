@@ -7,11 +7,18 @@
 // D65), the film converts each sample with the CIE 1931 observer to linear sRGB.
 // - Non-dispersive interfaces keep all wavelengths on one ray (one spectral ray per RGB ray).
 // - At a refraction into or out of a dispersive medium the reflected branch keeps every
-//   wavelength with its own Fresnel reflectance; the transmitted branch ([image] dispersion)
-//   either splits into one ray per carried wavelength, each refracted with its own n ("split",
-//   default: exact radiance for all four, low colour noise), or continues with the hero
-//   wavelength only ("hero": terminate_secondary() on a copy, direction from the hero's n, result
-//   re-expressed in the caller's wavelengths; one ray, more colour noise).
+//   wavelength with its own Fresnel reflectance; the transmitted branch ([image] dispersion):
+//   "adaptive" (default, where the throughput so far is the same at every wavelength): the
+//   transmitted light is integrated over 380-780 nm directly. Chain signatures (what the
+//   refracted light of one wavelength ends on) on a grid of wavelengths and bisection locate the
+//   jumps of the spectrum (fringes); each segment between jumps is weighted by its exact
+//   reference-spectrum integral times a ratio of traced lanes. Its XYZ goes to the film beside
+//   the sampled spectrum: fringes without colour noise. "split": one ray per carried
+//   wavelength, each refracted with its own n ([image] dispersion_wavelengths > 4 traces the
+//   camera sample again with further packets). "hero": the hero wavelength only
+//   (terminate_secondary() on a copy, result re-expressed in the caller's wavelengths).
+// - [image] wavelength_pattern: the camera samples' wavelengths are the same stratified set in
+//   every pixel ("shared", one offset per image from the seed) or drawn per pixel.
 // - Every segment travelled inside an absorbing medium (also after total internal reflection)
 //   keeps exp(-alpha(lambda) d), d in scene units taken as metres.
 // Same determinism as the RGB path: per-pixel RNG streams, image independent of thread count.

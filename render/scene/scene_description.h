@@ -45,10 +45,11 @@ struct ImageSettings {
   Dispersion dispersion = Dispersion::adaptive;
   /// adaptive mode: width [nm] to which the wavelength of a fringe's colour jump is located
   double dispersion_resolution_nm = 4.0;
-  /// split mode: wavelengths traced per camera sample that meets a dispersive refraction (a
-  /// multiple of 4, the wavelengths one packet carries: the sample is traced once per packet);
-  /// samples that meet none trace one packet. The colour error of dispersed light falls with it.
-  int dispersion_wavelengths = 8;
+  /// adaptive mode: wavelengths probed across 380-780 nm (spaced by the visible hero density)
+  /// to find where the refracted light's colour jumps; more find thinner fringes. split mode:
+  /// wavelengths traced per camera sample that meets a dispersive refraction, rounded up to a
+  /// multiple of 4 (one packet of 4 per trace of the sample); samples that meet none trace one.
+  int dispersion_wavelengths = 10;
   /// which wavelengths the camera samples carry: shared = the same stratified set in every pixel
   /// (one random offset per image, from the seed: a spectral quadrature whose error is smooth
   /// banding across the image and stable from frame to frame, as POV-Ray's dispersion_samples);

@@ -5,7 +5,6 @@
 #include <set>
 #include <sstream>
 
-#include "render/spectrum/sampled_spectrum.h"
 #include "src/common/error.h"
 #include "src/common/toml_table.h"
 
@@ -143,9 +142,6 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
       img->fail("dispersion_resolution_nm", "must be between 0.05 and 100 nm (got " + std::to_string(resolution) + ")");
     s.image.dispersion_resolution_nm = resolution;
     s.image.dispersion_wavelengths = int_in(*img, "dispersion_wavelengths", s.image.dispersion_wavelengths, 4, 1024);
-    if (s.image.dispersion_wavelengths % kSpectrumSamples != 0)
-      img->fail("dispersion_wavelengths", "must be a multiple of " + std::to_string(kSpectrumSamples) +
-                                              " (got " + std::to_string(s.image.dispersion_wavelengths) + ")");
     const std::string pattern = img->get_string("wavelength_pattern", "shared");
     if (pattern == "shared") s.image.wavelength_pattern = ImageSettings::WavelengthPattern::shared;
     else if (pattern == "per_pixel") s.image.wavelength_pattern = ImageSettings::WavelengthPattern::per_pixel;

@@ -45,9 +45,6 @@ void run_render(const RenderArgs& a) {
   if (a.spp) desc.image.samples_per_pixel = checked("--spp", *a.spp, 1, 65536);
   if (a.dispersion_wavelengths) {
     desc.image.dispersion_wavelengths = checked("--dispersion-wavelengths", *a.dispersion_wavelengths, 4, 1024);
-    if (*a.dispersion_wavelengths % 4 != 0)
-      throw UserError("", "--dispersion-wavelengths",
-                      "must be a multiple of 4 (got " + std::to_string(*a.dispersion_wavelengths) + ")");
   }
   if (a.dispersion) {
     if (*a.dispersion == "adaptive") desc.image.dispersion = render::ImageSettings::Dispersion::adaptive;
@@ -112,8 +109,8 @@ void register_render(CLI::App& app) {
   cmd->add_option("--height", args->height, "image height [pixels] (overrides [image] height)");
   cmd->add_option("--spp", args->spp, "samples per pixel, stratified (overrides [image] samples_per_pixel)");
   cmd->add_option("--dispersion-wavelengths", args->dispersion_wavelengths,
-                  "wavelengths per camera sample at dispersion fringes, a multiple of 4 (overrides [image] "
-                  "dispersion_wavelengths)");
+                  "wavelengths probed for fringes (adaptive) or traced (split) at a dispersive refraction "
+                  "(overrides [image] dispersion_wavelengths)");
   cmd->add_option("--dispersion", args->dispersion,
                   "adaptive, split or hero: how light is traced through dispersive refractions (overrides "
                   "[image] dispersion)");

@@ -10,6 +10,7 @@
 
 #include "render/integrator/spectral_whitted.h"
 #include "render/integrator/whitted.h"
+#include "render/material/fresnel.h"
 #include "render/math/rng.h"
 #include "render/media/refraction.h"
 #include "render/scene/scene_parser.h"
@@ -187,6 +188,59 @@ outside = "vacuum"
 }
 
 INSTANTIATE_TEST_SUITE_P(SpectralWhitted, DispersionModes, ::testing::Values("split", "hero"));
+
+// Adaptive dispersion (the default) on the same invisible sphere, rendered as an image. Every
+// wavelength's transmitted light ends in the white environment, so its spectrum is
+// f(l) = t(l) D65(l) with t = 1 - R the entry transmittance (everything that enters leaves
+// again: energy conservation inside, max_depth 64 and min_weight 1e-7 leave < 1e-5 unaccounted).
+// The integrator takes each segment's ratio f/D65 at one wavelength, so its transmitted part is
+// off by at most max |t(l1) - t(l2)| = dR over 380-780 nm at the ray's incidence; the reflected
+// part, R(l) D65 at the packet's four wavelengths through the ratio film, lies between the
+// extremes of R: off by at most dR too. So |pixel - environment| <= 2 dR_max + 2e-3 (the IEC
+// matrix rounding of white, 6e-4, and float rounding), with dR_max the largest spread of N-SF10's
+// Fresnel reflectance over the spectrum at any incidence angle (computed below, ~0.02).
+TEST(SpectralWhitted, AdaptiveDispersiveSphereInWhiteEnvironmentIsInvisible) {
+  const Scene scene = scene_from(R"(
+[image]
+width = 24
+height = 18
+max_depth = 64
+min_weight = 1e-7
+background = [1.0, 1.0, 1.0]
+[media.flint]
+preset = "n-sf10"
+[[objects]]
+shape = "sphere"
+center = [0.0, 0.0, 0.0]
+radius = 1.0
+inside = "flint"
+outside = "vacuum"
+)" + kCamera);
+  ASSERT_TRUE(scene.spectral());
+  ASSERT_EQ(scene.settings().dispersion, ImageSettings::Dispersion::adaptive);
+  const auto& flint = scene.media()[1].optics;
+  double dr_max = 0;
+  for (int a = 0; a <= 900; ++a) {
+    const float cos_i = std::max(1e-4f, float(std::cos(a * M_PI / 1800.0)));
+    double lo = 1, hi = 0;
+    for (double l = kLambdaMinNm; l <= kLambdaMaxNm; l += 1.0) {
+      const double r = fresnel_dielectric(cos_i, float(flint.n_at(l)));
+      lo = std::min(lo, r), hi = std::max(hi, r);
+    }
+    dr_max = std::max(dr_max, hi - lo);
+  }
+  ASSERT_LT(dr_max, 0.05);
+  const RenderResult r = render(scene);
+  EXPECT_EQ(r.stats.medium_mismatches, 0u);
+  double worst = 0;
+  for (int y = 0; y < 18; ++y)
+    for (int x = 0; x < 24; ++x) {
+      const Rgb c = r.image.at(x, y);
+      worst = std::max({worst, std::abs(c.r - 1.0), std::abs(c.g - 1.0), std::abs(c.b - 1.0)});
+    }
+  RecordProperty("worst_channel_difference", std::to_string(worst));
+  EXPECT_LE(worst, 2 * dr_max + 2e-3);
+}
 
 /// Triangular prism, apex angle 60 degrees, apex up at (0, 1), base at y = -1, extruded along z
 /// over [-5, 5]; closed and outward oriented.
