@@ -126,19 +126,10 @@ TEST(SpectralWhitted, MatchesRgbOnNonDispersiveSceneWithin1Over255) {
   RecordProperty("worst_channel_difference", std::to_string(worst));
 }
 
-// A dispersive, non-absorbing N-SF10 sphere in a uniform white (D65) environment, no lights:
-// every wavelength's Whitted tree returns the environment radiance (R + T = 1 at each
-// interface), so the sphere must be invisible. Statistical: the dispersive branches follow the
-// hero only, so each sample is noisy; the mean of M samples must lie within 4 standard errors
-// of the environment colour (plus the pruned weight, < 1e-6 per branch, negligible).
-class DispersionModes : public ::testing::TestWithParam<std::string> {};
-
-TEST_P(DispersionModes, DispersiveSphereInWhiteEnvironmentIsInvisible) {
-  const Scene scene = scene_from(R"(
-[image]
-dispersion = ")" + GetParam() + R"("
-width = 8
-height = 8
+/// An N-SF10 sphere (radius 1) in a uniform white environment, no lights, a deep tree: what it
+/// refracts and reflects is the environment again. `image_keys`: further [image] lines.
+Scene invisible_sphere_scene(const std::string& image_keys) {
+  return scene_from("[image]\n" + image_keys + R"(
 max_depth = 64
 min_weight = 1e-7
 background = [1.0, 1.0, 1.0]
@@ -151,6 +142,17 @@ radius = 1.0
 inside = "flint"
 outside = "vacuum"
 )" + kCamera);
+}
+
+// A dispersive, non-absorbing N-SF10 sphere in a uniform white (D65) environment, no lights:
+// every wavelength's Whitted tree returns the environment radiance (R + T = 1 at each
+// interface), so the sphere must be invisible. Statistical: the dispersive branches follow the
+// hero only, so each sample is noisy; the mean of M samples must lie within 4 standard errors
+// of the environment colour (plus the pruned weight, < 1e-6 per branch, negligible).
+class DispersionModes : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(DispersionModes, DispersiveSphereInWhiteEnvironmentIsInvisible) {
+  const Scene scene = invisible_sphere_scene("dispersion = \"" + GetParam() + "\"\nwidth = 8\nheight = 8");
   ASSERT_TRUE(scene.spectral());  // auto: the medium is dispersive
   // Environment colour by quadrature (the environment spectrum is smooth D65).
   double env[3] = {0, 0, 0};
@@ -200,22 +202,7 @@ INSTANTIATE_TEST_SUITE_P(SpectralWhitted, DispersionModes, ::testing::Values("sp
 // matrix rounding of white, 6e-4, and float rounding), with dR_max the largest spread of N-SF10's
 // Fresnel reflectance over the spectrum at any incidence angle (computed below, ~0.02).
 TEST(SpectralWhitted, AdaptiveDispersiveSphereInWhiteEnvironmentIsInvisible) {
-  const Scene scene = scene_from(R"(
-[image]
-width = 24
-height = 18
-max_depth = 64
-min_weight = 1e-7
-background = [1.0, 1.0, 1.0]
-[media.flint]
-preset = "n-sf10"
-[[objects]]
-shape = "sphere"
-center = [0.0, 0.0, 0.0]
-radius = 1.0
-inside = "flint"
-outside = "vacuum"
-)" + kCamera);
+  const Scene scene = invisible_sphere_scene("width = 24\nheight = 18");
   ASSERT_TRUE(scene.spectral());
   ASSERT_EQ(scene.settings().dispersion, ImageSettings::Dispersion::adaptive);
   const auto& flint = scene.media()[1].optics;
