@@ -58,7 +58,8 @@ Xyz d65_xyz_integral(double a_nm, double b_nm) {
     const double x = std::clamp((l - kLambdaMinNm) / kStep, 0.0, double(kCells));
     const int i = std::min(static_cast<int>(x), kCells - 1);
     const double t = x - i;
-    return Xyz{prefix[i].x + t * (prefix[i + 1].x - prefix[i].x), prefix[i].y + t * (prefix[i + 1].y - prefix[i].y),
+    return Xyz{prefix[i].x + t * (prefix[i + 1].x - prefix[i].x),
+               prefix[i].y + t * (prefix[i + 1].y - prefix[i].y),
                prefix[i].z + t * (prefix[i + 1].z - prefix[i].z)};
   };
   const Xyz hi = at(b_nm), lo = at(a_nm);
@@ -70,7 +71,8 @@ Xyz d65_xyz_integral(double a_nm, double b_nm) {
 /// a matte surface under white light seen through the glass is integrated exactly.
 class ReferenceSpectrum {
  public:
-  explicit ReferenceSpectrum(const Rgb& c) : m_grey(c.r == c.g && c.g == c.b), m_shape(normalised(c)) {}
+  explicit ReferenceSpectrum(const Rgb& c)
+      : m_grey(c.r == c.g && c.g == c.b), m_shape(normalised(c)) {}
   /// shape at l (the factor multiplying D65)
   double operator()(double l) const { return m_shape(l); }
   /// int_a^b D65 shape cmf dl: the shape is constant on Smits' 10 nm bins, so exact from the
@@ -210,18 +212,20 @@ class SpectralTracer {
     probe_count = std::max(1, count);
     m_grid_nm.assign(static_cast<std::size_t>(probe_count) + 1, 0.0);
     for (int g = 0; g <= probe_count; ++g)
-      m_grid_nm[static_cast<std::size_t>(g)] = SampledWavelengths::sample(std::min(double(g) / probe_count, 1.0 - 1e-12)).lambda_nm(0);
+      m_grid_nm[static_cast<std::size_t>(g)] =
+          SampledWavelengths::sample(std::min(double(g) / probe_count, 1.0 - 1e-12)).lambda_nm(0);
   }
 
  private:
-
   double index_at(std::uint32_t medium, double lambda_nm) const {
-    return m_dispersive[medium] ? m_scene.media()[medium].optics.n_at(lambda_nm) : m_ior_constant[medium];
+    return m_dispersive[medium] ? m_scene.media()[medium].optics.n_at(lambda_nm)
+                                : m_ior_constant[medium];
   }
 
   /// Snell's direction with the shading normal, falling back to the geometric one (as the lanes
   /// do); false on total internal reflection.
-  static bool refraction_direction(const Vec3& d, const Vec3& ns, const Vec3& ng, float eta, Vec3& dir) {
+  static bool refraction_direction(const Vec3& d, const Vec3& ns, const Vec3& ng, float eta,
+                                   Vec3& dir) {
     if (refract(d, ns, eta, dir) && dot(dir, ng) < 0.0f) return true;
     return refract(d, ng, eta, dir);
   }
@@ -249,14 +253,16 @@ class SpectralTracer {
   /// colour and which lights it sees. Two wavelengths with the same signature see the same
   /// colours through the same chain, so the transmitted radiance is a smooth function of the
   /// wavelength between them; where signatures differ the spectrum has a jump (a fringe).
-  std::uint64_t signature(const Vec3& d, const SurfaceInteraction& at, const Vec3& ns, const Vec3& ng,
-                          std::uint32_t from, std::uint32_t to, int depth, double lambda_nm, Rgb& end_colour) {
-    constexpr std::uint64_t kTotalReflection = 0x9e3779b97f4a7c15ULL, kEscaped = 0x632be59bd9b4e019ULL,
-                            kCut = 0x85ebca77c2b2ae63ULL;
+  std::uint64_t signature(const Vec3& d, const SurfaceInteraction& at, const Vec3& ns,
+                          const Vec3& ng, std::uint32_t from, std::uint32_t to, int depth,
+                          double lambda_nm, Rgb& end_colour) {
+    constexpr std::uint64_t kTotalReflection = 0x9e3779b97f4a7c15ULL,
+                            kEscaped = 0x632be59bd9b4e019ULL, kCut = 0x85ebca77c2b2ae63ULL;
     end_colour = Rgb(1.0f, 1.0f, 1.0f);
     Vec3 dir;
-    if (!refraction_direction(d, ns, ng, static_cast<float>(index_at(to, lambda_nm) / index_at(from, lambda_nm)),
-                              dir))
+    if (!refraction_direction(
+            d, ns, ng, static_cast<float>(index_at(to, lambda_nm) / index_at(from, lambda_nm)),
+            dir))
       return kTotalReflection;
     Ray ray{offset_ray_origin(at.p, at.p_error, ng, dir), dir};
     std::uint64_t h = 1469598103934665603ULL;
@@ -273,7 +279,8 @@ class SpectralTracer {
       const Vec3& rd = ray.direction;
       if (obj.dielectric) {
         const bool entering = dot(rd, si.ng) < 0.0f;
-        const std::uint32_t f = entering ? obj.outside : obj.inside, t = entering ? obj.inside : obj.outside;
+        const std::uint32_t f = entering ? obj.outside : obj.inside,
+                            t = entering ? obj.inside : obj.outside;
         const Vec3 g = entering ? si.ng : -si.ng;
         Vec3 s = entering ? si.ns : -si.ns;
         if (dot(s, rd) >= 0.0f) s = g;
@@ -298,7 +305,8 @@ class SpectralTracer {
       }
       const Rgb c = mat.texture.eval(si.p);
       h = mix(mix(mix(h, bits(c.r)), bits(c.g)), bits(c.b));
-      end_colour = mat.kind == Material::Kind::emissive ? m_scene.materials()[obj.material].emission : c;
+      end_colour =
+          mat.kind == Material::Kind::emissive ? m_scene.materials()[obj.material].emission : c;
       if (mat.kind == Material::Kind::emissive) return h;
       const auto& lights = m_scene.lights();
       for (std::size_t i = 0; i < lights.size(); ++i) {
@@ -321,8 +329,8 @@ class SpectralTracer {
   /// throughput `b`, traced as lane `lane` of the packet `w` (whose wavelength `lane` must be
   /// lambda_nm: the packet's spectra stay cached) or, lane < 0, of a packet of that wavelength.
   double transmitted_at(const Vec3& d, const SurfaceInteraction& si, const Vec3& ns, const Vec3& ng,
-                        float cos_i, std::uint32_t from, std::uint32_t to, int depth, float b, double lambda_nm,
-                        const SampledWavelengths& w, int lane) {
+                        float cos_i, std::uint32_t from, std::uint32_t to, int depth, float b,
+                        double lambda_nm, const SampledWavelengths& w, int lane) {
     const float eta = static_cast<float>(index_at(to, lambda_nm) / index_at(from, lambda_nm));
     const float t = 1.0f - fresnel_dielectric(cos_i, eta);
     if (!(b * t >= m_min_weight)) return 0.0;
@@ -334,8 +342,8 @@ class SpectralTracer {
       beta[lane] = b * t;
       return double(t) * double(trace(next, depth + 1, beta, to, w, lane)[lane]);
     }
-    const SampledWavelengths single =
-        SampledWavelengths::from(SampledSpectrum(static_cast<float>(lambda_nm)), SampledSpectrum(1.0f));
+    const SampledWavelengths single = SampledWavelengths::from(
+        SampledSpectrum(static_cast<float>(lambda_nm)), SampledSpectrum(1.0f));
     beta[0] = b * t;
     return double(t) * double(trace(next, depth + 1, beta, to, single, 0)[0]);
   }
@@ -358,21 +366,24 @@ class SpectralTracer {
   /// Colour error then comes from the jumps' positions (< resolution_nm / 2), from jumps that
   /// come and go between two grid wavelengths, and from f's departure from E inside a segment;
   /// not from which wavelengths were drawn: fringes without colour noise.
-  void adaptive_transmission(const Vec3& d, const SurfaceInteraction& si, const Vec3& ns, const Vec3& ng,
-                             float cos_i, std::uint32_t from, std::uint32_t to, int depth, float b,
-                             const SampledWavelengths& w) {
+  void adaptive_transmission(const Vec3& d, const SurfaceInteraction& si, const Vec3& ns,
+                             const Vec3& ng, float cos_i, std::uint32_t from, std::uint32_t to,
+                             int depth, float b, const SampledWavelengths& w) {
     m_nodes.clear();
     auto probe = [&](double l, bool traced, double f) {
       Rgb colour;
       const std::uint64_t sig = signature(d, si, ns, ng, from, to, depth, l, colour);
       m_nodes.push_back({l, sig, f, traced, colour});
     };
-    probe(w.lambda_nm(0), true, transmitted_at(d, si, ns, ng, cos_i, from, to, depth, b, w.lambda_nm(0), w, 0));
+    probe(w.lambda_nm(0), true,
+          transmitted_at(d, si, ns, ng, cos_i, from, to, depth, b, w.lambda_nm(0), w, 0));
     // The grid follows the visible hero density (equal steps of its CDF), so it is densest
     // where the eye is most sensitive to a misplaced jump; it includes both ends of the range.
     for (int g = 0; g <= probe_count; ++g)
       probe(g == 0 ? kLambdaMinNm : g == probe_count ? kLambdaMaxNm : m_grid_nm[g], false, 0.0);
-    auto by_lambda = [](const SpectralNode& a, const SpectralNode& c) { return a.lambda_nm < c.lambda_nm; };
+    auto by_lambda = [](const SpectralNode& a, const SpectralNode& c) {
+      return a.lambda_nm < c.lambda_nm;
+    };
     std::sort(m_nodes.begin(), m_nodes.end(), by_lambda);
     // Bisection between neighbours whose signatures differ, both halves (several jumps may lie
     // between two wavelengths); at most kMaxProbes signatures per split bound the cost where
@@ -400,8 +411,9 @@ class SpectralTracer {
     while (begin < m_nodes.size()) {
       std::size_t end = begin + 1;
       while (end < m_nodes.size() && m_nodes[end].signature == m_nodes[begin].signature) ++end;
-      const double upper =
-          end < m_nodes.size() ? 0.5 * (m_nodes[end - 1].lambda_nm + m_nodes[end].lambda_nm) : kLambdaMaxNm;
+      const double upper = end < m_nodes.size()
+                               ? 0.5 * (m_nodes[end - 1].lambda_nm + m_nodes[end].lambda_nm)
+                               : kLambdaMaxNm;
       const ReferenceSpectrum reference(m_nodes[begin].end_colour);
       Xyz num, den;
       double f_sum = 0, e_sum = 0;
@@ -467,7 +479,8 @@ class SpectralTracer {
       if (lane >= 0) {
         r[lane] = fresnel_dielectric(cos_i, eta_hero);
       } else {
-        for (int i = 0; i < kSpectrumSamples; ++i) r[i] = fresnel_dielectric(cos_i, n_to[i] / n_from[i]);
+        for (int i = 0; i < kSpectrumSamples; ++i)
+          r[i] = fresnel_dielectric(cos_i, n_to[i] / n_from[i]);
       }
     }
     // Reflected branch: every carried wavelength, each with its own Fresnel reflectance.
@@ -618,11 +631,12 @@ class SpectralTracer {
     m_packet.lights.resize(m_lights.size());
     for (std::size_t i = 0; i < m_lights.size(); ++i) m_packet.lights[i] = m_lights[i].sample(w);
     m_packet.emission.resize(m_emission.size());
-    for (std::size_t i = 0; i < m_emission.size(); ++i) m_packet.emission[i] = m_emission[i].sample(w);
+    for (std::size_t i = 0; i < m_emission.size(); ++i)
+      m_packet.emission[i] = m_emission[i].sample(w);
     m_packet.n.resize(m_scene.media().size());
     for (std::size_t i = 0; i < m_packet.n.size(); ++i)
       m_packet.n[i] = m_dispersive[i] ? m_scene.media()[i].optics.n(w)
-                                       : SampledSpectrum(static_cast<float>(m_ior_constant[i]));
+                                      : SampledSpectrum(static_cast<float>(m_ior_constant[i]));
     return m_packet;
   }
   std::vector<char> m_dispersive, m_absorbs;
@@ -673,9 +687,10 @@ RenderResult render_spectral(const Scene& scene, const RenderOptions& options, c
     }
   }
   // Wavelength packets of kSpectrumSamples per camera sample where dispersion splits the rays.
-  const int packets = st.dispersion == ImageSettings::Dispersion::split
-                          ? std::max(1, (st.dispersion_wavelengths + kSpectrumSamples - 1) / kSpectrumSamples)
-                          : 1;
+  const int packets =
+      st.dispersion == ImageSettings::Dispersion::split
+          ? std::max(1, (st.dispersion_wavelengths + kSpectrumSamples - 1) / kSpectrumSamples)
+          : 1;
   // Shared wavelength pattern: one sub-stratum and one offset for the whole image, from the seed.
   const bool pattern_shared = st.wavelength_pattern == ImageSettings::WavelengthPattern::shared;
   Pcg32 pattern_rng(0x7468617770617474ULL, options.seed);  // stream "thawpatt"
@@ -722,14 +737,17 @@ RenderResult render_spectral(const Scene& scene, const RenderOptions& options, c
             // random for each sample; shared, they are the same for every pixel (drawn once from
             // the seed): each is uniform, so an unrefined sample's hero is uniform in its stratum
             // and a refined sample's heroes are stratified, in both patterns.
-            const int first = pattern_shared ? shared_first : packets > 1 ? int(rng.next_u32() % std::uint32_t(packets)) : 0;
+            const int first = pattern_shared ? shared_first
+                              : packets > 1  ? int(rng.next_u32() % std::uint32_t(packets))
+                                             : 0;
             const Ray camera_ray = scene.camera().generate(float(x) + sx, float(y) + sy);
             Xyz sample_sum, sample_white, sample_side;
             int traced = 0;
             for (int k = 0; k < packets; ++k) {
               const double jitter = pattern_shared ? shared_jitter : double(rng.next_float());
               const double sub = (double((first + k) % packets) + jitter) / double(packets);
-              const double u = (double(lambda_perm[static_cast<std::size_t>(s)]) + sub) / double(spp);
+              const double u =
+                  (double(lambda_perm[static_cast<std::size_t>(s)]) + sub) / double(spp);
               const SampledWavelengths wl = SampledWavelengths::sample(std::min(u, 1.0 - 1e-12));
               tracer.split_seen = false;
               tracer.side_xyz = Xyz{};
@@ -749,7 +767,8 @@ RenderResult render_spectral(const Scene& scene, const RenderOptions& options, c
               if (k == 0 && !tracer.split_seen) break;
             }
             if (traced > 1) ++refined;
-            sum.x += sample_sum.x / traced, sum.y += sample_sum.y / traced, sum.z += sample_sum.z / traced;
+            sum.x += sample_sum.x / traced, sum.y += sample_sum.y / traced,
+                sum.z += sample_sum.z / traced;
             white_sum.x += sample_white.x / traced, white_sum.y += sample_white.y / traced;
             white_sum.z += sample_white.z / traced;
             side_sum.x += sample_side.x / traced, side_sum.y += sample_side.y / traced;

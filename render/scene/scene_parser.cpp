@@ -133,19 +133,30 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
     s.image.exposure = img->get_double("exposure", 0.0);
     if (img->has("spectral")) s.image.spectral = parse_spectral(*img);
     const std::string dispersion = img->get_string("dispersion", "adaptive");
-    if (dispersion == "adaptive") s.image.dispersion = ImageSettings::Dispersion::adaptive;
-    else if (dispersion == "split") s.image.dispersion = ImageSettings::Dispersion::split;
+    if (dispersion == "adaptive")
+      s.image.dispersion = ImageSettings::Dispersion::adaptive;
+    else if (dispersion == "split")
+      s.image.dispersion = ImageSettings::Dispersion::split;
     else if (dispersion == "hero") s.image.dispersion = ImageSettings::Dispersion::hero;
-    else img->fail("dispersion", "must be \"adaptive\", \"split\" or \"hero\" (got \"" + dispersion + "\")");
-    const double resolution = img->get_double("dispersion_resolution_nm", s.image.dispersion_resolution_nm);
+    else
+      img->fail("dispersion",
+                "must be \"adaptive\", \"split\" or \"hero\" (got \"" + dispersion + "\")");
+    const double resolution =
+        img->get_double("dispersion_resolution_nm", s.image.dispersion_resolution_nm);
     if (!(resolution >= 0.05 && resolution <= 100.0))
-      img->fail("dispersion_resolution_nm", "must be between 0.05 and 100 nm (got " + std::to_string(resolution) + ")");
+      img->fail("dispersion_resolution_nm",
+                "must be between 0.05 and 100 nm (got " + std::to_string(resolution) + ")");
     s.image.dispersion_resolution_nm = resolution;
-    s.image.dispersion_wavelengths = int_in(*img, "dispersion_wavelengths", s.image.dispersion_wavelengths, 4, 1024);
+    s.image.dispersion_wavelengths =
+        int_in(*img, "dispersion_wavelengths", s.image.dispersion_wavelengths, 4, 1024);
     const std::string pattern = img->get_string("wavelength_pattern", "shared");
-    if (pattern == "shared") s.image.wavelength_pattern = ImageSettings::WavelengthPattern::shared;
-    else if (pattern == "per_pixel") s.image.wavelength_pattern = ImageSettings::WavelengthPattern::per_pixel;
-    else img->fail("wavelength_pattern", "must be \"shared\" or \"per_pixel\" (got \"" + pattern + "\")");
+    if (pattern == "shared")
+      s.image.wavelength_pattern = ImageSettings::WavelengthPattern::shared;
+    else if (pattern == "per_pixel")
+      s.image.wavelength_pattern = ImageSettings::WavelengthPattern::per_pixel;
+    else
+      img->fail("wavelength_pattern",
+                "must be \"shared\" or \"per_pixel\" (got \"" + pattern + "\")");
     const std::string film = img->get_string("spectral_film", "ratio");
     if (film == "ratio") s.image.spectral_film = ImageSettings::SpectralFilm::ratio;
     else if (film == "unbiased") s.image.spectral_film = ImageSettings::SpectralFilm::unbiased;

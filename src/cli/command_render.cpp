@@ -44,13 +44,19 @@ void run_render(const RenderArgs& a) {
     throw UserError("", "--width/--height", "image has too many pixels");
   if (a.spp) desc.image.samples_per_pixel = checked("--spp", *a.spp, 1, 65536);
   if (a.dispersion_wavelengths) {
-    desc.image.dispersion_wavelengths = checked("--dispersion-wavelengths", *a.dispersion_wavelengths, 4, 1024);
+    desc.image.dispersion_wavelengths =
+        checked("--dispersion-wavelengths", *a.dispersion_wavelengths, 4, 1024);
   }
   if (a.dispersion) {
-    if (*a.dispersion == "adaptive") desc.image.dispersion = render::ImageSettings::Dispersion::adaptive;
-    else if (*a.dispersion == "split") desc.image.dispersion = render::ImageSettings::Dispersion::split;
-    else if (*a.dispersion == "hero") desc.image.dispersion = render::ImageSettings::Dispersion::hero;
-    else throw UserError("", "--dispersion", "must be adaptive, split or hero (got '" + *a.dispersion + "')");
+    if (*a.dispersion == "adaptive")
+      desc.image.dispersion = render::ImageSettings::Dispersion::adaptive;
+    else if (*a.dispersion == "split")
+      desc.image.dispersion = render::ImageSettings::Dispersion::split;
+    else if (*a.dispersion == "hero")
+      desc.image.dispersion = render::ImageSettings::Dispersion::hero;
+    else
+      throw UserError("", "--dispersion",
+                      "must be adaptive, split or hero (got '" + *a.dispersion + "')");
   }
   if (a.dispersion_resolution_nm) {
     if (!(*a.dispersion_resolution_nm >= 0.05 && *a.dispersion_resolution_nm <= 100.0))
@@ -58,10 +64,13 @@ void run_render(const RenderArgs& a) {
     desc.image.dispersion_resolution_nm = *a.dispersion_resolution_nm;
   }
   if (a.wavelength_pattern) {
-    if (*a.wavelength_pattern == "shared") desc.image.wavelength_pattern = render::ImageSettings::WavelengthPattern::shared;
+    if (*a.wavelength_pattern == "shared")
+      desc.image.wavelength_pattern = render::ImageSettings::WavelengthPattern::shared;
     else if (*a.wavelength_pattern == "per_pixel")
       desc.image.wavelength_pattern = render::ImageSettings::WavelengthPattern::per_pixel;
-    else throw UserError("", "--wavelength-pattern", "must be shared or per_pixel (got '" + *a.wavelength_pattern + "')");
+    else
+      throw UserError("", "--wavelength-pattern",
+                      "must be shared or per_pixel (got '" + *a.wavelength_pattern + "')");
   }
   if (a.max_depth) desc.image.max_depth = checked("--max-depth", *a.max_depth, 1, 64);
   if (a.exposure) desc.image.exposure = *a.exposure;
@@ -92,7 +101,8 @@ void run_render(const RenderArgs& a) {
     if (scene.spectral() && desc.image.dispersion == render::ImageSettings::Dispersion::split &&
         desc.image.dispersion_wavelengths > 4)
       std::printf("  dispersion: %llu camera samples traced at %d wavelengths\n",
-                  static_cast<unsigned long long>(st.refined_samples), desc.image.dispersion_wavelengths);
+                  static_cast<unsigned long long>(st.refined_samples),
+                  desc.image.dispersion_wavelengths);
   }
 }
 
@@ -108,18 +118,22 @@ void register_render(CLI::App& app) {
   cmd->add_option("--width", args->width, "image width [pixels] (overrides [image] width)");
   cmd->add_option("--height", args->height, "image height [pixels] (overrides [image] height)");
   cmd->add_option("--spp", args->spp, "samples per pixel, stratified (overrides [image] samples_per_pixel)");
-  cmd->add_option("--dispersion-wavelengths", args->dispersion_wavelengths,
-                  "wavelengths probed for fringes (adaptive) or traced (split) at a dispersive refraction "
-                  "(overrides [image] dispersion_wavelengths)");
-  cmd->add_option("--dispersion", args->dispersion,
-                  "adaptive, split or hero: how light is traced through dispersive refractions (overrides "
-                  "[image] dispersion)");
-  cmd->add_option("--dispersion-resolution-nm", args->dispersion_resolution_nm,
-                  "adaptive dispersion: width [nm] to which fringes' colour jumps are located (overrides "
-                  "[image] dispersion_resolution_nm)");
-  cmd->add_option("--wavelength-pattern", args->wavelength_pattern,
-                  "shared (the same wavelengths in every pixel: smooth fringes) or per_pixel (overrides "
-                  "[image] wavelength_pattern)");
+  cmd->add_option(
+      "--dispersion-wavelengths", args->dispersion_wavelengths,
+      "wavelengths probed for fringes (adaptive) or traced (split) at a dispersive refraction "
+      "(overrides [image] dispersion_wavelengths)");
+  cmd->add_option(
+      "--dispersion", args->dispersion,
+      "adaptive, split or hero: how light is traced through dispersive refractions (overrides "
+      "[image] dispersion)");
+  cmd->add_option(
+      "--dispersion-resolution-nm", args->dispersion_resolution_nm,
+      "adaptive dispersion: width [nm] to which fringes' colour jumps are located (overrides "
+      "[image] dispersion_resolution_nm)");
+  cmd->add_option(
+      "--wavelength-pattern", args->wavelength_pattern,
+      "shared (the same wavelengths in every pixel: smooth fringes) or per_pixel (overrides "
+      "[image] wavelength_pattern)");
   cmd->add_option("--max-depth", args->max_depth, "levels of the ray tree, primary = 1 (overrides [image] max_depth)");
   cmd->add_option("--threads", args->threads, "render threads (default: all cores)");
   cmd->add_option("--exposure", args->exposure, "PNG exposure [stops] (overrides [image] exposure)");

@@ -152,7 +152,8 @@ outside = "vacuum"
 class DispersionModes : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(DispersionModes, DispersiveSphereInWhiteEnvironmentIsInvisible) {
-  const Scene scene = invisible_sphere_scene("dispersion = \"" + GetParam() + "\"\nwidth = 8\nheight = 8");
+  const Scene scene =
+      invisible_sphere_scene("dispersion = \"" + GetParam() + "\"\nwidth = 8\nheight = 8");
   ASSERT_TRUE(scene.spectral());  // auto: the medium is dispersive
   // Environment colour by quadrature (the environment spectrum is smooth D65).
   double env[3] = {0, 0, 0};

@@ -135,15 +135,16 @@ TEST(SceneParser, BadValuesAreErrors) {
   expect_error("material = \"floor\"", "inside = \"ice\"\noutside = \"water\"", "inside", "not closed");
   expect_error("radius = 0.7", "radius = \"big\"", "radius", "expected a number");
   expect_error("max = [2, 2, 2]", "max = [2, 0, 2]", "max", "must exceed min");
-  expect_error("max_depth = 10", "max_depth = 10\ndispersion = \"rainbow\"", "image.dispersion", "adaptive");
-  expect_error("max_depth = 10", "max_depth = 10\ndispersion_wavelengths = 0", "image.dispersion_wavelengths",
-               "between 4 and");
-  expect_error("max_depth = 10", "max_depth = 10\ndispersion_resolution_nm = 0.0", "image.dispersion_resolution_nm",
-               "between 0.05 and 100");
-  expect_error("max_depth = 10", "max_depth = 10\ndispersion_resolution_nm = nan", "image.dispersion_resolution_nm",
-               "finite");
-  expect_error("max_depth = 10", "max_depth = 10\nwavelength_pattern = \"random\"", "image.wavelength_pattern",
-               "per_pixel");
+  expect_error("max_depth = 10", "max_depth = 10\ndispersion = \"rainbow\"", "image.dispersion",
+               "adaptive");
+  expect_error("max_depth = 10", "max_depth = 10\ndispersion_wavelengths = 0",
+               "image.dispersion_wavelengths", "between 4 and");
+  expect_error("max_depth = 10", "max_depth = 10\ndispersion_resolution_nm = 0.0",
+               "image.dispersion_resolution_nm", "between 0.05 and 100");
+  expect_error("max_depth = 10", "max_depth = 10\ndispersion_resolution_nm = nan",
+               "image.dispersion_resolution_nm", "finite");
+  expect_error("max_depth = 10", "max_depth = 10\nwavelength_pattern = \"random\"",
+               "image.wavelength_pattern", "per_pixel");
 }
 
 TEST(SceneParser, DispersionSettings) {
