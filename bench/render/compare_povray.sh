@@ -54,7 +54,7 @@ fi
 # adaptive dispersion (the default) and, for comparison, the plain split into 4 wavelengths.
 # Colour error of each renderer against its OWN converged image at the same pixel centres
 # (bench/render/dispersion_noise.py): POV-Ray with dispersion_samples 250, thaw with 256
-# wavelengths through the split. That isolates the error of the wavelength sampling from the
+# wavelengths through the split and, as a second reference, adaptive with 128 probes at 0.25 nm. That isolates the error of the wavelength sampling from the
 # two renderers' different models (POV-Ray's dispersion law and colour mapping, its shadowless
 # glass), and the relative error divides by each reference's own fringe colour.
 if [ "${DISPERSION:-1}" = 1 ]; then
@@ -72,6 +72,8 @@ if [ "${DISPERSION:-1}" = 1 ]; then
     File_Gamma=sRGB 2>/dev/null)
   "$thaw" render "$s3" -o "$out/s3_thaw_reference.png" --spp 1 --threads 2 --quiet --dispersion split \
     --dispersion-wavelengths 256
+  "$thaw" render "$s3" -o "$out/s3_thaw_reference_adaptive.png" --spp 1 --threads 2 --quiet \
+    --dispersion-wavelengths 128 --dispersion-resolution-nm 0.25
   python3 - "$f" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1]))['results']
@@ -88,7 +90,11 @@ PY
   noise=(/usr/bin/python3 "$root/bench/render/dispersion_noise.py")
   "${noise[@]}" --header
   "${noise[@]}" "$out/s3_pov_reference.png" "$out/s3_pov.png"
-  "${noise[@]}" "$out/s3_thaw_reference.png" "$out/s3_thaw_adaptive.png" "$out/s3_thaw_split4.png"
+  echo "thaw against its split reference (256 wavelengths):"
+  "${noise[@]}" "$out/s3_thaw_reference.png" "$out/s3_thaw_adaptive.png" "$out/s3_thaw_split4.png" \
+    "$out/s3_thaw_reference_adaptive.png"
+  echo "thaw against its adaptive reference (128 probe wavelengths, 0.25 nm):"
+  "${noise[@]}" "$out/s3_thaw_reference_adaptive.png" "$out/s3_thaw_adaptive.png" "$out/s3_thaw_split4.png"
 fi
 
 [ "${STUDIES:-1}" = 1 ] || exit 0

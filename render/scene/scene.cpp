@@ -295,7 +295,8 @@ bool Scene::intersect(const Ray& ray, Hit& hit) const {
   bool found = false;
   if (!m_bvh.empty()) {
     const Bvh::RayData rd(ray);
-    const ShearedRay sr(ray);
+    // The shear transform (3 divisions) serves triangles only: skipped in scenes without any.
+    const ShearedRay sr = m_stats.triangles > 0 ? ShearedRay(ray) : ShearedRay();
     const Primitive* prims = m_primitives.data();
     found = m_bvh.intersect(rd, t_max, [&](std::uint32_t first, std::uint32_t count, float& tm) {
       const std::uint32_t block = m_leaf_block[first];
@@ -368,7 +369,7 @@ bool Scene::occluded(const Ray& ray) const {
   }
   if (m_bvh.empty()) return false;
   const Bvh::RayData rd(ray);
-  const ShearedRay sr(ray);
+  const ShearedRay sr = m_stats.triangles > 0 ? ShearedRay(ray) : ShearedRay();
   const Primitive* prims = m_primitives.data();
   return m_bvh.occluded(rd, ray.t_max, [&](std::uint32_t first, std::uint32_t count, float tm) {
     const std::uint32_t block = m_leaf_block[first];
