@@ -128,6 +128,7 @@ class SpectralTracer {
     for (const auto& m : scene.media()) {
       m_dispersive.push_back(m.optics.is_dispersive());
       m_absorbs.push_back(m.optics.absorbs());
+      m_any_absorbs = m_any_absorbs || m.optics.absorbs();
       m_ior_constant.push_back(m.optics.n_at(media::kFraunhoferD_nm));
     }
     set_probe_count(probe_count);
@@ -557,7 +558,7 @@ class SpectralTracer {
     const SampledSpectrum t = SampledSpectrum(1.0f) - r;
     if (dispersive && lane < 0 && m_split && !w.secondary_terminated()) {
       split_seen = true;
-      if (adaptive && is_grey(beta)) {
+      if (adaptive && !m_any_absorbs && is_grey(beta)) {
         // Upstream throughput independent of the wavelength: integrate the transmitted light
         // over the whole spectrum here (its XYZ goes to side_xyz).
         adaptive_transmission(d, si, ns, ng, cos_i, from, to, depth, beta[0], w);
@@ -704,6 +705,9 @@ class SpectralTracer {
     return m_packet;
   }
   std::vector<char> m_dispersive, m_absorbs;
+  /// Some medium absorbs: the light's colour then depends on its path lengths, which the
+  /// adaptive segments' reference spectra do not model, so dispersion falls back to "split".
+  bool m_any_absorbs = false;
   std::vector<double> m_ior_constant;
 };
 
