@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # RGB-path cost before/after a change (issue 5: spectral rendering must leave non-dispersive
-# scenes no more than 10 % slower): renders S1 analytic and mesh (640x640) and S4 (1000x1000) with two thaw
+# scenes no more than 10 % slower): renders S1 analytic and mesh (1280x1280) and S4 (2000x2000) with two thaw
 # binaries, interleaved run by run so that machine load affects both alike; reports the median
 # wall and CPU (user + sys) time of each and their ratios, and checks the images are identical.
 # usage: bench/render/compare_before_after.sh BEFORE_THAW AFTER_THAW [RUNS]
@@ -13,7 +13,7 @@ echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(n
 echo
 echo "| scene | size | before wall [s] | after wall [s] | after/before (wall) | before CPU [s] | after CPU [s] | after/before (CPU) | identical |"
 echo "|---|---|---|---|---|---|---|---|---|"
-for spec in s1_ice_shell:640x640 s1_ice_shell_mesh:640x640 s4_spheres16:1000x1000; do
+for spec in s1_ice_shell:1280x1280 s1_ice_shell_mesh:1280x1280 s4_spheres16:2000x2000; do
   scene=${spec%%:*}; size=${spec#*:}
   : > "$out/$scene.times"
   for ((i = 0; i < runs; ++i)); do
