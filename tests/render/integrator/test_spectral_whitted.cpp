@@ -367,25 +367,19 @@ outside = "vacuum"
   }
 }
 
-// Adaptive dispersion against sampling: S3 in miniature (a N-SF10 sphere before a checkered
-// backdrop, 48x36, one ray per pixel). Reference: the split with 256 wavelengths per camera
-// sample (a dense spectral quadrature). The adaptive default must be much closer to it than the
-// split with 16 wavelengths, which costs more: on the full S3 the ratio of their colour errors is
-// 0.22 (docs/benchmarks.md); the test asks for below 0.5 and for both to be far from exact, so
-// it fails if adaptive integration degrades to sampling or the comparison becomes trivial.
-TEST(SpectralWhitted, AdaptiveDispersionBeatsDenserSampling) {
-  auto s3 = [](const std::string& dispersion) {
-    return scene_from(R"(
-[image]
-width = 48
-height = 36
-)" + dispersion + R"(
+/// S3 in miniature: an N-SF10 sphere (radius 1, `flint_keys` added to its medium) before a
+/// large checkered sphere, a white point light and dim ambient; `image_keys` and `camera` (a
+/// [camera] table) complete it.
+Scene flint_before_checker(const std::string& image_keys, const std::string& flint_keys,
+                           const std::string& camera) {
+  return scene_from("[image]\n" + image_keys + R"(
 [[lights]]
 position = [3.0, 4.0, 5.0]
 [ambient]
 intensity = 0.1
 [media.flint]
 preset = "n-sf10"
+)" + flint_keys + R"(
 [materials.backdrop]
 kind = "matte"
 checker = { colors = [[0.95, 0.95, 0.95], [0.05, 0.05, 0.05]], size = 0.25, offset = [0.05, 0.05, 0.1] }
@@ -400,11 +394,24 @@ shape = "sphere"
 center = [0.0, 0.0, -23.0]
 radius = 20.0
 material = "backdrop"
+)" + camera);
+}
+
+// Adaptive dispersion against sampling: S3 in miniature (a N-SF10 sphere before a checkered
+// backdrop, 48x36, one ray per pixel). Reference: the split with 256 wavelengths per camera
+// sample (a dense spectral quadrature). The adaptive default must be much closer to it than the
+// split with 16 wavelengths, which costs more: on the full S3 the ratio of their colour errors is
+// 0.22 (docs/benchmarks.md); the test asks for below 0.5 and for both to be far from exact, so
+// it fails if adaptive integration degrades to sampling or the comparison becomes trivial.
+TEST(SpectralWhitted, AdaptiveDispersionBeatsDenserSampling) {
+  const std::string camera = R"(
 [camera]
 position = [0.0, 0.4, 3.0]
 look_at = [0.0, 0.0, 0.0]
 vertical_fov_deg = 50.0
-)");
+)";
+  auto s3 = [&](const std::string& dispersion) {
+    return flint_before_checker("width = 48\nheight = 36\n" + dispersion, "", camera);
   };
   const Image reference = render(s3("dispersion = \"split\"\ndispersion_wavelengths = 256")).image;
   const Image adaptive = render(s3("")).image;
@@ -429,32 +436,8 @@ vertical_fov_deg = 50.0
 // Both dispersion paths: adaptive (non-absorbing glass) and its fallback, the split (absorbing).
 TEST(SpectralWhitted, ImageDoesNotDependOnThreadCount) {
   for (const std::string absorption : {"", "absorption_per_m = 0.3"}) {
-    const Scene scene = scene_from(R"(
-[image]
-width = 40
-height = 30
-samples_per_pixel = 3
-background = [0.2, 0.3, 0.5]
-[[lights]]
-position = [3.0, 4.0, 5.0]
-[media.flint]
-preset = "n-sf10"
-)" + absorption + R"(
-[materials.backdrop]
-kind = "matte"
-checker = { colors = [[0.95, 0.95, 0.95], [0.05, 0.05, 0.05]], size = 0.25 }
-[[objects]]
-shape = "sphere"
-center = [0.0, 0.0, 0.0]
-radius = 1.0
-inside = "flint"
-outside = "vacuum"
-[[objects]]
-shape = "sphere"
-center = [0.0, 0.0, -23.0]
-radius = 20.0
-material = "backdrop"
-)" + kCamera);
+    const Scene scene = flint_before_checker(
+        "width = 40\nheight = 30\nsamples_per_pixel = 3\nbackground = [0.2, 0.3, 0.5]", absorption, kCamera);
     ASSERT_TRUE(scene.spectral());
     RenderOptions one, two;
     one.threads = 1;
