@@ -437,7 +437,8 @@ vertical_fov_deg = 50.0
 TEST(SpectralWhitted, ImageDoesNotDependOnThreadCount) {
   for (const std::string absorption : {"", "absorption_per_m = 0.3"}) {
     const Scene scene = flint_before_checker(
-        "width = 40\nheight = 30\nsamples_per_pixel = 3\nbackground = [0.2, 0.3, 0.5]", absorption, kCamera);
+        "width = 40\nheight = 30\nsamples_per_pixel = 3\nbackground = [0.2, 0.3, 0.5]", absorption,
+        kCamera);
     ASSERT_TRUE(scene.spectral());
     RenderOptions one, two;
     one.threads = 1;
