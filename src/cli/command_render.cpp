@@ -1,5 +1,6 @@
 // `thaw render SCENE.toml -o OUT.png`: renders a scene file with the Whitted ray tracer
 // (render/), with a progress bar on stderr and a one-paragraph summary. Parsing and help only.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -103,6 +104,13 @@ void run_render(const RenderArgs& a) {
       std::printf("  dispersion: %llu camera samples traced at %d wavelengths\n",
                   static_cast<unsigned long long>(st.refined_samples),
                   desc.image.dispersion_wavelengths);
+    if (scene.spectral() && desc.image.dispersion == render::ImageSettings::Dispersion::adaptive)
+      std::printf("  dispersion: adaptive, %d probe wavelengths, jumps located to %.2f nm%s\n",
+                  desc.image.dispersion_wavelengths + 1, desc.image.dispersion_resolution_nm,
+                  std::any_of(scene.media().begin(), scene.media().end(),
+                              [](const auto& m) { return m.optics.absorbs(); })
+                      ? " (absorbing media: split instead)"
+                      : "");
   }
 }
 
