@@ -77,34 +77,37 @@ class ReferenceSpectrum {
   double operator()(double l) const { return m_shape(l); }
   /// int_a^b D65 shape cmf dl: the shape is constant on Smits' 10 nm bins, so exact from the
   /// D65 prefix sums.
-  Xyz d65_xyz_integral(double a, double b) const {
-    if (m_grey) return thaw::render::d65_xyz_integral(a, b);  // the white basis is 1 everywhere
+  Xyz xyz_integral(double a, double b) const {
+    if (m_grey) return d65_xyz_integral(a, b);  // the white basis is 1 everywhere
     Xyz out;
-    for (int k = 0; k < smits::kBins; ++k) {
-      const double lo = std::max(a, smits::kBinStartNm + k * smits::kBinWidthNm);
-      const double hi = std::min(b, smits::kBinStartNm + (k + 1) * smits::kBinWidthNm);
-      if (!(hi > lo)) continue;
+    for_each_bin(a, b, [&](double lo, double hi) {
       const double v = m_shape(0.5 * (lo + hi));
-      const Xyz part = thaw::render::d65_xyz_integral(lo, hi);
+      const Xyz part = d65_xyz_integral(lo, hi);
       out.x += v * part.x, out.y += v * part.y, out.z += v * part.z;
-    }
+    });
     return out;
   }
   /// Middle of the 10 nm bin within [a, b] where D65 x shape x y-bar is largest.
   double brightest_nm(double a, double b) const {
     double best = 0.5 * (a + b), best_value = -1;
-    for (int k = 0; k < smits::kBins; ++k) {
-      const double lo = std::max(a, smits::kBinStartNm + k * smits::kBinWidthNm);
-      const double hi = std::min(b, smits::kBinStartNm + (k + 1) * smits::kBinWidthNm);
-      if (!(hi > lo)) continue;
+    for_each_bin(a, b, [&](double lo, double hi) {
       const double l = 0.5 * (lo + hi);
       const double v = m_shape(l) * illuminant_d65(l) * (cie_xyz_bar(l).y + 1e-3);
       if (v > best_value) best_value = v, best = l;
-    }
+    });
     return best;
   }
 
  private:
+  /// fn(lo, hi) for each part of [a, b] within one of Smits' 10 nm bins.
+  template <class Fn>
+  static void for_each_bin(double a, double b, Fn&& fn) {
+    for (int k = 0; k < smits::kBins; ++k) {
+      const double lo = std::max(a, smits::kBinStartNm + k * smits::kBinWidthNm);
+      const double hi = std::min(b, smits::kBinStartNm + (k + 1) * smits::kBinWidthNm);
+      if (hi > lo) fn(lo, hi);
+    }
+  }
   static LinearSrgb normalised(const Rgb& c) {
     const double m = std::max({double(c.r), double(c.g), double(c.b)});
     if (!(m > 0) || !std::isfinite(m)) return {1, 1, 1};
@@ -120,6 +123,7 @@ class SpectralTracer {
       : m_scene(scene),
         m_max_depth(scene.settings().max_depth),
         m_min_weight(static_cast<float>(scene.settings().min_weight)),
+        m_resolution_nm(scene.settings().dispersion_resolution_nm),
         m_split(scene.settings().dispersion != ImageSettings::Dispersion::hero),
         m_background(to_srgb(scene.background())),
         m_ambient(to_srgb(scene.ambient())) {
@@ -131,7 +135,7 @@ class SpectralTracer {
       m_any_absorbs = m_any_absorbs || m.optics.absorbs();
       m_ior_constant.push_back(m.optics.n_at(media::kFraunhoferD_nm));
     }
-    set_probe_count(probe_count);
+    set_probe_grid(scene.settings().dispersion_wavelengths);
   }
 
   /// Radiance along `ray` (unit direction) at tree level `depth` with throughput `beta`,
@@ -192,8 +196,6 @@ class SpectralTracer {
   /// (dispersion = "adaptive"; see adaptive_transmission). Its XYZ goes to `side_xyz`, not into
   /// the returned spectrum; render_spectral adds it to the film outside the ratio normalisation.
   bool adaptive = false;
-  double resolution_nm = 4.0;
-  int probe_count = 10;
   Xyz side_xyz;
 
  private:
@@ -213,15 +215,15 @@ class SpectralTracer {
   };
 
   std::vector<SpectralNode> m_nodes;
-  std::vector<double> m_grid_nm;
+  std::vector<double> m_grid_nm;  // probe wavelengths, ascending (set_probe_grid)
 
- public:
-  /// Probe grid of adaptive dispersion: probe_count intervals over 380-780 nm, in equal steps of
-  /// the CDF of (x + y + z)(l) D65(l) / its peak + 0.2: densest where a misplaced colour jump
-  /// costs most (the violet-blue and the orange-red fringes both; on S3 this placement gave 11 %
-  /// less colour error than the eye-sensitivity density at the same cost), never sparse.
-  void set_probe_count(int count) {
-    probe_count = std::max(1, count);
+  /// Probe grid of adaptive dispersion ([image] dispersion_wavelengths): `count` intervals over
+  /// 380-780 nm, in equal steps of the CDF of (x + y + z)(l) D65(l) / its peak + 0.2: densest where
+  /// a misplaced colour jump costs most (the violet-blue and the orange-red fringes both; on S3
+  /// this placement gave 11 % less colour error than the eye-sensitivity density at the same cost),
+  /// never sparse.
+  void set_probe_grid(int count) {
+    const int probe_count = std::max(1, count);
     static const std::vector<double> cdf = [] {
       constexpr int kSteps = 400;  // 1 nm
       std::vector<double> c(kSteps + 1, 0.0);
@@ -250,18 +252,59 @@ class SpectralTracer {
     m_grid_nm.back() = kLambdaMaxNm;
   }
 
- private:
   double index_at(std::uint32_t medium, double lambda_nm) const {
     return m_dispersive[medium] ? m_scene.media()[medium].optics.n_at(lambda_nm)
                                 : m_ior_constant[medium];
   }
 
-  /// Snell's direction with the shading normal, falling back to the geometric one (as the lanes
-  /// do); false on total internal reflection.
+  /// Snell's direction with the shading normal, falling back to the geometric one; false on
+  /// total internal reflection. Normals face the incident side.
   static bool refraction_direction(const Vec3& d, const Vec3& ns, const Vec3& ng, float eta,
                                    Vec3& dir) {
     if (refract(d, ns, eta, dir) && dot(dir, ng) < 0.0f) return true;
     return refract(d, ng, eta, dir);
+  }
+  /// Mirror direction about the shading normal, about the geometric one if that would go below.
+  static Vec3 reflection_direction(const Vec3& d, const Vec3& ns, const Vec3& ng) {
+    const Vec3 dir = reflect(d, ns);
+    return dot(dir, ng) <= 0.0f ? reflect(d, ng) : dir;
+  }
+
+  /// A dielectric interface as ray direction d meets it: the medium it comes from and goes to,
+  /// the normals turned to face d's side (shading normal replaced by the geometric one where it
+  /// faces away).
+  struct FacingInterface {
+    std::uint32_t from, to;
+    Vec3 ng, ns;
+  };
+  static FacingInterface facing(const Vec3& d, const SurfaceInteraction& si,
+                                const SceneObject& obj) {
+    const bool entering = dot(d, si.ng) < 0.0f;
+    FacingInterface f{entering ? obj.outside : obj.inside, entering ? obj.inside : obj.outside,
+                      entering ? si.ng : -si.ng, entering ? si.ns : -si.ns};
+    if (dot(f.ns, d) >= 0.0f) f.ns = f.ng;
+    return f;
+  }
+
+  /// How point light `light` meets surface point p (normals ng, ns facing the viewer): behind
+  /// the surface (no shadow ray cast), shadowed, or seen; l, cos_l, dist2 describe the
+  /// direction to it.
+  enum class LightVisibility { facing_away, shadowed, seen };
+  LightVisibility light_visibility(const Vec3& p, const Vec3& p_error, const Vec3& ng,
+                                   const Vec3& ns, const PointLight& light, Vec3& l, float& cos_l,
+                                   float& dist2) {
+    const Vec3 to_light = light.position - p;
+    dist2 = dot(to_light, to_light);
+    if (!(dist2 > 0.0f)) return LightVisibility::facing_away;
+    l = to_light / std::sqrt(dist2);
+    if (dot(l, ng) <= 0.0f) return LightVisibility::facing_away;
+    cos_l = dot(ns, l);
+    if (cos_l <= 0.0f) return LightVisibility::facing_away;
+    const Vec3 origin = offset_ray_origin(p, p_error, ng, l);
+    ++rays;
+    return m_scene.occluded(Ray{origin, light.position - origin, 1.0f - 1e-4f})
+               ? LightVisibility::shadowed
+               : LightVisibility::seen;
   }
 
   static bool is_grey(const SampledSpectrum& s) {
@@ -284,7 +327,7 @@ class SpectralTracer {
   /// normals facing the incident side) ends on, along its main chain: refraction through every
   /// further dielectric (reflection where that one is total), mirror reflection off metals, up to
   /// the first diffuse or emissive surface; hashed with the objects met and that surface's
-  /// texture colour. With the lights that surface sees (lights_seen) this is the wavelength's
+  /// texture colour. With the lights that surface sees (full_signature) this is the wavelength's
   /// signature: two wavelengths with the same signature see the same colours through the same
   /// chain, so the transmitted radiance is smooth in the wavelength between them; where
   /// signatures differ the spectrum jumps (a fringe).
@@ -315,28 +358,22 @@ class SpectralTracer {
       h = mix(h, si.object);
       const Vec3& rd = ray.direction;
       if (obj.dielectric) {
-        const bool entering = dot(rd, si.ng) < 0.0f;
-        const std::uint32_t f = entering ? obj.outside : obj.inside,
-                            t = entering ? obj.inside : obj.outside;
-        const Vec3 g = entering ? si.ng : -si.ng;
-        Vec3 s = entering ? si.ns : -si.ns;
-        if (dot(s, rd) >= 0.0f) s = g;
+        const FacingInterface fi = facing(rd, si, obj);
         Vec3 next;
-        const float eta = static_cast<float>(index_at(t, lambda_nm) / index_at(f, lambda_nm));
-        if (!refraction_direction(rd, s, g, eta, next)) {
+        const float eta =
+            static_cast<float>(index_at(fi.to, lambda_nm) / index_at(fi.from, lambda_nm));
+        if (!refraction_direction(rd, fi.ns, fi.ng, eta, next)) {
           h = mix(h, kTotalReflection);
-          next = reflect(rd, s);
-          if (dot(next, g) <= 0.0f) next = reflect(rd, g);
+          next = reflection_direction(rd, fi.ns, fi.ng);
         }
-        ray = Ray{offset_ray_origin(si.p, si.p_error, g, next), next};
+        ray = Ray{offset_ray_origin(si.p, si.p_error, fi.ng, next), next};
         continue;
       }
       const Material& mat = m_scene.materials()[obj.material];
       const Vec3 g = face_forward(si.ng, -rd);
       const Vec3 s = face_forward(si.ns, g);
       if (mat.kind == Material::Kind::metal) {
-        Vec3 next = reflect(rd, s);
-        if (dot(next, g) <= 0.0f) next = reflect(rd, g);
+        const Vec3 next = reflection_direction(rd, s, g);
         ray = Ray{offset_ray_origin(si.p, si.p_error, g, next), next};
         continue;
       }
@@ -358,15 +395,12 @@ class SpectralTracer {
     std::uint64_t h = end.hash;
     const auto& lights = m_scene.lights();
     for (std::size_t i = 0; i < lights.size(); ++i) {
-      const Vec3 to_light = lights[i].position - end.p;
-      const float dist2 = dot(to_light, to_light);
-      if (!(dist2 > 0.0f)) continue;
-      const Vec3 l = to_light / std::sqrt(dist2);
-      if (dot(l, end.g) <= 0.0f || dot(end.s, l) <= 0.0f) continue;
-      const Vec3 origin = offset_ray_origin(end.p, end.p_error, end.g, l);
-      ++rays;
-      const bool seen = !m_scene.occluded(Ray{origin, lights[i].position - origin, 1.0f - 1e-4f});
-      h = mix(h, (std::uint64_t{i} << 1) | (seen ? 1u : 0u));
+      Vec3 l;
+      float cos_l, dist2;
+      const LightVisibility v =
+          light_visibility(end.p, end.p_error, end.g, end.s, lights[i], l, cos_l, dist2);
+      if (v != LightVisibility::facing_away)
+        h = mix(h, (std::uint64_t{i} << 1) | (v == LightVisibility::seen ? 1u : 0u));
     }
     return h;
   }
@@ -398,8 +432,8 @@ class SpectralTracer {
   /// split whose upstream throughput `b` is the same at every wavelength. The transmitted
   /// radiance f(l) = t(l) L(l) is smooth in l except where the refracted light starts to see
   /// something else (a checker edge, a silhouette, a shadow): the fringes. So:
-  /// 1. signatures (render/integrator: signature()) on a grid of probe_count + 1 wavelengths
-  ///    spanning 380-780 nm and at the packet's hero wavelength, whose f is traced (one lane);
+  /// 1. signatures (chain_end() + full_signature()) on the probe grid (set_probe_grid(): 380
+  ///    and 780 nm included) and at the packet's hero wavelength, whose f is traced (one lane);
   /// 2. wherever neighbouring signatures differ, bisection (signatures only: a few rays each)
   ///    locates each jump to within resolution_nm;
   /// 3. the range falls into segments of one signature each; a segment without a traced
@@ -457,7 +491,7 @@ class SpectralTracer {
     const std::size_t initial = m_nodes.size();
     auto bisect = [&](auto&& self, std::size_t ia, std::size_t ic) -> void {
       const double la = m_nodes[ia].lambda_nm, lc = m_nodes[ic].lambda_nm;
-      if (lc - la <= resolution_nm || probes >= kMaxProbes) return;
+      if (lc - la <= m_resolution_nm || probes >= kMaxProbes) return;
       ++probes;
       add_node(0.5 * (la + lc), false, 0.0);
       const std::size_t im = m_nodes.size() - 1;
@@ -499,7 +533,7 @@ class SpectralTracer {
                                     m_nodes[end - 1].lambda_nm);
         add(l, transmitted_at(d, si, ns, ng, cos_i, from, to, depth, b, l, w, -1));
       }
-      const Xyz weight = reference.d65_xyz_integral(lower, upper);
+      const Xyz weight = reference.xyz_integral(lower, upper);
       const double ratio = e_sum > 0 ? f_sum / e_sum : 0.0;
       sum.x += weight.x * (den.x > 1e-9 ? num.x / den.x : ratio);
       sum.y += weight.y * (den.y > 1e-9 ? num.y / den.y : ratio);
@@ -516,13 +550,8 @@ class SpectralTracer {
                              const SampledSpectrum& beta, std::uint32_t medium, const SampledWavelengths& w,
                              int lane) {
     const Vec3& d = ray.direction;
-    const bool entering = dot(d, si.ng) < 0.0f;
-    const std::uint32_t from = entering ? obj.outside : obj.inside;
-    const std::uint32_t to = entering ? obj.inside : obj.outside;
+    const auto [from, to, ng, ns] = facing(d, si, obj);
     if (medium != from) ++mismatches;
-    const Vec3 ng = entering ? si.ng : -si.ng;
-    Vec3 ns = entering ? si.ns : -si.ns;
-    if (dot(ns, d) >= 0.0f) ns = ng;
     const float cos_i = -dot(d, ns);
     SampledSpectrum result;
     if (depth >= m_max_depth) return result;
@@ -550,8 +579,7 @@ class SpectralTracer {
     }
     // Reflected branch: every carried wavelength, each with its own Fresnel reflectance.
     if (!r.is_black() && live_max(beta * r, w) >= m_min_weight) {
-      Vec3 dir = reflect(d, ns);
-      if (dot(dir, ng) <= 0.0f) dir = reflect(d, ng);
+      const Vec3 dir = reflection_direction(d, ns, ng);
       const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
       result += trace(next, depth + 1, beta * r, from, w, lane) * r;
     }
@@ -573,19 +601,14 @@ class SpectralTracer {
         const SampledSpectrum b = beta * mask;
         if (!(b[i] >= m_min_weight) || b[i] == 0.0f) continue;
         Vec3 dir;
-        const float eta = n_to[i] / n_from[i];
-        bool ok = refract(d, ns, eta, dir) && dot(dir, ng) < 0.0f;
-        if (!ok) ok = refract(d, ng, eta, dir);
-        if (!ok) continue;
+        if (!refraction_direction(d, ns, ng, n_to[i] / n_from[i], dir)) continue;
         const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
         result += trace(next, depth + 1, b, to, w, i) * mask;
       }
       return result;
     }
     Vec3 dir;
-    bool ok = refract(d, ns, eta_hero, dir) && dot(dir, ng) < 0.0f;
-    if (!ok) ok = refract(d, ng, eta_hero, dir);
-    if (!ok) return result;
+    if (!refraction_direction(d, ns, ng, eta_hero, dir)) return result;
     const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
     if (!dispersive || w.secondary_terminated() || lane >= 0) {
       if (live_max(beta * t, w) >= m_min_weight) result += trace(next, depth + 1, beta * t, to, w, lane) * t;
@@ -609,9 +632,8 @@ class SpectralTracer {
     const float wmax = live_max(b, w);
     if (depth >= m_max_depth || wmax < m_min_weight || wmax == 0.0f) return {};
     const Vec3 ng = face_forward(si.ng, -ray.direction);
-    Vec3 ns = face_forward(si.ns, ng);
-    Vec3 dir = reflect(ray.direction, ns);
-    if (dot(dir, ng) <= 0.0f) dir = reflect(ray.direction, ng);
+    const Vec3 ns = face_forward(si.ns, ng);
+    const Vec3 dir = reflection_direction(ray.direction, ns, ng);
     const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
     return tint * trace(next, depth + 1, b, medium, w, lane);
   }
@@ -628,17 +650,11 @@ class SpectralTracer {
     const auto& lights = m_scene.lights();
     for (std::size_t li_index = 0; li_index < lights.size(); ++li_index) {
       const PointLight& light = lights[li_index];
-      const Vec3 to_light = light.position - si.p;
-      const float dist2 = dot(to_light, to_light);
-      if (!(dist2 > 0.0f)) continue;
-      const Vec3 l = to_light / std::sqrt(dist2);
-      if (dot(l, ng) <= 0.0f) continue;
-      const float cos_l = dot(ns, l);
-      if (cos_l <= 0.0f) continue;
-      const Vec3 origin = offset_ray_origin(si.p, si.p_error, ng, l);
-      const Ray shadow{origin, light.position - origin, 1.0f - 1e-4f};
-      ++rays;
-      if (m_scene.occluded(shadow)) continue;
+      Vec3 l;
+      float cos_l, dist2;
+      if (light_visibility(si.p, si.p_error, ng, ns, light, l, cos_l, dist2) !=
+          LightVisibility::seen)
+        continue;
       SampledSpectrum li = ps.lights[li_index];
       if (light.inverse_square) li *= 1.0f / dist2;
       result += albedo * li * (mat.kd * cos_l);
@@ -649,8 +665,7 @@ class SpectralTracer {
     }
     if (mat.kind != Material::Kind::phong || depth >= m_max_depth) return result;
     if (mat.reflectance > 0.0f && live_max(beta, w) * mat.reflectance >= m_min_weight) {
-      Vec3 dir = reflect(d, ns);
-      if (dot(dir, ng) <= 0.0f) dir = reflect(d, ng);
+      const Vec3 dir = reflection_direction(d, ns, ng);
       const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
       result += trace(next, depth + 1, beta * mat.reflectance, medium, w, lane) * mat.reflectance;
     }
@@ -670,6 +685,7 @@ class SpectralTracer {
   const Scene& m_scene;
   int m_max_depth;
   float m_min_weight;
+  double m_resolution_nm;  // adaptive dispersion: jumps located to this width
   bool m_split;
   RgbIlluminantSpectrum m_background, m_ambient;
   std::vector<RgbIlluminantSpectrum> m_lights, m_emission;
@@ -784,8 +800,6 @@ RenderResult render_spectral(const Scene& scene, const RenderOptions& options, c
   {
     SpectralTracer tracer(scene);
     tracer.adaptive = st.dispersion == ImageSettings::Dispersion::adaptive;
-    tracer.resolution_nm = st.dispersion_resolution_nm;
-    tracer.set_probe_count(st.dispersion_wavelengths);
     std::vector<int> perm(static_cast<std::size_t>(spp)), lambda_perm(static_cast<std::size_t>(spp));
     auto shuffle = [](std::vector<int>& p, Pcg32& rng) {
       for (std::size_t i = 0; i < p.size(); ++i) p[i] = static_cast<int>(i);
