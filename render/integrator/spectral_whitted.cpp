@@ -184,7 +184,7 @@ class SpectralTracer {
     return absorbs ? l * transmittance : l;
   }
 
-  std::uint64_t rays = 0, mismatches = 0;
+  std::uint64_t rays = 0, mismatches = 0, adaptive_refractions = 0, split_refractions = 0;
 
   /// Set when some dispersive refraction was split into lanes (render_spectral then traces the
   /// camera sample's remaining wavelength packets). Before its first dispersive refraction a ray
@@ -589,9 +589,11 @@ class SpectralTracer {
       if (adaptive && !m_any_absorbs && is_grey(beta)) {
         // Upstream throughput independent of the wavelength: integrate the transmitted light
         // over the whole spectrum here (its XYZ goes to side_xyz).
+        ++adaptive_refractions;
         adaptive_transmission(d, si, ns, ng, cos_i, from, to, depth, beta[0], w);
         return result;
       }
+      ++split_refractions;
       // Split: each carried wavelength refracts its own way on its own ray (4 rays). Every
       // wavelength's radiance is then exact, so the film estimator keeps all four: no colour
       // noise beyond the wavelength sampling itself.
@@ -794,9 +796,11 @@ RenderResult render_spectral(const Scene& scene, const RenderOptions& options, c
       shared_white.push_back(spectrum_to_xyz(illuminant_d65(shared_wavelengths.back()), shared_wavelengths.back()));
     }
   }
-  std::uint64_t rays = 0, mismatches = 0, refined = 0;
+  std::uint64_t rays = 0, mismatches = 0, refined = 0, adaptive_refractions = 0,
+                split_refractions = 0;
   std::atomic<std::int64_t> tiles_done{0};
-#pragma omp parallel num_threads(threads) reduction(+ : rays, mismatches, refined)
+#pragma omp parallel num_threads(threads) \
+    reduction(+ : rays, mismatches, refined, adaptive_refractions, split_refractions)
   {
     SpectralTracer tracer(scene);
     tracer.adaptive = st.dispersion == ImageSettings::Dispersion::adaptive;
@@ -892,10 +896,14 @@ RenderResult render_spectral(const Scene& scene, const RenderOptions& options, c
     }
     rays += tracer.rays;
     mismatches += tracer.mismatches;
+    adaptive_refractions += tracer.adaptive_refractions;
+    split_refractions += tracer.split_refractions;
   }
   result.stats.rays = rays;
   result.stats.medium_mismatches = mismatches;
   result.stats.refined_samples = refined;
+  result.stats.adaptive_refractions = adaptive_refractions;
+  result.stats.split_refractions = split_refractions;
   result.stats.threads = threads;
   result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.stats.rays_per_second = result.stats.seconds > 0 ? double(rays) / result.stats.seconds : 0.0;

@@ -31,8 +31,11 @@ struct RenderStats {
   std::uint64_t rays = 0;
   /// rays that reached an interface from a side whose medium differs from the one they carry
   std::uint64_t medium_mismatches = 0;
-  /// spectral mode: camera samples traced with all [image] dispersion_wavelengths (fringes)
+  /// spectral mode: camera samples traced with all [image] dispersion_wavelengths (split)
   std::uint64_t refined_samples = 0;
+  /// spectral mode: dispersive refractions integrated over the spectrum (adaptive) and split
+  /// into one ray per carried wavelength (split, or adaptive's fallback)
+  std::uint64_t adaptive_refractions = 0, split_refractions = 0;
   /// wall time of the tracing [s]
   double seconds = 0;
   double rays_per_second = 0;

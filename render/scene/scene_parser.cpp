@@ -108,6 +108,20 @@ MaterialDescription parse_material(const std::string& name, const TomlTable& m) 
 
 }  // namespace
 
+std::optional<ImageSettings::Dispersion> dispersion_from_name(std::string_view name) {
+  if (name == "adaptive") return ImageSettings::Dispersion::adaptive;
+  if (name == "split") return ImageSettings::Dispersion::split;
+  if (name == "hero") return ImageSettings::Dispersion::hero;
+  return std::nullopt;
+}
+
+std::optional<ImageSettings::WavelengthPattern> wavelength_pattern_from_name(
+    std::string_view name) {
+  if (name == "shared") return ImageSettings::WavelengthPattern::shared;
+  if (name == "per_pixel") return ImageSettings::WavelengthPattern::per_pixel;
+  return std::nullopt;
+}
+
 SceneDescription parse_scene_string(const std::string& text, const std::string& source_name,
                                     const std::filesystem::path& base_dir) {
   const TomlTable root = TomlTable::parse_string(text, source_name);
@@ -133,27 +147,23 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
     s.image.exposure = img->get_double("exposure", 0.0);
     if (img->has("spectral")) s.image.spectral = parse_spectral(*img);
     const std::string dispersion = img->get_string("dispersion", "adaptive");
-    if (dispersion == "adaptive")
-      s.image.dispersion = ImageSettings::Dispersion::adaptive;
-    else if (dispersion == "split")
-      s.image.dispersion = ImageSettings::Dispersion::split;
-    else if (dispersion == "hero") s.image.dispersion = ImageSettings::Dispersion::hero;
+    if (const auto mode = dispersion_from_name(dispersion))
+      s.image.dispersion = *mode;
     else
       img->fail("dispersion",
                 "must be \"adaptive\", \"split\" or \"hero\" (got \"" + dispersion + "\")");
     const double resolution =
         img->get_double("dispersion_resolution_nm", s.image.dispersion_resolution_nm);
-    if (!(resolution >= 0.05 && resolution <= 100.0))
+    if (!(resolution >= kMinDispersionResolutionNm && resolution <= kMaxDispersionResolutionNm))
       img->fail("dispersion_resolution_nm",
                 "must be between 0.05 and 100 nm (got " + std::to_string(resolution) + ")");
     s.image.dispersion_resolution_nm = resolution;
     s.image.dispersion_wavelengths =
-        int_in(*img, "dispersion_wavelengths", s.image.dispersion_wavelengths, 4, 1024);
+        int_in(*img, "dispersion_wavelengths", s.image.dispersion_wavelengths,
+               kMinDispersionWavelengths, kMaxDispersionWavelengths);
     const std::string pattern = img->get_string("wavelength_pattern", "shared");
-    if (pattern == "shared")
-      s.image.wavelength_pattern = ImageSettings::WavelengthPattern::shared;
-    else if (pattern == "per_pixel")
-      s.image.wavelength_pattern = ImageSettings::WavelengthPattern::per_pixel;
+    if (const auto p = wavelength_pattern_from_name(pattern))
+      s.image.wavelength_pattern = *p;
     else
       img->fail("wavelength_pattern",
                 "must be \"shared\" or \"per_pixel\" (got \"" + pattern + "\")");

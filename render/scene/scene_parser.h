@@ -4,7 +4,9 @@
 // material names are thaw::UserError naming the file, line and key. Meshes are not loaded here
 // (build_scene does that), so parsing is cheap and testable from strings.
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "render/scene/scene_description.h"
 #include "src/common/toml_table.h"
@@ -26,5 +28,14 @@ SceneDescription parse_scene_table(const TomlTable& table, const std::filesystem
 /// Largest accepted image side [pixels] and pixel count.
 inline constexpr int kMaxImageSide = 16384;
 inline constexpr long long kMaxImagePixels = 1LL << 26;
+
+/// Accepted [image] dispersion_wavelengths and dispersion_resolution_nm [nm].
+inline constexpr int kMinDispersionWavelengths = 4, kMaxDispersionWavelengths = 1024;
+inline constexpr double kMinDispersionResolutionNm = 0.05, kMaxDispersionResolutionNm = 100.0;
+
+/// [image] dispersion and wavelength_pattern values by name, as in scene files and the flags of
+/// `thaw render`; nullopt for an unknown name.
+std::optional<ImageSettings::Dispersion> dispersion_from_name(std::string_view name);
+std::optional<ImageSettings::WavelengthPattern> wavelength_pattern_from_name(std::string_view name);
 
 }  // namespace thaw::render

@@ -1,6 +1,5 @@
 // `thaw render SCENE.toml -o OUT.png`: renders a scene file with the Whitted ray tracer
 // (render/), with a progress bar on stderr and a one-paragraph summary. Parsing and help only.
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -44,34 +43,29 @@ void run_render(const RenderArgs& a) {
   if (static_cast<long long>(desc.image.width) * desc.image.height > render::kMaxImagePixels)
     throw UserError("", "--width/--height", "image has too many pixels");
   if (a.spp) desc.image.samples_per_pixel = checked("--spp", *a.spp, 1, 65536);
-  if (a.dispersion_wavelengths) {
+  if (a.dispersion_wavelengths)
     desc.image.dispersion_wavelengths =
-        checked("--dispersion-wavelengths", *a.dispersion_wavelengths, 4, 1024);
-  }
+        checked("--dispersion-wavelengths", *a.dispersion_wavelengths,
+                render::kMinDispersionWavelengths, render::kMaxDispersionWavelengths);
   if (a.dispersion) {
-    if (*a.dispersion == "adaptive")
-      desc.image.dispersion = render::ImageSettings::Dispersion::adaptive;
-    else if (*a.dispersion == "split")
-      desc.image.dispersion = render::ImageSettings::Dispersion::split;
-    else if (*a.dispersion == "hero")
-      desc.image.dispersion = render::ImageSettings::Dispersion::hero;
-    else
+    const auto mode = render::dispersion_from_name(*a.dispersion);
+    if (!mode)
       throw UserError("", "--dispersion",
                       "must be adaptive, split or hero (got '" + *a.dispersion + "')");
+    desc.image.dispersion = *mode;
   }
   if (a.dispersion_resolution_nm) {
-    if (!(*a.dispersion_resolution_nm >= 0.05 && *a.dispersion_resolution_nm <= 100.0))
+    if (!(*a.dispersion_resolution_nm >= render::kMinDispersionResolutionNm &&
+          *a.dispersion_resolution_nm <= render::kMaxDispersionResolutionNm))
       throw UserError("", "--dispersion-resolution-nm", "must be between 0.05 and 100 nm");
     desc.image.dispersion_resolution_nm = *a.dispersion_resolution_nm;
   }
   if (a.wavelength_pattern) {
-    if (*a.wavelength_pattern == "shared")
-      desc.image.wavelength_pattern = render::ImageSettings::WavelengthPattern::shared;
-    else if (*a.wavelength_pattern == "per_pixel")
-      desc.image.wavelength_pattern = render::ImageSettings::WavelengthPattern::per_pixel;
-    else
+    const auto pattern = render::wavelength_pattern_from_name(*a.wavelength_pattern);
+    if (!pattern)
       throw UserError("", "--wavelength-pattern",
                       "must be shared or per_pixel (got '" + *a.wavelength_pattern + "')");
+    desc.image.wavelength_pattern = *pattern;
   }
   if (a.max_depth) desc.image.max_depth = checked("--max-depth", *a.max_depth, 1, 64);
   if (a.exposure) desc.image.exposure = *a.exposure;
@@ -99,18 +93,17 @@ void run_render(const RenderArgs& a) {
     std::printf("  rays traced: %llu in %.3f s on %d threads (%.2f Mrays/s); total time %.3f s\n",
                 static_cast<unsigned long long>(st.rays), st.seconds, st.threads, st.rays_per_second * 1e-6, total);
     std::printf("  medium mismatches: %llu\n", static_cast<unsigned long long>(st.medium_mismatches));
-    if (scene.spectral() && desc.image.dispersion == render::ImageSettings::Dispersion::split &&
-        desc.image.dispersion_wavelengths > 4)
+    if (st.adaptive_refractions + st.split_refractions > 0)
+      std::printf(
+          "  dispersion: %llu refractions integrated over the spectrum (%d probe wavelengths, "
+          "jumps to %.2f nm), %llu split into one ray per wavelength\n",
+          static_cast<unsigned long long>(st.adaptive_refractions),
+          desc.image.dispersion_wavelengths + 1, desc.image.dispersion_resolution_nm,
+          static_cast<unsigned long long>(st.split_refractions));
+    if (st.refined_samples > 0)
       std::printf("  dispersion: %llu camera samples traced at %d wavelengths\n",
                   static_cast<unsigned long long>(st.refined_samples),
                   desc.image.dispersion_wavelengths);
-    if (scene.spectral() && desc.image.dispersion == render::ImageSettings::Dispersion::adaptive)
-      std::printf("  dispersion: adaptive, %d probe wavelengths, jumps located to %.2f nm%s\n",
-                  desc.image.dispersion_wavelengths + 1, desc.image.dispersion_resolution_nm,
-                  std::any_of(scene.media().begin(), scene.media().end(),
-                              [](const auto& m) { return m.optics.absorbs(); })
-                      ? " (absorbing media: split instead)"
-                      : "");
   }
 }
 
