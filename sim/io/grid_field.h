@@ -1,0 +1,50 @@
+#pragma once
+// The output contract of axisymmetric and 3D runs: one output time's cell-centred fields on a
+// uniform grid of cubic cells (DIR/fields/step_NNNNNN.grid), written by the grid solver and read
+// by the mesher and the pipeline. Binary, little-endian, with a versioned header and a checksum
+// so that a truncated or damaged file is refused instead of meshed. Knows nothing of the solver.
+#include <array>
+#include <filesystem>
+#include <vector>
+
+namespace thaw::sim {
+
+/// One output time of an axisymmetric or 3D run, cell-centred on a uniform grid of cubic cells.
+struct GridField {
+  enum class Geometry { axisymmetric, cartesian3d };
+  Geometry geometry = Geometry::cartesian3d;
+  /// cells per axis: cartesian3d {nx, ny, nz} (y vertical); axisymmetric {nr, ny, 1} (r = radius
+  /// from the vertical y axis)
+  std::array<int, 3> cells{0, 0, 0};
+  /// position of the lower corner of cell (0,0,0) [m] (axisymmetric: {0 (axis), y0, 0})
+  std::array<double, 3> origin_m{0, 0, 0};
+  /// cell edge [m]
+  double spacing_m = 0;
+  double time_s = 0;
+  /// per cell, index i + cells[0]*(j + cells[1]*k): temperature [C], ice volume fraction [0,1],
+  /// liquid water volume fraction [0,1] (the rest is air / outside)
+  std::vector<float> temperature_c, ice_fraction, water_fraction;
+
+  /// cells[0] * cells[1] * cells[2].
+  std::size_t cell_count() const;
+  /// Flat index of cell (i, j, k).
+  std::size_t index(int i, int j, int k) const {
+    return static_cast<std::size_t>(i) +
+           static_cast<std::size_t>(cells[0]) *
+               (static_cast<std::size_t>(j) + static_cast<std::size_t>(cells[1]) * k);
+  }
+};
+
+/// "axisymmetric" | "cartesian3d".
+const char* to_string(GridField::Geometry geometry);
+
+/// Writes `f` atomically (src/common atomic write): header "THAWGRID", format version, geometry,
+/// cells, origin, spacing, time, then the three float arrays and an FNV-1a checksum. THAW_CHECK
+/// that the arrays have cell_count() entries (a programming error otherwise).
+void write_grid_field(const std::filesystem::path& file, const GridField& f);
+/// Reads a file written by write_grid_field; throws thaw::UserError naming the file on any
+/// corruption (missing, truncated, wrong magic or version, bad sizes, checksum mismatch,
+/// trailing bytes, non-finite values, fractions outside [0, 1] or summing above 1).
+GridField read_grid_field(const std::filesystem::path& file);
+
+}  // namespace thaw::sim
