@@ -21,7 +21,9 @@
 #include "src/pipeline/content_hash.h"
 #include "src/pipeline/film_encoder.h"
 #include "src/pipeline/frame_label.h"
+#include "src/pipeline/frame_puddle.h"
 #include "src/pipeline/run_manifest.h"
+#include "src/pipeline/water_budget.h"
 #include "thaw_version.h"
 
 namespace thaw::pipeline {
@@ -65,9 +67,11 @@ std::string frame_name(long k) {
   return buf;
 }
 
-/// The scene of one frame: the scenario's scene plus the shell's two interfaces.
+/// The scene of one frame: the scenario's scene plus the shell's two interfaces and the puddle
+/// holding the water that left the shell (when the shell rests on a floor).
 render::SceneDescription frame_scene(const RunScenario& sc, const fs::path& mesh_dir,
-                                     const mesh::StepRecord& step) {
+                                     const sim::ShellGeometry& geometry,
+                                     const mesh::StepRecord& step, const WaterBudget& water) {
   render::SceneDescription desc = sc.scene;
   std::shared_ptr<render::TriangleMesh> outer, inner;
   if (step.outer.file) outer = std::make_shared<render::TriangleMesh>(render::load_obj(mesh_dir / *step.outer.file));
@@ -87,6 +91,12 @@ render::SceneDescription frame_scene(const RunScenario& sc, const fs::path& mesh
       auto& i = desc.add_dielectric_mesh(inner, sc.shell.water_medium, sc.shell.ice_medium, "shell inner surface");
       i.translate = offset;
     }
+  }
+  if (sc.shell.rest_on_floor) {
+    std::optional<IceFootprint> ice;
+    if (outer) ice = ice_footprint(geometry, step.outer_radius_m, offset, sc.shell.floor_y);
+    add_puddle(desc, water.puddle_volume_m3, sc.shell.floor_y, offset, geometry, ice,
+               sc.shell.water_medium, sc.shell.outside_medium);
   }
   return desc;
 }
@@ -180,6 +190,9 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
   for (const auto& o : sc.scene.objects)
     if (!o.mesh_file.empty()) render_hash.add_file(o.mesh_file.is_absolute() ? o.mesh_file : sc.scene.base_dir / o.mesh_file);
   const long frame_count = static_cast<long>(meshes.steps.size());
+  const std::vector<WaterBudget> water =
+      water_budget(rows, meshes.geometry, sc.simulation.materials.ice_density_kg_m3,
+                   sc.simulation.materials.water_density_kg_m3);
   report.frames = static_cast<int>(frame_count);
   {
     StageClock clock(report, "render");
@@ -198,7 +211,8 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
         continue;
       }
       const mesh::StepRecord& step = meshes.steps[static_cast<std::size_t>(k)];
-      const render::Scene scene = render::build_scene(frame_scene(sc, mesh_dir, step));
+      const render::Scene scene = render::build_scene(frame_scene(
+          sc, mesh_dir, meshes.geometry, step, water.at(static_cast<std::size_t>(step.step))));
       render::RenderOptions ro;
       ro.threads = opt.jobs;
       render::RenderResult result = render::render(scene, ro);
