@@ -1,8 +1,10 @@
-// `thaw run [SCENARIO.toml] --out DIR [--force] [--jobs N] [--quiet]`: simulate, mesh, render,
-// film and inspect in one command (src/pipeline). Parsing and the closing summary only.
+// `thaw run [SCENARIO.toml] --out DIR [--force] [--jobs N] [--quiet] [--size WxH] [--spp N]`:
+// simulate, mesh, render, film and inspect in one command (src/pipeline). Parsing and the closing
+// summary only.
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -10,6 +12,7 @@
 #include "src/common/error.h"
 #include "src/common/progress.h"
 #include "src/pipeline/pipeline.h"
+#include "src/pipeline/render_overrides.h"
 #include "src/pipeline/run_scenario.h"
 
 namespace thaw::cli {
@@ -19,6 +22,8 @@ struct RunArgs {
   std::string scenario, out = "thaw-out";
   bool force = false, quiet = false, print_default = false;
   int jobs = 0;
+  std::optional<std::string> size;
+  std::optional<long long> spp;
 };
 
 void run_run(const RunArgs& a) {
@@ -27,6 +32,9 @@ void run_run(const RunArgs& a) {
     return;
   }
   if (a.jobs < 0) throw UserError("", "--jobs", "must be >= 0 (0 = all cores)");
+  pipeline::RenderOverrides overrides;
+  if (a.size) overrides = pipeline::parse_size_override(*a.size);
+  if (a.spp) overrides.samples_per_pixel = pipeline::checked_spp_override(*a.spp);
   // Parse and validate the whole scenario before any work starts.
   pipeline::RunOptions options;
   pipeline::RunScenario scenario;
@@ -40,6 +48,7 @@ void run_run(const RunArgs& a) {
     text << in.rdbuf();
     options.scenario_text = text.str();
   }
+  pipeline::apply_render_overrides(scenario, overrides);
   options.out_dir = a.out;
   options.force = a.force;
   options.jobs = a.jobs;
@@ -72,6 +81,14 @@ void register_run(CLI::App& app) {
   cmd->add_flag("--force", args->force, "redo every stage, even those up to date");
   cmd->add_option("-j,--jobs", args->jobs, "worker threads for meshing and rendering (0 = all cores)");
   cmd->add_flag("-q,--quiet", args->quiet, "no progress display and no summary");
+  cmd->add_option(
+      "--size", args->size,
+      "image size WIDTHxHEIGHT [pixels] (overrides [render.image] width and height; only "
+      "the frames are re-rendered)");
+  cmd->add_option(
+      "--spp", args->spp,
+      "samples per pixel (overrides [render.image] samples_per_pixel; only the frames are "
+      "re-rendered)");
   cmd->add_flag("--print-default", args->print_default, "print the built-in default scenario and exit");
   cmd->callback([args] { run_run(*args); });
 }

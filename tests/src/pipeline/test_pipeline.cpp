@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <map>
@@ -115,6 +116,51 @@ TEST_F(ThawRun, ChangingOnlyTheCameraReRendersWithoutReSimulatingOrReMeshing) {
   ASSERT_EQ(again.exit_code, 0);
   EXPECT_NE(again.output.find("render: up to date"), std::string::npos) << again.output;
   EXPECT_EQ(fs::last_write_time(out / "frames/frame_000000.png"), frame_time);
+}
+
+TEST_F(ThawRun, SizeAndSppOverridesReRenderOnlyAndBadValuesAreOneLine) {
+  const fs::path out = m_dir / "out";
+  ASSERT_EQ(thaw({"run", kTiny.string(), "--out", out.string(), "-q"}).exit_code, 0);
+  const auto sim_time = fs::last_write_time(out / "sim/interfaces.csv");
+  const auto mesh_time = fs::last_write_time(out / "sim/mesh/manifest.json");
+  const auto r =
+      thaw({"run", kTiny.string(), "--out", out.string(), "--size", "40x30", "--spp", "2"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(fs::last_write_time(out / "sim/interfaces.csv"), sim_time);
+  EXPECT_EQ(fs::last_write_time(out / "sim/mesh/manifest.json"), mesh_time);
+  EXPECT_NE(r.output.find("simulate: up to date"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("mesh: up to date"), std::string::npos) << r.output;
+  // PNG IHDR: width and height, big-endian, at bytes 16..23
+  const std::string png = read_file(out / "frames/frame_000000.png");
+  ASSERT_GT(png.size(), 24u);
+  const auto be32 = [&](std::size_t at) {
+    return (std::uint32_t(std::uint8_t(png[at])) << 24) |
+           (std::uint32_t(std::uint8_t(png[at + 1])) << 16) |
+           (std::uint32_t(std::uint8_t(png[at + 2])) << 8) |
+           std::uint32_t(std::uint8_t(png[at + 3]));
+  };
+  EXPECT_EQ(be32(16), 40u);
+  EXPECT_EQ(be32(20), 30u);
+  // The same overrides again: nothing to do.
+  const auto again =
+      thaw({"run", kTiny.string(), "--out", out.string(), "--size", "40x30", "--spp", "2"});
+  EXPECT_NE(again.output.find("render: up to date"), std::string::npos) << again.output;
+  // Bad values: one line naming the option, exit code 2, no output folder.
+  for (const std::vector<std::string>& bad : {std::vector<std::string>{"--size", "640"},
+                                              {"--size", "0x480"},
+                                              {"--size", "640x-1"},
+                                              {"--size", "20000x20000"},
+                                              {"--spp", "0"},
+                                              {"--spp", "-3"},
+                                              {"--spp", "9999999"}}) {
+    std::vector<std::string> args{"run", kTiny.string(), "--out", (m_dir / "never").string()};
+    args.insert(args.end(), bad.begin(), bad.end());
+    const auto e = thaw(args);
+    EXPECT_EQ(e.exit_code, 2) << bad[1];
+    EXPECT_NE(e.output.find(bad[0]), std::string::npos) << e.output;
+    EXPECT_EQ(std::count(e.output.begin(), e.output.end(), '\n'), 1) << e.output;
+    EXPECT_FALSE(fs::exists(m_dir / "never")) << bad[1];
+  }
 }
 
 TEST_F(ThawRun, KilledDuringRenderAndRestartedGivesByteIdenticalFrames) {
