@@ -30,20 +30,51 @@ struct alignas(16) Triangle4 {
   }
 };
 
+#if defined(__SSE2__)
+/// triangle_t_error() of triangle.h lane by lane, same operations in the same order.
+inline __m128 t_error4(__m128 ax, __m128 ay, __m128 bx, __m128 by, __m128 cx, __m128 cy, __m128 az,
+                       __m128 bz, __m128 cz, __m128 u, __m128 v, __m128 w, __m128 inv_det) {
+  const __m128 sign = _mm_set1_ps(-0.0f);
+  auto abs4 = [&](__m128 x) { return _mm_andnot_ps(sign, x); };
+  auto max3 = [&](__m128 a, __m128 b, __m128 c) {
+    return _mm_max_ps(_mm_max_ps(abs4(a), abs4(b)), abs4(c));
+  };
+  const __m128 max_zt = max3(az, bz, cz), max_xt = max3(ax, bx, cx), max_yt = max3(ay, by, cy);
+  const __m128 g2 = _mm_set1_ps(gamma_bound(2)), g3 = _mm_set1_ps(gamma_bound(3)),
+               g5 = _mm_set1_ps(gamma_bound(5));
+  const __m128 delta_z = _mm_mul_ps(g3, max_zt);
+  const __m128 delta_x = _mm_mul_ps(g5, _mm_add_ps(max_xt, max_zt));
+  const __m128 delta_y = _mm_mul_ps(g5, _mm_add_ps(max_yt, max_zt));
+  const __m128 delta_e = _mm_mul_ps(
+      _mm_set1_ps(2.0f), _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(g2, max_xt), max_yt),
+                                               _mm_mul_ps(delta_y, max_xt)),
+                                    _mm_mul_ps(delta_x, max_yt)));
+  const __m128 max_e = max3(u, v, w);
+  const __m128 sum =
+      _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(g3, max_e), max_zt), _mm_mul_ps(delta_e, max_zt)),
+                 _mm_mul_ps(delta_z, max_e));
+  return _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(3.0f), sum), abs4(inv_det));
+}
+#endif
+
 /// Closest hit among the four triangles for 0 < t < t_max; on a hit fills `hit`, `lane` and
 /// returns true. With `any_hit` it returns at the first hit found (for shadow rays).
-inline bool intersect_triangle4(const ShearedRay& r, const Triangle4& tri, float t_max, TriangleHit& hit,
-                                int& lane, bool any_hit = false) {
+inline bool intersect_triangle4(const ShearedRay& r, const Triangle4& tri, float t_max,
+                                TriangleHit& hit, int& lane, bool any_hit = false) {
 #if defined(__SSE2__)
   const int kx = r.kx, ky = r.ky, kz = r.kz;
-  const __m128 ox = _mm_set1_ps(r.origin[kx]), oy = _mm_set1_ps(r.origin[ky]), oz = _mm_set1_ps(r.origin[kz]);
+  const __m128 ox = _mm_set1_ps(r.origin[kx]), oy = _mm_set1_ps(r.origin[ky]),
+               oz = _mm_set1_ps(r.origin[kz]);
   const __m128 sx = _mm_set1_ps(r.sx), sy = _mm_set1_ps(r.sy), sz = _mm_set1_ps(r.sz);
   // Same expression order as intersect_triangle: a = p0 - o; ax = a[kx] - sx * a[kz]; ...
-  const __m128 a_x = _mm_sub_ps(_mm_load_ps(tri.p[0][kx]), ox), a_y = _mm_sub_ps(_mm_load_ps(tri.p[0][ky]), oy),
+  const __m128 a_x = _mm_sub_ps(_mm_load_ps(tri.p[0][kx]), ox),
+               a_y = _mm_sub_ps(_mm_load_ps(tri.p[0][ky]), oy),
                a_z = _mm_sub_ps(_mm_load_ps(tri.p[0][kz]), oz);
-  const __m128 b_x = _mm_sub_ps(_mm_load_ps(tri.p[1][kx]), ox), b_y = _mm_sub_ps(_mm_load_ps(tri.p[1][ky]), oy),
+  const __m128 b_x = _mm_sub_ps(_mm_load_ps(tri.p[1][kx]), ox),
+               b_y = _mm_sub_ps(_mm_load_ps(tri.p[1][ky]), oy),
                b_z = _mm_sub_ps(_mm_load_ps(tri.p[1][kz]), oz);
-  const __m128 c_x = _mm_sub_ps(_mm_load_ps(tri.p[2][kx]), ox), c_y = _mm_sub_ps(_mm_load_ps(tri.p[2][ky]), oy),
+  const __m128 c_x = _mm_sub_ps(_mm_load_ps(tri.p[2][kx]), ox),
+               c_y = _mm_sub_ps(_mm_load_ps(tri.p[2][ky]), oy),
                c_z = _mm_sub_ps(_mm_load_ps(tri.p[2][kz]), oz);
   const __m128 ax = _mm_sub_ps(a_x, _mm_mul_ps(sx, a_z)), ay = _mm_sub_ps(a_y, _mm_mul_ps(sy, a_z));
   const __m128 bx = _mm_sub_ps(b_x, _mm_mul_ps(sx, b_z)), by = _mm_sub_ps(b_y, _mm_mul_ps(sy, b_z));
@@ -54,21 +85,29 @@ inline bool intersect_triangle4(const ShearedRay& r, const Triangle4& tri, float
   const __m128 zero = _mm_setzero_ps();
   const int exact_zero = _mm_movemask_ps(
       _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(u, zero), _mm_cmpeq_ps(v, zero)), _mm_cmpeq_ps(w, zero)));
-  const __m128 any_neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(u, zero), _mm_cmplt_ps(v, zero)), _mm_cmplt_ps(w, zero));
-  const __m128 any_pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(u, zero), _mm_cmpgt_ps(v, zero)), _mm_cmpgt_ps(w, zero));
+  const __m128 any_neg =
+      _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(u, zero), _mm_cmplt_ps(v, zero)), _mm_cmplt_ps(w, zero));
+  const __m128 any_pos =
+      _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(u, zero), _mm_cmpgt_ps(v, zero)), _mm_cmpgt_ps(w, zero));
   const __m128 det = _mm_add_ps(_mm_add_ps(u, v), w);
   const __m128 az = _mm_mul_ps(sz, a_z), bz = _mm_mul_ps(sz, b_z), cz = _mm_mul_ps(sz, c_z);
-  const __m128 t_scaled = _mm_add_ps(_mm_add_ps(_mm_mul_ps(u, az), _mm_mul_ps(v, bz)), _mm_mul_ps(w, cz));
+  const __m128 t_scaled =
+      _mm_add_ps(_mm_add_ps(_mm_mul_ps(u, az), _mm_mul_ps(v, bz)), _mm_mul_ps(w, cz));
   const __m128 limit = _mm_mul_ps(_mm_set1_ps(t_max), det);
-  const __m128 ok_neg = _mm_and_ps(_mm_cmplt_ps(det, zero),
-                                   _mm_and_ps(_mm_cmplt_ps(t_scaled, zero), _mm_cmpge_ps(t_scaled, limit)));
-  const __m128 ok_pos = _mm_and_ps(_mm_cmpgt_ps(det, zero),
-                                   _mm_and_ps(_mm_cmpgt_ps(t_scaled, zero), _mm_cmple_ps(t_scaled, limit)));
+  const __m128 ok_neg =
+      _mm_and_ps(_mm_cmplt_ps(det, zero),
+                 _mm_and_ps(_mm_cmplt_ps(t_scaled, zero), _mm_cmpge_ps(t_scaled, limit)));
+  const __m128 ok_pos =
+      _mm_and_ps(_mm_cmpgt_ps(det, zero),
+                 _mm_and_ps(_mm_cmpgt_ps(t_scaled, zero), _mm_cmple_ps(t_scaled, limit)));
   const __m128 inv_det = _mm_div_ps(_mm_set1_ps(1.0f), det);
   const __m128 t = _mm_mul_ps(t_scaled, inv_det);
   __m128 ok = _mm_andnot_ps(_mm_and_ps(any_neg, any_pos), _mm_or_ps(ok_neg, ok_pos));
   ok = _mm_and_ps(ok, _mm_cmplt_ps(t, _mm_set1_ps(t_max)));
   int mask = _mm_movemask_ps(ok) & ~exact_zero;
+  if (mask)
+    mask &= _mm_movemask_ps(
+        _mm_cmpgt_ps(t, t_error4(ax, ay, bx, by, cx, cy, az, bz, cz, u, v, w, inv_det)));
   alignas(16) float ts[4], us[4], vs[4], ws[4];
   _mm_store_ps(ts, t);
   bool found = false;
