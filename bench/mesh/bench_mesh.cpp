@@ -2,12 +2,15 @@
 // vtkFlyingEdges3D, the fast marching-cubes baseline users know. Figures: docs/benchmarks.md.
 //   Sphere40k        default criteria, sphere radius chosen so that it has ~40k triangles
 //                    (target: < 1 s on one core)
-//   Series100/jobs   100 steps of a 3 cm sphere shell (200 surfaces) with 1 and 2 threads
-//                    (target: 2 threads >= 1.8x the 1-thread rate)
+//   Series100/jobs/reuse  100 steps of a 3 cm sphere shell (200 surfaces) with 1 and 2 threads,
+//                    each surface meshed on its own (reuse 0; target: 2 threads >= 1.8x the
+//                    1-thread rate) and similar surfaces meshed once and scaled (reuse 1, the
+//                    default; issue 10: "every step of a sphere is the same mesh scaled")
 //   FlyingEdges      the 3 cm sphere's signed distance sampled on the smallest N^3 grid whose
 //                    marching-cubes volume error is at most the CGAL default mesh's, then
 //                    vtkFlyingEdges3D; time includes sampling (reported separately too)
 #include <benchmark/benchmark.h>
+#include <vtkFloatArray.h>
 #include <vtkFlyingEdges3D.h>
 #include <vtkImageData.h>
 #include <vtkMassProperties.h>
@@ -15,7 +18,6 @@
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkTriangleFilter.h>
-#include <vtkFloatArray.h>
 
 #include <chrono>
 #include <cmath>
@@ -46,8 +48,8 @@ void Sphere40k(benchmark::State& state) {
     benchmark::DoNotOptimize(m.vertices.data());
   }
   state.counters["triangles"] = static_cast<double>(triangles);
-  state.counters["triangles_per_s"] =
-      benchmark::Counter(static_cast<double>(triangles), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["triangles_per_s"] = benchmark::Counter(
+      static_cast<double>(triangles), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(Sphere40k)->Unit(benchmark::kMillisecond)->Iterations(3);
 
@@ -64,8 +66,9 @@ fs::path series_folder() {
     rows.push_back(r);
   }
   sim::write_interfaces_csv(dir / "interfaces.csv", rows);
-  write_file_atomic(dir / "summary.json",
-                    R"({"parameters":{"simulation":{"geometry":"sphere"},"shell":{},"inner_boundary":{"kind":"heated"}}})");
+  write_file_atomic(
+      dir / "summary.json",
+      R"({"parameters":{"simulation":{"geometry":"sphere"},"shell":{},"inner_boundary":{"kind":"heated"}}})");
   return dir;
 }
 
@@ -73,18 +76,29 @@ void Series100(benchmark::State& state) {
   const fs::path dir = series_folder();
   mesh::MeshOptions o;
   o.jobs = static_cast<int>(state.range(0));
-  long triangles = 0;
+  o.reuse_similar = state.range(1) != 0;
+  long triangles = 0, distinct = 0;
   for (auto _ : state) {
     const mesh::MeshManifest m = mesh::mesh_simulation_folder(dir, o);
     triangles = 0;
     for (const auto& s : m.steps) triangles += s.inner.triangles + s.outer.triangles;
+    distinct = m.distinct_meshes;
   }
+  state.counters["distinct_meshes"] = static_cast<double>(distinct);
   state.counters["triangles"] = static_cast<double>(triangles);
-  state.counters["triangles_per_s"] =
-      benchmark::Counter(static_cast<double>(triangles), benchmark::Counter::kIsIterationInvariantRate);
-  state.counters["steps_per_s"] = benchmark::Counter(100, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["triangles_per_s"] = benchmark::Counter(
+      static_cast<double>(triangles), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["steps_per_s"] =
+      benchmark::Counter(100, benchmark::Counter::kIsIterationInvariantRate);
 }
-BENCHMARK(Series100)->Arg(1)->Arg(2)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK(Series100)
+    ->Args({1, 0})
+    ->Args({2, 0})
+    ->Args({1, 1})
+    ->Args({2, 1})
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->UseRealTime();
 
 struct McResult {
   double volume_error = 0, sample_s = 0, extract_s = 0;
@@ -105,7 +119,9 @@ McResult marching_cubes(const mesh::ShellShape& s, int n) {
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
-        values->SetValue(id++, static_cast<float>(s.signed_distance({-half + i * h, -half + j * h, -half + k * h})));
+        values->SetValue(
+            id++,
+            static_cast<float>(s.signed_distance({-half + i * h, -half + j * h, -half + k * h})));
   grid->GetPointData()->SetScalars(values);
   const auto t1 = clock::now();
   vtkNew<vtkFlyingEdges3D> fe;
@@ -131,7 +147,8 @@ void FlyingEdgesAtCgalVolumeError(benchmark::State& state) {
   const mesh::MeshOptions o;
   const auto c0 = std::chrono::steady_clock::now();
   const mesh::TriangleMesh cgal = mesh::mesh_surface(s, o);
-  const double cgal_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
+  const double cgal_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
   const double target = std::abs(mesh::enclosed_volume(cgal) / s.volume() - 1);
   int n = 16;
   while (marching_cubes(s, n).volume_error > target && n < 1024) n += 8;
@@ -141,7 +158,8 @@ void FlyingEdgesAtCgalVolumeError(benchmark::State& state) {
   state.counters["mc_triangles"] = static_cast<double>(r.triangles);
   state.counters["mc_volume_error"] = r.volume_error;
   state.counters["mc_extract_tri_per_s"] = static_cast<double>(r.triangles) / r.extract_s;
-  state.counters["mc_total_tri_per_s"] = static_cast<double>(r.triangles) / (r.sample_s + r.extract_s);
+  state.counters["mc_total_tri_per_s"] =
+      static_cast<double>(r.triangles) / (r.sample_s + r.extract_s);
   state.counters["mc_total_s"] = r.sample_s + r.extract_s;
   state.counters["cgal_triangles"] = static_cast<double>(cgal.faces.size());
   state.counters["cgal_volume_error"] = target;

@@ -17,7 +17,8 @@ void validate(const MeshOptions& o) {
   };
   auto non_negative = [](const char* name, double v) {
     if (!std::isfinite(v) || v < 0)
-      throw UserError("", name, "must be a finite number >= 0 (0 = automatic), got " + std::to_string(v));
+      throw UserError("", name,
+                      "must be a finite number >= 0 (0 = automatic), got " + std::to_string(v));
   };
   non_negative("edge_length_m", o.edge_length_m);
   non_negative("distance_m", o.distance_m);
@@ -25,25 +26,34 @@ void validate(const MeshOptions& o) {
   positive("relative_distance", o.relative_distance);
   positive("relative_error_bound", o.relative_error_bound);
   if (!std::isfinite(o.min_radius_m) || o.min_radius_m < 0)
-    throw UserError("", "min_radius_m", "must be a finite number >= 0, got " + std::to_string(o.min_radius_m));
+    throw UserError("", "min_radius_m",
+                    "must be a finite number >= 0, got " + std::to_string(o.min_radius_m));
   if (!std::isfinite(o.angle_deg) || !(o.angle_deg > 0) || o.angle_deg > 30)
     throw UserError("", "angle_deg",
                     "must be in (0, 30] (CGAL guarantees termination only up to 30), got " +
                         std::to_string(o.angle_deg));
   if (o.triangles < 0 || (o.triangles > 0 && o.triangles < 50) || o.triangles > 50'000'000)
-    throw UserError("", "triangles", "must be 0 (unused) or in [50, 5e7], got " + std::to_string(o.triangles));
-  if (o.max_triangles < 0) throw UserError("", "max_triangles", "must be >= 0, got " + std::to_string(o.max_triangles));
-  if (o.jobs < 0 || o.jobs > 4096) throw UserError("", "jobs", "must be in [0, 4096], got " + std::to_string(o.jobs));
+    throw UserError("", "triangles",
+                    "must be 0 (unused) or in [50, 5e7], got " + std::to_string(o.triangles));
+  if (o.max_triangles < 0)
+    throw UserError("", "max_triangles", "must be >= 0, got " + std::to_string(o.max_triangles));
+  if (o.jobs < 0 || o.jobs > 4096)
+    throw UserError("", "jobs", "must be in [0, 4096], got " + std::to_string(o.jobs));
   if (o.relative_error_bound > 1e-2)
-    throw UserError("", "relative_error_bound", "must be <= 1e-2, got " + std::to_string(o.relative_error_bound));
+    throw UserError("", "relative_error_bound",
+                    "must be <= 1e-2, got " + std::to_string(o.relative_error_bound));
 }
 
 namespace {
 // The automatic edge length and distance for a scene of radius R: a 640 x 640 render that frames
 // the whole shell (diameter 2R over ~500 px) has pixels of ~R / 250; the distance R / 1000 is a
 // quarter pixel and the edge R / 12 about ten pixels (2.5 mm and 30 um for R = 3 cm).
-double auto_edge(double scene_radius) { return scene_radius / 12; }
-double auto_distance(double scene_radius) { return 1e-3 * scene_radius; }
+double auto_edge(double scene_radius) {
+  return scene_radius / 12;
+}
+double auto_distance(double scene_radius) {
+  return 1e-3 * scene_radius;
+}
 double scene_of(const ShellShape& shape, const MeshOptions& o) {
   return o.scene_radius_m > 0 ? o.scene_radius_m : shape.bounding_radius();
 }
@@ -85,7 +95,8 @@ SurfaceCriteria criteria_for(const ShellShape& shape, const MeshOptions& o, doub
     // Beyond size^2 / (2 radius) the distance bound no longer changes anything.
     // Relaxing helps only if the count without any distance bound fits the budget.
     const double budget = static_cast<double>(o.max_triangles);
-    const double no_effect = c.facet_size_m * c.facet_size_m / (2 * std::max(shape.radius_m, 1e-300));
+    const double no_effect =
+        c.facet_size_m * c.facet_size_m / (2 * std::max(shape.radius_m, 1e-300));
     SurfaceCriteria loosest = c;
     loosest.facet_distance_m = std::max(c.facet_distance_m, no_effect);
     if (estimate_triangles(shape, loosest) <= budget)
@@ -125,18 +136,21 @@ nlohmann::ordered_json to_json(const MeshOptions& o) {
   j["max_triangles"] = o.max_triangles;
   j["normals"] = o.normals;
   j["relative_error_bound"] = o.relative_error_bound;
+  j["reuse_similar_surfaces"] = o.reuse_similar;
   // jobs is deliberately absent: it does not change the output (byte-identical either way).
   return j;
 }
 
 std::string describe(const MeshOptions& o) {
   char buf[256];
-  std::snprintf(buf, sizeof buf,
-                "scene radius %.3g mm, edge %.3g mm, angle >= %.3g deg, distance <= %.3g um (and <= %.3g x "
-                "size)%s, at most %ld triangles per surface%s",
-                o.scene_radius_m * 1e3, o.edge_length_m * 1e3, o.angle_deg, o.distance_m * 1e6, o.relative_distance,
-                o.triangles > 0 ? (", target " + std::to_string(o.triangles) + " triangles").c_str() : "",
-                o.max_triangles, o.normals ? ", normals" : "");
+  std::snprintf(
+      buf, sizeof buf,
+      "scene radius %.3g mm, edge %.3g mm, angle >= %.3g deg, distance <= %.3g um (and <= %.3g x "
+      "size)%s, at most %ld triangles per surface%s",
+      o.scene_radius_m * 1e3, o.edge_length_m * 1e3, o.angle_deg, o.distance_m * 1e6,
+      o.relative_distance,
+      o.triangles > 0 ? (", target " + std::to_string(o.triangles) + " triangles").c_str() : "",
+      o.max_triangles, o.normals ? ", normals" : "");
   return buf;
 }
 

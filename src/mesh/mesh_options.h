@@ -50,6 +50,9 @@ struct MeshOptions {
   /// With a triangle target: keep distance_m / relative_distance as given instead of relaxing
   /// them (the CLI sets this when --distance or --relative-distance is given explicitly).
   bool keep_distance = false;
+  /// Mesh surfaces that are scaled copies of each other once and scale the mesh
+  /// (similar_surface.h); false meshes every surface on its own (for benchmarks: same criteria).
+  bool reuse_similar = true;
   /// Set by resolve_triangle_target: the distance bounds were relaxed for a triangle target.
   bool distance_relaxed = false;
 };

@@ -7,11 +7,13 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "src/common/atomic_file.h"
 #include "src/common/error.h"
 #include "src/mesh/obj_writer.h"
+#include "src/mesh/similar_surface.h"
 #include "src/mesh/surface_mesher.h"
 
 namespace thaw::mesh {
@@ -65,9 +67,26 @@ void measure(const ShellShape& shape, const TriangleMesh& m, TaskResult& r) {
     const Vec3 g = shape.outward_normal(p);
     double lowest = 0;
     for (const Vec3* v : {&a, &b, &c})
-      lowest = std::min(lowest, g[0] * ((*v)[0] - p[0]) + g[1] * ((*v)[1] - p[1]) + g[2] * ((*v)[2] - p[2]));
+      lowest = std::min(
+          lowest, g[0] * ((*v)[0] - p[0]) + g[1] * ((*v)[1] - p[1]) + g[2] * ((*v)[2] - p[2]));
     r.min_face_core_distance = std::min(r.min_face_core_distance, fp > 0 ? fp + lowest : 0.0);
   }
+}
+
+// The unit mesh multiplied by `scale_m` (the radius of `shape`, or 1 without reuse), with the
+// outward normals of `shape` (the surface it now approximates) if wanted.
+TriangleMesh scaled_copy(const TriangleMesh& unit, double scale_m, const ShellShape& shape,
+                         bool normals) {
+  TriangleMesh m;
+  m.faces = unit.faces;
+  m.vertices.reserve(unit.vertices.size());
+  for (const auto& v : unit.vertices)
+    m.vertices.push_back({v[0] * scale_m, v[1] * scale_m, v[2] * scale_m});
+  if (normals) {
+    m.normals.reserve(m.vertices.size());
+    for (const auto& v : m.vertices) m.normals.push_back(shape.outward_normal(v));
+  }
+  return m;
 }
 
 void validate_geometry(const sim::ShellGeometry& g, const fs::path& summary) {
@@ -93,7 +112,8 @@ MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& r
     scene_radius = std::max(scene_radius, outer.bounding_radius());
   }
   if (!(scene_radius > 0)) scene_radius = 1;  // nothing to mesh: any positive scale will do
-  const MeshOptions options = resolve_triangle_target(resolve_scene(requested, scene_radius), largest_area);
+  const MeshOptions options =
+      resolve_triangle_target(resolve_scene(requested, scene_radius), largest_area);
 
   MeshManifest manifest;
   manifest.options = options;
@@ -116,7 +136,8 @@ MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& r
         rec.inner.reason = "no liquid core left (inner_radius_m == 0)";
       else if (row.inner_radius_m < options.min_radius_m)
         rec.inner.reason = "inner radius below min_radius_m";
-      if (row.outer_radius_m < options.min_radius_m) rec.outer.reason = "outer radius below min_radius_m";
+      if (row.outer_radius_m < options.min_radius_m)
+        rec.outer.reason = "outer radius below min_radius_m";
     }
     const double shell = row.outer_radius_m - row.inner_radius_m;
     for (bool inner : {true, false}) {
@@ -150,24 +171,74 @@ MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& r
   StagingDirectory staging(final_dir);
   const fs::path out_dir = staging.path();
 
+  // Similar surfaces (equal canonical forms, similar_surface.h) share one mesh made at unit
+  // scale; in a sphere series with the default relative distance bound that is nearly every
+  // surface. Each distinct form is meshed once, then every task scales it, takes the normals of
+  // its own shape and writes its file. Both loops are in task order, so the output is the same
+  // for any thread count.
+  std::vector<SimilarSurface> forms;
+  std::vector<std::size_t> form_of(tasks.size());
+  std::vector<double> scale_of(tasks.size(), 1.0);
+  {
+    std::map<decltype(SimilarSurface{}.key()), std::size_t> index;
+    for (std::size_t k = 0; k < tasks.size(); ++k) {
+      if (!options.reuse_similar) {  // every surface meshed as it is (benchmarks compare)
+        form_of[k] = forms.size();
+        forms.push_back(SimilarSurface{tasks[k].shape, tasks[k].criteria, 1.0});
+        continue;
+      }
+      const SimilarSurface f = similar_surface(tasks[k].shape, tasks[k].criteria);
+      const auto [pos, added] = index.try_emplace(f.key(), forms.size());
+      if (added) forms.push_back(f);
+      form_of[k] = pos->second;
+      scale_of[k] = f.scale_m;
+    }
+  }
+  manifest.distinct_meshes = static_cast<long>(forms.size());
+
+  std::vector<TriangleMesh> unit_meshes(forms.size());
+  std::vector<std::string> form_errors(forms.size());
   std::vector<TaskResult> results(tasks.size());
-  const std::int64_t total = static_cast<std::int64_t>(tasks.size());
+  const std::int64_t total = static_cast<std::int64_t>(forms.size() + tasks.size());
   std::int64_t done = 0;
   if (progress) progress(0, total);
   const int jobs = options.jobs > 0 ? options.jobs : omp_get_max_threads();
-  const long n_tasks = static_cast<long>(tasks.size());
-  // Nothing may throw out of this loop: every exception is caught and stored per task.
+  const long n_forms = static_cast<long>(forms.size());
+  MeshOptions unit_options = options;
+  unit_options.normals = false;  // each task takes the normals of its own shape
+  // Nothing may throw out of these loops: every exception is caught and stored.
 #pragma omp parallel for schedule(dynamic, 1) num_threads(jobs)
+  for (long k = 0; k < n_forms; ++k) {
+    const SimilarSurface& f = forms[static_cast<std::size_t>(k)];
+    try {
+      unit_meshes[static_cast<std::size_t>(k)] =
+          mesh_surface(f.unit_shape, f.unit_criteria, unit_options);
+    } catch (const std::exception& e) {
+      form_errors[static_cast<std::size_t>(k)] = e.what();
+    } catch (...) {
+      form_errors[static_cast<std::size_t>(k)] = "unknown failure";
+    }
+    if (progress) {
+#pragma omp critical(thaw_mesh_progress)
+      progress(++done, total);
+    }
+  }
+  const long n_tasks = static_cast<long>(tasks.size());
+#pragma omp parallel for schedule(dynamic, 4) num_threads(jobs)
   for (long k = 0; k < n_tasks; ++k) {
     const Task& t = tasks[static_cast<std::size_t>(k)];
     TaskResult& r = results[static_cast<std::size_t>(k)];
+    const std::size_t form = form_of[static_cast<std::size_t>(k)];
     try {
-      const TriangleMesh m = mesh_surface(t.shape, t.criteria, options);
+      if (!form_errors[form].empty()) throw MeshError(form_errors[form]);
+      const TriangleMesh m = scaled_copy(unit_meshes[form], scale_of[static_cast<std::size_t>(k)],
+                                         t.shape, options.normals);
       measure(t.shape, m, r);
       const StepRecord& rec = manifest.steps[t.step_index];
       char comment[256];
-      std::snprintf(comment, sizeof comment, "thaw mesh: step %ld, %s surface of a %s, radius %.17g m",
-                    rec.step, t.inner ? "inner (water|ice)" : "outer (ice|air)",
+      std::snprintf(comment, sizeof comment,
+                    "thaw mesh: step %ld, %s surface of a %s, radius %.17g m", rec.step,
+                    t.inner ? "inner (water|ice)" : "outer (ice|air)",
                     sim::to_string(t.shape.geometry), t.shape.radius_m);
       write_obj(out_dir / surface_file_name(rec.step, t.inner), m, comment);
     } catch (const std::exception& e) {
@@ -182,14 +253,16 @@ MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& r
   }
 
   // Gather in step order, so the first error reported does not depend on scheduling.
-  std::vector<const TaskResult*> inner_of(manifest.steps.size(), nullptr), outer_of(manifest.steps.size(), nullptr);
+  std::vector<const TaskResult*> inner_of(manifest.steps.size(), nullptr),
+      outer_of(manifest.steps.size(), nullptr);
   for (std::size_t k = 0; k < tasks.size(); ++k) {
     const Task& t = tasks[k];
     const TaskResult& r = results[k];
     StepRecord& rec = manifest.steps[t.step_index];
     if (!r.error.empty())
-      throw UserError((final_dir / surface_file_name(rec.step, t.inner)).string(), "",
-                      "meshing failed: " + r.error + " (try a smaller --edge-length or --distance)");
+      throw UserError(
+          (final_dir / surface_file_name(rec.step, t.inner)).string(), "",
+          "meshing failed: " + r.error + " (try a smaller --edge-length or --distance)");
     SurfaceRecord& s = t.inner ? rec.inner : rec.outer;
     s.triangles = r.triangles;
     s.volume_m3 = r.volume_m3;
@@ -227,7 +300,9 @@ nlohmann::ordered_json to_json(const MeshManifest& m) {
   nlohmann::ordered_json g;
   g["geometry"] = sim::to_string(m.geometry.geometry);
   switch (m.geometry.geometry) {
-    case sim::Geometry::sphere: g["frame"] = "spheres centred at the origin"; break;
+    case sim::Geometry::sphere:
+      g["frame"] = "spheres centred at the origin";
+      break;
     case sim::Geometry::cylinder:
       g["length_m"] = m.geometry.length_m;
       g["frame"] = "capsules centred at the origin, axis along z, tube |z| <= length_m / 2";
@@ -239,9 +314,11 @@ nlohmann::ordered_json to_json(const MeshManifest& m) {
       break;
   }
   j["geometry"] = g;
-  j["thinnest_contained_shell_m"] =
-      m.thinnest_contained_shell_m ? nlohmann::ordered_json(*m.thinnest_contained_shell_m) : nlohmann::ordered_json(nullptr);
+  j["thinnest_contained_shell_m"] = m.thinnest_contained_shell_m
+                                        ? nlohmann::ordered_json(*m.thinnest_contained_shell_m)
+                                        : nlohmann::ordered_json(nullptr);
   j["steps_inner_touching_outer"] = m.steps_inner_touching_outer;
+  j["distinct_meshes"] = m.distinct_meshes;
   nlohmann::ordered_json steps = nlohmann::ordered_json::array();
   for (const auto& s : m.steps) {
     nlohmann::ordered_json e;
@@ -265,7 +342,8 @@ nlohmann::ordered_json to_json(const MeshManifest& m) {
         e[key + "_reason"] = r.reason;
       }
     }
-    e["inner_inside_outer"] = s.inner_inside_outer ? nlohmann::ordered_json(*s.inner_inside_outer) : nlohmann::ordered_json(nullptr);
+    e["inner_inside_outer"] = s.inner_inside_outer ? nlohmann::ordered_json(*s.inner_inside_outer)
+                                                   : nlohmann::ordered_json(nullptr);
     steps.push_back(e);
   }
   j["steps"] = steps;
@@ -275,7 +353,9 @@ nlohmann::ordered_json to_json(const MeshManifest& m) {
 MeshManifest read_mesh_manifest(const std::filesystem::path& manifest_json) {
   const std::string name = manifest_json.string();
   std::ifstream in(manifest_json);
-  if (!in) throw UserError(name, "", std::filesystem::exists(manifest_json) ? "cannot be read" : "file not found");
+  if (!in)
+    throw UserError(name, "",
+                    std::filesystem::exists(manifest_json) ? "cannot be read" : "file not found");
   MeshManifest m;
   try {
     const nlohmann::json j = nlohmann::json::parse(in);

@@ -2,7 +2,8 @@
 // Meshes every step of a simulation folder: reads SIMDIR/interfaces.csv and SIMDIR/summary.json
 // (sim/io contract) and writes SIMDIR/mesh/step_NNNNNN_inner.obj, ..._outer.obj and
 // manifest.json ("thaw-mesh/1"). Surfaces are meshed in parallel (OpenMP, one independent mesher
-// per surface); the output is byte-identical whatever the number of threads. The folder is filled
+// per distinct surface shape: similar surfaces are meshed once and scaled, similar_surface.h);
+// the output is byte-identical whatever the number of threads. The folder is filled
 // under a temporary name and replaces SIMDIR/mesh only when everything succeeded.
 // Knows nothing about CGAL (surface_mesher.h does the meshing) nor about rendering.
 #include <filesystem>
@@ -23,10 +24,10 @@ struct SurfaceRecord {
   std::optional<std::string> file;  ///< OBJ file name relative to SIMDIR/mesh; empty if vanished
   std::string reason;               ///< why there is no file ("" if there is one)
   long triangles = 0;
-  double radius_m = 0;              ///< distance of the surface from its core [m]
-  double distance_bound_m = 0;      ///< effective CGAL facet_distance used [m]
-  double volume_m3 = 0;             ///< enclosed volume of the mesh [m^3]
-  double exact_volume_m3 = 0;       ///< enclosed volume of the exact surface [m^3]
+  double radius_m = 0;          ///< distance of the surface from its core [m]
+  double distance_bound_m = 0;  ///< effective CGAL facet_distance used [m]
+  double volume_m3 = 0;         ///< enclosed volume of the mesh [m^3]
+  double exact_volume_m3 = 0;   ///< enclosed volume of the exact surface [m^3]
 };
 
 struct StepRecord {
@@ -47,6 +48,9 @@ struct MeshManifest {
   std::optional<double> thinnest_contained_shell_m;
   /// Steps whose shell was too thin for strict containment at the finest refinement allowed.
   std::vector<long> steps_inner_touching_outer;
+  /// Meshes actually made: surfaces that are scaled copies of each other (similar_surface.h)
+  /// share one (a sphere series with the default relative distance bound needs only a few).
+  long distinct_meshes = 0;
 };
 
 /// "step_000012_inner.obj" / "step_000012_outer.obj".
