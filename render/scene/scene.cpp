@@ -65,10 +65,90 @@ Material build_material(const MaterialDescription& d) {
   return m;
 }
 
-bool finite3f(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-bool finite3(const Vec3d& v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
+bool finite3f(const Vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+bool finite3(const Vec3d& v) {
+  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+}
+
+/// A light inside an opaque sphere or box lights nothing, and a sphere light whose surface cuts
+/// an object's surface (sphere, box, plane) has no meaning: both are the user's error. Meshes
+/// are not checked (an open mesh has no inside).
+void check_lights_outside_objects(const SceneDescription& desc) {
+  for (std::size_t li = 0; li < desc.lights.size(); ++li) {
+    const LightDescription& l = desc.lights[li];
+    const std::string key = "lights[" + std::to_string(li) + "]";
+    const double r = l.kind == LightDescription::Kind::sphere ? l.radius : 0.0;
+    const Vec3d& c = l.position;
+    for (std::size_t oi = 0; oi < desc.objects.size(); ++oi) {
+      const ObjectDescription& o = desc.objects[oi];
+      const std::string name =
+          "'" + (o.label.empty() ? "objects[" + std::to_string(oi) + "]" : o.label) + "'";
+      // Signed distance from the light's centre to the object's surface (negative inside).
+      double sd = 0.0;
+      switch (o.shape) {
+        case ObjectDescription::Shape::sphere: {
+          const double dx = c[0] - o.center[0], dy = c[1] - o.center[1], dz = c[2] - o.center[2];
+          sd = std::sqrt(dx * dx + dy * dy + dz * dz) - o.radius;
+          break;
+        }
+        case ObjectDescription::Shape::box: {
+          // Exact box distance (outside: to the nearest point; inside: minus the nearest face).
+          double out2 = 0.0, in = -1e300;
+          for (int k = 0; k < 3; ++k) {
+            const double q = std::max(o.box_min[k] - c[k], c[k] - o.box_max[k]);
+            if (q > 0.0) out2 += q * q;
+            in = std::max(in, q);
+          }
+          sd = out2 > 0.0 ? std::sqrt(out2) : in;
+          break;
+        }
+        case ObjectDescription::Shape::plane:
+          sd = std::abs((c[0] - o.point[0]) * o.normal[0] + (c[1] - o.point[1]) * o.normal[1] +
+                        (c[2] - o.point[2]) * o.normal[2]);
+          break;
+        case ObjectDescription::Shape::mesh:
+          continue;
+      }
+      if (sd < 0.0 && !o.is_dielectric() && o.shape != ObjectDescription::Shape::plane)
+        throw UserError(desc.source_name, key + ".position",
+                        "the light is inside opaque object " + name);
+      if (r > 0.0 && std::abs(sd) < r)
+        throw UserError(
+            desc.source_name, key + ".radius",
+            "the sphere light (radius " + std::to_string(r) + ") intersects object " + name);
+    }
+  }
+}
 
 }  // namespace
+
+/// Sphere lights are visible: each is an opaque sphere of emissive material (radiance L) in the
+/// BVH, so camera and specular rays that meet it see L (the light itself, its highlight in the
+/// ice). Shadow rays towards a light stop just short of the point sampled on it.
+void add_visible_sphere_lights(Scene& s, std::vector<Aabb>& bounds, std::vector<Primitive>& prims) {
+  for (std::size_t i = 0; i < s.m_sphere_lights.size(); ++i) {
+    const SphereLight& l = s.m_sphere_lights[i];
+    Material m;
+    m.kind = Material::Kind::emissive;
+    m.emission = l.radiance;
+    SceneObject obj;
+    obj.label = "lights[" + std::to_string(i) + "]";
+    obj.shape = ObjectDescription::Shape::sphere;
+    obj.material = static_cast<std::uint32_t>(s.m_materials.size());
+    s.m_materials.push_back(m);
+    const auto object_id = static_cast<std::uint32_t>(s.m_objects.size());
+    s.m_objects.push_back(std::move(obj));
+    const float r = l.radius;
+    Aabb b;
+    b.extend(l.center - Vec3{r, r, r});
+    b.extend(l.center + Vec3{r, r, r});
+    bounds.push_back(b);
+    prims.push_back({l.center, Vec3{r, 0, 0}, Vec3{}, PrimitiveKind::sphere, object_id, 0});
+    ++s.m_stats.spheres;
+  }
+}
 
 Scene build_scene(const SceneDescription& desc) {
   const auto start = std::chrono::steady_clock::now();
@@ -77,9 +157,11 @@ Scene build_scene(const SceneDescription& desc) {
   const ImageSettings& img = desc.image;
   if (img.width < 1 || img.height < 1 || img.width > 16384 || img.height > 16384 ||
       static_cast<long long>(img.width) * img.height > (1LL << 26))
-    throw UserError(src, "image", "image size " + std::to_string(img.width) + "x" + std::to_string(img.height) +
-                                      " is out of range (1..16384 per side, at most 2^26 pixels)");
-  if (img.samples_per_pixel < 1) throw UserError(src, "image.samples_per_pixel", "must be at least 1");
+    throw UserError(src, "image",
+                    "image size " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+                        " is out of range (1..16384 per side, at most 2^26 pixels)");
+  if (img.samples_per_pixel < 1)
+    throw UserError(src, "image.samples_per_pixel", "must be at least 1");
   if (img.max_depth < 1) throw UserError(src, "image.max_depth", "must be at least 1");
   if (!(img.min_weight >= 0.0)) throw UserError(src, "image.min_weight", "must not be negative");
   s.m_settings = img;
@@ -88,8 +170,10 @@ Scene build_scene(const SceneDescription& desc) {
   if (!finite3(cam.position) || !finite3(cam.look_at) || !finite3(cam.up))
     throw UserError(src, "camera", "camera vectors must be finite");
   const Vec3 pos = to_vec3(cam.position), at = to_vec3(cam.look_at), up = to_vec3(cam.up);
-  if (!finite3f(pos) || !finite3f(at)) throw UserError(src, "camera", "camera coordinates are beyond single precision");
-  if (!(length(at - pos) > 0.0f)) throw UserError(src, "camera.look_at", "must differ from the camera position");
+  if (!finite3f(pos) || !finite3f(at))
+    throw UserError(src, "camera", "camera coordinates are beyond single precision");
+  if (!(length(at - pos) > 0.0f))
+    throw UserError(src, "camera.look_at", "must differ from the camera position");
   if (!(length(up) > 0.0f)) throw UserError(src, "camera.up", "must not be the zero vector");
   if (!(length(cross(normalize(at - pos), normalize(up))) > 1e-6f))
     throw UserError(src, "camera.up", "must not be parallel to the viewing direction");
@@ -100,23 +184,39 @@ Scene build_scene(const SceneDescription& desc) {
   for (const auto& l : desc.lights) {
     if (!finite3f(to_vec3(l.position)) || !std::isfinite(float(l.intensity)))
       throw UserError(src, "lights", "light position or intensity beyond single precision");
-    s.m_lights.push_back({to_vec3(l.position), to_rgb(l.color) * static_cast<float>(l.intensity),
-                          l.falloff == LightDescription::Falloff::inverse_square});
+    const Rgb intensity = to_rgb(l.color) * static_cast<float>(l.intensity);
+    const bool inverse_square = l.falloff == LightDescription::Falloff::inverse_square;
+    if (l.kind == LightDescription::Kind::point) {
+      s.m_lights.push_back({to_vec3(l.position), intensity, inverse_square});
+      continue;
+    }
+    const std::string key = "lights[" + std::to_string(&l - desc.lights.data()) + "]";
+    if (!(l.radius > 0.0) || !std::isfinite(float(l.radius)))
+      throw UserError(src, key + ".radius", "a sphere light needs a positive radius");
+    if (l.samples < 1) throw UserError(src, key + ".samples", "must be at least 1");
+    const auto radius = static_cast<float>(l.radius);
+    s.m_sphere_lights.push_back({to_vec3(l.position), radius,
+                                 sphere_light_radiance(intensity, radius), inverse_square,
+                                 l.samples});
   }
   s.m_ambient = to_rgb(desc.ambient.color) * static_cast<float>(desc.ambient.intensity);
   s.m_background = to_rgb(img.background);
 
   std::map<std::string, std::uint32_t> media{{"vacuum", 0}};
-  s.m_media.push_back({"vacuum", media::Medium("vacuum", media::IorModel::constant(1.0), media::Absorption())});
+  s.m_media.push_back(
+      {"vacuum", media::Medium("vacuum", media::IorModel::constant(1.0), media::Absorption())});
   bool wavelength_dependent = false;
   for (const auto& m : desc.media) {
-    if (media.count(m.name)) throw UserError(src, "media." + m.name, "medium defined twice (or redefines vacuum)");
-    if (!(m.ior >= 1.0 && m.ior < 10.0)) throw UserError(src, "media." + m.name + ".ior", "must be in [1, 10)");
+    if (media.count(m.name))
+      throw UserError(src, "media." + m.name, "medium defined twice (or redefines vacuum)");
+    if (!(m.ior >= 1.0 && m.ior < 10.0))
+      throw UserError(src, "media." + m.name + ".ior", "must be in [1, 10)");
     media[m.name] = static_cast<std::uint32_t>(s.m_media.size());
     // A full spec (preset, Sellmeier, absorption, ...) is resolved and validated over 380-780 nm
     // by render/media; a bare constant index stays exactly the RGB path's number.
-    media::Medium optics = m.spec ? media::build_medium(*m.spec)
-                                  : media::Medium(m.name, media::IorModel::constant(m.ior), media::Absorption());
+    media::Medium optics =
+        m.spec ? media::build_medium(*m.spec)
+               : media::Medium(m.name, media::IorModel::constant(m.ior), media::Absorption());
     wavelength_dependent = wavelength_dependent || optics.is_dispersive() || optics.absorbs();
     s.m_media.push_back({m.name, std::move(optics)});
   }
@@ -124,7 +224,8 @@ Scene build_scene(const SceneDescription& desc) {
                  (img.spectral == ImageSettings::Spectral::automatic && wavelength_dependent);
   std::map<std::string, std::uint32_t> materials;
   for (const auto& m : desc.materials) {
-    if (materials.count(m.name)) throw UserError(src, "materials." + m.name, "material defined twice");
+    if (materials.count(m.name))
+      throw UserError(src, "materials." + m.name, "material defined twice");
     materials[m.name] = static_cast<std::uint32_t>(s.m_materials.size());
     s.m_materials.push_back(build_material(m));
   }
@@ -142,16 +243,20 @@ Scene build_scene(const SceneDescription& desc) {
     obj.dielectric = od.is_dielectric();
     if (obj.dielectric) {
       auto in = media.find(od.inside), out = media.find(od.outside);
-      if (in == media.end()) throw UserError(src, label + ".inside", "unknown medium '" + od.inside + "'");
-      if (out == media.end()) throw UserError(src, label + ".outside", "unknown medium '" + od.outside + "'");
-      if (in->second == out->second) throw UserError(src, label, "inside and outside must be different media");
+      if (in == media.end())
+        throw UserError(src, label + ".inside", "unknown medium '" + od.inside + "'");
+      if (out == media.end())
+        throw UserError(src, label + ".outside", "unknown medium '" + od.outside + "'");
+      if (in->second == out->second)
+        throw UserError(src, label, "inside and outside must be different media");
       obj.inside = in->second;
       obj.outside = out->second;
       inside_media.insert(obj.inside);
       outside_media.insert(obj.outside);
     } else {
       auto m = materials.find(od.material);
-      if (m == materials.end()) throw UserError(src, label + ".material", "unknown material '" + od.material + "'");
+      if (m == materials.end())
+        throw UserError(src, label + ".material", "unknown material '" + od.material + "'");
       obj.material = m->second;
     }
     const auto object_id = static_cast<std::uint32_t>(s.m_objects.size());
@@ -174,7 +279,8 @@ Scene build_scene(const SceneDescription& desc) {
         if (!finite3(od.box_min) || !finite3(od.box_max))
           throw UserError(src, label, "box corners must be finite");
         for (int k = 0; k < 3; ++k)
-          if (!(od.box_min[k] < od.box_max[k])) throw UserError(src, label + ".max", "must exceed min in every coordinate");
+          if (!(od.box_min[k] < od.box_max[k]))
+            throw UserError(src, label + ".max", "must exceed min in every coordinate");
         Aabb b;
         b.extend(to_vec3(od.box_min));
         b.extend(to_vec3(od.box_max));
@@ -186,7 +292,8 @@ Scene build_scene(const SceneDescription& desc) {
       case ObjectDescription::Shape::plane: {
         if (obj.dielectric)
           throw UserError(src, label, "a plane is not closed and cannot be a dielectric interface");
-        const double len = std::sqrt(od.normal[0] * od.normal[0] + od.normal[1] * od.normal[1] + od.normal[2] * od.normal[2]);
+        const double len = std::sqrt(od.normal[0] * od.normal[0] + od.normal[1] * od.normal[1] +
+                                     od.normal[2] * od.normal[2]);
         if (!finite3(od.point) || !finite3(od.normal) || !(std::abs(len - 1.0) <= 1e-6))
           throw UserError(src, label + ".normal", "plane needs a finite point and a unit normal");
         obj.plane_point = to_vec3(od.point);
@@ -203,8 +310,10 @@ Scene build_scene(const SceneDescription& desc) {
           mesh_name = label;
           if (auto problem = validate_mesh(mesh)) throw UserError(src, label, "mesh: " + *problem);
         } else {
-          if (od.mesh_file.empty()) throw UserError(src, label, "mesh object needs a file or an in-memory mesh");
-          const std::filesystem::path path = od.mesh_file.is_absolute() ? od.mesh_file : desc.base_dir / od.mesh_file;
+          if (od.mesh_file.empty())
+            throw UserError(src, label, "mesh object needs a file or an in-memory mesh");
+          const std::filesystem::path path =
+              od.mesh_file.is_absolute() ? od.mesh_file : desc.base_dir / od.mesh_file;
           mesh_name = path.string();
           auto it = obj_cache.find(path);
           if (it == obj_cache.end()) it = obj_cache.emplace(path, load_obj(path)).first;
@@ -212,13 +321,17 @@ Scene build_scene(const SceneDescription& desc) {
         }
         if (!(od.scale > 0.0) || !std::isfinite(od.scale) || !finite3(od.translate))
           throw UserError(src, label, "mesh scale must be positive and translate finite");
-        if (od.scale != 1.0 || od.translate != Vec3d{0.0, 0.0, 0.0}) transform_mesh(mesh, od.scale, od.translate);
+        if (od.scale != 1.0 || od.translate != Vec3d{0.0, 0.0, 0.0})
+          transform_mesh(mesh, od.scale, od.translate);
         if (od.smooth_normals) compute_smooth_normals(mesh);
         if (obj.dielectric) {
           if (auto problem = closed_surface_problem(mesh))
-            throw UserError(mesh_name, label, "a dielectric mesh must be a closed surface: " + *problem);
+            throw UserError(mesh_name, label,
+                            "a dielectric mesh must be a closed surface: " + *problem);
           if (!(signed_volume(mesh) > 0.0))
-            throw UserError(mesh_name, label, "a dielectric mesh must be oriented outward (its signed volume is not positive)");
+            throw UserError(
+                mesh_name, label,
+                "a dielectric mesh must be oriented outward (its signed volume is not positive)");
         }
         if (mesh.has_normals()) {
           obj.normal_set = static_cast<int>(s.m_normal_sets.size());
@@ -226,13 +339,15 @@ Scene build_scene(const SceneDescription& desc) {
         }
         for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
           const auto& tri = mesh.triangles[t];
-          const Vec3 a = mesh.positions[tri[0]], b = mesh.positions[tri[1]], c = mesh.positions[tri[2]];
+          const Vec3 a = mesh.positions[tri[0]], b = mesh.positions[tri[1]],
+                     c = mesh.positions[tri[2]];
           Aabb bb;
           bb.extend(a);
           bb.extend(b);
           bb.extend(c);
           bounds.push_back(bb);
-          prims.push_back({a, b, c, PrimitiveKind::triangle, object_id, static_cast<std::uint32_t>(t)});
+          prims.push_back(
+              {a, b, c, PrimitiveKind::triangle, object_id, static_cast<std::uint32_t>(t)});
         }
         s.m_stats.triangles += mesh.triangles.size();
         break;
@@ -240,14 +355,19 @@ Scene build_scene(const SceneDescription& desc) {
     }
     for (std::size_t b = first_bound; b < bounds.size(); ++b)
       if (!finite3f(bounds[b].lo) || !finite3f(bounds[b].hi))
-        throw UserError(src, label, "coordinates are too large (beyond single precision) or not finite");
+        throw UserError(src, label,
+                        "coordinates are too large (beyond single precision) or not finite");
     s.m_objects.push_back(std::move(obj));
   }
+
+  check_lights_outside_objects(desc);
+  add_visible_sphere_lights(s, bounds, prims);
 
   // The camera's medium: given, or the one medium that is outside some interface but inside none.
   if (!desc.camera.medium.empty()) {
     auto it = media.find(desc.camera.medium);
-    if (it == media.end()) throw UserError(src, "camera.medium", "unknown medium '" + desc.camera.medium + "'");
+    if (it == media.end())
+      throw UserError(src, "camera.medium", "unknown medium '" + desc.camera.medium + "'");
     s.m_camera_medium = it->second;
   } else {
     std::vector<std::uint32_t> outermost;
@@ -258,7 +378,8 @@ Scene build_scene(const SceneDescription& desc) {
     } else if (outermost.size() > 1) {
       std::string names;
       for (auto m : outermost) names += (names.empty() ? "" : ", ") + s.m_media[m].name;
-      throw UserError(src, "camera.medium", "the camera's medium is ambiguous (" + names + "): set camera.medium");
+      throw UserError(src, "camera.medium",
+                      "the camera's medium is ambiguous (" + names + "): set camera.medium");
     }
   }
 
@@ -286,7 +407,8 @@ Scene build_scene(const SceneDescription& desc) {
   }
   s.m_stats.bvh_nodes = s.m_bvh.nodes().size();
   s.m_stats.bvh_depth = s.m_bvh.depth();
-  s.m_stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  s.m_stats.build_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return s;
 }
 
@@ -415,7 +537,8 @@ SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {
   switch (pr.kind) {
     case PrimitiveKind::triangle: {
       const float b0 = 1.0f - hit.b1 - hit.b2;
-      // Barycentric reconstruction and its error bound (pbrt-v4 Triangle::InteractionFromIntersection).
+      // Barycentric reconstruction and its error bound (pbrt-v4
+      // Triangle::InteractionFromIntersection).
       si.p = pr.a * b0 + pr.b * hit.b1 + pr.c * hit.b2;
       si.p_error = (abs(pr.a * b0) + abs(pr.b * hit.b1) + abs(pr.c * hit.b2)) * gamma_bound(7);
       Vec3 n = cross(pr.b - pr.a, pr.c - pr.a);
@@ -426,7 +549,8 @@ SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {
       if (set >= 0) {
         const NormalSet& ns = m_normal_sets[static_cast<std::size_t>(set)];
         const auto& idx = ns.indices[pr.index];
-        const Vec3 sn = ns.normals[idx[0]] * b0 + ns.normals[idx[1]] * hit.b1 + ns.normals[idx[2]] * hit.b2;
+        const Vec3 sn =
+            ns.normals[idx[0]] * b0 + ns.normals[idx[1]] * hit.b1 + ns.normals[idx[2]] * hit.b2;
         const float sl = length(sn);
         if (sl > 0.0f) si.ns = face_forward(sn / sl, si.ng);
       }

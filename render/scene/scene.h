@@ -10,9 +10,10 @@
 
 #include "render/accel/bvh.h"
 #include "render/geometry/triangle4.h"
+#include "render/light/sphere_light.h"
 #include "render/material/material.h"
-#include "render/media/medium.h"
 #include "render/math/color.h"
+#include "render/media/medium.h"
 #include "render/scene/camera.h"
 #include "render/scene/scene_description.h"
 
@@ -90,6 +91,8 @@ class Scene {
   const ImageSettings& settings() const { return m_settings; }
   const Camera& camera() const { return m_camera; }
   const std::vector<PointLight>& lights() const { return m_lights; }
+  /// area lights ([[lights]] kind = "sphere"); each is also a visible emissive sphere object
+  const std::vector<SphereLight>& sphere_lights() const { return m_sphere_lights; }
   const std::vector<Medium>& media() const { return m_media; }
   const std::vector<Material>& materials() const { return m_materials; }
   const std::vector<SceneObject>& objects() const { return m_objects; }
@@ -112,9 +115,11 @@ class Scene {
 
  private:
   friend Scene build_scene(const SceneDescription&);
+  friend void add_visible_sphere_lights(Scene&, std::vector<Aabb>&, std::vector<Primitive>&);
   ImageSettings m_settings;
   Camera m_camera;
   std::vector<PointLight> m_lights;
+  std::vector<SphereLight> m_sphere_lights;
   Rgb m_ambient, m_background;
   std::vector<Medium> m_media;
   std::vector<Material> m_materials;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "render/film/filter.h"
 #include "render/geometry/triangle_mesh.h"
 #include "render/media/medium.h"
 
@@ -21,7 +22,17 @@ using RgbD = std::array<double, 3>;
 struct ImageSettings {
   int width = 640;
   int height = 480;
+  /// camera samples per pixel; with adaptive = true the cap (render/film/adaptive_pixel.h)
   int samples_per_pixel = 1;
+  /// adaptive anti-aliasing: min_samples everywhere, doubled while the pixel's display-space
+  /// standard error exceeds adaptive_threshold, up to samples_per_pixel
+  bool adaptive = true;
+  int min_samples = 4;
+  /// [display units: 1/255 is one 8-bit step]
+  double adaptive_threshold = 0.01;
+  /// reconstruction filter (render/film/filter.h) and its radius [pixels]
+  FilterKind filter = FilterKind::gaussian;
+  double filter_radius = 1.5;
   /// levels of the Whitted tree, the primary ray being level 1 (POV-Ray max_trace_level)
   int max_depth = 10;
   /// radiance of every ray that escapes the scene (linear RGB)
@@ -83,12 +94,21 @@ struct AmbientDescription {
 };
 
 struct LightDescription {
+  enum class Kind { point, sphere };
   enum class Falloff { none, inverse_square };
+  /// point: the light; sphere: its centre
   Vec3d position{0.0, 10.0, 0.0};
   RgbD color{1.0, 1.0, 1.0};
   double intensity = 1.0;
   /// "none" as in POV-Ray; inverse_square divides by the squared distance [scene units^2]
+  /// (sphere lights: see render/light/sphere_light.h)
   Falloff falloff = Falloff::none;
+  Kind kind = Kind::point;
+  /// sphere: radius [scene units], > 0; its radiance is colour * intensity / (pi radius^2), so it
+  /// lights like a point light of the same intensity at its centre (render/light/sphere_light.h)
+  double radius = 0.0;
+  /// sphere: shadow rays per shading point and camera sample (stratified, low-discrepancy)
+  int samples = 4;
 };
 
 struct MediumDescription {
@@ -165,8 +185,9 @@ struct SceneDescription {
   std::string source_name;
 
   /// Convenience for code-built scenes: adds a closed dielectric mesh between two media.
-  ObjectDescription& add_dielectric_mesh(std::shared_ptr<const TriangleMesh> mesh, std::string inside,
-                                         std::string outside, std::string label = "") {
+  ObjectDescription& add_dielectric_mesh(std::shared_ptr<const TriangleMesh> mesh,
+                                         std::string inside, std::string outside,
+                                         std::string label = "") {
     ObjectDescription o;
     o.shape = ObjectDescription::Shape::mesh;
     o.mesh = std::move(mesh);

@@ -12,7 +12,9 @@ namespace thaw::render {
 
 namespace {
 
-double length3(const Vec3d& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+double length3(const Vec3d& v) {
+  return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
 
 /// A unit vector: |v| must be 1 to within 1e-6 relative (a float's worth of rounding in the file).
 Vec3d unit_vec3(const TomlTable& t, const std::string& key) {
@@ -43,7 +45,8 @@ int int_in(const TomlTable& t, const std::string& key, int fallback, int lo, int
 ImageSettings::Spectral parse_spectral(const TomlTable& img) {
   // TomlTable has no type query: try the two accepted types in turn.
   try {
-    return img.get_bool("spectral", false) ? ImageSettings::Spectral::on : ImageSettings::Spectral::off;
+    return img.get_bool("spectral", false) ? ImageSettings::Spectral::on
+                                           : ImageSettings::Spectral::off;
   } catch (const UserError&) {
   }
   std::string text;
@@ -101,7 +104,8 @@ MaterialDescription parse_material(const std::string& name, const TomlTable& m) 
     mat.emission = color3(m, "color", {1.0, 1.0, 1.0});
     mat.emission_intensity = m.require_non_negative("intensity", m.get_double("intensity", 1.0));
   } else {
-    m.fail("kind", "unknown material kind '" + kind + "' (expected matte, metal, phong or emissive)");
+    m.fail("kind",
+           "unknown material kind '" + kind + "' (expected matte, metal, phong or emissive)");
   }
   return mat;
 }
@@ -139,11 +143,32 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
     s.image.width = int_in(*img, "width", s.image.width, 1, kMaxImageSide);
     s.image.height = int_in(*img, "height", s.image.height, 1, kMaxImageSide);
     if (static_cast<long long>(s.image.width) * s.image.height > kMaxImagePixels)
-      img->fail("height", "image has too many pixels (limit " + std::to_string(kMaxImagePixels) + ")");
-    s.image.samples_per_pixel = int_in(*img, "samples_per_pixel", 1, 1, 65536);
+      img->fail("height",
+                "image has too many pixels (limit " + std::to_string(kMaxImagePixels) + ")");
+    s.image.samples_per_pixel = int_in(*img, "samples_per_pixel", 1, 1, kMaxSamplesPerPixel);
+    s.image.adaptive = img->get_bool("adaptive", s.image.adaptive);
+    // At least two samples, for a standard error; more than the cap is the cap.
+    s.image.min_samples = int_in(*img, "min_samples", s.image.min_samples, 2, kMaxSamplesPerPixel);
+    const double threshold = img->get_double("adaptive_threshold", s.image.adaptive_threshold);
+    if (!(threshold >= kMinAdaptiveThreshold && threshold <= kMaxAdaptiveThreshold))
+      img->fail("adaptive_threshold", "must be between 0.0001 and 1 (display units; got " +
+                                          std::to_string(threshold) + ")");
+    s.image.adaptive_threshold = threshold;
+    const std::string filter = img->get_string("filter", filter_name(s.image.filter));
+    if (const auto kind = filter_kind_from_name(filter))
+      s.image.filter = *kind;
+    else
+      img->fail("filter", "unknown filter \"" + filter +
+                              "\" (expected \"box\", \"gaussian\" or \"mitchell\")");
+    const double radius = img->get_double("filter_radius", default_filter_radius(s.image.filter));
+    if (!(radius >= kMinFilterRadius && radius <= kMaxFilterRadius))
+      img->fail("filter_radius",
+                "must be between 0.5 and 4 pixels (got " + std::to_string(radius) + ")");
+    s.image.filter_radius = radius;
     s.image.max_depth = int_in(*img, "max_depth", 10, 1, 64);
     s.image.background = color3(*img, "background", s.image.background);
-    s.image.min_weight = img->require_non_negative("min_weight", img->get_double("min_weight", 1.0 / 255.0));
+    s.image.min_weight =
+        img->require_non_negative("min_weight", img->get_double("min_weight", 1.0 / 255.0));
     s.image.exposure = img->get_double("exposure", 0.0);
     if (img->has("spectral")) s.image.spectral = parse_spectral(*img);
     const std::string dispersion = img->get_string("dispersion", "adaptive");
@@ -168,9 +193,12 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
       img->fail("wavelength_pattern",
                 "must be \"shared\" or \"per_pixel\" (got \"" + pattern + "\")");
     const std::string film = img->get_string("spectral_film", "ratio");
-    if (film == "ratio") s.image.spectral_film = ImageSettings::SpectralFilm::ratio;
-    else if (film == "unbiased") s.image.spectral_film = ImageSettings::SpectralFilm::unbiased;
-    else img->fail("spectral_film", "must be \"ratio\" or \"unbiased\" (got \"" + film + "\")");
+    if (film == "ratio")
+      s.image.spectral_film = ImageSettings::SpectralFilm::ratio;
+    else if (film == "unbiased")
+      s.image.spectral_film = ImageSettings::SpectralFilm::unbiased;
+    else
+      img->fail("spectral_film", "must be \"ratio\" or \"unbiased\" (got \"" + film + "\")");
   }
   if (auto cam = root.optional_table("camera")) {
     s.camera.position = cam->get_vec3("position");
@@ -180,12 +208,15 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
     if (!(s.camera.vertical_fov_deg > 0.0 && s.camera.vertical_fov_deg < 180.0))
       cam->fail("vertical_fov_deg", "must be in (0, 180) degrees");
     s.camera.medium = cam->get_string("medium", "");
-    const Vec3d d{s.camera.look_at[0] - s.camera.position[0], s.camera.look_at[1] - s.camera.position[1],
+    const Vec3d d{s.camera.look_at[0] - s.camera.position[0],
+                  s.camera.look_at[1] - s.camera.position[1],
                   s.camera.look_at[2] - s.camera.position[2]};
     if (length3(d) == 0.0) cam->fail("look_at", "must differ from the camera position");
-    const Vec3d c{d[1] * s.camera.up[2] - d[2] * s.camera.up[1], d[2] * s.camera.up[0] - d[0] * s.camera.up[2],
+    const Vec3d c{d[1] * s.camera.up[2] - d[2] * s.camera.up[1],
+                  d[2] * s.camera.up[0] - d[0] * s.camera.up[2],
                   d[0] * s.camera.up[1] - d[1] * s.camera.up[0]};
-    if (length3(c) <= 1e-9 * length3(d)) cam->fail("up", "must not be parallel to the viewing direction");
+    if (length3(c) <= 1e-9 * length3(d))
+      cam->fail("up", "must not be parallel to the viewing direction");
   } else {
     root.fail("camera", "required table [camera] is missing");
   }
@@ -196,14 +227,28 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
   for (const TomlTable& l : root.array_of_tables("lights")) {
     LightDescription light;
     const std::string kind = l.get_string("kind", "point");
-    if (kind != "point") l.fail("kind", "unknown light kind '" + kind + "' (expected point)");
+    if (kind == "point") {
+      light.kind = LightDescription::Kind::point;
+    } else if (kind == "sphere") {
+      light.kind = LightDescription::Kind::sphere;
+      light.radius = l.get_double("radius");
+      if (!(light.radius > 0.0) || !std::isfinite(light.radius))
+        l.fail("radius",
+               "a sphere light needs a positive radius (got " + std::to_string(light.radius) + ")");
+      light.samples = int_in(l, "samples", light.samples, 1, kMaxLightSamples);
+    } else {
+      l.fail("kind", "unknown light kind '" + kind + "' (expected point or sphere)");
+    }
     light.position = l.get_vec3("position");
     light.color = color3(l, "color", light.color);
     light.intensity = l.require_non_negative("intensity", l.get_double("intensity", 1.0));
     const std::string falloff = l.get_string("falloff", "none");
-    if (falloff == "none") light.falloff = LightDescription::Falloff::none;
-    else if (falloff == "inverse_square") light.falloff = LightDescription::Falloff::inverse_square;
-    else l.fail("falloff", "unknown falloff '" + falloff + "' (expected none or inverse_square)");
+    if (falloff == "none")
+      light.falloff = LightDescription::Falloff::none;
+    else if (falloff == "inverse_square")
+      light.falloff = LightDescription::Falloff::inverse_square;
+    else
+      l.fail("falloff", "unknown falloff '" + falloff + "' (expected none or inverse_square)");
     s.lights.push_back(light);
   }
   std::set<std::string> media{"vacuum"};
@@ -214,9 +259,11 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
       md.name = name;
       if (m.has("ior")) {
         md.ior = m.get_double("ior");
-        if (!(md.ior >= 1.0 && md.ior < 10.0)) m.fail("ior", "must be in [1, 10) (got " + std::to_string(md.ior) + ")");
+        if (!(md.ior >= 1.0 && md.ior < 10.0))
+          m.fail("ior", "must be in [1, 10) (got " + std::to_string(md.ior) + ")");
       }
-      if (name == "vacuum") m.fail(m.has("ior") ? "ior" : "", "'vacuum' is predefined (n = 1) and cannot be redefined");
+      if (name == "vacuum")
+        m.fail(m.has("ior") ? "ior" : "", "'vacuum' is predefined (n = 1) and cannot be redefined");
       // Everything else a medium may say (preset, sellmeier, ..., absorption): render/media.
       md.spec = media::parse_medium_spec(m, name);
       media.insert(name);
@@ -248,7 +295,8 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
       obj.box_min = o.get_vec3("min");
       obj.box_max = o.get_vec3("max");
       for (int k = 0; k < 3; ++k)
-        if (!(obj.box_min[k] < obj.box_max[k])) o.fail("max", "must exceed min in every coordinate");
+        if (!(obj.box_min[k] < obj.box_max[k]))
+          o.fail("max", "must exceed min in every coordinate");
     } else if (shape == "plane") {
       obj.shape = ObjectDescription::Shape::plane;
       obj.point = o.get_vec3("point");
@@ -267,18 +315,23 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
     const bool has_material = o.has("material");
     const bool has_media = o.has("inside") || o.has("outside");
     if (has_material && has_media)
-      o.fail("material", "an object is either opaque (material) or a dielectric interface (inside, outside), not both");
+      o.fail("material",
+             "an object is either opaque (material) or a dielectric interface (inside, outside), "
+             "not both");
     if (has_material) {
       obj.material = o.get_string("material");
-      if (!materials.count(obj.material)) o.fail("material", "unknown material '" + obj.material + "'");
+      if (!materials.count(obj.material))
+        o.fail("material", "unknown material '" + obj.material + "'");
     } else if (has_media) {
       obj.inside = o.get_string("inside");
       obj.outside = o.get_string("outside");
       if (!media.count(obj.inside)) o.fail("inside", "unknown medium '" + obj.inside + "'");
       if (!media.count(obj.outside)) o.fail("outside", "unknown medium '" + obj.outside + "'");
-      if (obj.inside == obj.outside) o.fail("outside", "inside and outside must be different media");
+      if (obj.inside == obj.outside)
+        o.fail("outside", "inside and outside must be different media");
       if (obj.shape == ObjectDescription::Shape::plane)
-        o.fail("inside", "a plane is not closed and cannot be a dielectric interface; give it a material");
+        o.fail("inside",
+               "a plane is not closed and cannot be a dielectric interface; give it a material");
     } else {
       o.fail("shape", "object needs either material = \"...\" or inside/outside media");
     }
@@ -289,7 +342,8 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
 
 SceneDescription parse_scene_file(const std::filesystem::path& path) {
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw UserError(path.string(), "", "scene file not found");
+  if (!std::filesystem::exists(path, ec))
+    throw UserError(path.string(), "", "scene file not found");
   const TomlTable probe = TomlTable::parse_file(path);  // reports missing/malformed files uniformly
   (void)probe;
   std::ifstream in(path, std::ios::binary);

@@ -29,6 +29,12 @@ SceneDescription parse_scene_table(const TomlTable& table, const std::filesystem
 inline constexpr int kMaxImageSide = 16384;
 inline constexpr long long kMaxImagePixels = 1LL << 26;
 
+/// Accepted [image] samples_per_pixel (the cap) and min_samples, [image] adaptive_threshold
+/// (display units) and [[lights]] samples of a sphere light.
+inline constexpr int kMaxSamplesPerPixel = 65536;
+inline constexpr double kMinAdaptiveThreshold = 1e-4, kMaxAdaptiveThreshold = 1.0;
+inline constexpr int kMaxLightSamples = 1024;
+
 /// Accepted [image] dispersion_wavelengths and dispersion_resolution_nm [nm].
 inline constexpr int kMinDispersionWavelengths = 4, kMaxDispersionWavelengths = 1024;
 inline constexpr double kMinDispersionResolutionNm = 0.05, kMaxDispersionResolutionNm = 100.0;

@@ -16,8 +16,10 @@ SceneDescription shell_scene() {
   d.camera.position = {0, 0, 5};
   d.camera.look_at = {0, 0, 0};
   d.media = {test::medium("air", 1.0), test::medium("ice", 1.31), test::medium("water", 1.33)};
-  d.add_dielectric_mesh(std::make_shared<TriangleMesh>(test::icosphere(3, 1.0f)), "ice", "air", "outer");
-  d.add_dielectric_mesh(std::make_shared<TriangleMesh>(test::icosphere(3, 0.7f)), "water", "ice", "inner");
+  d.add_dielectric_mesh(std::make_shared<TriangleMesh>(test::icosphere(3, 1.0f)), "ice", "air",
+                        "outer");
+  d.add_dielectric_mesh(std::make_shared<TriangleMesh>(test::icosphere(3, 0.7f)), "water", "ice",
+                        "inner");
   return d;
 }
 
@@ -72,7 +74,8 @@ TEST(Scene, UnknownNamesAndMissingFilesAreRejected) {
 
 TEST(Scene, AmbiguousCameraMediumMustBeGiven) {
   SceneDescription d = shell_scene();
-  d.add_dielectric_mesh(std::make_shared<TriangleMesh>(test::icosphere(1, 0.2f, {3, 0, 0})), "water", "vacuum");
+  d.add_dielectric_mesh(std::make_shared<TriangleMesh>(test::icosphere(1, 0.2f, {3, 0, 0})),
+                        "water", "vacuum");
   EXPECT_THROW(build_scene(d), UserError);
   d.camera.medium = "air";
   EXPECT_NO_THROW(build_scene(d));
@@ -142,6 +145,95 @@ TEST(Scene, BadImageSizeIsRejected) {
   SceneDescription d = shell_scene();
   d.image.width = 0;
   EXPECT_THROW(build_scene(d), UserError);
+}
+
+}  // namespace
+}  // namespace thaw::render
+
+namespace thaw::render {
+namespace {
+
+/// The shell scene with an opaque ball and box, and one light.
+SceneDescription scene_with_light(LightDescription light) {
+  SceneDescription d = shell_scene();
+  MaterialDescription m;
+  m.name = "grey";
+  d.materials.push_back(m);
+  ObjectDescription ball;
+  ball.label = "ball";
+  ball.shape = ObjectDescription::Shape::sphere;
+  ball.center = {3, 0, 0};
+  ball.radius = 1;
+  ball.material = "grey";
+  d.objects.push_back(ball);
+  ObjectDescription box;
+  box.label = "crate";
+  box.shape = ObjectDescription::Shape::box;
+  box.box_min = {-4, -1, -1};
+  box.box_max = {-3, 1, 1};
+  box.material = "grey";
+  d.objects.push_back(box);
+  d.lights.push_back(light);
+  return d;
+}
+
+LightDescription sphere_light(Vec3d c, double r) {
+  LightDescription l;
+  l.kind = LightDescription::Kind::sphere;
+  l.position = c;
+  l.radius = r;
+  l.intensity = 2.0;
+  return l;
+}
+
+std::string build_error(const SceneDescription& d) {
+  try {
+    build_scene(d);
+  } catch (const UserError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Scene, SphereLightIsAVisibleEmitterOfRadianceIOverPiR2) {
+  const Scene s = build_scene(scene_with_light(sphere_light({0, 5, 0}, 0.5)));
+  ASSERT_EQ(s.sphere_lights().size(), 1u);
+  EXPECT_TRUE(s.lights().empty());
+  const float L = float(2.0 / (3.14159265358979323846 * 0.25));
+  EXPECT_FLOAT_EQ(s.sphere_lights()[0].radiance.g, L);
+  // A ray straight up from the origin's top meets the light's sphere at y = 4.5, emissive, L.
+  Hit hit;
+  ASSERT_TRUE(s.intersect(Ray{{0, 2, 0}, {0, 1, 0}}, hit));
+  EXPECT_NEAR(hit.t, 2.5f, 1e-5f);
+  const SceneObject& obj = s.objects()[s.interaction(Ray{{0, 2, 0}, {0, 1, 0}}, hit).object];
+  EXPECT_EQ(obj.label, "lights[0]");
+  ASSERT_FALSE(obj.dielectric);
+  EXPECT_EQ(s.materials()[obj.material].kind, Material::Kind::emissive);
+  EXPECT_FLOAT_EQ(s.materials()[obj.material].emission.r, L);
+}
+
+TEST(Scene, LightsInsideOrCuttingObjectsAreRejected) {
+  LightDescription point;
+  point.position = {3, 0.5, 0};
+  EXPECT_NE(build_error(scene_with_light(point)).find("lights[0].position"), std::string::npos);
+  EXPECT_NE(build_error(scene_with_light(point)).find("inside opaque object 'ball'"),
+            std::string::npos);
+  point.position = {-3.5, 0, 0};
+  EXPECT_NE(build_error(scene_with_light(point)).find("inside opaque object 'crate'"),
+            std::string::npos);
+  EXPECT_NE(build_error(scene_with_light(sphere_light({3, 0.2, 0}, 0.1))).find("inside opaque"),
+            std::string::npos);
+  // Cutting the ball's surface, the crate's, or the ice shell's (a dielectric sphere).
+  EXPECT_NE(build_error(scene_with_light(sphere_light({3, 1.5, 0}, 0.6))).find("lights[0].radius"),
+            std::string::npos);
+  EXPECT_NE(build_error(scene_with_light(sphere_light({-2.8, 0, 0}, 0.3))).find("'crate'"),
+            std::string::npos);
+  EXPECT_NE(build_error(scene_with_light(sphere_light({2.1, 0, 0}, 0.3))).find("'ball'"),
+            std::string::npos);
+  // Clear of everything: fine, and a point light outside the objects is too.
+  EXPECT_EQ(build_error(scene_with_light(sphere_light({0, 3, 0}, 0.5))), "");
+  point.position = {0, 3, 0};
+  EXPECT_EQ(build_error(scene_with_light(point)), "");
 }
 
 }  // namespace

@@ -114,9 +114,12 @@ TEST(SceneParser, UnknownKeysAreErrors) {
 }
 
 TEST(SceneParser, UnknownNamesAreErrors) {
-  expect_error("inside = \"water\"", "inside = \"wate\"", "objects[1].inside", "unknown medium 'wate'");
-  expect_error("material = \"floor\"", "material = \"flor\"", "objects[2].material", "unknown material 'flor'");
-  expect_error("kind = \"matte\"", "kind = \"lambert\"", "materials.floor.kind", "unknown material kind");
+  expect_error("inside = \"water\"", "inside = \"wate\"", "objects[1].inside",
+               "unknown medium 'wate'");
+  expect_error("material = \"floor\"", "material = \"flor\"", "objects[2].material",
+               "unknown material 'flor'");
+  expect_error("kind = \"matte\"", "kind = \"lambert\"", "materials.floor.kind",
+               "unknown material kind");
   expect_error("shape = \"box\"", "shape = \"cube\"", "objects[3].shape", "unknown shape");
   expect_error("kind = \"point\"", "kind = \"spot\"", "lights[0].kind", "unknown light kind");
 }
@@ -130,9 +133,11 @@ TEST(SceneParser, BadValuesAreErrors) {
   expect_error("radius = 0.7", "radius = -0.7", "radius", "positive");
   expect_error("ior = 1.31", "ior = 0.5", "media.ice.ior", "[1, 10)");
   expect_error("ior = 1.31", "ior = nan", "media.ice.ior", "finite");
-  expect_error("vertical_fov_deg = 35.0", "vertical_fov_deg = 180.0", "vertical_fov_deg", "(0, 180)");
+  expect_error("vertical_fov_deg = 35.0", "vertical_fov_deg = 180.0", "vertical_fov_deg",
+               "(0, 180)");
   expect_error("outside = \"ice\"", "outside = \"water\"", "outside", "different media");
-  expect_error("material = \"floor\"", "inside = \"ice\"\noutside = \"water\"", "inside", "not closed");
+  expect_error("material = \"floor\"", "inside = \"ice\"\noutside = \"water\"", "inside",
+               "not closed");
   expect_error("radius = 0.7", "radius = \"big\"", "radius", "expected a number");
   expect_error("max = [2, 2, 2]", "max = [2, 0, 2]", "max", "must exceed min");
   expect_error("max_depth = 10", "max_depth = 10\ndispersion = \"rainbow\"", "image.dispersion",
@@ -162,6 +167,52 @@ TEST(SceneParser, DispersionSettings) {
   EXPECT_EQ(s.image.wavelength_pattern, ImageSettings::WavelengthPattern::per_pixel);
 }
 
+TEST(SceneParser, SphereLightsAndAntialiasingSettings) {
+  const SceneDescription defaults = parse_scene_string(kExample, "example.toml");
+  EXPECT_EQ(defaults.lights[0].kind, LightDescription::Kind::point);
+  EXPECT_TRUE(defaults.image.adaptive);
+  EXPECT_EQ(defaults.image.min_samples, 4);
+  EXPECT_EQ(defaults.image.filter, FilterKind::gaussian);
+  EXPECT_DOUBLE_EQ(defaults.image.filter_radius, 1.5);
+  std::string text = kExample;
+  text.replace(text.find("kind = \"point\""), 14, "kind = \"sphere\"\nradius = 0.25\nsamples = 8");
+  text.replace(text.find("max_depth = 10"), 14,
+               "max_depth = 10\nadaptive = false\nmin_samples = 8\nadaptive_threshold = 0.02\n"
+               "filter = \"mitchell\"");
+  const SceneDescription s = parse_scene_string(text, "example.toml");
+  EXPECT_EQ(s.lights[0].kind, LightDescription::Kind::sphere);
+  EXPECT_DOUBLE_EQ(s.lights[0].radius, 0.25);
+  EXPECT_EQ(s.lights[0].samples, 8);
+  EXPECT_FALSE(s.image.adaptive);
+  EXPECT_EQ(s.image.min_samples, 8);
+  EXPECT_DOUBLE_EQ(s.image.adaptive_threshold, 0.02);
+  EXPECT_EQ(s.image.filter, FilterKind::mitchell);
+  EXPECT_DOUBLE_EQ(s.image.filter_radius, 2.0);  // the filter's own default radius
+}
+
+TEST(SceneParser, BadSphereLightsAndFiltersAreErrors) {
+  expect_error("kind = \"point\"", "kind = \"sphere\"\nradius = 0.0", "lights[0].radius",
+               "positive radius");
+  expect_error("kind = \"point\"", "kind = \"sphere\"\nradius = -1.0", "lights[0].radius",
+               "positive radius");
+  std::string no_radius = kExample;
+  no_radius.replace(no_radius.find("kind = \"point\""), 14, "kind = \"sphere\"");
+  EXPECT_THROW(parse_scene_string(no_radius, "bad.toml"), UserError);
+  expect_error("kind = \"point\"", "kind = \"point\"\nradius = 1.0", "lights[0].radius",
+               "unknown key");
+  expect_error("kind = \"point\"", "kind = \"sphere\"\nradius = 1.0\nsamples = 0",
+               "lights[0].samples", "between 1 and");
+  expect_error("max_depth = 10", "max_depth = 10\nfilter = \"lanczos\"", "image.filter",
+               "unknown filter");
+  expect_error("max_depth = 10", "max_depth = 10\nfilter_radius = 0.1", "image.filter_radius",
+               "between 0.5 and 4");
+  expect_error("max_depth = 10", "max_depth = 10\nmin_samples = 1", "image.min_samples",
+               "between 2 and");
+  expect_error("max_depth = 10", "max_depth = 10\nadaptive_threshold = 0.0",
+               "image.adaptive_threshold", "between 0.0001 and 1");
+  expect_error("max_depth = 10", "max_depth = 10\nadaptive = 3", "image.adaptive", "");
+}
+
 TEST(SceneParser, MalformedTomlNamesTheLine) {
   try {
     parse_scene_string("[image]\nwidth = = 3\n", "m.toml");
@@ -174,8 +225,9 @@ TEST(SceneParser, MalformedTomlNamesTheLine) {
 TEST(SceneParser, SceneInsideAnotherDocument) {
   // A scenario's [render] table holding a scene: keys are named with their full path, and the
   // document's owner finds unknown keys anywhere, including inside the scene.
-  const std::string text = "[render.camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n"
-                           "vertical_fov_deg = 40\n[render.image]\nwidth = 8\nheigth = 8\n";
+  const std::string text =
+      "[render.camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n"
+      "vertical_fov_deg = 40\n[render.image]\nwidth = 8\nheigth = 8\n";
   const TomlTable doc = TomlTable::parse_string(text, "scenario.toml");
   const SceneDescription s = parse_scene_table(doc.table("render"), "/b");
   EXPECT_EQ(s.image.width, 8);
@@ -226,8 +278,11 @@ TEST(SceneParser, MissingFileIsAnError) {
 }
 
 TEST(SceneParser, ShippedScenesParse) {
-  for (const char* name : {"s1_ice_shell", "s1_ice_shell_mesh", "s3_dispersion_nodisp", "s4_spheres16"})
-    EXPECT_NO_THROW(parse_scene_file(std::string(THAW_SOURCE_DIR) + "/data/scenes/" + name + ".toml")) << name;
+  for (const char* name :
+       {"s1_ice_shell", "s1_ice_shell_mesh", "s3_dispersion_nodisp", "s4_spheres16"})
+    EXPECT_NO_THROW(
+        parse_scene_file(std::string(THAW_SOURCE_DIR) + "/data/scenes/" + name + ".toml"))
+        << name;
 }
 
 }  // namespace

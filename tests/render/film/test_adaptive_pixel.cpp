@@ -1,0 +1,118 @@
+#include "render/film/adaptive_pixel.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace thaw::render {
+namespace {
+
+Rgb identity(const Rgb& c) {
+  return c;
+}
+
+TEST(AdaptivePixel, OneSampleGoesThroughThePixelCentre) {
+  const Filter f(FilterKind::gaussian, 1.5);
+  AntialiasingSettings aa;
+  aa.max_samples = 1;
+  aa.adaptive = true;
+  float fx = -1, fy = -1;
+  const auto e = estimate_pixel<Rgb>(
+      7, 3, sampling::PixelSampler(7, 3), f, aa,
+      [&](float x, float y, std::uint32_t) {
+        fx = x;
+        fy = y;
+        return Rgb::gray(2);
+      },
+      identity);
+  EXPECT_EQ(e.samples, 1);
+  EXPECT_EQ(fx, 7.5f);
+  EXPECT_EQ(fy, 3.5f);
+  EXPECT_EQ(e.value.g, 2.0f);
+}
+
+TEST(AdaptivePixel, FlatPixelsStopAfterTheFirstBatch) {
+  const Filter box(FilterKind::box, 0.5);
+  AntialiasingSettings aa;
+  aa.max_samples = 64;
+  aa.adaptive = true;
+  aa.min_samples = 4;
+  const auto e = estimate_pixel<Rgb>(
+      0, 0, sampling::PixelSampler(0, 0), box, aa,
+      [](float, float, std::uint32_t) {
+        return Rgb{0.2f, 0.4f, 0.6f};
+      },
+      identity);
+  EXPECT_EQ(e.samples, 4);
+  EXPECT_FLOAT_EQ(e.value.b, 0.6f);
+  aa.adaptive = false;
+  EXPECT_EQ(estimate_pixel<Rgb>(
+                0, 0, sampling::PixelSampler(0, 0), box, aa,
+                [](float, float, std::uint32_t) { return Rgb{}; }, identity)
+                .samples,
+            64);
+}
+
+TEST(AdaptivePixel, AnEdgeThroughThePixelTakesTheCapAndItsExactCoverage) {
+  // A vertical black/white edge through the middle of pixel (4, 4): the display-space standard
+  // error is ~0.5 / sqrt(n) >> threshold, so sampling goes to the cap (64); a (0,6,2)-net puts
+  // exactly 32 of its 64 points on each side of x = 4.5, so the box-filtered value is 1/2 exactly.
+  const Filter box(FilterKind::box, 0.5);
+  AntialiasingSettings aa;
+  aa.max_samples = 64;
+  aa.adaptive = true;
+  const auto edge = [](float x, float, std::uint32_t) { return x < 4.5f ? Rgb{} : Rgb::gray(1); };
+  const auto e = estimate_pixel<Rgb>(4, 4, sampling::PixelSampler(4, 4), box, aa, edge, identity);
+  EXPECT_EQ(e.samples, 64);
+  EXPECT_EQ(e.value.r, 0.5f);
+  // A cap that is not a power of two is honoured.
+  aa.max_samples = 24;
+  EXPECT_EQ(
+      estimate_pixel<Rgb>(4, 4, sampling::PixelSampler(4, 4), box, aa, edge, identity).samples, 24);
+}
+
+TEST(AdaptivePixel, ThresholdIsInDisplayUnits) {
+  // Samples alternating 0.5 +- 0.05 (linear): display-space deviation about 0.05 * d(sRGB)/dx at
+  // 0.5 (~0.67) = 0.034; after 4 samples the standard error ~0.019: above 0.01 (continue), below
+  // 0.05 (stop). Exposure 2^-10 darkens everything to ~0: stops (the metric sees what the PNG
+  // shows).
+  const Filter box(FilterKind::box, 0.5);
+  AntialiasingSettings aa;
+  aa.max_samples = 256;
+  aa.adaptive = true;
+  const auto noisy = [](float, float, std::uint32_t i) { return Rgb::gray(i % 2 ? 0.55f : 0.45f); };
+  aa.threshold = 0.01f;
+  EXPECT_GT(
+      estimate_pixel<Rgb>(0, 0, sampling::PixelSampler(0, 0), box, aa, noisy, identity).samples, 4);
+  aa.threshold = 0.05f;
+  EXPECT_EQ(
+      estimate_pixel<Rgb>(0, 0, sampling::PixelSampler(0, 0), box, aa, noisy, identity).samples, 4);
+  aa.threshold = 0.01f;
+  aa.exposure_scale = std::ldexp(1.0f, -10);
+  EXPECT_EQ(
+      estimate_pixel<Rgb>(0, 0, sampling::PixelSampler(0, 0), box, aa, noisy, identity).samples, 4);
+}
+
+TEST(AdaptivePixel, GaussianFilterAveragesTheNeighbourhood) {
+  // A linear ramp L = x is reproduced at the centre by any symmetric filter: the estimate of
+  // pixel (10, 0) converges to 10.5 (exact in expectation; 256 samples, 5 standard errors of
+  // w * x with |w x| <= 12 * 1.02 is ~4, a loose bound; the stratified estimate is far closer).
+  const Filter g(FilterKind::gaussian, 1.5);
+  AntialiasingSettings aa;
+  aa.max_samples = 256;
+  aa.adaptive = false;
+  const auto ramp = [](float x, float, std::uint32_t) { return Rgb::gray(x); };
+  const auto e = estimate_pixel<Rgb>(10, 0, sampling::PixelSampler(10, 0), g, aa, ramp, identity);
+  EXPECT_NEAR(e.value.r, 10.5, 0.05);
+}
+
+TEST(AdaptivePixel, DisplayValueIsTheSrgbCurve) {
+  EXPECT_FLOAT_EQ(display_value(0.0f, 1.0f), 0.0f);
+  EXPECT_FLOAT_EQ(display_value(1.0f, 1.0f), 1.0f);
+  EXPECT_FLOAT_EQ(display_value(4.0f, 1.0f), 1.0f);
+  EXPECT_NEAR(display_value(0.18f, 1.0f), 0.4614, 1e-3);  // middle grey
+  EXPECT_FLOAT_EQ(display_value(0.001f, 1.0f), 0.01292f);
+}
+
+}  // namespace
+}  // namespace thaw::render
