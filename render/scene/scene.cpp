@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "render/geometry/box.h"
@@ -72,49 +73,53 @@ bool finite3(const Vec3d& v) {
   return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
 }
 
-/// A light inside an opaque sphere or box lights nothing, and a sphere light whose surface cuts
-/// an object's surface (sphere, box, plane) has no meaning: both are the user's error. Meshes
+/// Signed distance [scene units] from `c` to the surface of a sphere, box or plane object
+/// (negative inside a sphere or box; a plane's is unsigned); nullopt for meshes.
+std::optional<double> signed_distance(const ObjectDescription& o, const Vec3d& c) {
+  switch (o.shape) {
+    case ObjectDescription::Shape::sphere: {
+      const double dx = c[0] - o.center[0], dy = c[1] - o.center[1], dz = c[2] - o.center[2];
+      return std::sqrt(dx * dx + dy * dy + dz * dz) - o.radius;
+    }
+    case ObjectDescription::Shape::box: {
+      // Outside: distance to the nearest point; inside: minus the distance to the nearest face.
+      double out2 = 0.0, in = -1e300;
+      for (int k = 0; k < 3; ++k) {
+        const double q = std::max(o.box_min[k] - c[k], c[k] - o.box_max[k]);
+        if (q > 0.0) out2 += q * q;
+        in = std::max(in, q);
+      }
+      return out2 > 0.0 ? std::sqrt(out2) : in;
+    }
+    case ObjectDescription::Shape::plane:
+      return std::abs((c[0] - o.point[0]) * o.normal[0] + (c[1] - o.point[1]) * o.normal[1] +
+                      (c[2] - o.point[2]) * o.normal[2]);
+    case ObjectDescription::Shape::mesh:
+      break;
+  }
+  return std::nullopt;
+}
+
+/// A light shut inside an opaque sphere or box that the camera is not in (a room or a dome the
+/// camera shares is fine) lights nothing the camera can see; a sphere light whose surface cuts
+/// an object's surface (sphere, box, plane) has no meaning. Both are the user's error. Meshes
 /// are not checked (an open mesh has no inside).
 void check_lights_outside_objects(const SceneDescription& desc) {
   for (std::size_t li = 0; li < desc.lights.size(); ++li) {
     const LightDescription& l = desc.lights[li];
     const std::string key = "lights[" + std::to_string(li) + "]";
     const double r = l.kind == LightDescription::Kind::sphere ? l.radius : 0.0;
-    const Vec3d& c = l.position;
     for (std::size_t oi = 0; oi < desc.objects.size(); ++oi) {
       const ObjectDescription& o = desc.objects[oi];
+      const std::optional<double> sd = signed_distance(o, l.position);
+      if (!sd) continue;
       const std::string name =
           "'" + (o.label.empty() ? "objects[" + std::to_string(oi) + "]" : o.label) + "'";
-      // Signed distance from the light's centre to the object's surface (negative inside).
-      double sd = 0.0;
-      switch (o.shape) {
-        case ObjectDescription::Shape::sphere: {
-          const double dx = c[0] - o.center[0], dy = c[1] - o.center[1], dz = c[2] - o.center[2];
-          sd = std::sqrt(dx * dx + dy * dy + dz * dz) - o.radius;
-          break;
-        }
-        case ObjectDescription::Shape::box: {
-          // Exact box distance (outside: to the nearest point; inside: minus the nearest face).
-          double out2 = 0.0, in = -1e300;
-          for (int k = 0; k < 3; ++k) {
-            const double q = std::max(o.box_min[k] - c[k], c[k] - o.box_max[k]);
-            if (q > 0.0) out2 += q * q;
-            in = std::max(in, q);
-          }
-          sd = out2 > 0.0 ? std::sqrt(out2) : in;
-          break;
-        }
-        case ObjectDescription::Shape::plane:
-          sd = std::abs((c[0] - o.point[0]) * o.normal[0] + (c[1] - o.point[1]) * o.normal[1] +
-                        (c[2] - o.point[2]) * o.normal[2]);
-          break;
-        case ObjectDescription::Shape::mesh:
-          continue;
-      }
-      if (sd < 0.0 && !o.is_dielectric() && o.shape != ObjectDescription::Shape::plane)
+      const bool enclosing = o.shape != ObjectDescription::Shape::plane && !o.is_dielectric();
+      if (enclosing && *sd < 0.0 && !(*signed_distance(o, desc.camera.position) < 0.0))
         throw UserError(desc.source_name, key + ".position",
-                        "the light is inside opaque object " + name);
-      if (r > 0.0 && std::abs(sd) < r)
+                        "the light is inside opaque object " + name + " (and the camera is not)");
+      if (r > 0.0 && std::abs(*sd) < r)
         throw UserError(
             desc.source_name, key + ".radius",
             "the sphere light (radius " + std::to_string(r) + ") intersects object " + name);

@@ -234,6 +234,19 @@ TEST(Scene, LightsInsideOrCuttingObjectsAreRejected) {
   EXPECT_EQ(build_error(scene_with_light(sphere_light({0, 3, 0}, 0.5))), "");
   point.position = {0, 3, 0};
   EXPECT_EQ(build_error(scene_with_light(point)), "");
+  // Inside a box room (or dome) that the camera shares: fine.
+  SceneDescription room = scene_with_light(point);
+  ObjectDescription walls;
+  walls.shape = ObjectDescription::Shape::box;
+  walls.box_min = {-50, -50, -50};
+  walls.box_max = {50, 50, 50};
+  walls.material = "grey";
+  room.objects.push_back(walls);
+  EXPECT_EQ(build_error(room), "");
+  room.camera.position = {0, 0, 60};
+  EXPECT_NE(build_error(room).find("inside opaque object 'objects[4]' (and the camera is not)"),
+            std::string::npos)
+      << build_error(room);
 }
 
 }  // namespace
