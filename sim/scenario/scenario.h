@@ -63,6 +63,9 @@ struct Scenario {
   double flux_w_m2 = 0.0;              ///< heat flux into the ice [W/m^2] (flux)
 
   Materials materials;
+
+  /// Where the scenario came from, for messages (the file name, or what built it in code).
+  std::string source_name = "scenario";
 };
 
 }  // namespace thaw::sim

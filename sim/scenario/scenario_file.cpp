@@ -43,6 +43,134 @@ struct Problem {
   std::string message;
 };
 
+/// The supported physical range of one numeric key, and the range typical scenarios use (only
+/// for naming the likely cause when the solver fails). Documented in docs/simulate.md.
+struct KeyRange {
+  const char* key;
+  double (*value)(const Scenario&);  ///< the quantity checked (the key itself, or a ratio)
+  double (*raw)(const Scenario&);    ///< the key's own value when `value` is a ratio, else null
+  bool (*applies)(const Scenario&);
+  double lo, hi;                  ///< allowed, inclusive
+  double typical_lo, typical_hi;  ///< what the shipped scenarios and the literature use
+  bool decades;                   ///< distance from typical in decades (else in units of 100 K)
+  const char* unit;
+  const char* why;
+};
+
+constexpr double kAbsoluteZeroC = -273.15;
+
+bool always(const Scenario&) {
+  return true;
+}
+double inner_m(const Scenario& s) {
+  return s.inner_radius_m;
+}
+bool has_core(const Scenario& s) {
+  return s.inner_radius_m > 0;
+}
+bool has_ice(const Scenario& s) {
+  return s.outer_radius_m > s.inner_radius_m;
+}
+bool held_inner(const Scenario& s) {
+  return s.inner_kind == InnerBoundary::temperature;
+}
+bool uses_outer_temperature(const Scenario& s) {
+  return s.outer_kind == OuterBoundary::temperature || s.outer_kind == OuterBoundary::convective;
+}
+bool convective(const Scenario& s) {
+  return s.outer_kind == OuterBoundary::convective;
+}
+bool flux(const Scenario& s) {
+  return s.outer_kind == OuterBoundary::flux;
+}
+
+/// Sizes: 0.1 mm to 100 m (a continuum heat-conduction model of a hand-sized object; below
+/// 0.1 mm surface effects and above 100 m gravity-driven flow dominate). A core or an ice layer
+/// thinner than 1e-4 of the outer radius is 100 times the solver's remnant size (1e-6 b0), the
+/// least that still resolves it on 4+ cells. Temperatures: not below absolute zero; liquid water
+/// at 1 atm below 100 C (boiling is not modelled); air up to 1000 C (a flame). Heat transfer
+/// coefficients up to 1e5 W/(m^2 K), the top of the boiling/condensation range (Incropera et
+/// al., Fundamentals of Heat and Mass Transfer, 7th ed., Table 1.1); fluxes up to 1e7 W/m^2
+/// (a solar furnace). Materials within the span of real solids and liquids.
+const std::vector<KeyRange>& key_ranges() {
+  static const std::vector<KeyRange> ranges = {
+      {"shell.outer_radius_m", [](const Scenario& s) { return s.outer_radius_m; }, nullptr, always,
+       1e-4, 100, 1e-3, 1, true, "m", "a hand-sized continuum object"},
+      {"shell.inner_radius_m",
+       [](const Scenario& s) { return s.inner_radius_m / s.outer_radius_m; }, inner_m, has_core,
+       1e-4, 1, 0.05, 1, true, "x outer_radius_m",
+       "a core thinner than 1e-4 of the shell is below the solver's resolution"},
+      {"shell.inner_radius_m",
+       [](const Scenario& s) { return 1 - s.inner_radius_m / s.outer_radius_m; }, inner_m, has_ice,
+       1e-4, 1, 0.05, 1, true, "x outer_radius_m of ice thickness",
+       "an ice layer thinner than 1e-4 of the shell is below the solver's resolution"},
+      {"water.initial_temperature_c",
+       [](const Scenario& s) { return s.water_initial_temperature_c; }, nullptr, has_core,
+       kAbsoluteZeroC, 100, 0, 40, false, "C", "liquid water boils at 100 C (not modelled)"},
+      {"ice.initial_temperature_c", [](const Scenario& s) { return s.ice_initial_temperature_c; },
+       nullptr, has_ice, kAbsoluteZeroC, 100, -40, 0, false, "C",
+       "nothing is colder than absolute zero"},
+      {"inner_boundary.temperature_c", [](const Scenario& s) { return s.inner_temperature_c; },
+       nullptr, held_inner, kAbsoluteZeroC, 100, 0, 60, false, "C",
+       "water at the wall boils at 100 C (not modelled)"},
+      {"outer_boundary.temperature_c", [](const Scenario& s) { return s.outer_temperature_c; },
+       nullptr, uses_outer_temperature, kAbsoluteZeroC, 1000, -40, 60, false, "C",
+       "air from absolute zero to a flame"},
+      {"outer_boundary.heat_transfer_coefficient_w_m2k",
+       [](const Scenario& s) { return s.heat_transfer_coefficient_w_m2k; }, nullptr, convective,
+       1e-3, 1e5, 2, 1000, true, "W/(m^2 K)",
+       "free convection to boiling water (Incropera Table 1.1)"},
+      {"outer_boundary.flux_w_m2", [](const Scenario& s) { return std::abs(s.flux_w_m2); }, nullptr,
+       flux, 0, 1e7, 0, 1e4, true, "W/m^2 (absolute)", "up to a solar furnace"},
+      {"materials.ice_conductivity_w_mk",
+       [](const Scenario& s) { return s.materials.ice_conductivity_w_mk; }, nullptr, always, 1e-3,
+       1e4, 0.1, 10, true, "W/(m K)", "aerogel to diamond"},
+      {"materials.water_conductivity_w_mk",
+       [](const Scenario& s) { return s.materials.water_conductivity_w_mk; }, nullptr, always, 1e-3,
+       1e4, 0.1, 10, true, "W/(m K)", "aerogel to diamond"},
+      {"materials.ice_density_kg_m3",
+       [](const Scenario& s) { return s.materials.ice_density_kg_m3; }, nullptr, always, 1, 1e5,
+       500, 2000, true, "kg/m^3", "real solids and liquids"},
+      {"materials.water_density_kg_m3",
+       [](const Scenario& s) { return s.materials.water_density_kg_m3; }, nullptr, always, 1, 1e5,
+       500, 2000, true, "kg/m^3", "real solids and liquids"},
+      {"materials.ice_specific_heat_j_kgk",
+       [](const Scenario& s) { return s.materials.ice_specific_heat_j_kgk; }, nullptr, always, 10,
+       1e5, 500, 5000, true, "J/(kg K)", "real solids and liquids"},
+      {"materials.water_specific_heat_j_kgk",
+       [](const Scenario& s) { return s.materials.water_specific_heat_j_kgk; }, nullptr, always, 10,
+       1e5, 500, 5000, true, "J/(kg K)", "real solids and liquids"},
+      {"materials.latent_heat_j_kg", [](const Scenario& s) { return s.materials.latent_heat_j_kg; },
+       nullptr, always, 100, 1e7, 1e4, 1e6, true, "J/kg", "real solids"},
+      {"materials.melting_point_c", [](const Scenario& s) { return s.materials.melting_point_c; },
+       nullptr, always, kAbsoluteZeroC, 100, -10, 10, false, "C",
+       "below the boiling point of water"},
+  };
+  return ranges;
+}
+
+/// How far v lies outside [lo, hi]: in decades, or in units of 100 K for temperatures.
+double distance_outside(const KeyRange& r, double v) {
+  if (!r.decades) return std::max({0.0, r.typical_lo - v, v - r.typical_hi}) / 100.0;
+  if (!(v > 0)) return r.typical_lo > 0 ? 1.0 : 0.0;
+  const double lv = std::log10(v);
+  return std::max({0.0, (r.typical_lo > 0 ? std::log10(r.typical_lo) : lv) - lv,
+                   lv - std::log10(r.typical_hi)});
+}
+
+std::optional<Problem> outside_range(const Scenario& s) {
+  for (const KeyRange& r : key_ranges()) {
+    if (!r.applies(s)) continue;
+    const double v = r.value(s);
+    if (v >= r.lo && v <= r.hi) continue;
+    const std::string shown = r.raw ? num(r.raw(s)) + " m, i.e. " : "";
+    return Problem{r.key, "(" + shown + num(v) + " " + r.unit +
+                              ") is outside the supported range [" + num(r.lo) + ", " + num(r.hi) +
+                              "] " + r.unit + ": " + r.why + " (see docs/simulate.md)"};
+  }
+  return std::nullopt;
+}
+
 /// The physics rules every scenario must satisfy, shared by the parser and validate_scenario.
 std::optional<Problem> find_problem(const Scenario& s) {
   const Materials& m = s.materials;
@@ -112,6 +240,7 @@ std::optional<Problem> find_problem(const Scenario& s) {
   if (s.outer_kind == OuterBoundary::convective && !(s.heat_transfer_coefficient_w_m2k > 0))
     return Problem{"outer_boundary.heat_transfer_coefficient_w_m2k",
                    "must be positive (got " + num(s.heat_transfer_coefficient_w_m2k) + ")"};
+  if (auto p = outside_range(s)) return p;
   if (s.inner_radius_m == s.outer_radius_m) {
     // No ice yet: it must start freezing at once.
     const bool water_at_melting = s.water_initial_temperature_c == tm;
@@ -213,6 +342,7 @@ Scenario parse_scenario(const TomlTable& root) { return parse_scenario(root, oth
 
 Scenario parse_scenario(const TomlTable& root, const std::set<std::string>& foreign_sections) {
   Scenario s;
+  s.source_name = root.source_name();
   s.materials = default_materials();
   check_schema(root, foreign_sections);
 
@@ -289,8 +419,31 @@ Scenario read_scenario_file(const std::filesystem::path& path) {
   return parse_scenario(TomlTable::parse_file(path));
 }
 
+LikelyCause likely_cause_of_solver_failure(const Scenario& s) {
+  const KeyRange* worst = nullptr;
+  double worst_distance = 0;
+  for (const KeyRange& r : key_ranges()) {
+    if (!r.applies(s)) continue;
+    const double d = distance_outside(r, r.value(s));
+    if (d > worst_distance) worst = &r, worst_distance = d;
+  }
+  if (!worst)
+    return {"simulation.time_tolerance",
+            "every value is in its typical range; try a looser simulation.time_tolerance (now " +
+                num(s.time_tolerance) + ") or fewer simulation.cells_per_phase (now " +
+                std::to_string(s.cells_per_phase) + ")"};
+  const double v = worst->raw ? worst->raw(s) : worst->value(s);
+  const std::string typical = worst->raw ? ""
+                                         : " (typical: " + num(worst->typical_lo) + " to " +
+                                               num(worst->typical_hi) + " " + worst->unit + ")";
+  return {worst->key, "its value " + num(v) + " is the farthest from typical scenarios" + typical +
+                          "; try a less extreme value"};
+}
+
 void validate_scenario(const Scenario& scenario, const std::string& source_name) {
-  if (auto p = find_problem(scenario)) throw UserError(source_name, "key '" + p->key + "'", p->message);
+  if (auto p = find_problem(scenario))
+    throw UserError(source_name.empty() ? scenario.source_name : source_name,
+                    "key '" + p->key + "'", p->message);
 }
 
 nlohmann::json scenario_to_json(const Scenario& s) {

@@ -37,8 +37,17 @@ Scenario parse_scenario_string(const std::string& text, const std::string& sourc
 Scenario read_scenario_file(const std::filesystem::path& path);
 
 /// Checks a scenario built in code (the parser applies the same rules with line numbers);
-/// throws thaw::UserError(source_name, key, problem).
-void validate_scenario(const Scenario& scenario, const std::string& source_name = "scenario");
+/// throws thaw::UserError(source_name, key, problem); "" names scenario.source_name.
+void validate_scenario(const Scenario& scenario, const std::string& source_name = "");
+
+/// The key most likely behind a solver failure on a valid scenario: the value farthest outside
+/// the range typical scenarios use (sizes and coefficients in decades, temperatures per 100 K),
+/// or simulation.time_tolerance when every value is typical; `hint` says what to try.
+struct LikelyCause {
+  std::string key;  ///< dotted key, e.g. "shell.inner_radius_m"
+  std::string hint;
+};
+LikelyCause likely_cause_of_solver_failure(const Scenario& scenario);
 
 /// Every effective parameter, keyed as in the scenario file (summary.json "parameters").
 nlohmann::json scenario_to_json(const Scenario& scenario);

@@ -8,7 +8,9 @@
 #include <stdexcept>
 
 #include "sim/reference/neumann.h"
+#include "sim/scenario/scenario_file.h"
 #include "src/common/check.h"
+#include "src/common/error.h"
 
 namespace thaw::sim {
 
@@ -26,6 +28,25 @@ constexpr double kBdfC = (1.0 - kGamma) / (2.0 - kGamma);
 /// A phase that gets thinner than this fraction of the initial outer radius is removed (its
 /// remaining enthalpy is booked as "removed"); zero-thickness phases start at this thickness.
 constexpr double kRemnantFraction = 1e-6;
+
+/// Runaway guard: after every window of kGuardWindowCost (attempted steps x cells per phase,
+/// about 2 s of solver time), the attempts still needed at the pace of that window are
+/// projected; beyond kGuardMaxCost (about 40 minutes, measured 0.23 ms per attempt at 48 cells
+/// on the 2-core CI machine) the step has collapsed and the run would never end in practice.
+constexpr double kGuardWindowCost = 5e5;
+constexpr double kGuardMaxCost = 5e8;
+
+/// The solver cannot continue on this scenario (caught in FrontFixingSolver::advance_to and
+/// turned into a UserError naming the likely key).
+struct Breakdown {
+  std::string what;
+};
+
+std::string seconds_text(double t) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g s", t);
+  return buf;
+}
 
 /// Radial geometry r^m: planar m = 0, cylinder m = 1, sphere m = 2. Per unit solid angle (and
 /// per unit length / area): face area A(r) = r^m, volume below r W(r) = r^(m+1)/(m+1).
@@ -696,6 +717,25 @@ struct FrontFixingSolver::Impl {
     }
   }
 
+  long guard_attempts = 0;   ///< attempted steps in the current guard window
+  double guard_start_t = 0;  ///< time at the start of the current guard window [s]
+
+  /// Throws Breakdown when the pace of the last window (simulated time per attempted step)
+  /// projects more than kGuardMaxCost to reach the end of the run.
+  void guard_runaway() {
+    if (opt.fixed_step_s > 0) return;
+    const double cost_per_attempt = static_cast<double>(sc.cells_per_phase);
+    if (++guard_attempts * cost_per_attempt < kGuardWindowCost) return;
+    const double pace_s = (st.t - guard_start_t) / static_cast<double>(guard_attempts);
+    const double remaining_s = sc.duration_s - st.t;
+    if (pace_s * (kGuardMaxCost / cost_per_attempt) < remaining_s)
+      throw Breakdown{"the time step collapsed to " + seconds_text(pace_s) +
+                      " on average at t = " + seconds_text(st.t) + " (" +
+                      std::to_string(stats.steps) + " steps so far); the run would not end"};
+    guard_attempts = 0;
+    guard_start_t = st.t;
+  }
+
   double advance_to(double t_target) {
     THAW_CHECK(t_target >= st.t, "advance_to goes forward");
     const double t_floor = 1e-13 * std::max(sc.duration_s, t_target);
@@ -704,6 +744,7 @@ struct FrontFixingSolver::Impl {
                             (outer_bc.kind == BcKind::robin || outer_bc.kind == BcKind::flux);
     int event_retries = 0;
     while (!done && st.t < t_target) {
+      guard_runaway();
       double h = opt.fixed_step_s > 0 ? opt.fixed_step_s : dt;
       bool land = false;
       if (st.t + h >= t_target || t_target - (st.t + h) < 1e-3 * h) {
@@ -715,7 +756,8 @@ struct FrontFixingSolver::Impl {
         ++stats.rejected_steps;
         dt = 0.25 * h;
         if (dt < t_floor)
-          throw std::runtime_error("Stefan solver: Newton failed at t = " + std::to_string(st.t) + " s");
+          throw Breakdown{"Newton's method did not converge at t = " + seconds_text(st.t) +
+                          " even with the step at its floor (" + seconds_text(h) + ")"};
         continue;
       }
       // Error per step (relative to b0 and the temperature scale). Error per unit step would
@@ -851,7 +893,17 @@ struct FrontFixingSolver::Impl {
 FrontFixingSolver::FrontFixingSolver(const Scenario& scenario, SolverOptions options)
     : m_impl(std::make_unique<Impl>(scenario, std::move(options))) {}
 FrontFixingSolver::~FrontFixingSolver() = default;
-double FrontFixingSolver::advance_to(double t) { return m_impl->advance_to(t); }
+double FrontFixingSolver::advance_to(double t) {
+  try {
+    return m_impl->advance_to(t);
+  } catch (const Breakdown& b) {
+    // A valid scenario the method cannot carry through: the user's to change, so a UserError
+    // naming the most extreme key (sim/scenario keeps the ranges), not an internal error.
+    const LikelyCause cause = likely_cause_of_solver_failure(m_impl->sc);
+    throw UserError(m_impl->sc.source_name, "key '" + cause.key + "'",
+                    "the Stefan solver cannot continue: " + b.what + "; " + cause.hint);
+  }
+}
 double FrontFixingSolver::time() const { return m_impl->st.t; }
 bool FrontFixingSolver::finished() const { return m_impl->done; }
 Snapshot FrontFixingSolver::snapshot(bool with_profile) const { return m_impl->snapshot(with_profile); }

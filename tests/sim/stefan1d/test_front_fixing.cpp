@@ -9,8 +9,9 @@
 #include <numbers>
 
 #include "sim/reference/neumann.h"
-#include "sim/stefan1d/neumann_problem.h"
 #include "sim/scenario/scenario_file.h"
+#include "sim/stefan1d/neumann_problem.h"
+#include "src/common/error.h"
 
 namespace thaw::sim {
 namespace {
@@ -406,6 +407,47 @@ TEST(FrontFixing, DefaultScenarioBreaksThroughAndEndsCleanly) {
   EXPECT_EQ(end.ice_volume_m3, 0.0);
   EXPECT_LT(end.energy_balance_error, 1e-10);
   for (const ProfilePoint& p : end.profile) EXPECT_STREQ(p.phase, "water");
+}
+
+// --- solver failures on user input (issue 12) ----------------------------------------------------
+// Scenarios outside the validated ranges (sim/scenario rejects them; here the solver is built
+// directly, as a caller that skipped validation would) must end in a UserError naming the key
+// most likely responsible, never an internal error and never a hang.
+
+std::string solver_error_of(const Scenario& sc) {
+  FrontFixingSolver solver(sc);
+  try {
+    solver.advance_to(sc.duration_s);
+  } catch (const UserError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(FrontFixing, NewtonFailureIsAUserErrorNamingTheLikelyKey) {
+  Scenario sc = default_scenario();
+  sc.source_name = "s.toml";
+  sc.inner_radius_m = 1e-9;  // "Newton failed at t = 0" before issue 12
+  const std::string msg = solver_error_of(sc);
+  EXPECT_EQ(msg.rfind("s.toml: key 'shell.inner_radius_m': ", 0), 0u) << msg;
+  EXPECT_NE(msg.find("Newton"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("1e-09"), std::string::npos) << msg;  // the value
+}
+
+TEST(FrontFixing, CollapsedStepIsStoppedByTheRunawayGuard) {
+  // planar_heated_face.toml with [inner_boundary] temperature_c = 1e10: the step collapsed to
+  // ~1e-10 s and the run never ended. The guard projects the cost after ~2 s of solving.
+  Scenario sc =
+      read_scenario_file(std::string(THAW_SOURCE_DIR) + "/data/scenarios/planar_heated_face.toml");
+  sc.inner_temperature_c = 1e10;
+  const std::string msg = solver_error_of(sc);
+  EXPECT_NE(msg.find("key 'inner_boundary.temperature_c'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("planar_heated_face.toml"), std::string::npos) << msg;
+}
+
+TEST(FrontFixing, EveryValueTypicalPointsAtTheTolerance) {
+  const LikelyCause c = likely_cause_of_solver_failure(default_scenario());
+  EXPECT_EQ(c.key, "simulation.time_tolerance");
 }
 
 }  // namespace
