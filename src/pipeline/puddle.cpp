@@ -247,8 +247,16 @@ render::TriangleMesh puddle_mesh(const PuddleShape& s, const PuddleSettings& st)
   const auto normal = [&](std::size_t i, int side, std::size_t j) {
     return static_cast<std::uint32_t>((2 * i + side) * n_out + j % n_out);
   };
+  // A triangle is skipped when two of its corners are the same point in float: profile points
+  // distinct in double can round together (a puddle of zero top width: R - wall(h) ~ 1e-12 m,
+  // far below float's 7e-9 m at 0.1 m). The strip's neighbours then share those positions, so
+  // the surface stays closed once welded by position, as the renderer's checks weld it.
+  const auto same = [&](std::uint32_t a, std::uint32_t b) {
+    const auto &p = mesh.positions[a], &q = mesh.positions[b];
+    return p.x == q.x && p.y == q.y && p.z == q.z;
+  };
   const auto add = [&](std::array<std::uint32_t, 3> v, std::array<std::uint32_t, 3> n) {
-    if (v[0] != v[1] && v[1] != v[2] && v[0] != v[2]) {
+    if (!same(v[0], v[1]) && !same(v[1], v[2]) && !same(v[0], v[2])) {
       mesh.triangles.push_back(v);
       mesh.normal_indices.push_back(n);
     }

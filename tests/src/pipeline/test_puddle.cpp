@@ -116,6 +116,24 @@ TEST(Puddle, MeshIsClosedOutwardAndSweepsItsProfileExactly) {
   }
 }
 
+TEST(Puddle, MeshIsClosedForEveryVolumeOfARun) {
+  // Early in a run the puddle is a ring of zero top width whose outer edge lies within ~1e-12 m
+  // of the ice wall: profile points distinct in double that round to the same float. Every
+  // volume from the smallest drawn to a whole default run's water must still give a closed
+  // mesh, with the shell resting on the floor (as the pipeline places it) and offset from the
+  // origin (as in a scene).
+  const PuddleSettings st;
+  for (double v = 1e-10; v < 2e-4; v *= 1.37) {
+    for (const double dip : {0.0, 2e-5}) {
+      const IceFootprint ice{0.03, 0.0, 0.03 - dip};
+      const PuddleShape s = make_puddle_shape(v, 0.0, 0.0, 0.0, 0.0, ice, st);
+      const render::TriangleMesh mesh = puddle_mesh(s, st);
+      ASSERT_EQ(render::closed_surface_problem(mesh), std::nullopt) << "volume " << v;
+      EXPECT_GT(render::signed_volume(mesh), 0) << "volume " << v;
+    }
+  }
+}
+
 TEST(Puddle, MeshVolumeIsTheModelVolumeToDiscretisationError) {
   // V_mesh - V = 4 L (A_p - A) + 2 s (M_p - M) - 2 (pi - s) M with s = M sin(pi/M) the
   // outline polygon's factor. |A_p - A| <= dA, the area between the arcs and their chords
