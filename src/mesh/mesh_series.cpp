@@ -12,6 +12,7 @@
 
 #include "src/common/atomic_file.h"
 #include "src/common/error.h"
+#include "src/mesh/grid_series.h"
 #include "src/mesh/obj_writer.h"
 #include "src/mesh/similar_surface.h"
 #include "src/mesh/surface_mesher.h"
@@ -99,6 +100,8 @@ void validate_geometry(const sim::ShellGeometry& g, const fs::path& summary) {
 
 MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& requested,
                                     const ProgressCallback& progress) {
+  if (is_grid_simulation_folder(simdir))
+    return mesh_grid_simulation_folder(simdir, requested, progress);
   validate(requested);
   const fs::path summary = simdir / "summary.json";
   const auto rows = sim::read_interfaces_csv(simdir / "interfaces.csv");
@@ -298,20 +301,25 @@ nlohmann::ordered_json to_json(const MeshManifest& m) {
   j["format"] = "thaw-mesh/1";
   j["options"] = to_json(m.options);
   nlohmann::ordered_json g;
-  g["geometry"] = sim::to_string(m.geometry.geometry);
-  switch (m.geometry.geometry) {
-    case sim::Geometry::sphere:
-      g["frame"] = "spheres centred at the origin";
-      break;
-    case sim::Geometry::cylinder:
-      g["length_m"] = m.geometry.length_m;
-      g["frame"] = "capsules centred at the origin, axis along z, tube |z| <= length_m / 2";
-      break;
-    case sim::Geometry::planar:
-      g["lateral_size_m"] = m.geometry.lateral_size_m;
-      g["planar_symmetric"] = m.geometry.planar_symmetric;
-      g["frame"] = "slabs |x| <= radius, flat faces |y|,|z| <= lateral_size_m / 2, rounded edges";
-      break;
+  if (m.grid) {
+    g["geometry"] = "grid";
+    g["frame"] = "the grid field's coordinates (axisymmetric fields revolved about the y axis)";
+  } else {
+    g["geometry"] = sim::to_string(m.geometry.geometry);
+    switch (m.geometry.geometry) {
+      case sim::Geometry::sphere:
+        g["frame"] = "spheres centred at the origin";
+        break;
+      case sim::Geometry::cylinder:
+        g["length_m"] = m.geometry.length_m;
+        g["frame"] = "capsules centred at the origin, axis along z, tube |z| <= length_m / 2";
+        break;
+      case sim::Geometry::planar:
+        g["lateral_size_m"] = m.geometry.lateral_size_m;
+        g["planar_symmetric"] = m.geometry.planar_symmetric;
+        g["frame"] = "slabs |x| <= radius, flat faces |y|,|z| <= lateral_size_m / 2, rounded edges";
+        break;
+    }
   }
   j["geometry"] = g;
   j["thinnest_contained_shell_m"] = m.thinnest_contained_shell_m

@@ -37,9 +37,16 @@ struct StepRecord {
   /// Both surfaces exist and every inner vertex is strictly inside every outer face's plane
   /// (exact test for these convex shapes); nullopt when a surface vanished.
   std::optional<bool> inner_inside_outer;
+  /// Grid runs (grid_series.h): sealed cavities, their mean water fraction, and "" or the check
+  /// a smoother candidate surface failed (a less even one was written).
+  int cavities = 0;
+  double cavity_water_fraction = 0;
+  std::string remesh_problem;
 };
 
 struct MeshManifest {
+  /// A grid run (grid_series.h): surfaces from fields/step_NNNNNN.grid, `geometry` unused.
+  bool grid = false;
   MeshOptions options;  ///< effective options (after resolve_triangle_target)
   sim::ShellGeometry geometry;
   std::vector<StepRecord> steps;
@@ -56,10 +63,11 @@ struct MeshManifest {
 /// "step_000012_inner.obj" / "step_000012_outer.obj".
 std::string surface_file_name(long step, bool inner);
 
-/// Meshes SIMDIR as described above and returns the manifest it wrote. `progress` is called with
-/// (surfaces done, surfaces total). Throws thaw::UserError (one line naming the file) on a missing
-/// or malformed input, an unwritable SIMDIR/mesh, or a surface that failed its checks; nothing is
-/// left half-written then (an existing SIMDIR/mesh is kept).
+/// Meshes SIMDIR as described above and returns the manifest it wrote; a grid run (a fields/
+/// folder) is meshed by mesh_grid_simulation_folder (grid_series.h) into the same layout.
+/// `progress` is called with (surfaces done, surfaces total). Throws thaw::UserError (one line
+/// naming the file) on a missing or malformed input, an unwritable SIMDIR/mesh, or a surface that
+/// failed its checks; nothing is left half-written then (an existing SIMDIR/mesh is kept).
 MeshManifest mesh_simulation_folder(const std::filesystem::path& simdir, const MeshOptions& options,
                                     const ProgressCallback& progress = {});
 
