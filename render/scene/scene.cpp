@@ -66,6 +66,18 @@ Material build_material(const MaterialDescription& d) {
   return m;
 }
 
+/// Whether an interface between media `a` and `b` changes nothing the renderer computes: the same
+/// index at every rendered wavelength (1 nm steps over 380-780 nm; n_d alone in RGB scenes, which
+/// use nothing else) to float precision, and, in spectral scenes, no absorption on either side.
+bool index_matched(const media::Medium& a, const media::Medium& b, bool spectral) {
+  if (!spectral)
+    return std::abs(a.n_at(media::kFraunhoferD_nm) - b.n_at(media::kFraunhoferD_nm)) <= 1e-7;
+  if (a.absorbs() || b.absorbs()) return false;
+  for (int l = 380; l <= 780; ++l)
+    if (std::abs(a.n_at(l) - b.n_at(l)) > 1e-7) return false;
+  return true;
+}
+
 bool finite3f(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
@@ -170,6 +182,9 @@ Scene build_scene(const SceneDescription& desc) {
   if (img.max_depth < 1) throw UserError(src, "image.max_depth", "must be at least 1");
   if (!(img.min_weight >= 0.0)) throw UserError(src, "image.min_weight", "must not be negative");
   s.m_settings = img;
+  if (const auto problem = caustic_settings_problem(desc.caustics))
+    throw UserError(src, "caustics." + problem->key, problem->problem);
+  s.m_caustics = desc.caustics;
 
   const CameraDescription& cam = desc.camera;
   if (!finite3(cam.position) || !finite3(cam.look_at) || !finite3(cam.up))
@@ -256,6 +271,9 @@ Scene build_scene(const SceneDescription& desc) {
         throw UserError(src, label, "inside and outside must be different media");
       obj.inside = in->second;
       obj.outside = out->second;
+      obj.index_matched =
+          index_matched(s.m_media[obj.inside].optics, s.m_media[obj.outside].optics, s.m_spectral);
+      s.m_any_index_matched = s.m_any_index_matched || obj.index_matched;
       inside_media.insert(obj.inside);
       outside_media.insert(obj.outside);
     } else {
@@ -396,9 +414,11 @@ Scene build_scene(const SceneDescription& desc) {
     for (int i = 0; i < 4; ++i) {
       const std::uint32_t first = n.child[i], count = n.count[i];
       if (count == 0 || count > 4) continue;
+      // Index-matched triangles stay out of the blocks: occluded() must be able to skip them.
       bool all_triangles = true;
       for (std::uint32_t k = first; k < first + count; ++k)
-        all_triangles = all_triangles && s.m_primitives[k].kind == PrimitiveKind::triangle;
+        all_triangles = all_triangles && s.m_primitives[k].kind == PrimitiveKind::triangle &&
+                        !s.m_objects[s.m_primitives[k].object].index_matched;
       if (!all_triangles) continue;
       Triangle4 block{};
       for (std::uint32_t lane = 0; lane < 4; ++lane) {
@@ -498,6 +518,7 @@ bool Scene::occluded(const Ray& ray) const {
   const Bvh::RayData rd(ray);
   const ShearedRay sr = m_stats.triangles > 0 ? ShearedRay(ray) : ShearedRay();
   const Primitive* prims = m_primitives.data();
+  const bool skip_matched = m_any_index_matched;
   return m_bvh.occluded(rd, ray.t_max, [&](std::uint32_t first, std::uint32_t count, float tm) {
     const std::uint32_t block = m_leaf_block[first];
     if (block != kNoBlock) {
@@ -507,6 +528,8 @@ bool Scene::occluded(const Ray& ray) const {
     }
     for (std::uint32_t i = first; i < first + count; ++i) {
       const Primitive& p = prims[i];
+      if (skip_matched && m_objects[p.object].index_matched)
+        continue;  // invisible: lets light through
       float t;
       if (p.kind == PrimitiveKind::triangle) [[likely]] {
         TriangleHit th;

@@ -48,6 +48,10 @@ struct SceneObject {
   std::uint32_t material = 0;
   /// dielectric interfaces: indices into Scene::media()
   std::uint32_t inside = 0, outside = 0;
+  /// dielectric whose inside and outside have the same index at every rendered wavelength (n_d
+  /// only in RGB scenes) and do not absorb (spectral scenes): invisible, so shadow rays pass
+  /// through it (occluded()) and photons crossing only such interfaces are direct light
+  bool index_matched = false;
   /// meshes with shading normals: index into the scene's normal sets, else -1
   int normal_set = -1;
   // plane
@@ -89,6 +93,7 @@ struct SceneStatistics {
 class Scene {
  public:
   const ImageSettings& settings() const { return m_settings; }
+  const CausticSettings& caustics() const { return m_caustics; }
   const Camera& camera() const { return m_camera; }
   const std::vector<PointLight>& lights() const { return m_lights; }
   /// area lights ([[lights]] kind = "sphere"); each is also a visible emissive sphere object
@@ -108,7 +113,8 @@ class Scene {
 
   /// Closest hit with 0 < t < ray.t_max.
   bool intersect(const Ray& ray, Hit& hit) const;
-  /// Whether anything (opaque or dielectric) lies on the ray for 0 < t < ray.t_max.
+  /// Whether anything (opaque or dielectric, except index-matched dielectrics) lies on the ray
+  /// for 0 < t < ray.t_max.
   bool occluded(const Ray& ray) const;
   /// The surface at `hit` along `ray`.
   SurfaceInteraction interaction(const Ray& ray, const Hit& hit) const;
@@ -117,6 +123,7 @@ class Scene {
   friend Scene build_scene(const SceneDescription&);
   friend void add_visible_sphere_lights(Scene&, std::vector<Aabb>&, std::vector<Primitive>&);
   ImageSettings m_settings;
+  CausticSettings m_caustics;
   Camera m_camera;
   std::vector<PointLight> m_lights;
   std::vector<SphereLight> m_sphere_lights;
@@ -139,6 +146,7 @@ class Scene {
   std::vector<std::uint32_t> m_leaf_block;
   std::uint32_t m_camera_medium = 0;
   bool m_spectral = false;
+  bool m_any_index_matched = false;
   SceneStatistics m_stats;
 };
 

@@ -4,6 +4,7 @@
 // build_scene() (render/scene/scene.h), which validates names and geometry. Double precision,
 // scene units (metres for thaw's own scenes), linear RGB. Knows nothing about TOML.
 #include <array>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -76,6 +77,39 @@ struct ImageSettings {
   enum class SpectralFilm { ratio, unbiased };
   SpectralFilm spectral_film = SpectralFilm::ratio;
 };
+
+/// [caustics]: light through dielectrics onto diffuse surfaces, by photon tracing from the lights
+/// (render/photon/caustic_map.h; rules for the automatic values in docs/render.md).
+struct CausticSettings {
+  /// false: dielectrics cast full shadows, as a Whitted tracer (the POV-Ray comparison scenes)
+  bool enabled = true;
+  /// photons aimed at the dielectrics, all lights together; empty = automatic
+  std::optional<long long> photons;
+  /// radius of the density estimate [scene units]; empty = automatic
+  std::optional<double> radius;
+};
+
+/// Accepted [caustics] photons (a count outside is a mistake, not a quality setting).
+inline constexpr long long kMinCausticPhotons = 1, kMaxCausticPhotons = 1000000000LL;
+
+/// The one rule for [caustics] values, called by the parser (with the file's line) and by
+/// build_scene (scenes built in code): the problem with `settings` and the key it concerns
+/// ("photons" or "radius"), or nullopt when they are acceptable.
+struct CausticSettingsProblem {
+  std::string key, problem;
+};
+inline std::optional<CausticSettingsProblem> caustic_settings_problem(const CausticSettings& c) {
+  if (c.photons && (*c.photons < kMinCausticPhotons || *c.photons > kMaxCausticPhotons))
+    return CausticSettingsProblem{
+        "photons", "must be between 1 and 1e9 (got " + std::to_string(*c.photons) + ")"};
+  if (c.radius && !(*c.radius > 0.0 && *c.radius < 1e30)) {
+    char value[32];
+    std::snprintf(value, sizeof value, "%g", *c.radius);
+    return CausticSettingsProblem{"radius",
+                                  std::string("must be positive and finite (got ") + value + ")"};
+  }
+  return std::nullopt;
+}
 
 struct CameraDescription {
   Vec3d position{0.0, 0.0, 5.0};
@@ -172,6 +206,7 @@ struct ObjectDescription {
 
 struct SceneDescription {
   ImageSettings image;
+  CausticSettings caustics;
   CameraDescription camera;
   AmbientDescription ambient;
   std::vector<LightDescription> lights;

@@ -200,6 +200,13 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
     else
       img->fail("spectral_film", "must be \"ratio\" or \"unbiased\" (got \"" + film + "\")");
   }
+  if (auto c = root.optional_table("caustics")) {
+    s.caustics.enabled = c->get_bool("enabled", true);
+    if (c->has("photons")) s.caustics.photons = c->get_int("photons");
+    if (c->has("radius")) s.caustics.radius = c->get_double("radius");
+    if (const auto problem = caustic_settings_problem(s.caustics))
+      c->fail(problem->key, problem->problem);
+  }
   if (auto cam = root.optional_table("camera")) {
     s.camera.position = cam->get_vec3("position");
     s.camera.look_at = cam->get_vec3("look_at");

@@ -53,6 +53,12 @@ expect_bad light_in_opaque_object "inside opaque object 'lamp_shade'" "$(scene l
 expect_bad unknown_filter "unknown filter" "$(scene unknown_filter 's/^max_depth = 10/max_depth = 10\nfilter = "lanczos"/')"
 expect_bad bad_filter_radius "filter_radius" "$(scene bad_filter_radius 's/^max_depth = 10/max_depth = 10\nfilter_radius = 9.0/')"
 expect_bad bad_min_samples "min_samples" "$(scene bad_min_samples 's/^max_depth = 10/max_depth = 10\nmin_samples = 0/')"
+# [caustics] (issue 10): absurd photon counts and a negative radius (s1 has caustics.enabled = false).
+expect_bad zero_photons "caustics.photons" "$(scene zero_photons 's/^enabled = false/enabled = true\nphotons = 0/')"
+expect_bad negative_photons "caustics.photons" "$(scene negative_photons 's/^enabled = false/photons = -100/')"
+expect_bad huge_photons "between 1 and 1e9" "$(scene huge_photons 's/^enabled = false/photons = 5000000000/')"
+expect_bad negative_radius "caustics.radius" "$(scene negative_radius 's/^enabled = false/radius = -0.01/')"
+expect_bad bad_enabled "caustics.enabled" "$(scene bad_enabled 's/^enabled = false/enabled = "no"/')"
 expect_bad bad_cli_width "--width" "$good" --width 0
 OUT="$work/out.jpg" expect_bad bad_extension "unsupported output format" "$good"
 OUT="$work/no/such/dir/out.png" expect_bad missing_out_dir "does not exist" "$good"

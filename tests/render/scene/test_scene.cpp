@@ -23,6 +23,34 @@ SceneDescription shell_scene() {
   return d;
 }
 
+// An index-matched dielectric (the same index on both sides, no absorption) is invisible: shadow
+// rays pass through it (occluded() is false), as analytic sphere and as packed mesh triangles;
+// a real interface still blocks them.
+TEST(Scene, IndexMatchedInterfacesLetShadowRaysThrough) {
+  for (const double inner : {1.0, 1.33}) {
+    SceneDescription d;
+    d.camera.position = {0, 0, 5};
+    d.camera.look_at = {0, 0, 0};
+    d.media = {test::medium("air", 1.0), test::medium("same", 1.0), test::medium("water", inner)};
+    d.add_dielectric_mesh(std::make_shared<TriangleMesh>(test::icosphere(3, 1.0f)), "same", "air",
+                          "mesh");
+    ObjectDescription ball;
+    ball.shape = ObjectDescription::Shape::sphere;
+    ball.center = {3, 0, 0};
+    ball.radius = 1.0;
+    ball.inside = "water";
+    ball.outside = "air";
+    d.objects.push_back(ball);
+    const Scene s = build_scene(d);
+    EXPECT_TRUE(s.objects()[0].index_matched);
+    EXPECT_EQ(s.objects()[1].index_matched, inner == 1.0);
+    EXPECT_FALSE(s.occluded(Ray{{0, 5, 0}, {0, -10, 0}}));  // through the matched mesh
+    EXPECT_EQ(s.occluded(Ray{{3, 5, 0}, {0, -10, 0}}), inner != 1.0);
+    Hit hit;
+    EXPECT_TRUE(s.intersect(Ray{{0, 5, 0}, {0, -1, 0}}, hit));  // camera rays still see it
+  }
+}
+
 TEST(Scene, BuildsFromInMemoryMeshesAndFindsCameraMedium) {
   const Scene s = build_scene(shell_scene());
   EXPECT_EQ(s.statistics().triangles, 2u * 1280u);

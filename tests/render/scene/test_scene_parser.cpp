@@ -152,6 +152,45 @@ TEST(SceneParser, BadValuesAreErrors) {
                "image.wavelength_pattern", "per_pixel");
 }
 
+// [caustics]: absurd photon counts and a non-positive radius name the file, line and key.
+TEST(SceneParser, BadCausticSettingsAreErrors) {
+  const std::string at = "[camera]";
+  expect_error(at, "[caustics]\nphotons = 0\n[camera]", "caustics.photons", "between 1 and 1e9");
+  expect_error(at, "[caustics]\nphotons = -5\n[camera]", "caustics.photons", "between 1 and 1e9");
+  expect_error(at, "[caustics]\nphotons = 2000000000\n[camera]", "caustics.photons",
+               "between 1 and 1e9");
+  expect_error(at, "[caustics]\nphotons = 1e12\n[camera]", "caustics.photons", "between 1 and 1e9");
+  expect_error(at, "[caustics]\nphotons = 2.5\n[camera]", "caustics.photons", "integer");
+  expect_error(at, "[caustics]\nradius = -0.1\n[camera]", "caustics.radius", "positive");
+  expect_error(at, "[caustics]\nradius = 0.0\n[camera]", "caustics.radius", "positive");
+  expect_error(at, "[caustics]\nradius = nan\n[camera]", "caustics.radius", "finite");
+  expect_error(at, "[caustics]\nenabled = \"yes\"\n[camera]", "caustics.enabled", "");
+  expect_error(at, "[caustics]\nphoton = 5\n[camera]", "caustics.photon", "unknown key");
+}
+
+TEST(SceneParser, CausticSettings) {
+  const SceneDescription defaults = parse_scene_string(kExample, "example.toml");
+  EXPECT_TRUE(defaults.caustics.enabled);
+  EXPECT_FALSE(defaults.caustics.photons);
+  EXPECT_FALSE(defaults.caustics.radius);
+  std::string text = kExample;
+  text.replace(text.find("[camera]"), 8,
+               "[caustics]\nenabled = false\nphotons = 1e6\nradius = 0.01\n[camera]");
+  const SceneDescription s = parse_scene_string(text, "example.toml");
+  EXPECT_FALSE(s.caustics.enabled);
+  EXPECT_EQ(*s.caustics.photons, 1000000);  // 1e6 is an integral number
+  EXPECT_DOUBLE_EQ(*s.caustics.radius, 0.01);
+  // The same rule for scenes built in code: build_scene names the key.
+  SceneDescription d;
+  d.caustics.photons = 0;
+  try {
+    build_scene(d);
+    FAIL() << "no error";
+  } catch (const UserError& e) {
+    EXPECT_EQ(e.where(), "caustics.photons");
+  }
+}
+
 TEST(SceneParser, DispersionSettings) {
   const SceneDescription defaults = parse_scene_string(kExample, "example.toml");
   EXPECT_EQ(defaults.image.dispersion, ImageSettings::Dispersion::adaptive);

@@ -1,0 +1,210 @@
+// The photon pass; see caustic_map.h.
+#include "render/photon/caustic_map.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <new>
+#include <vector>
+
+#include "render/photon/light_cone.h"
+#include "render/photon/low_discrepancy.h"
+#include "render/photon/photon_tracer.h"
+#include "render/spectrum/colour.h"
+#include "render/spectrum/rgb_uplift.h"
+#include "render/spectrum/sampled_wavelengths.h"
+
+namespace thaw::render::photon {
+
+namespace {
+
+/// Photons per parallel work item: fixed, so the storage order never depends on the threads.
+constexpr long long kChunk = 4096;
+
+double luminance(const Rgb& c) {
+  return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+}
+
+struct ChunkResult {
+  std::vector<Photon> photons;
+  long long traced = 0;
+  std::uint64_t rays = 0;
+  Flux emitted, stored, direct, escaped, absorbed, stopped, cut, roulette, roulette_variance;
+};
+
+/// What a cone's photons need besides the cone.
+struct ConePlan {
+  LightCone cone;
+  long long first = 0, count = 0;
+  /// Phi / (light colour) per photon: Omega / N, times D^2 for lights without falloff
+  double scale = 0;
+  std::uint32_t medium = 0;
+};
+
+Flux flux_of(const Rgb& c, double w) {
+  return {c.r * w, c.g * w, c.b * w};
+}
+
+}  // namespace
+
+CausticMap CausticMap::build(const Scene& scene, int threads) {
+  const auto start = std::chrono::steady_clock::now();
+  CausticMap result;
+  const CausticSettings& settings = scene.caustics();
+  if (!settings.enabled) return result;
+  const std::vector<LightCone> cones = light_cones(scene, dielectric_targets(scene));
+  if (cones.empty()) return result;
+
+  const PhotonTracer tracer(scene, kRouletteWeight);
+  const long long total = settings.photons.value_or(kDefaultPhotons);
+  // Photons shared among the cones in proportion to the power they carry.
+  std::vector<double> weight;
+  double weight_sum = 0;
+  for (const LightCone& c : cones) {
+    const PointLight& l = scene.lights()[c.light];
+    const double w = luminance(l.radiance) * c.solid_angle_sr *
+                     (l.inverse_square ? 1.0 : c.distance * c.distance);
+    weight.push_back(w);
+    weight_sum += w;
+  }
+  std::vector<ConePlan> plans;
+  long long next = 0;
+  double radius = 0;
+  for (std::size_t k = 0; k < cones.size(); ++k) {
+    ConePlan p;
+    p.cone = cones[k];
+    p.count = std::max(1LL, std::llround(double(total) * weight[k] / weight_sum));
+    p.first = next;
+    next += p.count;
+    const PointLight& l = scene.lights()[p.cone.light];
+    p.scale = p.cone.solid_angle_sr / double(p.count) *
+              (l.inverse_square ? 1.0 : p.cone.distance * p.cone.distance);
+    p.medium = tracer.medium_at(l.position);
+    plans.push_back(p);
+    // Automatic radius: N_k photons cover the target's cross-section pi R^2 where unfocused, so a
+    // disc of radius R sqrt(K / N_k) holds K of them; the smallest over the cones.
+    const double r = p.cone.target.radius * std::sqrt(kPhotonsPerDisc / double(p.count));
+    radius = radius == 0 ? r : std::min(radius, r);
+  }
+  if (settings.radius) radius = *settings.radius;
+  const long long photons = next;
+
+  const bool spectral = scene.spectral();
+  std::vector<RgbIlluminantSpectrum> spectra;
+  for (const PointLight& l : scene.lights())
+    spectra.emplace_back(LinearSrgb{l.radiance.r, l.radiance.g, l.radiance.b});
+
+  const long long chunks = (photons + kChunk - 1) / kChunk;
+  std::vector<ChunkResult> parts(static_cast<std::size_t>(chunks));
+  const int nthreads = threads > 0 ? threads : omp_get_max_threads();
+  bool out_of_memory = false;
+#pragma omp parallel num_threads(nthreads)
+  {
+    PathEvents events;
+#pragma omp for schedule(dynamic, 1)
+    for (long long c = 0; c < chunks; ++c) {
+      ChunkResult& part = parts[static_cast<std::size_t>(c)];
+      try {
+        const long long g0 = c * kChunk, g1 = std::min(photons, g0 + kChunk);
+        std::size_t k = 0;
+        for (long long g = g0; g < g1; ++g) {
+          while (g >= plans[k].first + plans[k].count) ++k;
+          const ConePlan& plan = plans[k];
+          const auto i = static_cast<std::uint64_t>(g - plan.first);
+          const Vec3 dir =
+              plan.cone.direction(ScrambledHalton::sample(i, 0), ScrambledHalton::sample(i, 1));
+          // Directions of earlier cones of the same light belong to those cones.
+          bool owned_elsewhere = false;
+          for (std::size_t j = 0; j < k && !owned_elsewhere; ++j)
+            owned_elsewhere = plans[j].cone.light == plan.cone.light && plans[j].cone.contains(dir);
+          if (owned_elsewhere) continue;
+          const PointLight& light = scene.lights()[plan.cone.light];
+          double lambda = media::kFraunhoferD_nm;
+          Rgb power = light.radiance * static_cast<float>(plan.scale);
+          if (spectral) {
+            const SampledWavelengths w = SampledWavelengths::sample(ScrambledHalton::sample(i, 2));
+            lambda = w.lambda_nm(0);
+            const double s = spectra[plan.cone.light](lambda) /
+                             SampledWavelengths::hero_pdf(lambda, HeroDensity::visible);
+            const Xyz bar = cie_xyz_bar(lambda);
+            const LinearSrgb rgb = xyz_to_linear_srgb({bar.x * s, bar.y * s, bar.z * s});
+            power = Rgb{float(rgb.r * plan.scale), float(rgb.g * plan.scale),
+                        float(rgb.b * plan.scale)};
+          }
+          ++part.traced;
+          part.emitted += flux_of(power, 1.0);
+          part.rays += tracer.trace(Ray{light.position, dir}, plan.medium, lambda, events, i);
+          for (const PathEvent& e : events) {
+            const Flux f = flux_of(power, e.weight);
+            switch (e.end) {
+              case PathEnd::stored:
+                part.photons.push_back(Photon{e.position, e.normal, power * e.weight});
+                part.stored += f;
+                break;
+              case PathEnd::direct:
+                part.direct += f;
+                break;
+              case PathEnd::escaped:
+                part.escaped += f;
+                break;
+              case PathEnd::absorbed:
+                part.absorbed += f;
+                break;
+              case PathEnd::stopped:
+                part.stopped += f;
+                break;
+              case PathEnd::cut:
+                part.cut += f;
+                break;
+              case PathEnd::roulette: {
+                part.roulette += f;
+                // One event per decision on weight w: +w (ended) or -(T - w) (survived), of
+                // variance w (T - w) times the photon's power squared.
+                const double w = e.weight > 0 ? e.weight : kRouletteWeight + e.weight;
+                const double v = w * (kRouletteWeight - w);
+                part.roulette_variance +=
+                    Flux{power.r * power.r * v, power.g * power.g * v, power.b * power.b * v};
+                break;
+              }
+            }
+          }
+        }
+      } catch (const std::bad_alloc&) {
+#pragma omp atomic write
+        out_of_memory = true;
+      }
+    }
+  }
+  if (out_of_memory) throw std::bad_alloc();
+
+  std::vector<Photon> all;
+  std::size_t stored = 0;
+  for (const ChunkResult& p : parts) stored += p.photons.size();
+  all.reserve(stored);
+  CausticStatistics& st = result.m_stats;
+  for (const ChunkResult& p : parts) {  // chunk order: independent of the thread count
+    all.insert(all.end(), p.photons.begin(), p.photons.end());
+    st.photons_traced += p.traced;
+    st.rays += p.rays;
+    st.emitted += p.emitted;
+    st.stored += p.stored;
+    st.direct += p.direct;
+    st.escaped += p.escaped;
+    st.absorbed += p.absorbed;
+    st.stopped += p.stopped;
+    st.cut += p.cut;
+    st.roulette += p.roulette;
+    st.roulette_variance += p.roulette_variance;
+  }
+  st.photons_stored = all.size();
+  st.cones = static_cast<int>(cones.size());
+  st.radius = radius;
+  st.threads = nthreads;
+  result.m_map = PhotonMap(std::move(all), static_cast<float>(radius));
+  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace thaw::render::photon

@@ -1,0 +1,138 @@
+// Photon cones; see light_cone.h.
+#include "render/photon/light_cone.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace thaw::render::photon {
+
+namespace {
+
+/// Bounding sphere of the primitives of object `object`: centre of their box, radius to the
+/// farthest vertex (spheres and boxes exactly).
+BoundingSphere object_bounds(const Scene& scene, std::uint32_t object) {
+  const float inf = std::numeric_limits<float>::infinity();
+  Vec3 lo{inf, inf, inf}, hi{-inf, -inf, -inf};
+  auto grow = [&](const Vec3& p) {
+    lo = min(lo, p);
+    hi = max(hi, p);
+  };
+  for (const Primitive& p : scene.primitives()) {
+    if (p.object != object) continue;
+    if (p.kind == PrimitiveKind::sphere) {
+      const Vec3 r{p.b.x, p.b.x, p.b.x};
+      grow(p.a - r);
+      grow(p.a + r);
+    } else if (p.kind == PrimitiveKind::box) {
+      grow(p.a);
+      grow(p.b);
+    } else {
+      grow(p.a);
+      grow(p.b);
+      grow(p.c);
+    }
+  }
+  BoundingSphere s;
+  if (!(lo.x <= hi.x)) return s;
+  s.center = (lo + hi) * 0.5f;
+  double r2 = 0;
+  auto reach = [&](const Vec3& p) { r2 = std::max(r2, double(dot(p - s.center, p - s.center))); };
+  for (const Primitive& p : scene.primitives()) {
+    if (p.object != object) continue;
+    if (p.kind == PrimitiveKind::sphere) {
+      const double d = length(p.a - s.center) + p.b.x;
+      r2 = std::max(r2, d * d);
+    } else if (p.kind == PrimitiveKind::box) {
+      reach(p.a);
+      reach(p.b);
+    } else {
+      reach(p.a);
+      reach(p.b);
+      reach(p.c);
+    }
+  }
+  // Widened by a few ulps so that rounding never lets a surface point fall outside.
+  s.radius = static_cast<float>(std::sqrt(r2) * (1 + 1e-6)) +
+             1e-6f * (std::fabs(s.center.x) + std::fabs(s.center.y) + std::fabs(s.center.z));
+  return s;
+}
+
+bool inside(const BoundingSphere& a, const BoundingSphere& b) {
+  return double(length(a.center - b.center)) + a.radius <= double(b.radius);
+}
+
+}  // namespace
+
+std::vector<BoundingSphere> dielectric_targets(const Scene& scene) {
+  std::vector<BoundingSphere> all;
+  for (std::uint32_t i = 0; i < scene.objects().size(); ++i) {
+    const SceneObject& o = scene.objects()[i];
+    if (!o.dielectric || o.index_matched) continue;
+    const BoundingSphere s = object_bounds(scene, i);
+    if (s.radius > 0) all.push_back(s);
+  }
+  std::vector<BoundingSphere> kept;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    bool contained = false;
+    for (std::size_t j = 0; j < all.size() && !contained; ++j) {
+      if (i == j || !inside(all[i], all[j])) continue;
+      // Of two equal spheres keep the first.
+      contained = !inside(all[j], all[i]) || j < i;
+    }
+    if (!contained) kept.push_back(all[i]);
+  }
+  return kept;
+}
+
+Vec3 LightCone::direction(double u1, double u2) const {
+  const double cos_t = 1.0 - u1 * (1.0 - cos_half);
+  const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
+  const double phi = 2.0 * 3.14159265358979323846 * u2;
+  // Orthonormal frame around the axis (Duff et al. 2017, "Building an orthonormal basis,
+  // revisited").
+  const Vec3& n = axis;
+  const float sign = std::copysign(1.0f, n.z);
+  const float a = -1.0f / (sign + n.z);
+  const float b = n.x * n.y * a;
+  const Vec3 t1{1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x};
+  const Vec3 t2{b, sign + n.y * n.y * a, -n.y};
+  const Vec3 d =
+      t1 * float(sin_t * std::cos(phi)) + t2 * float(sin_t * std::sin(phi)) + n * float(cos_t);
+  return normalize(d);
+}
+
+bool LightCone::contains(const Vec3& d) const {
+  return cos_half <= -1.0 || double(dot(d, axis)) >= cos_half;
+}
+
+std::vector<LightCone> light_cones(const Scene& scene, const std::vector<BoundingSphere>& targets) {
+  std::vector<LightCone> cones;
+  for (std::uint32_t li = 0; li < scene.lights().size(); ++li) {
+    const PointLight& light = scene.lights()[li];
+    if (light.radiance.max_component() <= 0.0f) continue;
+    for (const BoundingSphere& t : targets) {
+      LightCone c;
+      c.light = li;
+      c.apex = light.position;
+      c.target = t;
+      const Vec3 to = t.center - light.position;
+      const double dist = length(to);
+      if (dist <= t.radius) {
+        c.axis = Vec3{0, 1, 0};
+        c.cos_half = -1;
+        c.distance = t.radius;
+      } else {
+        c.axis = to / float(dist);
+        const double sin_half = t.radius / dist;
+        c.cos_half = std::sqrt(std::max(0.0, 1.0 - sin_half * sin_half));
+        c.distance = dist;
+      }
+      c.solid_angle_sr = 2.0 * 3.14159265358979323846 * (1.0 - c.cos_half);
+      cones.push_back(c);
+    }
+  }
+  return cones;
+}
+
+}  // namespace thaw::render::photon

@@ -1,0 +1,229 @@
+// Photon paths through dielectrics; see photon_tracer.h.
+#include "render/photon/photon_tracer.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "render/material/fresnel.h"
+#include "render/photon/low_discrepancy.h"
+
+namespace thaw::render::photon {
+
+namespace {
+
+/// Linear interpolation in a 1 nm table starting at 380 nm.
+float lookup(const std::vector<float>& table, double lambda_nm) {
+  if (table.size() == 1) return table[0];
+  const double x = std::clamp(lambda_nm - kLambdaMinNm, 0.0, double(table.size() - 1));
+  const auto i = std::min(static_cast<std::size_t>(x), table.size() - 2);
+  const double t = x - double(i);
+  return static_cast<float>(table[i] * (1.0 - t) + table[i + 1] * t);
+}
+
+struct Branch {
+  Ray ray;
+  std::uint32_t medium;
+  float weight;
+  int depth;
+  bool caustic;
+  /// index-matched interfaces crossed (they cost no depth level; bounded against degenerate scenes)
+  int matched = 0;
+};
+
+/// Index-matched interfaces one branch may cross.
+constexpr int kMaxMatchedCrossings = 1024;
+
+/// The k-th roulette decision of photon `index`, uniform in [0, 1): Halton dimensions 3-7 (the
+/// first five decisions: stratified across photons), then a fixed hash (SplitMix64, Steele et
+/// al. 2014) of the index and k.
+double roulette_number(std::uint64_t index, int k) {
+  if (k < ScrambledHalton::kDimensions - 3) return ScrambledHalton::sample(index, 3 + k);
+  std::uint64_t z =
+      index * 0x9e3779b97f4a7c15ULL + static_cast<std::uint64_t>(k) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  z ^= z >> 31;
+  return static_cast<double>(z >> 11) * 0x1p-53;
+}
+
+/// Levels followed at most (the parser's limit of [image] max_depth).
+constexpr int kMaxDepth = 64;
+/// Deepest explicit stack a path can need: every level pops one branch and pushes at most two,
+/// so the stack holds at most one branch per level plus one.
+constexpr int kMaxStack = kMaxDepth + 2;
+
+}  // namespace
+
+PhotonTracer::PhotonTracer(const Scene& scene, float roulette_weight)
+    : m_scene(scene),
+      m_spectral(scene.spectral()),
+      m_max_depth(std::min(scene.settings().max_depth, kMaxDepth)),
+      m_min_weight(static_cast<float>(scene.settings().min_weight)),
+      m_roulette_weight(roulette_weight) {
+  const int samples = static_cast<int>(kLambdaMaxNm - kLambdaMinNm) + 1;
+  for (const auto& m : scene.media()) {
+    std::vector<float> n, alpha;
+    if (!m_spectral) {
+      n.push_back(static_cast<float>(m.optics.n_at(media::kFraunhoferD_nm)));
+    } else {
+      for (int i = 0; i < samples; ++i)
+        n.push_back(static_cast<float>(m.optics.n_at(kLambdaMinNm + i)));
+      if (m.optics.absorbs())
+        for (int i = 0; i < samples; ++i)
+          alpha.push_back(static_cast<float>(m.optics.absorption_per_m_at(kLambdaMinNm + i)));
+    }
+    m_ior.push_back(std::move(n));
+    m_alpha.push_back(std::move(alpha));
+  }
+}
+
+float PhotonTracer::ior(std::uint32_t m, double lambda_nm) const {
+  return lookup(m_ior[m], lambda_nm);
+}
+
+float PhotonTracer::absorption_per_m(std::uint32_t m, double lambda_nm) const {
+  return m_alpha[m].empty() ? 0.0f : lookup(m_alpha[m], lambda_nm);
+}
+
+std::uint32_t PhotonTracer::medium_at(const Vec3& p) const {
+  Ray ray{p, Vec3{0.0f, 1.0f, 0.0f}};
+  for (int i = 0; i < 1024; ++i) {
+    Hit hit;
+    if (!m_scene.intersect(ray, hit)) break;
+    const SurfaceInteraction si = m_scene.interaction(ray, hit);
+    const SceneObject& obj = m_scene.objects()[si.object];
+    if (obj.dielectric) return dot(ray.direction, si.ng) > 0.0f ? obj.inside : obj.outside;
+    ray.origin = offset_ray_origin(si.p, si.p_error, si.ng, ray.direction);  // past opaque ones
+  }
+  return m_scene.camera_medium();
+}
+
+std::uint32_t PhotonTracer::trace(const Ray& start, std::uint32_t medium, double lambda_nm,
+                                  PathEvents& events, std::uint64_t photon_index) const {
+  events.clear();
+  // Uninitialised storage: constructing kMaxStack branches per photon cost ~10 % of the pass.
+  // Assigning a Branch (trivially copyable) to a slot begins its lifetime ([class.union]).
+  union Slot {
+    Slot() {}
+    Branch b;
+  };
+  Slot slots[kMaxStack];
+  struct {
+    Slot* s;
+    Branch& operator[](int i) { return s[i].b; }
+  } stack{slots};
+  int top = 0;
+  stack[top++] = Branch{start, medium, 1.0f, 0, false, 0};
+  auto end = [&](PathEnd how, const Vec3& p, const Vec3& n, float w) {
+    if (w != 0.0f) events.push_back(PathEvent{how, p, n, w});
+  };
+  int decisions = 0;
+  // Whether a new branch of weight w at p is followed; w may be raised by the roulette.
+  auto keep = [&](float& w, const Vec3& p, const Vec3& d) {
+    if (m_roulette_weight > 0.0f && w < m_roulette_weight) {
+      const double u = roulette_number(photon_index, decisions++);
+      if (u * m_roulette_weight >= w) {
+        end(PathEnd::roulette, p, d, w);
+        return false;
+      }
+      end(PathEnd::roulette, p, d, w - m_roulette_weight);
+      w = m_roulette_weight;
+      return true;
+    }
+    if (w < m_min_weight) {
+      end(PathEnd::cut, p, d, w);
+      return false;
+    }
+    return true;
+  };
+  std::uint32_t rays = 0;
+  while (top > 0) {
+    Branch b = stack[--top];
+    Hit hit;
+    ++rays;
+    if (!m_scene.intersect(b.ray, hit)) {
+      // Leaving through an absorbing medium keeps nothing (an infinite path), as for camera rays.
+      const bool absorbing = absorption_per_m(b.medium, lambda_nm) > 0.0f;
+      end(absorbing   ? PathEnd::absorbed
+          : b.caustic ? PathEnd::escaped
+                      : PathEnd::direct,
+          b.ray.origin, b.ray.direction, b.weight);
+      continue;
+    }
+    const float alpha = absorption_per_m(b.medium, lambda_nm);
+    if (alpha > 0.0f) {
+      const float kept = b.weight * std::exp(-alpha * hit.t);  // unit direction: t is the length
+      end(PathEnd::absorbed, b.ray.origin, b.ray.direction, b.weight - kept);
+      b.weight = kept;
+    }
+    const SurfaceInteraction si = m_scene.interaction(b.ray, hit);
+    const SceneObject& obj = m_scene.objects()[si.object];
+    const Vec3& d = b.ray.direction;
+    if (!obj.dielectric) {
+      const Material::Kind kind = m_scene.materials()[obj.material].kind;
+      const bool diffuse = kind == Material::Kind::matte || kind == Material::Kind::phong;
+      const PathEnd how = !diffuse    ? PathEnd::stopped
+                          : b.caustic ? PathEnd::stored
+                                      : PathEnd::direct;
+      end(how, si.p, face_forward(si.ng, -d), b.weight);
+      continue;
+    }
+    // The interface: the same side, media, normals and fallbacks as the Whitted integrator.
+    const bool entering = dot(d, si.ng) < 0.0f;
+    const std::uint32_t from = entering ? obj.outside : obj.inside;
+    const std::uint32_t to = entering ? obj.inside : obj.outside;
+    const Vec3 ng = entering ? si.ng : -si.ng;  // faces the incident side
+    if (obj.index_matched) {
+      // Invisible (R = 0, no bending, no absorption): straight on into the other medium, no
+      // depth level used, so an index-matched object changes nothing downstream.
+      if (b.matched >= kMaxMatchedCrossings) {
+        end(PathEnd::cut, si.p, d, b.weight);
+        continue;
+      }
+      stack[top++] = Branch{Ray{offset_ray_origin(si.p, si.p_error, ng, d), d},
+                            to,
+                            b.weight,
+                            b.depth,
+                            b.caustic,
+                            b.matched + 1};
+      continue;
+    }
+    if (b.depth + 1 >= m_max_depth) {
+      end(PathEnd::cut, si.p, d, b.weight);
+      continue;
+    }
+    const float eta = ior(to, lambda_nm) / ior(from, lambda_nm);
+    Vec3 ns = entering ? si.ns : -si.ns;
+    if (dot(ns, d) >= 0.0f) ns = ng;
+    const float r = fresnel_dielectric(-dot(d, ns), eta);
+    float wr = b.weight * r, wt = b.weight - wr;
+    if (wr > 0.0f && keep(wr, si.p, d)) {
+      Vec3 w = reflect(d, ns);
+      if (dot(w, ng) <= 0.0f) w = reflect(d, ng);
+      stack[top++] = Branch{Ray{offset_ray_origin(si.p, si.p_error, ng, w), w},
+                            from,
+                            wr,
+                            b.depth + 1,
+                            true,
+                            b.matched};
+    }
+    if (wt > 0.0f) {
+      Vec3 w;
+      bool ok = refract(d, ns, eta, w) && dot(w, ng) < 0.0f;
+      if (!ok) ok = refract(d, ng, eta, w);
+      if (!ok) {
+        end(PathEnd::cut, si.p, d, wt);
+      } else if (keep(wt, si.p, d)) {
+        stack[top++] = Branch{Ray{offset_ray_origin(si.p, si.p_error, ng, w), w},
+                              to,
+                              wt,
+                              b.depth + 1,
+                              true,
+                              b.matched};
+      }
+    }
+  }
+  return rays;
+}
+
+}  // namespace thaw::render::photon

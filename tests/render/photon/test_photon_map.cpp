@@ -1,0 +1,64 @@
+// The density estimate: exact for a uniform photon density, rejects other surfaces.
+#include "render/photon/photon_map.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace thaw::render::photon {
+namespace {
+
+/// Photons on a square lattice of spacing h over [-a, a]^2 in the plane y = 0, each carrying
+/// flux F h^2 (a uniform flux density F per area).
+std::vector<Photon> lattice(float h, float a, float flux_density, Vec3 normal = {0, 1, 0}) {
+  std::vector<Photon> photons;
+  const int n = static_cast<int>(std::lround(a / h));
+  for (int i = -n; i <= n; ++i)
+    for (int k = -n; k <= n; ++k)
+      photons.push_back({Vec3{float(i) * h, 0.0f, float(k) * h}, normal,
+                         Rgb{flux_density * h * h, 2 * flux_density * h * h, 0.0f}});
+  return photons;
+}
+
+// The kernel integrates to 1, so a uniform density F returns F. The lattice sum of the
+// Epanechnikov kernel (continuous, a kink at the rim) differs from its integral by O((h/r)^2)
+// (the rim's discontinuous derivative; Euler-Maclaurin in 2D): with r = 20 h that is 2.5e-3.
+TEST(PhotonMap, UniformDensityGivesExactIrradiance) {
+  const float h = 0.01f, r = 0.2f, f = 3.0f;
+  const PhotonMap map(lattice(h, 1.0f, f), r);
+  for (const Vec3 p :
+       {Vec3{0, 0, 0}, Vec3{0.1234f, 0, -0.321f}, Vec3{0.005f, 0, 0.005f}, Vec3{-0.5f, 0, 0.37f}}) {
+    const Rgb e = map.irradiance(p, {0, 1, 0});
+    EXPECT_NEAR(e.r, f, 2.5e-3 * f) << p.x << " " << p.z;
+    EXPECT_NEAR(e.g, 2 * f, 2.5e-3 * 2 * f);
+    EXPECT_EQ(e.b, 0.0f);
+  }
+  // Beyond the photons' extent (grown by r): nothing.
+  EXPECT_EQ(map.irradiance({3, 0, 0}, {0, 1, 0}).r, 0.0f);
+}
+
+// Photons of the other side of the plane (a thin wall lit from below), of a perpendicular wall,
+// or off the tangent plane by more than r/4 do not count.
+TEST(PhotonMap, RejectsPhotonsOfOtherSurfaces) {
+  const float h = 0.01f, r = 0.2f;
+  EXPECT_EQ(PhotonMap(lattice(h, 1.0f, 1.0f, {0, -1, 0}), r).irradiance({0, 0, 0}, {0, 1, 0}).r,
+            0.0f);
+  // A wall x = 0 (normal +x) next to a floor query at the wall's foot: only the floor counts.
+  std::vector<Photon> wall;
+  for (int i = 0; i < 40; ++i)
+    for (int k = -40; k <= 40; ++k)
+      wall.push_back({Vec3{0, float(i) * h, float(k) * h}, Vec3{1, 0, 0}, Rgb{1, 1, 1}});
+  EXPECT_EQ(PhotonMap(wall, r).irradiance({0.01f, 0, 0}, {0, 1, 0}).r, 0.0f);
+  std::vector<Photon> above = lattice(h, 1.0f, 1.0f);
+  for (auto& p : above) p.position.y = 0.3f * r;
+  EXPECT_EQ(PhotonMap(above, r).irradiance({0, 0, 0}, {0, 1, 0}).r, 0.0f);
+}
+
+TEST(PhotonMap, EmptyMapIsDark) {
+  const PhotonMap map({}, 0.1f);
+  EXPECT_TRUE(map.empty());
+  EXPECT_EQ(map.irradiance({0, 0, 0}, {0, 1, 0}).g, 0.0f);
+}
+
+}  // namespace
+}  // namespace thaw::render::photon
