@@ -29,6 +29,8 @@ double luminance(const Rgb& c) {
 
 struct ChunkResult {
   std::vector<Photon> photons;
+  /// target of each photon
+  std::vector<std::uint32_t> target;
   long long traced = 0;
   std::uint64_t rays = 0;
   Flux emitted, stored, direct, escaped, absorbed, stopped, cut, roulette, roulette_variance;
@@ -47,6 +49,17 @@ Flux flux_of(const Rgb& c, double w) {
   return {c.r * w, c.g * w, c.b * w};
 }
 
+/// Splits `total` photons among the cones in proportion to sqrt(weight) (caustic_map.h), at
+/// least one each.
+std::vector<long long> share(long long total, const std::vector<double>& weight) {
+  double sum = 0;
+  for (double w : weight) sum += std::sqrt(w);
+  std::vector<long long> n;
+  for (double w : weight)
+    n.push_back(std::max(1LL, std::llround(double(total) * std::sqrt(w) / sum)));
+  return n;
+}
+
 }  // namespace
 
 CausticMap CausticMap::build(const Scene& scene, int threads) {
@@ -54,47 +67,47 @@ CausticMap CausticMap::build(const Scene& scene, int threads) {
   CausticMap result;
   const CausticSettings& settings = scene.caustics();
   if (!settings.enabled) return result;
-  const std::vector<LightCone> cones = light_cones(scene, dielectric_targets(scene));
+  const std::vector<BoundingSphere> targets = dielectric_targets(scene);
+  const std::vector<Emitter> lights = emitters(scene);
+  const std::vector<LightCone> cones = light_cones(lights, targets);
   if (cones.empty()) return result;
 
   const PhotonTracer tracer(scene, kRouletteWeight);
-  const long long total = settings.photons.value_or(kDefaultPhotons);
-  // Photons shared among the cones in proportion to the power they carry.
   std::vector<double> weight;
-  double weight_sum = 0;
   for (const LightCone& c : cones) {
-    const PointLight& l = scene.lights()[c.light];
-    const double w = luminance(l.radiance) * c.solid_angle_sr *
-                     (l.inverse_square ? 1.0 : c.distance * c.distance);
-    weight.push_back(w);
-    weight_sum += w;
+    const Emitter& l = lights[c.emitter];
+    weight.push_back(luminance(l.intensity) * c.solid_angle_sr *
+                     (l.inverse_square ? 1.0 : c.distance * c.distance));
   }
+  const std::vector<long long> counts = share(settings.photons.value_or(kDefaultPhotons), weight);
   std::vector<ConePlan> plans;
+  std::vector<double> radius(targets.size(), 0.0);
   long long next = 0;
-  double radius = 0;
   for (std::size_t k = 0; k < cones.size(); ++k) {
     ConePlan p;
     p.cone = cones[k];
-    p.count = std::max(1LL, std::llround(double(total) * weight[k] / weight_sum));
+    p.count = counts[k];
     p.first = next;
     next += p.count;
-    const PointLight& l = scene.lights()[p.cone.light];
+    const Emitter& l = lights[p.cone.emitter];
     p.scale = p.cone.solid_angle_sr / double(p.count) *
               (l.inverse_square ? 1.0 : p.cone.distance * p.cone.distance);
     p.medium = tracer.medium_at(l.position);
     plans.push_back(p);
-    // Automatic radius: N_k photons cover the target's cross-section pi R^2 where unfocused, so a
-    // disc of radius R sqrt(K / N_k) holds K of them; the smallest over the cones.
-    const double r = p.cone.target.radius * std::sqrt(kPhotonsPerDisc / double(p.count));
-    radius = radius == 0 ? r : std::min(radius, r);
+    // N_k photons cover the aimed-at sphere's cross-section pi R_k^2 where unfocused, so a disc
+    // of radius R_k sqrt(K / N_k) holds K of them.
+    const double r = p.cone.cone_radius * std::sqrt(kPhotonsPerDisc / double(p.count));
+    double& rt = radius[p.cone.target_index];
+    rt = rt == 0 ? r : std::min(rt, r);
   }
-  if (settings.radius) radius = *settings.radius;
+  if (settings.radius)
+    for (double& r : radius) r = *settings.radius;
   const long long photons = next;
 
   const bool spectral = scene.spectral();
   std::vector<RgbIlluminantSpectrum> spectra;
-  for (const PointLight& l : scene.lights())
-    spectra.emplace_back(LinearSrgb{l.radiance.r, l.radiance.g, l.radiance.b});
+  for (const Emitter& l : lights)
+    spectra.emplace_back(LinearSrgb{l.intensity.r, l.intensity.g, l.intensity.b});
 
   const long long chunks = (photons + kChunk - 1) / kChunk;
   std::vector<ChunkResult> parts(static_cast<std::size_t>(chunks));
@@ -118,15 +131,16 @@ CausticMap CausticMap::build(const Scene& scene, int threads) {
           // Directions of earlier cones of the same light belong to those cones.
           bool owned_elsewhere = false;
           for (std::size_t j = 0; j < k && !owned_elsewhere; ++j)
-            owned_elsewhere = plans[j].cone.light == plan.cone.light && plans[j].cone.contains(dir);
+            owned_elsewhere =
+                plans[j].cone.emitter == plan.cone.emitter && plans[j].cone.contains(dir);
           if (owned_elsewhere) continue;
-          const PointLight& light = scene.lights()[plan.cone.light];
+          const Emitter& light = lights[plan.cone.emitter];
           double lambda = media::kFraunhoferD_nm;
-          Rgb power = light.radiance * static_cast<float>(plan.scale);
+          Rgb power = light.intensity * static_cast<float>(plan.scale);
           if (spectral) {
             const SampledWavelengths w = SampledWavelengths::sample(ScrambledHalton::sample(i, 2));
             lambda = w.lambda_nm(0);
-            const double s = spectra[plan.cone.light](lambda) /
+            const double s = spectra[plan.cone.emitter](lambda) /
                              SampledWavelengths::hero_pdf(lambda, HeroDensity::visible);
             const Xyz bar = cie_xyz_bar(lambda);
             const LinearSrgb rgb = xyz_to_linear_srgb({bar.x * s, bar.y * s, bar.z * s});
@@ -135,12 +149,15 @@ CausticMap CausticMap::build(const Scene& scene, int threads) {
           }
           ++part.traced;
           part.emitted += flux_of(power, 1.0);
-          part.rays += tracer.trace(Ray{light.position, dir}, plan.medium, lambda, events, i);
+          const Vec3 origin = emission_point(light, dir, ScrambledHalton::sample(i, 3),
+                                             ScrambledHalton::sample(i, 4));
+          part.rays += tracer.trace(Ray{origin, dir}, plan.medium, lambda, events, i);
           for (const PathEvent& e : events) {
             const Flux f = flux_of(power, e.weight);
             switch (e.end) {
               case PathEnd::stored:
                 part.photons.push_back(Photon{e.position, e.normal, power * e.weight});
+                part.target.push_back(plan.cone.target_index);
                 part.stored += f;
                 break;
               case PathEnd::direct:
@@ -179,13 +196,12 @@ CausticMap CausticMap::build(const Scene& scene, int threads) {
   }
   if (out_of_memory) throw std::bad_alloc();
 
-  std::vector<Photon> all;
-  std::size_t stored = 0;
-  for (const ChunkResult& p : parts) stored += p.photons.size();
-  all.reserve(stored);
   CausticStatistics& st = result.m_stats;
+  std::vector<std::vector<Photon>> per_target(targets.size());
+  st.targets.resize(targets.size());
   for (const ChunkResult& p : parts) {  // chunk order: independent of the thread count
-    all.insert(all.end(), p.photons.begin(), p.photons.end());
+    for (std::size_t i = 0; i < p.photons.size(); ++i)
+      per_target[p.target[i]].push_back(p.photons[i]);
     st.photons_traced += p.traced;
     st.rays += p.rays;
     st.emitted += p.emitted;
@@ -198,11 +214,20 @@ CausticMap CausticMap::build(const Scene& scene, int threads) {
     st.roulette += p.roulette;
     st.roulette_variance += p.roulette_variance;
   }
-  st.photons_stored = all.size();
+  for (const ConePlan& p : plans) st.targets[p.cone.target_index].photons_traced += p.count;
+  for (std::size_t t = 0; t < targets.size(); ++t) {
+    TargetStatistics& ts = st.targets[t];
+    ts.center = targets[t].center;
+    ts.bounding_radius = targets[t].radius;
+    ts.photons_stored = per_target[t].size();
+    ts.radius = radius[t];
+    st.photons_stored += ts.photons_stored;
+    // A target without cones (no light reaches it) keeps an empty map.
+    result.m_maps.emplace_back(std::move(per_target[t]),
+                               static_cast<float>(radius[t] > 0 ? radius[t] : 1.0));
+  }
   st.cones = static_cast<int>(cones.size());
-  st.radius = radius;
   st.threads = nthreads;
-  result.m_map = PhotonMap(std::move(all), static_cast<float>(radius));
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -33,11 +33,11 @@ struct Branch {
 /// Index-matched interfaces one branch may cross.
 constexpr int kMaxMatchedCrossings = 1024;
 
-/// The k-th roulette decision of photon `index`, uniform in [0, 1): Halton dimensions 3-7 (the
-/// first five decisions: stratified across photons), then a fixed hash (SplitMix64, Steele et
+/// The k-th roulette decision of photon `index`, uniform in [0, 1): Halton dimensions 5-7 (the
+/// first three decisions: stratified across photons), then a fixed hash (SplitMix64, Steele et
 /// al. 2014) of the index and k.
 double roulette_number(std::uint64_t index, int k) {
-  if (k < ScrambledHalton::kDimensions - 3) return ScrambledHalton::sample(index, 3 + k);
+  if (k < ScrambledHalton::kDimensions - 5) return ScrambledHalton::sample(index, 5 + k);
   std::uint64_t z =
       index * 0x9e3779b97f4a7c15ULL + static_cast<std::uint64_t>(k) * 0xbf58476d1ce4e5b9ULL;
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;

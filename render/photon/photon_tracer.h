@@ -11,7 +11,8 @@
 // w / roulette_weight carrying roulette_weight, else end. Splitting everything down to
 // min_weight traced 10.8 rays per S1 photon, mostly for the 2-4 % Fresnel reflections; roulette
 // on them brings it to ~5.5 at no bias. The decisions are low-discrepancy too (Halton dimensions
-// 3-7 of the photon's index for its first five decisions, a fixed hash after), so they are the
+// 5-7 of the photon's index for its first three decisions, a fixed hash after; 0-4 are the
+// direction, wavelength and emission point), so they are the
 // same in every frame and stratified across photons. Without roulette (roulette_weight = 0)
 // branches are split down to the scene's min_weight like camera rays.
 // Accounting is exact either way: a branch lost to roulette is an event of weight +w, a survivor

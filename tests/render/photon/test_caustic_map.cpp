@@ -47,7 +47,8 @@ TEST(CausticMap, FluxConservation) {
               4 * sigma + 1e-3 * sum(st.emitted));
   EXPECT_NEAR(sum(st.roulette), 0.0, 4 * sigma);
   EXPECT_GT(sum(st.stored), 0.8 * sum(st.emitted));
-  EXPECT_EQ(st.photons_stored, map.map().size());
+  ASSERT_EQ(map.maps().size(), 1u);
+  EXPECT_EQ(st.photons_stored, map.maps()[0].size());
   std::printf(
       "floor %.6f + sky %.6f = %.6f of the cone's power; roulette net %.2e (sigma %.2e), cut "
       "%.2e\n",
@@ -105,6 +106,86 @@ material = "white"
   EXPECT_NEAR(e.b, expected, tolerance * expected);
   std::printf("slab caustic E = %.6f, expected %.6f (rel. error %.2e, tolerance %.2e)\n", e.r,
               expected, e.r / expected - 1, tolerance);
+}
+
+/// The units test's slab and floor, lit by `light` (a [[lights]] table's keys).
+Scene slab_scene(const std::string& light, const std::string& caustics) {
+  return scene_from("[caustics]\n" + caustics + "\n[[lights]]\n" + light + R"(
+[media.ice]
+ior = 1.31
+[materials.white]
+kind = "matte"
+[[objects]]
+shape = "box"
+min = [-0.5, 0.0, -0.5]
+max = [0.5, 0.1, 0.5]
+inside = "ice"
+outside = "vacuum"
+[[objects]]
+shape = "plane"
+point = [0.0, -1.0, 0.0]
+normal = [0.0, 1.0, 0.0]
+material = "white"
+)" + test::kCamera);
+}
+
+// A sphere light (radius a = 0.3, intensity I: radiance L = I / (pi a^2)) sends photons from its
+// whole disc into the cone of the target's sphere grown by a: the power sent is I Omega(R + a),
+// and under the slab's centre, lit through the slab by the whole light, the caustic is the
+// point light's T I / (H - t (1 - 1/n))^2 up to the light's extent, O((a / H)^2) = 0.4 % (the
+// irradiance of a uniform sphere is exactly I / d^2 for an unoccluded receiver; the slab's
+// paraxial shift is what makes it approximate). Noise bound as in the units test, 3 sigma of a
+// Poisson set of the K photons in the disc.
+TEST(CausticMap, SphereLightSameCausticAsPointLight) {
+  const Scene point =
+      slab_scene("position = [0.0, 4.0, 0.0]\nintensity = 100.0\nfalloff = \"inverse_square\"",
+                 "photons = 200000\nradius = 0.1");
+  const Scene sphere = slab_scene(
+      "kind = \"sphere\"\nradius = 0.3\nposition = [0.0, 4.0, 0.0]\nintensity = 100.0\nfalloff = "
+      "\"inverse_square\"",
+      "photons = 200000\nradius = 0.1");
+  ASSERT_EQ(sphere.sphere_lights().size(), 1u);
+  const CausticMap a = CausticMap::build(point, 2), b = CausticMap::build(sphere, 2);
+  const double bound = std::sqrt(0.5 * 0.5 + 0.05 * 0.05 + 0.5 * 0.5), d = 3.95,
+               grown = bound + 0.3;
+  const double omega = 2 * M_PI * (1 - std::sqrt(1 - grown * grown / (d * d)));
+  EXPECT_NEAR(b.statistics().emitted.g, 100.0 * omega, 1e-4 * 100.0 * omega);
+  const double k = 200000.0 * std::pow(0.1 * d / (grown * 5.0), 2);
+  const double tolerance = 3 / std::sqrt(0.75 * k) + 4e-3;
+  const float ea = a.irradiance({0, -1, 0}, {0, 1, 0}).g,
+              eb = b.irradiance({0, -1, 0}, {0, 1, 0}).g;
+  EXPECT_NEAR(eb, ea, tolerance * ea);
+  std::printf("sphere light caustic %.5f vs point light %.5f (rel. %.2e, tolerance %.2e)\n", eb, ea,
+              eb / ea - 1, tolerance);
+  // The penumbra: at the slab's shadow edge (x = 0.5 on the slab, 0.5 * 5 / 4 = 0.625 on the
+  // floor) the point light's caustic ends within the kernel radius, the sphere light's fades over
+  // a (H - h_slab) / h_slab = 0.3 * 1.05 / 4 wide band: there is still light beyond the point's.
+  EXPECT_EQ(a.irradiance({0.75f, -1, 0}, {0, 1, 0}).g, 0.0f);
+  EXPECT_GT(b.irradiance({0.68f, -1, 0}, {0, 1, 0}).g, 0.0f);
+}
+
+// Two targets: a small glass ball and a wide thin slab beside it. Each gets its own map and
+// radius, photons shared in proportion to sqrt(power), so the small target's kernel is finer.
+TEST(CausticMap, EachTargetHasItsOwnRadius) {
+  const Scene scene = ball_over_floor(1.5, -1.0, "[0.0, 6.0, 0.0]", "", "photons = 100000", R"(
+[[objects]]
+shape = "box"
+min = [2.0, -0.5, -2.0]
+max = [6.0, -0.45, 2.0]
+inside = "glass"
+outside = "vacuum"
+)");
+  const CausticMap map = CausticMap::build(scene, 2);
+  const auto& t = map.statistics().targets;
+  ASSERT_EQ(t.size(), 2u);
+  ASSERT_EQ(map.maps().size(), 2u);
+  EXPECT_LT(t[0].radius, t[1].radius);
+  EXPECT_NEAR(t[0].radius, 1.0 * std::sqrt(kPhotonsPerDisc / double(t[0].photons_traced)), 1e-4);
+  EXPECT_GT(t[0].photons_stored, 0u);
+  EXPECT_GT(t[1].photons_stored, 0u);
+  EXPECT_EQ(t[0].photons_traced + t[1].photons_traced, 100000);
+  // Under the slab (x = 4): its light, through the slab; no photon of the ball's map there.
+  EXPECT_GT(map.maps()[1].irradiance({4.0f, -1.0f, 0.0f}, {0, 1, 0}).g, 0.0f);
 }
 
 // Lights without falloff (the POV-Ray convention): photons carry I D^2 Omega / N, D the distance
@@ -187,7 +268,7 @@ TEST(CausticMap, CentroidOnTheLineFromTheLightThroughTheCentre) {
     const Scene scene = ball_over_floor(1.31, -1.0, light, "", "photons = 50000");
     const CausticMap map = CausticMap::build(scene, 2);
     double w = 0, cx = 0, cz = 0, cxx = 0, czz = 0;
-    for (const Photon& p : map.map().photons()) {
+    for (const Photon& p : map.maps()[0].photons()) {
       const double pw = p.power.g;
       w += pw;
       cx += pw * p.position.x;
@@ -198,7 +279,7 @@ TEST(CausticMap, CentroidOnTheLineFromTheLightThroughTheCentre) {
     cx /= w;
     cz /= w;
     const double sigma = std::sqrt(cxx / w - cx * cx + czz / w - cz * cz);
-    const double tol = 4 * sigma / std::sqrt(double(map.map().size())) + 1e-5;
+    const double tol = 4 * sigma / std::sqrt(double(map.maps()[0].size())) + 1e-5;
     // Distance from the centroid to the vertical plane through the light and the centre (both
     // lie on the line x = -z for the oblique light, on x = z = 0 for the light above).
     if (light == "[0.0, 6.0, 0.0]") {
@@ -233,7 +314,7 @@ outside = "vacuum"
   ASSERT_TRUE(with.objects()[2].index_matched);
   const CausticMap a = CausticMap::build(with, 2), b = CausticMap::build(without, 2);
   EXPECT_EQ(a.statistics().cones, 1);
-  EXPECT_EQ(a.map().size(), b.map().size());
+  EXPECT_EQ(a.statistics().photons_stored, b.statistics().photons_stored);
   int lit = 0;
   for (int i = 0; i <= 40; ++i) {
     const Vec3 p{1.0f + 0.075f * float(i), -1.0f, 0.1f};
@@ -265,9 +346,9 @@ TEST(CausticMap, IndependentOfThreadCount) {
   const Scene scene =
       ball_over_floor(1.31, -1.0, "[-4.0, 6.0, 4.0]", "spectral = true", "photons = 30000");
   const CausticMap one = CausticMap::build(scene, 1), two = CausticMap::build(scene, 2);
-  ASSERT_EQ(one.map().size(), two.map().size());
-  for (std::size_t i = 0; i < one.map().size(); ++i) {
-    const Photon &a = one.map().photons()[i], &b = two.map().photons()[i];
+  ASSERT_EQ(one.maps()[0].size(), two.maps()[0].size());
+  for (std::size_t i = 0; i < one.maps()[0].size(); ++i) {
+    const Photon &a = one.maps()[0].photons()[i], &b = two.maps()[0].photons()[i];
     ASSERT_EQ(a.position.x, b.position.x);
     ASSERT_EQ(a.position.z, b.position.z);
     ASSERT_EQ(a.power.r, b.power.r);
@@ -284,8 +365,8 @@ TEST(CausticMap, SettingsAndAutomaticRule) {
           .empty());
   const CausticMap map = CausticMap::build(ball_over_floor(1.31, -1.0, "[0.0, 6.0, 0.0]"), 2);
   EXPECT_EQ(map.statistics().photons_traced, kDefaultPhotons);
-  EXPECT_NEAR(map.statistics().radius, 1.0 * std::sqrt(kPhotonsPerDisc / double(kDefaultPhotons)),
-              1e-5);
+  EXPECT_NEAR(map.statistics().targets[0].radius,
+              1.0 * std::sqrt(kPhotonsPerDisc / double(kDefaultPhotons)), 1e-5);
 }
 
 }  // namespace

@@ -57,8 +57,11 @@ outside = "vacuum"
   EXPECT_NEAR(targets[0].radius, 1.0, 1e-5);
   EXPECT_NEAR(targets[1].center.x, -4.0, 1e-6);
   EXPECT_NEAR(targets[1].radius, std::sqrt(3.0), 1e-5);
-  const auto cones = light_cones(scene, targets);
+  const auto cones = light_cones(emitters(scene), targets);
   ASSERT_EQ(cones.size(), 2u);
+  // The smaller target first: the shell (radius 1) before the box (sqrt 3).
+  EXPECT_EQ(cones[0].target_index, 0u);
+  EXPECT_EQ(cones[1].target_index, 1u);
   // Solid angle of a sphere of radius 1 seen from 10: 2 pi (1 - sqrt(1 - 0.01)); the bounding
   // sphere is widened by 1e-6 relative, which widens the cone by 2e-6 relative.
   EXPECT_NEAR(cones[0].solid_angle_sr, 2 * M_PI * (1 - std::sqrt(0.99)),
@@ -103,7 +106,7 @@ radius = 1.0
 inside = "glass"
 outside = "vacuum"
 )" + test::kCamera);
-  const auto cones = light_cones(scene, dielectric_targets(scene));
+  const auto cones = light_cones(emitters(scene), dielectric_targets(scene));
   ASSERT_EQ(cones.size(), 1u);
   EXPECT_NEAR(cones[0].solid_angle_sr, 4 * M_PI, 1e-9);
   EXPECT_TRUE(cones[0].contains(Vec3{0, -1, 0}));
