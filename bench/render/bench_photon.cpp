@@ -45,7 +45,7 @@ void BM_PhotonPass(benchmark::State& state, const std::string& file) {
   double rays = 0;
   for (auto _ : state) {
     const photon::CausticMap map = photon::CausticMap::build(scene, threads);
-    stored = map.map().size();
+    stored = map.statistics().photons_stored;
     rays = double(map.statistics().rays);
     benchmark::DoNotOptimize(stored);
   }
@@ -74,7 +74,7 @@ void BM_PhotonNoise(benchmark::State& state) {
   const long long n = state.range(0);
   const Scene coarse = s1("s1_ice_shell.toml", n);
   const photon::CausticMap estimate = photon::CausticMap::build(coarse, 2);
-  const double radius = estimate.statistics().radius;
+  const double radius = estimate.statistics().targets.at(0).radius;
   const photon::CausticMap reference =
       photon::CausticMap::build(s1("s1_ice_shell.toml", 16 * n, radius), 2);
   double sum2 = 0, ref2 = 0, peak = 0;

@@ -223,8 +223,8 @@ CausticMap CausticMap::build(const Scene& scene, int threads) {
     ts.radius = radius[t];
     st.photons_stored += ts.photons_stored;
     // A target without cones (no light reaches it) keeps an empty map.
-    result.m_maps.emplace_back(std::move(per_target[t]),
-                               static_cast<float>(radius[t] > 0 ? radius[t] : 1.0));
+    result.m_maps.emplace_back(per_target[t], static_cast<float>(radius[t] > 0 ? radius[t] : 1.0),
+                               kPhotonsPerDisc, nthreads);
   }
   st.cones = static_cast<int>(cones.size());
   st.threads = nthreads;

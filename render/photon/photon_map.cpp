@@ -1,6 +1,8 @@
 // Photon density estimate; see photon_map.h.
 #include "render/photon/photon_map.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -20,57 +22,63 @@ int cell_of(float x, float cell) {
   return static_cast<int>(std::floor(x / cell));
 }
 
+/// The radius class for n photons within r of a photon: the smallest c with 4^c n >= K.
+int radius_class(std::uint32_t n, double photons_per_disc) {
+  int c = 0;
+  double reach = std::max<double>(n, 0.5);
+  while (c + 1 < PhotonMap::kClasses && reach < photons_per_disc) {
+    reach *= 4.0;
+    ++c;
+  }
+  return c;
+}
+
 }  // namespace
 
-std::uint32_t PhotonMap::bucket(int ix, int iy, int iz) const {
+std::uint32_t PhotonMap::Grid::bucket(int ix, int iy, int iz) const {
   // Teschner et al. 2003: xor of the coordinates times large primes.
   const auto h = (static_cast<std::uint32_t>(ix) * 73856093u) ^
                  (static_cast<std::uint32_t>(iy) * 19349663u) ^
                  (static_cast<std::uint32_t>(iz) * 83492791u);
-  return h & m_mask;
+  return h & mask;
 }
 
-PhotonMap::PhotonMap(std::vector<Photon> photons, float radius)
-    : m_radius(radius), m_cell(2.0f * radius) {
-  THAW_CHECK(radius > 0.0f && std::isfinite(radius), "photon map radius must be positive");
-  if (photons.empty()) return;
+PhotonMap::Grid::Grid(std::vector<Photon> in, float r) : radius(r), cell(2.0f * r) {
+  if (in.empty()) return;
   std::uint32_t buckets = 1;
-  while (buckets < 2 * photons.size() && buckets < (1u << 30)) buckets <<= 1;
-  m_mask = buckets - 1;
+  while (buckets < 2 * in.size() && buckets < (1u << 30)) buckets <<= 1;
+  mask = buckets - 1;
   const float inf = std::numeric_limits<float>::infinity();
-  m_lo = {inf, inf, inf};
-  m_hi = {-inf, -inf, -inf};
-  std::vector<std::uint32_t> key(photons.size());
-  m_start.assign(std::size_t(buckets) + 1, 0);
-  for (std::size_t i = 0; i < photons.size(); ++i) {
-    const Vec3& p = photons[i].position;
-    m_lo = min(m_lo, p);
-    m_hi = max(m_hi, p);
-    key[i] = bucket(cell_of(p.x, m_cell), cell_of(p.y, m_cell), cell_of(p.z, m_cell));
-    ++m_start[key[i] + 1];
+  lo = {inf, inf, inf};
+  hi = {-inf, -inf, -inf};
+  std::vector<std::uint32_t> key(in.size());
+  start.assign(std::size_t(buckets) + 1, 0);
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    const Vec3& p = in[i].position;
+    lo = min(lo, p);
+    hi = max(hi, p);
+    key[i] = bucket(cell_of(p.x, cell), cell_of(p.y, cell), cell_of(p.z, cell));
+    ++start[key[i] + 1];
   }
-  const Vec3 r{radius, radius, radius};
-  m_lo = m_lo - r;
-  m_hi = m_hi + r;
-  for (std::size_t k = 0; k < buckets; ++k) m_start[k + 1] += m_start[k];
-  // Counting sort, stable: photons keep their order within a bucket (the result does not depend
-  // on anything but the input order).
-  std::vector<std::uint32_t> next(m_start.begin(), m_start.end() - 1);
-  m_photons.resize(photons.size());
-  for (std::size_t i = 0; i < photons.size(); ++i) m_photons[next[key[i]]++] = photons[i];
+  lo = lo - Vec3{r, r, r};
+  hi = hi + Vec3{r, r, r};
+  for (std::size_t k = 0; k < buckets; ++k) start[k + 1] += start[k];
+  // Counting sort, stable: photons keep their input order within a bucket.
+  std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+  photons.resize(in.size());
+  for (std::size_t i = 0; i < in.size(); ++i) photons[next[key[i]]++] = in[i];
 }
 
-Rgb PhotonMap::irradiance(const Vec3& p, const Vec3& n) const {
-  if (m_photons.empty()) return {};
-  if (p.x < m_lo.x || p.y < m_lo.y || p.z < m_lo.z || p.x > m_hi.x || p.y > m_hi.y || p.z > m_hi.z)
-    return {};
-  const float r2 = m_radius * m_radius;
+template <class F>
+void PhotonMap::Grid::for_each_near(const Vec3& p, F&& f) const {
+  if (photons.empty()) return;
+  if (p.x < lo.x || p.y < lo.y || p.z < lo.z || p.x > hi.x || p.y > hi.y || p.z > hi.z) return;
+  const float r2 = radius * radius;
   // The 2 x 2 x 2 cells (each 2r wide) that the ball of radius r around p can touch.
-  const int x0 = cell_of(p.x - m_radius, m_cell), y0 = cell_of(p.y - m_radius, m_cell),
-            z0 = cell_of(p.z - m_radius, m_cell);
+  const int x0 = cell_of(p.x - radius, cell), y0 = cell_of(p.y - radius, cell),
+            z0 = cell_of(p.z - radius, cell);
   std::uint32_t seen[8];
   int nseen = 0;
-  float sum_r = 0, sum_g = 0, sum_b = 0;
   for (int dz = 0; dz < 2; ++dz)
     for (int dy = 0; dy < 2; ++dy)
       for (int dx = 0; dx < 2; ++dx) {
@@ -78,22 +86,67 @@ Rgb PhotonMap::irradiance(const Vec3& p, const Vec3& n) const {
         // Two cells may share a bucket: visit it once.
         if (std::find(seen, seen + nseen, k) != seen + nseen) continue;
         seen[nseen++] = k;
-        for (std::uint32_t i = m_start[k]; i < m_start[k + 1]; ++i) {
-          const Photon& ph = m_photons[i];
-          const Vec3 v = ph.position - p;
+        for (std::uint32_t i = start[k]; i < start[k + 1]; ++i) {
+          const Vec3 v = photons[i].position - p;
           const float d2 = dot(v, v);
-          if (d2 >= r2) continue;
-          if (dot(ph.normal, n) < kMinNormalCos ||
-              std::fabs(dot(v, n)) > kMaxPlaneDistance * m_radius)
-            continue;
-          const float k_w = 1.0f - d2 / r2;
-          sum_r += ph.power.r * k_w;
-          sum_g += ph.power.g * k_w;
-          sum_b += ph.power.b * k_w;
+          if (d2 < r2 && !f(photons[i], v, d2)) return;
         }
       }
-  const float norm = 2.0f / (kPi * r2);
-  return {sum_r * norm, sum_g * norm, sum_b * norm};
+}
+
+PhotonMap::PhotonMap(const std::vector<Photon>& photons, float radius, double photons_per_disc,
+                     int threads)
+    : m_radius(radius) {
+  THAW_CHECK(radius > 0.0f && std::isfinite(radius), "photon map radius must be positive");
+  if (photons.empty()) return;
+  // Pilot count: photons of the same surface within r of each photon (itself included).
+  const Grid all(photons, radius);
+  std::vector<std::uint8_t> cls(photons.size());
+  const int nthreads = threads > 0 ? threads : omp_get_max_threads();
+  const auto count = static_cast<long long>(photons.size());
+#pragma omp parallel for schedule(static) num_threads(nthreads)
+  for (long long i = 0; i < count; ++i) {
+    const Photon& ph = photons[static_cast<std::size_t>(i)];
+    std::uint32_t n = 0;
+    // Stops at photons_per_disc: the focus of a caustic holds thousands within r.
+    all.for_each_near(ph.position, [&](const Photon& q, const Vec3& v, float) {
+      if (dot(q.normal, ph.normal) >= kMinNormalCos &&
+          std::fabs(dot(v, ph.normal)) <= kMaxPlaneDistance * radius)
+        ++n;
+      return double(n) < photons_per_disc;
+    });
+    cls[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(radius_class(n, photons_per_disc));
+  }
+  std::vector<std::vector<Photon>> split(kClasses);
+  for (std::size_t i = 0; i < photons.size(); ++i) split[cls[i]].push_back(photons[i]);
+  for (int c = 0; c < kClasses; ++c)
+    m_grids.emplace_back(std::move(split[std::size_t(c)]), radius * float(1 << c));
+}
+
+std::size_t PhotonMap::size() const {
+  std::size_t n = 0;
+  for (const Grid& g : m_grids) n += g.photons.size();
+  return n;
+}
+
+Rgb PhotonMap::irradiance(const Vec3& p, const Vec3& n) const {
+  Rgb e;
+  for (const Grid& g : m_grids) {
+    const float r2 = g.radius * g.radius;
+    float sum_r = 0, sum_g = 0, sum_b = 0;
+    g.for_each_near(p, [&](const Photon& ph, const Vec3& v, float d2) {
+      if (dot(ph.normal, n) < kMinNormalCos || std::fabs(dot(v, n)) > kMaxPlaneDistance * g.radius)
+        return true;
+      const float w = 1.0f - d2 / r2;
+      sum_r += ph.power.r * w;
+      sum_g += ph.power.g * w;
+      sum_b += ph.power.b * w;
+      return true;
+    });
+    const float norm = 2.0f / (kPi * r2);
+    e += Rgb{sum_r * norm, sum_g * norm, sum_b * norm};
+  }
+  return e;
 }
 
 }  // namespace thaw::render::photon

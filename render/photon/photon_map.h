@@ -1,16 +1,23 @@
 #pragma once
 // Stored caustic photons and the irradiance density estimate on diffuse surfaces.
-// Irradiance at p with unit normal n: E = sum_p Phi_p K(|x_p - p|) over photons within radius r,
-// with the Epanechnikov kernel K(d) = 2 / (pi r^2) (1 - d^2 / r^2) (Silverman 1986, "Density
-// Estimation", table 3.1, in 2D). K integrates to 1 over the disc, so a uniform photon density
-// of flux per area F returns exactly E = F, in the units of the photons' power per area: the
-// same units as direct light when Phi = I Omega / N (photon_pass.h). Photons of other surfaces
-// are rejected: a photon counts only if its stored normal is within ~25 degrees of n
-// (cos > 0.9) and it lies within r / 4 of the tangent plane (a corner, the far side of a thin
-// wall, a ball resting on the floor). Photons sit in a hashed uniform grid of cells 2r wide
-// (Teschner et al. 2003, "Optimized spatial hashing for collision detection of deformable
-// objects"), so a query visits at most 2 x 2 x 2 cells. Built once, immutable, thread-safe to
-// query. Knows nothing about lights or tracing.
+// Irradiance at p with unit normal n: E = sum_p Phi_p K_p(|x_p - p|), each photon spread over a
+// disc of its own radius r_p with the Epanechnikov kernel K_p(d) = 2 / (pi r_p^2) (1 - d^2 / r_p^2)
+// (Silverman 1986, "Density Estimation", table 3.1, in 2D; the "scatter" form of a density
+// estimate). Every K_p integrates to 1, so photons keep their power exactly, and a uniform photon
+// density of flux per area F returns exactly E = F, in the units of the photons' power per area:
+// the same units as direct light when Phi = I Omega / N (caustic_map.h).
+// Radius: r_p = r where at least `photons_per_disc` photons lie within r of the photon (the
+// focused, well sampled caustic keeps the sharp kernel); where fewer, n, lie there (the faint,
+// scattered light reflected off the ice, carried by few photons), r_p grows to the power-of-two
+// multiple of r nearest above r sqrt(photons_per_disc / n), at most 8 r, so that sparse photons
+// are spread into a smooth glow instead of isolated specks (the adaptive-kernel idea of
+// Silverman sec. 5.3 with the pilot count taken at radius r).
+// Photons of other surfaces are rejected: a photon counts only if its stored normal is within
+// ~25 degrees of n (cos > 0.9) and it lies within r_p / 4 of the tangent plane (a corner, the far
+// side of a thin wall, a ball resting on the floor). Each radius class (r, 2r, 4r, 8r) sits in a
+// hashed uniform grid of cells 2 r_class wide (Teschner et al. 2003, "Optimized spatial hashing
+// for collision detection of deformable objects"), so a query visits at most 2 x 2 x 2 cells
+// per class. Built once, immutable, thread-safe to query. Knows nothing about lights or tracing.
 #include <cstdint>
 #include <vector>
 
@@ -29,28 +36,49 @@ struct Photon {
 
 class PhotonMap {
  public:
-  PhotonMap() = default;
-  /// `radius` > 0 [scene units].
-  PhotonMap(std::vector<Photon> photons, float radius);
+  /// Radius classes r, 2r, 4r, 8r.
+  static constexpr int kClasses = 4;
 
-  bool empty() const { return m_photons.empty(); }
-  std::size_t size() const { return m_photons.size(); }
+  PhotonMap() = default;
+  /// `radius` > 0 [scene units]; `photons_per_disc` (>= 1) photons within `radius` keep it,
+  /// fewer widen the photon's kernel (see above). Counting runs on `threads` OpenMP threads
+  /// (0 = default); the result does not depend on them.
+  PhotonMap(const std::vector<Photon>& photons, float radius, double photons_per_disc,
+            int threads = 0);
+
+  bool empty() const { return size() == 0; }
+  std::size_t size() const;
+  /// the base radius r
   float radius() const { return m_radius; }
-  /// Photons in grid order.
-  const std::vector<Photon>& photons() const { return m_photons; }
+  /// Photons of radius class c (radius r 2^c), in a fixed order.
+  const std::vector<Photon>& photons(int radius_class) const {
+    return m_grids[std::size_t(radius_class)].photons;
+  }
 
   /// Irradiance [power per area] at `p` on a surface with unit normal `n` (facing the side the
   /// light is wanted on).
   Rgb irradiance(const Vec3& p, const Vec3& n) const;
 
  private:
-  std::uint32_t bucket(int ix, int iy, int iz) const;
-  std::vector<Photon> m_photons;
-  /// photons of bucket k: m_photons[m_start[k] .. m_start[k + 1])
-  std::vector<std::uint32_t> m_start;
-  std::uint32_t m_mask = 0;
-  float m_radius = 0, m_cell = 1;
-  Vec3 m_lo, m_hi;  // photons' bounds grown by the radius
+  /// One radius class: photons in a hashed grid.
+  struct Grid {
+    std::vector<Photon> photons;
+    /// photons of bucket k: photons[start[k] .. start[k + 1])
+    std::vector<std::uint32_t> start;
+    std::uint32_t mask = 0;
+    float radius = 0, cell = 1;
+    Vec3 lo, hi;  // photons' bounds grown by the radius
+
+    Grid() = default;
+    Grid(std::vector<Photon> photons, float radius);
+    std::uint32_t bucket(int ix, int iy, int iz) const;
+    /// Calls f(photon, offset from p, squared distance) for the photons within `radius` of p
+    /// until f returns false.
+    template <class F>
+    void for_each_near(const Vec3& p, F&& f) const;
+  };
+  std::vector<Grid> m_grids;
+  float m_radius = 0;
 };
 
 }  // namespace thaw::render::photon

@@ -268,14 +268,15 @@ TEST(CausticMap, CentroidOnTheLineFromTheLightThroughTheCentre) {
     const Scene scene = ball_over_floor(1.31, -1.0, light, "", "photons = 50000");
     const CausticMap map = CausticMap::build(scene, 2);
     double w = 0, cx = 0, cz = 0, cxx = 0, czz = 0;
-    for (const Photon& p : map.maps()[0].photons()) {
-      const double pw = p.power.g;
-      w += pw;
-      cx += pw * p.position.x;
-      cz += pw * p.position.z;
-      cxx += pw * p.position.x * p.position.x;
-      czz += pw * p.position.z * p.position.z;
-    }
+    for (int c = 0; c < PhotonMap::kClasses; ++c)
+      for (const Photon& p : map.maps()[0].photons(c)) {
+        const double pw = p.power.g;
+        w += pw;
+        cx += pw * p.position.x;
+        cz += pw * p.position.z;
+        cxx += pw * p.position.x * p.position.x;
+        czz += pw * p.position.z * p.position.z;
+      }
     cx /= w;
     cz /= w;
     const double sigma = std::sqrt(cxx / w - cx * cx + czz / w - cz * cz);
@@ -346,13 +347,15 @@ TEST(CausticMap, IndependentOfThreadCount) {
   const Scene scene =
       ball_over_floor(1.31, -1.0, "[-4.0, 6.0, 4.0]", "spectral = true", "photons = 30000");
   const CausticMap one = CausticMap::build(scene, 1), two = CausticMap::build(scene, 2);
-  ASSERT_EQ(one.maps()[0].size(), two.maps()[0].size());
-  for (std::size_t i = 0; i < one.maps()[0].size(); ++i) {
-    const Photon &a = one.maps()[0].photons()[i], &b = two.maps()[0].photons()[i];
-    ASSERT_EQ(a.position.x, b.position.x);
-    ASSERT_EQ(a.position.z, b.position.z);
-    ASSERT_EQ(a.power.r, b.power.r);
-    ASSERT_EQ(a.power.b, b.power.b);
+  for (int c = 0; c < PhotonMap::kClasses; ++c) {
+    ASSERT_EQ(one.maps()[0].photons(c).size(), two.maps()[0].photons(c).size());
+    for (std::size_t i = 0; i < one.maps()[0].photons(c).size(); ++i) {
+      const Photon &a = one.maps()[0].photons(c)[i], &b = two.maps()[0].photons(c)[i];
+      ASSERT_EQ(a.position.x, b.position.x);
+      ASSERT_EQ(a.position.z, b.position.z);
+      ASSERT_EQ(a.power.r, b.power.r);
+      ASSERT_EQ(a.power.b, b.power.b);
+    }
   }
   EXPECT_EQ(one.statistics().stored.g, two.statistics().stored.g);
   EXPECT_EQ(one.statistics().escaped.r, two.statistics().escaped.r);

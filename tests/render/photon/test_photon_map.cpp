@@ -25,7 +25,7 @@ std::vector<Photon> lattice(float h, float a, float flux_density, Vec3 normal = 
 // (the rim's discontinuous derivative; Euler-Maclaurin in 2D): with r = 20 h that is 2.5e-3.
 TEST(PhotonMap, UniformDensityGivesExactIrradiance) {
   const float h = 0.01f, r = 0.2f, f = 3.0f;
-  const PhotonMap map(lattice(h, 1.0f, f), r);
+  const PhotonMap map(lattice(h, 1.0f, f), r, 32.0);
   for (const Vec3 p :
        {Vec3{0, 0, 0}, Vec3{0.1234f, 0, -0.321f}, Vec3{0.005f, 0, 0.005f}, Vec3{-0.5f, 0, 0.37f}}) {
     const Rgb e = map.irradiance(p, {0, 1, 0});
@@ -41,21 +41,45 @@ TEST(PhotonMap, UniformDensityGivesExactIrradiance) {
 // or off the tangent plane by more than r/4 do not count.
 TEST(PhotonMap, RejectsPhotonsOfOtherSurfaces) {
   const float h = 0.01f, r = 0.2f;
-  EXPECT_EQ(PhotonMap(lattice(h, 1.0f, 1.0f, {0, -1, 0}), r).irradiance({0, 0, 0}, {0, 1, 0}).r,
-            0.0f);
+  EXPECT_EQ(
+      PhotonMap(lattice(h, 1.0f, 1.0f, {0, -1, 0}), r, 32.0).irradiance({0, 0, 0}, {0, 1, 0}).r,
+      0.0f);
   // A wall x = 0 (normal +x) next to a floor query at the wall's foot: only the floor counts.
   std::vector<Photon> wall;
   for (int i = 0; i < 40; ++i)
     for (int k = -40; k <= 40; ++k)
       wall.push_back({Vec3{0, float(i) * h, float(k) * h}, Vec3{1, 0, 0}, Rgb{1, 1, 1}});
-  EXPECT_EQ(PhotonMap(wall, r).irradiance({0.01f, 0, 0}, {0, 1, 0}).r, 0.0f);
+  EXPECT_EQ(PhotonMap(wall, r, 32.0).irradiance({0.01f, 0, 0}, {0, 1, 0}).r, 0.0f);
   std::vector<Photon> above = lattice(h, 1.0f, 1.0f);
   for (auto& p : above) p.position.y = 0.3f * r;
-  EXPECT_EQ(PhotonMap(above, r).irradiance({0, 0, 0}, {0, 1, 0}).r, 0.0f);
+  EXPECT_EQ(PhotonMap(above, r, 32.0).irradiance({0, 0, 0}, {0, 1, 0}).r, 0.0f);
+}
+
+// Sparse photons get wider kernels: a photon with n neighbours within r (itself included) is
+// spread over r 2^c, the smallest c with 4^c n >= 32 (at most 8 r). Every kernel integrates to 1,
+// so the power is kept: integrating E over the plane returns the photons' power (midpoint rule
+// on a grid of r / 8 cells over a smooth kernel: 1e-3).
+TEST(PhotonMap, SparsePhotonsAreSpreadAndKeepTheirPower) {
+  const float r = 0.1f;
+  // A lone photon (n = 1 -> class 3, radius 8r) and a pair (n = 2 -> class 2, radius 4r).
+  std::vector<Photon> photons{{Vec3{0, 0, 0}, Vec3{0, 1, 0}, Rgb{1, 1, 1}},
+                              {Vec3{5, 0, 0}, Vec3{0, 1, 0}, Rgb{1, 1, 1}},
+                              {Vec3{5.05f, 0, 0}, Vec3{0, 1, 0}, Rgb{1, 1, 1}}};
+  const PhotonMap map(photons, r, 32.0);
+  EXPECT_EQ(map.photons(3).size(), 1u);
+  EXPECT_EQ(map.photons(2).size(), 2u);
+  EXPECT_NEAR(map.irradiance({0, 0, 0}, {0, 1, 0}).g, 2 / (M_PI * 0.64), 1e-5);
+  double total = 0;
+  const float h = r / 8;
+  for (int i = -80; i <= 120 * 5; ++i)
+    for (int k = -80; k <= 80; ++k)
+      total +=
+          map.irradiance({(float(i) + 0.5f) * h, 0, (float(k) + 0.5f) * h}, {0, 1, 0}).g * h * h;
+  EXPECT_NEAR(total, 3.0, 3e-3);
 }
 
 TEST(PhotonMap, EmptyMapIsDark) {
-  const PhotonMap map({}, 0.1f);
+  const PhotonMap map({}, 0.1f, 32.0);
   EXPECT_TRUE(map.empty());
   EXPECT_EQ(map.irradiance({0, 0, 0}, {0, 1, 0}).g, 0.0f);
 }
