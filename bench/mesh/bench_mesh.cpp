@@ -6,6 +6,10 @@
 //                    each surface meshed on its own (reuse 0; target: 2 threads >= 1.8x the
 //                    1-thread rate) and similar surfaces meshed once and scaled (reuse 1, the
 //                    default; issue 10: "every step of a sphere is the same mesh scaled")
+//   GridCube         one step of the hollow ice cube of data/scenarios/ice_cube.toml (4 cm box,
+//                    2.4 cm water-filled cavity, 1 mm cells, edges rounded 2 mm as after a few
+//                    minutes of melting) meshed from its GridField (src/mesh/grid_mesher.h) at a
+//                    1 mm edge (issue 11 target: a 3D step in at most 1 s)
 //   FlyingEdges      the 3 cm sphere's signed distance sampled on the smallest N^3 grid whose
 //                    marching-cubes volume error is at most the CGAL default mesh's, then
 //                    vtkFlyingEdges3D; time includes sampling (reported separately too)
@@ -26,7 +30,9 @@
 
 #include "src/common/atomic_file.h"
 #include "src/mesh/mesh_series.h"
+#include "src/mesh/grid_mesher.h"
 #include "src/mesh/surface_mesher.h"
+#include "tests/src/mesh/grid_field_samples.h"
 
 namespace {
 using namespace thaw;
@@ -99,6 +105,24 @@ BENCHMARK(Series100)
     ->Unit(benchmark::kSecond)
     ->Iterations(1)
     ->UseRealTime();
+
+void GridCube(benchmark::State& state) {
+  using mesh::testing::rounded_box;
+  const sim::GridField f = mesh::testing::sample_cartesian(
+      [](double x, double y, double z) { return rounded_box(x, y, z, 0.02, 0.02, 0.02, 0.002); },
+      [](double x, double y, double z) { return rounded_box(x, y, z, 0.012, 0.012, 0.012, 0.0); }, 0.022, 0.001, 3);
+  mesh::GridMeshOptions o;
+  o.edge_length_m = 0.001;
+  std::size_t triangles = 0;
+  for (auto _ : state) {
+    const mesh::GridMeshResult m = mesh::mesh_grid_field(f, o);
+    triangles = m.outer.faces.size() + m.inner.faces.size();
+    benchmark::DoNotOptimize(m.outer.vertices.data());
+  }
+  state.counters["triangles"] = static_cast<double>(triangles);
+  state.counters["cells"] = static_cast<double>(f.cell_count());
+}
+BENCHMARK(GridCube)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 struct McResult {
   double volume_error = 0, sample_s = 0, extract_s = 0;

@@ -40,7 +40,12 @@ void run_mesh(MeshArgs& a, const CLI::App& sub) {
   std::printf("thaw mesh: %zu steps, %ld surfaces, %ld triangles -> %s\n", manifest.steps.size(), files,
               triangles, (std::filesystem::path(a.simdir) / "mesh").string().c_str());
   // The effective options (a --triangles target is resolved only once the radii are known).
-  std::printf("thaw mesh: options: %s\n", mesh::describe(manifest.options).c_str());
+  if (manifest.grid)
+    std::printf("thaw mesh: grid run: marching tetrahedra, remeshed to edge %s, Taubin-smoothed (docs/mesh.md)\n",
+                manifest.options.edge_length_m > 0 ? (std::to_string(manifest.options.edge_length_m * 1e3) + " mm").c_str()
+                                                   : "= cell edge");
+  else
+    std::printf("thaw mesh: options: %s\n", mesh::describe(manifest.options).c_str());
   if (!manifest.steps_inner_touching_outer.empty())
     std::fprintf(stderr,
                  "thaw mesh: warning: %zu steps have a shell too thin for the inner mesh to stay strictly "

@@ -1,5 +1,6 @@
 #include "src/mesh/grid_mesher.h"
 
+#include <numbers>
 #include <vector>
 
 #include "src/mesh/grid_surface.h"
@@ -14,8 +15,7 @@ namespace {
 // The surface handed out: remeshed and smoothed if that passes the checks, else the
 // marching-tetrahedra surface smoothed, else as extracted (closed, manifold and free of
 // self-intersections by construction; still checked).
-void finish(TriangleMesh& m, const NodeLattice& ice, const GridMeshOptions& o, double edge,
-            bool inner, std::string& note) {
+void finish(TriangleMesh& m, const GridMeshOptions& o, double edge, bool inner, std::string& note) {
   if (m.faces.empty()) return;
   const char* which = inner ? "inner" : "outer";
   auto smoothed = [&](TriangleMesh c) {
@@ -36,7 +36,7 @@ void finish(TriangleMesh& m, const NodeLattice& ice, const GridMeshOptions& o, d
     problem = check_closed_oriented_components(c);
     if (problem.empty()) {
       m = std::move(c);
-      if (o.normals) set_lattice_normals(m, ice, inner);
+      if (o.normals) set_angle_weighted_normals(m);
       return;
     }
     if (note.empty()) note = std::string(which) + ": " + problem;
@@ -45,16 +45,61 @@ void finish(TriangleMesh& m, const NodeLattice& ice, const GridMeshOptions& o, d
 }
 }  // namespace
 
+double cell_volume_m3(const sim::GridField& f, int i) {
+  const double h3 = f.spacing_m * f.spacing_m * f.spacing_m;
+  return f.geometry == sim::GridField::Geometry::cartesian3d ? h3
+                                                             : std::numbers::pi * (2 * i + 1) * h3;
+}
+
+namespace {
+double field_ice_volume(const sim::GridField& f) {
+  double v = 0;
+  for (int k = 0; k < f.cells[2]; ++k)
+    for (int j = 0; j < f.cells[1]; ++j)
+      for (int i = 0; i < f.cells[0]; ++i)
+        v += f.ice_fraction[f.index(i, j, k)] * cell_volume_m3(f, i);
+  return v;
+}
+double ice_between(const GridSurfaces& s) {
+  return enclosed_volume(s.outer) - enclosed_volume(s.inner);
+}
+
+// The level of the extracted isosurface: 1/2, unless the ice enclosed at 1/2 falls short of the
+// field's ice volume by more than the interpolation error can explain (0.0858 h per unit area,
+// docs/mesh.md): then thin walls of partly melted cells (every fraction below 1/2 across them)
+// would vanish from the film although the solver still has their ice, and the level is lowered
+// (bisection in [0.05, 1/2]; the enclosed volume grows as the level falls) until the surfaces
+// enclose the field's ice volume.
+GridSurfaces extract_with_field_volume(const NodeLattice& ice, const NodeLattice& water,
+                                       const sim::GridField& field, float& level) {
+  level = 0.5f;
+  GridSurfaces s = extract_grid_surfaces(ice, water, level);
+  const double target = field_ice_volume(field);
+  const double slack = 0.0858 * field.spacing_m * (surface_area(s.outer) + surface_area(s.inner));
+  if (target - ice_between(s) <= slack) return s;
+  float lo = 0.05f, hi = 0.5f;
+  for (int it = 0; it < 10; ++it) {
+    const float mid = 0.5f * (lo + hi);
+    (ice_between(extract_grid_surfaces(ice, water, mid)) < target ? hi : lo) = mid;
+  }
+  level = 0.5f * (lo + hi);
+  return extract_grid_surfaces(ice, water, level);
+}
+}  // namespace
+
 GridMeshResult mesh_grid_field(const sim::GridField& field, const GridMeshOptions& o) {
   const NodeLattice ice = NodeLattice::from_ice_fraction(field, o.smoothing_passes);
   const NodeLattice water = NodeLattice::from_water_fraction(field);
-  GridSurfaces s = extract_grid_surfaces(ice, water);
   GridMeshResult r;
+  float level = 0.5f;
+  GridSurfaces s = o.match_field_volume ? extract_with_field_volume(ice, water, field, level)
+                                        : extract_grid_surfaces(ice, water, level);
+  r.iso_level = level;
   r.cavities = s.cavities;
   r.cavity_water_fraction = s.cavity_water_fraction;
   const double edge = o.edge_length_m > 0 ? o.edge_length_m : field.spacing_m;
-  finish(s.outer, ice, o, edge, false, r.remesh_problem);
-  finish(s.inner, ice, o, edge, true, r.remesh_problem);
+  finish(s.outer, o, edge, false, r.remesh_problem);
+  finish(s.inner, o, edge, true, r.remesh_problem);
   r.outer = std::move(s.outer);
   r.inner = std::move(s.inner);
   return r;

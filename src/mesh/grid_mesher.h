@@ -3,10 +3,10 @@
 // (node_lattice.h) -> marching tetrahedra and classification (grid_surface.h) -> isotropic
 // remeshing to the requested edge length (surface_remesher.h) -> Taubin smoothing
 // (taubin_smoothing.h) -> checks (closed, 2-manifold, outward per component, no
-// self-intersection) -> normals from the field's gradient. Should the remeshed or smoothed
-// surface fail a check, the marching-tetrahedra surface (valid by construction) is used instead.
-// One call = one independent mesher (safe to run concurrently, deterministic). Knows nothing about
-// files.
+// self-intersection) -> angle-weighted vertex normals of the smoothed surface. Should the remeshed
+// or smoothed surface fail a check, the marching-tetrahedra surface (valid by construction) is used
+// instead. One call = one independent mesher (safe to run concurrently, deterministic). Knows
+// nothing about files.
 #include <string>
 
 #include "sim/io/grid_field.h"
@@ -25,7 +25,11 @@ struct GridMeshOptions {
   int remesh_iterations = 3;
   /// Passes of Taubin smoothing of the remeshed surface (taubin_smoothing.h).
   int taubin_passes = 10;
-  /// Vertex normals from the smoothed field's gradient.
+  /// Lower the isosurface level below 1/2 where that level loses more ice than its
+  /// interpolation error allows (thin walls of partly melted cells; grid_mesher.cpp).
+  bool match_field_volume = true;
+  /// Angle-weighted vertex normals (of the smoothed surface: the raw fractions' gradient is
+  /// noisy at the cell scale and made sparkles in refraction).
   bool normals = true;
 };
 
@@ -33,10 +37,15 @@ struct GridMeshResult {
   TriangleMesh outer;  ///< ice | outside, outward from the ice (empty: no ice)
   TriangleMesh inner;  ///< cavity | ice, outward from the cavity (empty: no sealed cavity)
   int cavities = 0;
+  /// Level of the ice-fraction isosurface used (1/2 unless lowered to keep thin walls).
+  double iso_level = 0.5;
   double cavity_water_fraction = 0;  ///< mean water fraction in the cavities
   /// "" or the first check a candidate surface failed (the next one, less even, was used).
   std::string remesh_problem;
 };
+
+/// Volume of cell (i, j, k) of `field` [m^3]: h^3, or the ring pi (2i + 1) h^3 (axisymmetric).
+double cell_volume_m3(const sim::GridField& field, int i);
 
 /// Throws MeshError (surface_mesher.h) if a produced surface fails its checks.
 GridMeshResult mesh_grid_field(const sim::GridField& field, const GridMeshOptions& options);

@@ -34,14 +34,6 @@ bool is_grid_simulation_folder(const fs::path& simdir) {
 
 namespace {
 
-// Volume of cell (i, j, k) [m^3]: a cube, or the ring of radii i h .. (i + 1) h.
-double cell_volume(const sim::GridField& f, int i) {
-  const double h3 = f.spacing_m * f.spacing_m * f.spacing_m;
-  return f.geometry == sim::GridField::Geometry::cartesian3d
-             ? h3
-             : 3.14159265358979323846 * (2 * i + 1) * h3;
-}
-
 struct StepResult {
   std::optional<UserError> user_error;  // a damaged or unreadable field
   std::string error;                    // any other failure
@@ -49,6 +41,7 @@ struct StepResult {
   int cavities = 0;
   double cavity_water_fraction = 0;
   std::string remesh_problem;
+  double iso_level = 0.5;
 };
 
 void mesh_step(const fs::path& field_file, const fs::path& out_dir, long step,
@@ -61,6 +54,7 @@ void mesh_step(const fs::path& field_file, const fs::path& out_dir, long step,
   r.cavities = m.cavities;
   r.cavity_water_fraction = m.cavity_water_fraction;
   r.remesh_problem = m.remesh_problem;
+  r.iso_level = m.iso_level;
   // The field's own volumes: ice (+ the water held in sealed cavities) inside the outer surface,
   // the water inside the inner one (what the meshes should enclose).
   double ice = 0, water = 0;
@@ -68,8 +62,8 @@ void mesh_step(const fs::path& field_file, const fs::path& out_dir, long step,
     for (int j = 0; j < f.cells[1]; ++j)
       for (int i = 0; i < f.cells[0]; ++i) {
         const std::size_t c = f.index(i, j, k);
-        ice += f.ice_fraction[c] * cell_volume(f, i);
-        water += f.water_fraction[c] * cell_volume(f, i);
+        ice += f.ice_fraction[c] * cell_volume_m3(f, i);
+        water += f.water_fraction[c] * cell_volume_m3(f, i);
       }
   for (bool inner : {false, true}) {
     const TriangleMesh& mesh = inner ? m.inner : m.outer;
@@ -147,6 +141,7 @@ MeshManifest mesh_grid_simulation_folder(const fs::path& simdir, const MeshOptio
     rec.cavities = r.cavities;
     rec.cavity_water_fraction = r.cavity_water_fraction;
     rec.remesh_problem = r.remesh_problem;
+    rec.iso_level = r.iso_level;
     manifest.steps.push_back(rec);
   }
   manifest.distinct_meshes = static_cast<long>(rows.size());

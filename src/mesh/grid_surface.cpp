@@ -21,11 +21,6 @@ double dot(const Vec& a, const Vec& b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-constexpr float kIso = 0.5f;
-bool is_ice(float v) {
-  return v > kIso;
-}
-
 // Corner offsets of a lattice cube (bit 0 = x, bit 1 = y, bit 2 = z) and its Kuhn decomposition:
 // the six tetrahedra 0 - e_a - e_a + e_b - 7 for the six orders (a, b, c) of the axes. Their
 // edges are the 7 vectors sum of a non-empty subset of the axes, the same in every cube, so the
@@ -38,7 +33,7 @@ constexpr int kNeighbours[14][3] = {{1, 0, 0},  {-1, 0, 0},  {0, 1, 0},   {0, -1
 
 // Connected non-ice regions along tetrahedron edges (14-neighbourhood); -1 for ice nodes. Region 0
 // holds node (0, 0, 0), which is air (the lattice's border layer).
-std::vector<int> label_regions(const NodeLattice& l, int& count) {
+std::vector<int> label_regions(const NodeLattice& l, float iso, int& count) {
   const auto& n = l.nodes();
   std::vector<int> label(l.node_count(), -1);
   count = 0;
@@ -47,7 +42,7 @@ std::vector<int> label_regions(const NodeLattice& l, int& count) {
     for (int j = 0; j < n[1]; ++j)
       for (int i = 0; i < n[0]; ++i) {
         const std::size_t s = l.index(i, j, k);
-        if (is_ice(l.value(s)) || label[s] >= 0) continue;
+        if (l.value(s) > iso || label[s] >= 0) continue;
         const int id = count++;
         label[s] = id;
         queue.push_back({i, j, k});
@@ -58,7 +53,7 @@ std::vector<int> label_regions(const NodeLattice& l, int& count) {
             const int a = c[0] + d[0], b = c[1] + d[1], e = c[2] + d[2];
             if (a < 0 || b < 0 || e < 0 || a >= n[0] || b >= n[1] || e >= n[2]) continue;
             const std::size_t m = l.index(a, b, e);
-            if (label[m] >= 0 || is_ice(l.value(m))) continue;
+            if (label[m] >= 0 || l.value(m) > iso) continue;
             label[m] = id;
             queue.push_back({a, b, e});
           }
@@ -69,6 +64,7 @@ std::vector<int> label_regions(const NodeLattice& l, int& count) {
 
 struct Extractor {
   const NodeLattice& lattice;
+  float iso;
   const std::vector<int>& region;
   std::unordered_map<std::uint64_t, int> vertex_of_edge;
   std::vector<Vec> vertices;
@@ -85,7 +81,7 @@ struct Extractor {
         static_cast<std::uint64_t>(std::min(a, b)) * lattice.node_count() + std::max(a, b);
     const auto [pos, added] = vertex_of_edge.try_emplace(key, static_cast<int>(vertices.size()));
     if (added) {
-      const double fa = lattice.value(a) - kIso, fb = lattice.value(b) - kIso;
+      const double fa = lattice.value(a) - iso, fb = lattice.value(b) - iso;
       const double t = std::clamp(fa / (fa - fb), 1e-3, 1 - 1e-3);
       const Vec xa = lattice.position(pa[0], pa[1], pa[2]),
                 xb = lattice.position(pb[0], pb[1], pb[2]);
@@ -99,7 +95,7 @@ struct Extractor {
                    const std::array<std::size_t, 4>& node) {
     int ice_count = 0;
     std::array<bool, 4> ice{};
-    for (int q = 0; q < 4; ++q) ice_count += ice[q] = is_ice(lattice.value(node[q]));
+    for (int q = 0; q < 4; ++q) ice_count += ice[q] = lattice.value(node[q]) > iso;
     if (ice_count == 0 || ice_count == 4) return;
     std::array<int, 4> in{}, out{};
     int ni = 0, no = 0;
@@ -166,7 +162,7 @@ struct Extractor {
           for (int c = 0; c < 8; ++c) {
             corner[c] = {i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1)};
             node[c] = lattice.index(corner[c][0], corner[c][1], corner[c][2]);
-            ice_count += is_ice(lattice.value(node[c]));
+            ice_count += lattice.value(node[c]) > iso;
           }
           if (ice_count == 0 || ice_count == 8) continue;
           for (const auto& t : kTets)
@@ -200,10 +196,10 @@ TriangleMesh collect(const Extractor& x, Keep keep, bool flip) {
 
 }  // namespace
 
-GridSurfaces extract_grid_surfaces(const NodeLattice& ice, const NodeLattice& water) {
+GridSurfaces extract_grid_surfaces(const NodeLattice& ice, const NodeLattice& water, float iso) {
   int regions = 0;
-  const std::vector<int> region = label_regions(ice, regions);
-  Extractor x{ice, region, {}, {}, {}};
+  const std::vector<int> region = label_regions(ice, iso, regions);
+  Extractor x{ice, iso, region, {}, {}, {}};
   x.run();
   GridSurfaces s;
   s.outer = collect(
@@ -220,17 +216,6 @@ GridSurfaces extract_grid_surfaces(const NodeLattice& ice, const NodeLattice& wa
     }
   s.cavity_water_fraction = cavity_nodes > 0 ? sum / static_cast<double>(cavity_nodes) : 0.0;
   return s;
-}
-
-void set_lattice_normals(TriangleMesh& mesh, const NodeLattice& ice, bool inner) {
-  mesh.normals.clear();
-  mesh.normals.reserve(mesh.vertices.size());
-  for (const auto& v : mesh.vertices) {
-    Vec g = ice.gradient(v);
-    const double len = std::sqrt(dot(g, g));
-    const double s = (inner ? 1.0 : -1.0) / (len > 0 ? len : 1.0);
-    mesh.normals.push_back(len > 0 ? Vec{g[0] * s, g[1] * s, g[2] * s} : Vec{0, 1, 0});
-  }
 }
 
 }  // namespace thaw::mesh

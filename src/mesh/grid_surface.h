@@ -1,8 +1,8 @@
 #pragma once
-// The surfaces of the ice body in a GridField: the isosurface ice = 1/2 of its node lattice
-// (node_lattice.h), extracted by marching tetrahedra on the Kuhn decomposition of every lattice
-// cube (six tetrahedra around the cube's main diagonal, conforming between cubes), so the surface
-// is closed, 2-manifold and free of self-intersections by construction, with one vertex per
+// The surfaces of the ice body in a GridField: an isosurface (ice = 1/2 by default) of its node
+// lattice (node_lattice.h), extracted by marching tetrahedra on the Kuhn decomposition of every
+// lattice cube (six tetrahedra around the cube's main diagonal, conforming between cubes), so the
+// surface is closed, 2-manifold and free of self-intersections by construction, with one vertex per
 // crossed lattice edge. Each piece is classified by the non-ice region on its far side: regions
 // are the non-ice nodes connected along tetrahedron edges; the region holding the lattice's air
 // border is the outside, every other one is a sealed cavity.
@@ -25,13 +25,11 @@ struct GridSurfaces {
   double cavity_water_fraction = 0;
 };
 
-/// Marching tetrahedra on `ice` (values in [0, 1]); `water` (same lattice) gives the cavities'
-/// water content. Vertices where the isosurface crosses a lattice edge are kept at least 1e-3 of
-/// the edge from its nodes, so no triangle degenerates to a point. No normals.
-GridSurfaces extract_grid_surfaces(const NodeLattice& ice, const NodeLattice& water);
-
-/// Unit normals of `mesh` taken from the lattice's smoothed gradient: -grad(ice) for an outer
-/// surface (out of the ice), +grad(ice) for an inner one (out of the cavity).
-void set_lattice_normals(TriangleMesh& mesh, const NodeLattice& ice, bool inner);
+/// Marching tetrahedra on the isosurface ice = `iso` of `ice` (values in [0, 1]; ice where the
+/// value exceeds `iso`); `water` (same lattice) gives the cavities' water content. Vertices where
+/// the isosurface crosses a lattice edge are kept at least 1e-3 of the edge from its nodes, so no
+/// triangle degenerates to a point. No normals.
+GridSurfaces extract_grid_surfaces(const NodeLattice& ice, const NodeLattice& water,
+                                   float iso = 0.5f);
 
 }  // namespace thaw::mesh

@@ -352,6 +352,12 @@ nlohmann::ordered_json to_json(const MeshManifest& m) {
     }
     e["inner_inside_outer"] = s.inner_inside_outer ? nlohmann::ordered_json(*s.inner_inside_outer)
                                                    : nlohmann::ordered_json(nullptr);
+    if (m.grid) {
+      e["cavities"] = s.cavities;
+      e["cavity_water_fraction"] = s.cavity_water_fraction;
+      e["remesh_problem"] = s.remesh_problem;
+      e["iso_level"] = s.iso_level;
+    }
     steps.push_back(e);
   }
   j["steps"] = steps;

@@ -42,6 +42,7 @@ struct StepRecord {
   int cavities = 0;
   double cavity_water_fraction = 0;
   std::string remesh_problem;
+  double iso_level = 0.5;  ///< grid runs: level of the ice-fraction isosurface (grid_mesher.h)
 };
 
 struct MeshManifest {

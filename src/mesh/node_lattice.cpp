@@ -91,35 +91,4 @@ void NodeLattice::smooth_once() {
   }
 }
 
-std::array<double, 3> NodeLattice::node_gradient(int i, int j, int k) const {
-  const std::array<int, 3> c{i, j, k};
-  std::array<double, 3> g{};
-  for (int a = 0; a < 3; ++a) {
-    std::array<int, 3> lo = c, hi = c;
-    lo[a] = std::max(0, c[a] - 1);
-    hi[a] = std::min(m_nodes[a] - 1, c[a] + 1);
-    const double span = (hi[a] - lo[a]) * m_spacing;
-    g[a] = span > 0 ? (value(hi[0], hi[1], hi[2]) - value(lo[0], lo[1], lo[2])) / span : 0.0;
-  }
-  return g;
-}
-
-std::array<double, 3> NodeLattice::gradient(const std::array<double, 3>& p) const {
-  std::array<int, 3> i0{};
-  std::array<double, 3> t{};
-  for (int a = 0; a < 3; ++a) {
-    const double x = std::clamp((p[a] - m_origin[a]) / m_spacing, 0.0, m_nodes[a] - 1.000001);
-    i0[a] = std::min(static_cast<int>(x), m_nodes[a] - 2);
-    t[a] = x - i0[a];
-  }
-  std::array<double, 3> g{};
-  for (int corner = 0; corner < 8; ++corner) {
-    const int dx = corner & 1, dy = (corner >> 1) & 1, dz = (corner >> 2) & 1;
-    const double w = (dx ? t[0] : 1 - t[0]) * (dy ? t[1] : 1 - t[1]) * (dz ? t[2] : 1 - t[2]);
-    const auto gc = node_gradient(i0[0] + dx, i0[1] + dy, i0[2] + dz);
-    for (int a = 0; a < 3; ++a) g[a] += w * gc[a];
-  }
-  return g;
-}
-
 }  // namespace thaw::mesh

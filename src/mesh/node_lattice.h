@@ -35,14 +35,10 @@ class NodeLattice {
     return {m_origin[0] + i * m_spacing, m_origin[1] + j * m_spacing, m_origin[2] + k * m_spacing};
   }
   double spacing_m() const { return m_spacing; }
-  /// Trilinear interpolation of the central-difference gradient at the nodes [1/m] (continuous,
-  /// so normals taken from it vary smoothly across the surface).
-  std::array<double, 3> gradient(const std::array<double, 3>& p_m) const;
 
  private:
   static NodeLattice sample(const sim::GridField& field, const std::vector<float>& cell_values);
   void smooth_once();
-  std::array<double, 3> node_gradient(int i, int j, int k) const;
 
   std::array<int, 3> m_nodes{0, 0, 0};
   std::array<double, 3> m_origin{0, 0, 0};  ///< position of node (0, 0, 0) [m]

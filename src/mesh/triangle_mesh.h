@@ -19,6 +19,11 @@ struct TriangleMesh {
 /// (origin, a, b, c) / 6 (divergence theorem).
 double enclosed_volume(const TriangleMesh& mesh);
 
+/// Fills mesh.normals with unit vertex normals: the mean of the incident faces' normals
+/// weighted by the face angle at the vertex (Thuermer and Wuethrich 1998), outward for an
+/// outward-oriented mesh.
+void set_angle_weighted_normals(TriangleMesh& mesh);
+
 /// Total triangle area [m^2].
 double surface_area(const TriangleMesh& mesh);
 

@@ -79,7 +79,7 @@ RunScenario parse_run_scenario(const TomlTable& root) {
   const fs::path base_dir = fs::path(root.source_name()).parent_path();
 
   r.simulation = sim::parse_scenario(root, {"film", "mesh", "render"});
-  for (const char* section : {"simulation", "shell", "water", "ice", "inner_boundary",
+  for (const char* section : {"simulation", "shell", "shape", "water", "ice", "inner_boundary",
                               "outer_boundary", "materials"})
     if (auto t = root.optional_table(section)) r.simulation_text += std::string(section) + "\n" + t->canonical_text() + "\n";
 

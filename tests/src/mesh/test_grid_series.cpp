@@ -86,6 +86,9 @@ TEST(GridSeries, FolderContractAndBreakThrough) {
   EXPECT_EQ(j["geometry"]["geometry"], "grid");
   EXPECT_EQ(j["steps"][0]["outer"], "step_000000_outer.obj");
   EXPECT_TRUE(j["steps"][1]["inner"].is_null());
+  EXPECT_EQ(j["steps"][0]["cavities"], 1);
+  EXPECT_EQ(j["steps"][1]["cavities"], 0);
+  EXPECT_GT(j["steps"][0]["cavity_water_fraction"].get<double>(), 0.9);
   // What the pipeline reads back.
   const MeshManifest back = read_mesh_manifest(dir / "mesh/manifest.json");
   EXPECT_EQ(back.steps[0].inner.file, m.steps[0].inner.file);
