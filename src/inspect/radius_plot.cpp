@@ -194,7 +194,8 @@ void write_radius_plot(const fs::path& simdir, const fs::path& out_png) {
   const std::vector<sim::InterfaceRecord> rows = sim::read_interfaces_csv(simdir / "interfaces.csv");
   PlotOptions options;
   std::error_code ec;
-  if (fs::exists(simdir / "summary.json", ec))
+  // A grid run (fields/) has volume-equivalent radii: plotted as spheres (the default).
+  if (!fs::is_directory(simdir / "fields", ec) && fs::exists(simdir / "summary.json", ec))
     options.geometry = sim::read_shell_geometry(simdir / "summary.json").geometry;
   fs::path name = fs::absolute(simdir).lexically_normal();
   if (name.filename().empty()) name = name.parent_path();

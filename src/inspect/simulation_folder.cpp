@@ -89,7 +89,10 @@ SimulationFolder read_simulation_folder(const fs::path& dir) {
   SimulationFolder f;
   f.dir = dir;
   f.rows = sim::read_interfaces_csv(dir / "interfaces.csv");
-  if (fs::exists(dir / "summary.json", ec)) f.geometry = sim::read_shell_geometry(dir / "summary.json");
+  // A grid run (axisymmetric / 3D: a fields/ folder) has no 1D shell; its radii are
+  // volume-equivalent spheres and its exact volumes unknown here.
+  const bool grid_run = fs::is_directory(dir / "fields", ec);
+  if (!grid_run && fs::exists(dir / "summary.json", ec)) f.geometry = sim::read_shell_geometry(dir / "summary.json");
   const fs::path manifest = dir / "mesh" / "manifest.json";
   if (fs::exists(manifest, ec)) {
     f.meshed = true;
