@@ -68,21 +68,24 @@ bool inside(const BoundingSphere& a, const BoundingSphere& b) {
 
 std::vector<BoundingSphere> dielectric_targets(const Scene& scene) {
   std::vector<BoundingSphere> all;
+  std::vector<std::uint32_t> object;
   for (std::uint32_t i = 0; i < scene.objects().size(); ++i) {
     const SceneObject& o = scene.objects()[i];
     if (!o.dielectric || o.index_matched) continue;
     const BoundingSphere s = object_bounds(scene, i);
-    if (s.radius > 0) all.push_back(s);
+    if (s.radius <= 0) continue;
+    all.push_back(s);
+    object.push_back(i);
   }
+  // Object i is nested in object j when its sphere lies in j's and its outside medium is j's
+  // inside medium (the water core in the ice shell): light reaches it only through j.
   std::vector<BoundingSphere> kept;
   for (std::size_t i = 0; i < all.size(); ++i) {
-    bool contained = false;
-    for (std::size_t j = 0; j < all.size() && !contained; ++j) {
-      if (i == j || !inside(all[i], all[j])) continue;
-      // Of two equal spheres keep the first.
-      contained = !inside(all[j], all[i]) || j < i;
-    }
-    if (!contained) kept.push_back(all[i]);
+    bool nested = false;
+    for (std::size_t j = 0; j < all.size() && !nested; ++j)
+      nested = i != j && inside(all[i], all[j]) &&
+               scene.objects()[object[i]].outside == scene.objects()[object[j]].inside;
+    if (!nested) kept.push_back(all[i]);
   }
   return kept;
 }

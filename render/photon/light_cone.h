@@ -1,11 +1,12 @@
 #pragma once
 // Where photons are sent: the cones from each light to the bounding spheres of the scene's
 // dielectric objects (the only objects that can make a caustic). Index-matched dielectrics
-// (Scene: SceneObject::index_matched) are not targets, and a bounding sphere inside another is
-// dropped (the ice shell's water core is inside the shell's sphere). A light inside a target
-// sphere gets the whole sphere of directions. Sampling is uniform in solid angle; the cones of
-// one light may overlap, so a direction belongs to the first cone that contains it and the
-// others discard it: together they sample the union once. A light's cones are ordered by
+// (Scene: SceneObject::index_matched) are not targets, nor are objects nested in another (inside
+// its bounding sphere, with its inside medium outside them: the ice shell's water core); an
+// object merely standing inside another's sphere (the ice in its puddle ring) stays a target. A
+// light inside a target sphere gets the whole sphere of directions. Sampling is uniform in solid
+// angle; the cones of one light may overlap, so a direction belongs to the first cone that contains
+// it and the others discard it: together they sample the union once. A light's cones are ordered by
 // target size, smallest first, so the overlap (the ice standing in its puddle) goes to the
 // finer target. A sphere light of radius a emits from its whole disc as seen along each
 // direction, so its cones are aimed at the targets' spheres grown by a (every ray from the
@@ -26,8 +27,8 @@ struct BoundingSphere {
   float radius = 0;
 };
 
-/// Bounding spheres of the dielectric objects that are not index matched, in object order, with
-/// every sphere that lies inside another one removed.
+/// Bounding spheres of the dielectric objects that are not index matched and not nested in
+/// another (see above), in object order.
 std::vector<BoundingSphere> dielectric_targets(const Scene& scene);
 
 /// A light as the photon pass sees it: point lights (radius 0), then sphere lights.

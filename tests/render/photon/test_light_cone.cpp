@@ -13,8 +13,10 @@ namespace {
 
 using test::scene_from;
 
-// The ice shell's water core lies inside the shell's sphere: one target. An index-matched sphere
-// is no target; a separate glass box is (its sphere through the corners).
+// The ice shell's water core is nested in the shell (inside its sphere, outside = the shell's
+// inside): one target. An index-matched sphere is no target; a separate glass box is (its sphere
+// through the corners), and so is a small glass ball standing in a water ring's sphere (its
+// outside is not the ring's inside).
 TEST(LightCone, TargetsDropNestedAndIndexMatchedObjects) {
   const Scene scene = scene_from(R"(
 [[lights]]
@@ -49,24 +51,32 @@ min = [-5.0, -1.0, -1.0]
 max = [-3.0, 1.0, 1.0]
 inside = "ice"
 outside = "vacuum"
+[[objects]]
+shape = "sphere"
+center = [-4.0, 1.3, 0.0]
+radius = 0.1
+inside = "water"
+outside = "vacuum"
 )" + test::kCamera);
   EXPECT_TRUE(scene.objects()[2].index_matched);
   EXPECT_FALSE(scene.objects()[0].index_matched);
   const auto targets = dielectric_targets(scene);
-  ASSERT_EQ(targets.size(), 2u);
+  ASSERT_EQ(targets.size(), 3u);
+  EXPECT_NEAR(targets[2].radius, 0.1, 1e-5);  // widened by 1e-6 of the centre's coordinates
   EXPECT_NEAR(targets[0].radius, 1.0, 1e-5);
   EXPECT_NEAR(targets[1].center.x, -4.0, 1e-6);
   EXPECT_NEAR(targets[1].radius, std::sqrt(3.0), 1e-5);
   const auto cones = light_cones(emitters(scene), targets);
-  ASSERT_EQ(cones.size(), 2u);
-  // The smaller target first: the shell (radius 1) before the box (sqrt 3).
-  EXPECT_EQ(cones[0].target_index, 0u);
-  EXPECT_EQ(cones[1].target_index, 1u);
+  ASSERT_EQ(cones.size(), 3u);
+  // Smaller targets first: the ball (0.1), the shell (1), the box (sqrt 3).
+  EXPECT_EQ(cones[0].target_index, 2u);
+  EXPECT_EQ(cones[1].target_index, 0u);
+  EXPECT_EQ(cones[2].target_index, 1u);
   // Solid angle of a sphere of radius 1 seen from 10: 2 pi (1 - sqrt(1 - 0.01)); the bounding
   // sphere is widened by 1e-6 relative, which widens the cone by 2e-6 relative.
-  EXPECT_NEAR(cones[0].solid_angle_sr, 2 * M_PI * (1 - std::sqrt(0.99)),
-              1e-5 * cones[0].solid_angle_sr);
-  EXPECT_NEAR(cones[0].distance, 10.0, 1e-6);
+  EXPECT_NEAR(cones[1].solid_angle_sr, 2 * M_PI * (1 - std::sqrt(0.99)),
+              1e-5 * cones[1].solid_angle_sr);
+  EXPECT_NEAR(cones[1].distance, 10.0, 1e-6);
 }
 
 // Directions lie inside the cone and are uniform in solid angle: E[cos theta] = (1 + cos_half) / 2
