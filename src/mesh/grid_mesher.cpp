@@ -69,7 +69,7 @@ double ice_between(const GridSurfaces& s) {
 // docs/mesh.md): then thin walls of partly melted cells (every fraction below 1/2 across them)
 // would vanish from the film although the solver still has their ice, and the level is lowered
 // (bisection in [0.05, 1/2]; the enclosed volume grows as the level falls) until the surfaces
-// enclose the field's ice volume.
+// enclose the field's ice volume, never so low that the number of sealed cavities changes.
 GridSurfaces extract_with_field_volume(const NodeLattice& ice, const NodeLattice& water,
                                        const sim::GridField& field, float& level) {
   level = 0.5f;
@@ -80,9 +80,12 @@ GridSurfaces extract_with_field_volume(const NodeLattice& ice, const NodeLattice
   float lo = 0.05f, hi = 0.5f;
   for (int it = 0; it < 10; ++it) {
     const float mid = 0.5f * (lo + hi);
-    (ice_between(extract_grid_surfaces(ice, water, mid)) < target ? hi : lo) = mid;
+    // A level so low that it seals the hole of a broken-through shell (fewer or more cavities
+    // than at 1/2) is too low: the film must open when the solver's shell opens.
+    const GridSurfaces x = extract_grid_surfaces(ice, water, mid);
+    (ice_between(x) < target && x.cavities == s.cavities ? hi : lo) = mid;
   }
-  level = 0.5f * (lo + hi);
+  level = hi;  // the lowest level tried that kept the topology and did not exceed the volume
   return extract_grid_surfaces(ice, water, level);
 }
 }  // namespace
