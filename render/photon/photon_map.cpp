@@ -22,7 +22,9 @@ int cell_of(float x, float cell) {
   return static_cast<int>(std::floor(x / cell));
 }
 
-/// The radius class for n photons within r of a photon: the smallest c with 4^c n >= K.
+/// The radius class for n photons within r of a photon: the smallest c with 4^c n >= K (the
+/// disc of radius 2^c r would hold about K such photons), at most kClasses - 1. (Keeping r for
+/// n >= K/4 kept the caustic's edges sharper but left its sparse halo grainy.)
 int radius_class(std::uint32_t n, double photons_per_disc) {
   int c = 0;
   double reach = std::max<double>(n, 0.5);
@@ -108,7 +110,7 @@ PhotonMap::PhotonMap(const std::vector<Photon>& photons, float radius, double ph
   for (long long i = 0; i < count; ++i) {
     const Photon& ph = photons[static_cast<std::size_t>(i)];
     std::uint32_t n = 0;
-    // Stops at photons_per_disc: the focus of a caustic holds thousands within r.
+    // Stops at K (all that matters): the focus of a caustic holds thousands within r.
     all.for_each_near(ph.position, [&](const Photon& q, const Vec3& v, float) {
       if (dot(q.normal, ph.normal) >= kMinNormalCos &&
           std::fabs(dot(v, ph.normal)) <= kMaxPlaneDistance * radius)

@@ -6,12 +6,12 @@
 // estimate). Every K_p integrates to 1, so photons keep their power exactly, and a uniform photon
 // density of flux per area F returns exactly E = F, in the units of the photons' power per area:
 // the same units as direct light when Phi = I Omega / N (caustic_map.h).
-// Radius: r_p = r where at least `photons_per_disc` photons lie within r of the photon (the
-// focused, well sampled caustic keeps the sharp kernel); where fewer, n, lie there (the faint,
-// scattered light reflected off the ice, carried by few photons), r_p grows to the power-of-two
-// multiple of r nearest above r sqrt(photons_per_disc / n), at most 8 r, so that sparse photons
-// are spread into a smooth glow instead of isolated specks (the adaptive-kernel idea of
-// Silverman sec. 5.3 with the pilot count taken at radius r).
+// Radius: r_p = r where at least `photons_per_disc` (K) photons lie within r of the photon (the
+// focused, well sampled caustic keeps the sharp kernel); where fewer, n, do (the faint light
+// reflected off the ice and the halo around the caustic, carried by few photons), r_p grows to
+// the smallest 2^c r with 4^c n >= K, at most 8r, so that sparse photons become a smooth glow
+// instead of grain (the adaptive-kernel idea of Silverman sec. 5.3, the pilot count taken at
+// radius r). The price: a caustic's edges, where the disc is half empty, get 2r.
 // Photons of other surfaces are rejected: a photon counts only if its stored normal is within
 // ~25 degrees of n (cos > 0.9) and it lies within r_p / 4 of the tangent plane (a corner, the far
 // side of a thin wall, a ball resting on the floor). Each radius class (r, 2r, 4r, 8r) sits in a

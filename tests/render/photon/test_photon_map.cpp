@@ -56,9 +56,9 @@ TEST(PhotonMap, RejectsPhotonsOfOtherSurfaces) {
 }
 
 // Sparse photons get wider kernels: a photon with n neighbours within r (itself included) is
-// spread over r 2^c, the smallest c with 4^c n >= 32 (at most 8 r). Every kernel integrates to 1,
-// so the power is kept: integrating E over the plane returns the photons' power (midpoint rule
-// on a grid of r / 8 cells over a smooth kernel: 1e-3).
+// spread over r 2^c, the smallest c with 4^c n >= 32 (at most 8 r). Every kernel
+// integrates to 1, so the power is kept: integrating E over the plane returns the photons' power
+// (midpoint rule on a grid of r / 8 cells over a smooth kernel: 1e-3).
 TEST(PhotonMap, SparsePhotonsAreSpreadAndKeepTheirPower) {
   const float r = 0.1f;
   // A lone photon (n = 1 -> class 3, radius 8r) and a pair (n = 2 -> class 2, radius 4r).
