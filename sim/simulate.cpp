@@ -4,7 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <numbers>
 
+#include "sim/grid/grid_builder.h"
 #include "sim/scenario/scenario_file.h"
 #include "src/common/atomic_file.h"
 #include "src/common/check.h"
@@ -32,6 +34,64 @@ std::vector<double> output_times(const Scenario& sc) {
   return times;
 }
 
+namespace {
+
+/// Radius of the sphere of volume v [m]: interfaces.csv's radii for grid runs.
+double volume_equivalent_radius(double v) {
+  return std::cbrt(3 * v / (4 * std::numbers::pi));
+}
+
+Snapshot grid_snapshot(const GridSnapshot& g) {
+  Snapshot s;
+  s.time_s = g.time_s;
+  s.liquid_volume_m3 = g.liquid_volume_m3;
+  s.ice_volume_m3 = g.ice_volume_m3;
+  s.inner_radius_m = volume_equivalent_radius(g.liquid_volume_m3);
+  s.outer_radius_m = volume_equivalent_radius(g.liquid_volume_m3 + g.ice_volume_m3);
+  s.energy_balance_error = g.energy_balance_error;
+  s.enthalpy_j = g.enthalpy_j;
+  s.heat_in_j = g.heat_in_j;
+  s.drained_j = g.drained_j;
+  return s;
+}
+
+SimulationResult simulate_grid(const Scenario& scenario, const std::vector<double>& times,
+                               const ProgressCallback& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  SimulationResult result;
+  result.scenario = scenario;
+  EnthalpySolver solver(build_grid_problem(scenario));
+  result.reference_energy_j = solver.reference_energy();
+  const auto total = static_cast<std::int64_t>(times.size());
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    if (times[i] > solver.time()) solver.advance_to(times[i]);
+    result.snapshots.push_back(grid_snapshot(solver.snapshot()));
+    result.fields.push_back(solver.field());
+    if (progress) progress(static_cast<std::int64_t>(i + 1), total);
+    if (solver.finished()) {
+      result.ended_early = i + 1 < times.size();
+      break;
+    }
+  }
+  result.grid_events = solver.events();
+  const auto& c = scenario.shape.outer.center_m;
+  for (const GridEvent& e : result.grid_events) {
+    const double dx = e.position_m[0] - c[0], dy = e.position_m[1] - c[1],
+                 dz = e.position_m[2] - c[2];
+    result.events.push_back({e.kind, e.time_s, std::sqrt(dx * dx + dy * dy + dz * dz)});
+  }
+  result.grid_statistics = solver.statistics();
+  result.statistics.steps =
+      result.grid_statistics.steps;  // for the command line's one-line summary
+  result.statistics.rejected_steps = result.grid_statistics.rejected_steps;
+  result.statistics.max_step_energy_error = result.grid_statistics.max_step_energy_error;
+  result.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace
+
 SimulationResult simulate(const Scenario& scenario, const std::vector<double>& times,
                           const ProgressCallback& progress) {
   validate_scenario(scenario);
@@ -39,6 +99,7 @@ SimulationResult simulate(const Scenario& scenario, const std::vector<double>& t
   for (std::size_t i = 0; i < times.size(); ++i)
     if (!std::isfinite(times[i]) || times[i] < 0 || (i > 0 && !(times[i] > times[i - 1])))
       throw UserError("", "output times", "must be finite, >= 0 and increasing");
+  if (scenario.grid != GridGeometry::none) return simulate_grid(scenario, times, progress);
   const auto start = std::chrono::steady_clock::now();
   SimulationResult result;
   result.scenario = scenario;
@@ -50,7 +111,8 @@ SimulationResult simulate(const Scenario& scenario, const std::vector<double>& t
     // at most 5 % of an output interval: t = 0 shows the scenario's own initial state, any
     // other output time before t0 the start state.
     if (times[i] > solver.time()) solver.advance_to(times[i]);
-    Snapshot snap = times[i] == 0 && solver.time() > 0 ? solver.initial_snapshot(true) : solver.snapshot(true);
+    Snapshot snap =
+        times[i] == 0 && solver.time() > 0 ? solver.initial_snapshot(true) : solver.snapshot(true);
     if (solver.finished() && solver.time() < times[i]) {
       result.snapshots.push_back(std::move(snap));
       result.ended_early = true;
@@ -66,7 +128,8 @@ SimulationResult simulate(const Scenario& scenario, const std::vector<double>& t
   }
   result.events = solver.events();
   result.statistics = solver.statistics();
-  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 
@@ -75,8 +138,70 @@ SimulationResult simulate(const Scenario& scenario, const ProgressCallback& prog
   return simulate(scenario, output_times(scenario), progress);
 }
 
+namespace {
+
+void write_grid_outputs(const std::filesystem::path& dir, const SimulationResult& r) {
+  write_interfaces_csv(dir / "interfaces.csv", r.interface_records());
+  const auto fields = dir / "fields";
+  ensure_directory(fields);
+  char buf[64];
+  for (std::size_t i = 0; i < r.fields.size(); ++i) {
+    std::snprintf(buf, sizeof buf, "step_%06zu.grid", i);
+    write_grid_field(fields / buf, r.fields[i]);
+  }
+  nlohmann::json j;
+  j["parameters"] = scenario_to_json(r.scenario);
+  j["events"] = nlohmann::json::array();
+  for (std::size_t i = 0; i < r.grid_events.size(); ++i) {
+    const GridEvent& e = r.grid_events[i];
+    j["events"].push_back({{"kind", e.kind},
+                           {"time_s", e.time_s},
+                           {"radius_m", r.events[i].radius_m},
+                           {"position_m", e.position_m}});
+  }
+  j["wall_time_s"] = r.wall_time_s;
+  const GridStatistics& s = r.grid_statistics;
+  double max_error = 0;
+  for (const Snapshot& snap : r.snapshots)
+    max_error = std::max(max_error, snap.energy_balance_error);
+  const GridField& f = r.fields.front();
+  j["solver"] = {
+      {"method", "fixed-grid enthalpy (Voller & Prakash), backward Euler, semismooth Newton + CG"},
+      {"grid",
+       {{"geometry", to_string(f.geometry)},
+        {"cells", f.cells},
+        {"origin_m", f.origin_m},
+        {"spacing_m", f.spacing_m}}},
+      {"steps", s.steps},
+      {"rejected_steps", s.rejected_steps},
+      {"newton_iterations", s.newton_iterations},
+      {"cg_iterations", s.cg_iterations},
+      {"cell_updates", s.cell_updates},
+      {"unconverged_steps", s.unconverged_steps},
+      {"removed_ice_m3", s.removed_ice_m3},
+      {"min_step_s", s.min_step_s},
+      {"max_step_s", s.max_step_s},
+      {"max_step_energy_error", s.max_step_energy_error},
+      {"max_energy_balance_error", max_error},
+      {"reference_energy_j", r.reference_energy_j}};
+  j["output"] = {
+      {"rows", r.snapshots.size()},
+      {"ended_early", r.ended_early},
+      {"final_time_s", r.snapshots.back().time_s},
+      {"radii", "volume-equivalent: inner from the liquid volume, outer from ice + liquid"}};
+  const Snapshot& last = r.snapshots.back();
+  j["final"] = {{"inner_radius_m", last.inner_radius_m},
+                {"outer_radius_m", last.outer_radius_m},
+                {"liquid_volume_m3", last.liquid_volume_m3},
+                {"ice_volume_m3", last.ice_volume_m3}};
+  write_file_atomic(dir / "summary.json", j.dump(2) + "\n");
+}
+
+}  // namespace
+
 void write_simulation_outputs(const std::filesystem::path& dir, const SimulationResult& r) {
   THAW_CHECK(!r.snapshots.empty(), "a simulation result has at least one snapshot");
+  if (r.scenario.grid != GridGeometry::none) return write_grid_outputs(dir, r);
   write_interfaces_csv(dir / "interfaces.csv", r.interface_records());
   const auto profiles = dir / "profiles";
   ensure_directory(profiles);
@@ -98,20 +223,22 @@ void write_simulation_outputs(const std::filesystem::path& dir, const Simulation
   j["wall_time_s"] = r.wall_time_s;
   const SolverStatistics& s = r.statistics;
   double max_error = 0;
-  for (const Snapshot& snap : r.snapshots) max_error = std::max(max_error, snap.energy_balance_error);
-  j["solver"] = {{"method", "front-fixing finite volumes (Landau transform, ALE), TR-BDF2, step doubling"},
-                 {"steps", s.steps},
-                 {"rejected_steps", s.rejected_steps},
-                 {"newton_iterations", s.newton_iterations},
-                 {"linear_solves", s.linear_solves},
-                 {"min_step_s", s.min_step_s},
-                 {"max_step_s", s.max_step_s},
-                 {"max_step_energy_error", s.max_step_energy_error},
-                 {"max_energy_balance_error", max_error},
-                 {"reference_energy_j", r.reference_energy_j},
-                 {"removed_remnant_energy_j", s.removed_energy_j},
-                 {"small_time_start_s", s.start_time_s},
-                 {"small_time_start_energy_j", s.start_energy_j}};
+  for (const Snapshot& snap : r.snapshots)
+    max_error = std::max(max_error, snap.energy_balance_error);
+  j["solver"] = {
+      {"method", "front-fixing finite volumes (Landau transform, ALE), TR-BDF2, step doubling"},
+      {"steps", s.steps},
+      {"rejected_steps", s.rejected_steps},
+      {"newton_iterations", s.newton_iterations},
+      {"linear_solves", s.linear_solves},
+      {"min_step_s", s.min_step_s},
+      {"max_step_s", s.max_step_s},
+      {"max_step_energy_error", s.max_step_energy_error},
+      {"max_energy_balance_error", max_error},
+      {"reference_energy_j", r.reference_energy_j},
+      {"removed_remnant_energy_j", s.removed_energy_j},
+      {"small_time_start_s", s.start_time_s},
+      {"small_time_start_energy_j", s.start_energy_j}};
   j["output"] = {{"rows", r.snapshots.size()},
                  {"ended_early", r.ended_early},
                  {"final_time_s", r.snapshots.empty() ? 0.0 : r.snapshots.back().time_s}};

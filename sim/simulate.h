@@ -1,11 +1,14 @@
 #pragma once
 // The simulation as a library call, for `thaw simulate` and the `thaw run` pipeline: run a
 // scenario, sampling the state at exactly the requested output times, and write the result
-// folder (interfaces.csv, profiles/step_NNNNNN.csv, summary.json). Knows nothing of the command
+// folder (interfaces.csv, summary.json, and profiles/step_NNNNNN.csv for the 1D geometries or
+// fields/step_NNNNNN.grid for the axisymmetric and 3D ones). Knows nothing of the command
 // line; progress goes through a callback.
 #include <filesystem>
 #include <vector>
 
+#include "sim/grid/enthalpy_solver.h"
+#include "sim/io/grid_field.h"
 #include "sim/io/interface_history.h"
 #include "sim/scenario/scenario.h"
 #include "sim/stefan1d/front_fixing.h"
@@ -14,13 +17,18 @@
 namespace thaw::sim {
 
 struct SimulationResult {
-  Scenario scenario;                     ///< effective parameters (defaults filled in)
-  std::vector<Snapshot> snapshots;       ///< one per output time reached (with profiles)
+  Scenario scenario;                ///< effective parameters (defaults filled in)
+  std::vector<Snapshot> snapshots;  ///< one per output time reached (with profiles)
   std::vector<Event> events;
   SolverStatistics statistics;
-  double reference_energy_j = 0;         ///< scale of energy_balance_error [J]
+  double reference_energy_j = 0;  ///< scale of energy_balance_error [J]
   double wall_time_s = 0;
-  bool ended_early = false;              ///< no ice left before the last output time
+  bool ended_early = false;  ///< no ice left before the last output time
+  /// Grid runs (scenario.grid != none): one field per snapshot, the events with positions
+  /// (`events` holds them too, radius_m = distance from the outer body's centre).
+  std::vector<GridField> fields;
+  std::vector<GridEvent> grid_events;
+  GridStatistics grid_statistics;
   /// interfaces.csv rows, step = index into snapshots.
   std::vector<InterfaceRecord> interface_records() const;
 };
@@ -31,9 +39,9 @@ std::vector<double> output_times(const Scenario& scenario);
 
 /// Runs `scenario` (validated here; throws thaw::UserError if invalid) and samples the state at
 /// each of `times` (increasing, >= 0); t = 0 is the scenario's initial state even when a phase
-/// of zero thickness is started analytically a moment later. If the ice is gone before the last time, the run stops
-/// there and the last snapshot is that instant (ended_early). progress(done, total) is called
-/// after each output time.
+/// of zero thickness is started analytically a moment later. If the ice is gone before the last
+/// time, the run stops there and the last snapshot is that instant (ended_early). progress(done,
+/// total) is called after each output time.
 SimulationResult simulate(const Scenario& scenario, const std::vector<double>& times,
                           const ProgressCallback& progress = {});
 /// simulate(scenario, output_times(scenario), progress).

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "sim/io/interface_history.h"
+#include "sim/shape/shape.h"
 
 namespace thaw::sim {
 
@@ -31,22 +32,37 @@ enum class OuterBoundary { temperature, convective, flux, insulated };
 const char* to_string(InnerBoundary kind);
 const char* to_string(OuterBoundary kind);
 
+/// Which solver runs: the 1D radial one (none: `geometry` and [shell] apply) or the grid
+/// enthalpy solver on [shape] (geometry = "axisymmetric" | "3d").
+enum class GridGeometry { none, axisymmetric, cartesian3d };
+
+/// "" | "axisymmetric" | "3d" (the scenario file's spelling).
+const char* to_string(GridGeometry grid);
+
 struct Scenario {
   // [simulation]
-  Geometry geometry = Geometry::sphere;
-  double duration_s = 3600.0;          ///< end time [s]
-  double output_interval_s = 60.0;     ///< rows of interfaces.csv at t = k * interval [s]
-  int cells_per_phase = 48;            ///< finite volumes in each phase (water, ice)
+  Geometry geometry = Geometry::sphere;  ///< 1D geometry (ignored when grid != none)
+  GridGeometry grid = GridGeometry::none;
+  double duration_s = 3600.0;       ///< end time [s]
+  double output_interval_s = 60.0;  ///< rows of interfaces.csv at t = k * interval [s]
+  int cells_per_phase = 48;         ///< finite volumes in each phase (water, ice)
   /// Time-step error tolerance: the estimated local error of one step in the front positions
   /// (relative to outer_radius_m) and temperatures (relative to the largest temperature
   /// difference in the scenario).
   double time_tolerance = 1e-6;
+  /// Grid runs: cell edge [m]; 0 picks default_cell_size_m() (sim/grid/grid_rules.h).
+  double cell_size_m = 0;
+  /// Grid runs: largest time step [s] (steps adapt below it to the temperature and melt change).
+  double max_step_s = 10.0;
+
+  // [shape] (grid runs only)
+  Shape shape;
 
   // [shell]
-  double inner_radius_m = 0.02;        ///< water|ice front at t = 0 [m]; may be 0
-  double outer_radius_m = 0.03;        ///< ice surface at t = 0 [m]; may equal inner_radius_m
-  double length_m = 0.06;              ///< cylinder: length of the capsule's tube [m] (mesher only)
-  double lateral_size_m = 0.1;         ///< planar: lateral size of the slab [m] (mesher only)
+  double inner_radius_m = 0.02;  ///< water|ice front at t = 0 [m]; may be 0
+  double outer_radius_m = 0.03;  ///< ice surface at t = 0 [m]; may equal inner_radius_m
+  double length_m = 0.06;        ///< cylinder: length of the capsule's tube [m] (mesher only)
+  double lateral_size_m = 0.1;   ///< planar: lateral size of the slab [m] (mesher only)
 
   // [water], [ice]
   double water_initial_temperature_c = 10.0;
@@ -54,13 +70,13 @@ struct Scenario {
 
   // [inner_boundary] (planar only may be "temperature")
   InnerBoundary inner_kind = InnerBoundary::symmetry;
-  double inner_temperature_c = 0.0;    ///< held wall temperature (kind = temperature) [C]
+  double inner_temperature_c = 0.0;  ///< held wall temperature (kind = temperature) [C]
 
   // [outer_boundary]
   OuterBoundary outer_kind = OuterBoundary::convective;
-  double outer_temperature_c = 20.0;   ///< held surface temperature or air temperature [C]
+  double outer_temperature_c = 20.0;  ///< held surface temperature or air temperature [C]
   double heat_transfer_coefficient_w_m2k = 10.0;  ///< h [W/(m^2 K)] (convective)
-  double flux_w_m2 = 0.0;              ///< heat flux into the ice [W/m^2] (flux)
+  double flux_w_m2 = 0.0;                         ///< heat flux into the ice [W/m^2] (flux)
 
   Materials materials;
 

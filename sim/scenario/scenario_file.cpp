@@ -10,6 +10,7 @@
 
 #include "embedded/kDefaultScenarioToml.h"
 #include "embedded/kIceWaterMaterialsToml.h"
+#include "sim/grid/grid_rules.h"
 #include "src/common/error.h"
 #include "src/common/toml_table.h"
 
@@ -253,6 +254,8 @@ std::optional<Problem> find_problem(const Scenario& s) {
                      "equals inner_radius_m (no ice at t = 0), so the outer boundary must freeze the water at once: "
                      "a held temperature below melting, or convective/flux cooling of water at the melting point"};
   }
+  // Grid runs ([shape]); the [shell] rules above pass on its unused defaults.
+  if (auto p = find_grid_problem(s)) return Problem{p->key, p->message};
   return std::nullopt;
 }
 
@@ -273,7 +276,9 @@ void reject_unless(const TomlTable& t, const std::string& key, bool allowed, con
 /// surface as "required key is missing" for the key it was meant to be.
 void check_schema(const TomlTable& root, const std::set<std::string>& foreign_sections) {
   static const std::vector<std::pair<std::string, std::vector<std::string>>> schema = {
-      {"simulation", {"geometry", "duration_s", "output_interval_s", "cells_per_phase", "time_tolerance"}},
+      {"simulation",
+       {"geometry", "duration_s", "output_interval_s", "cells_per_phase", "time_tolerance", "cell_size_m", "max_step_s"}},
+      {"shape", {"outer", "cavity"}},
       {"shell", {"inner_radius_m", "outer_radius_m", "length_m", "lateral_size_m"}},
       {"water", {"initial_temperature_c"}},
       {"ice", {"initial_temperature_c"}},
@@ -290,6 +295,56 @@ void check_schema(const TomlTable& root, const std::set<std::string>& foreign_se
     for (const std::string& key : table->keys())
       if (std::find(it->second.begin(), it->second.end(), key) == it->second.end()) table->fail(key, "unknown key");
   }
+}
+
+/// One shape of [shape] (an inline table); `dir` resolves a relative OBJ path.
+ShapeSpec parse_shape_spec(const TomlTable& t, const std::filesystem::path& dir) {
+  ShapeSpec s;
+  const std::string kind = t.get_string("kind");
+  static const std::vector<std::pair<std::string, std::vector<std::string>>> keys = {
+      {"box", {"size_m", "edge_radius_m"}},
+      {"sphere", {"radius_m"}},
+      {"cylinder", {"radius_m", "height_m"}},
+      {"obj", {"file", "scale", "translate_m"}}};
+  const auto it = std::find_if(keys.begin(), keys.end(), [&](const auto& e) { return e.first == kind; });
+  if (it == keys.end()) t.fail("kind", "unknown kind '" + kind + "' (expected box, sphere, cylinder or obj)");
+  for (const std::string& key : t.keys())
+    if (key != "kind" && key != "center_m" && std::find(it->second.begin(), it->second.end(), key) == it->second.end())
+      t.fail(key, "unknown key for kind = \"" + kind + "\" (expected " + [&] {
+        std::string list = "center_m";
+        for (const auto& k : it->second) list += ", " + k;
+        return list;
+      }() + ")");
+  s.center_m = t.get_vec3("center_m", s.center_m);
+  if (kind == "box") {
+    s.kind = ShapeKind::box;
+    s.size_m = t.get_vec3("size_m");
+    s.edge_radius_m = t.get_double("edge_radius_m", 0.0);
+  } else if (kind == "sphere") {
+    s.kind = ShapeKind::sphere;
+    s.radius_m = t.get_double("radius_m");
+  } else if (kind == "cylinder") {
+    s.kind = ShapeKind::cylinder;
+    s.radius_m = t.get_double("radius_m");
+    s.height_m = t.get_double("height_m");
+  } else {
+    s.kind = ShapeKind::obj;
+    const std::filesystem::path file = t.get_string("file");
+    s.file = (file.is_relative() ? dir / file : file).lexically_normal().string();
+    s.scale = t.get_double("scale", 1.0);
+    s.translate_m = t.get_vec3("translate_m", s.translate_m);
+  }
+  return s;
+}
+
+Shape parse_shape(const TomlTable& t) {
+  // relative OBJ paths are relative to the scenario file's folder
+  const std::filesystem::path source = t.source_name();
+  const std::filesystem::path dir = std::filesystem::is_regular_file(source) ? source.parent_path() : std::filesystem::path{};
+  Shape shape;
+  shape.outer = parse_shape_spec(t.table("outer"), dir);
+  if (auto cavity = t.optional_table("cavity")) shape.cavity = parse_shape_spec(*cavity, dir);
+  return shape;
 }
 
 Materials parse_materials(const TomlTable& t, Materials m) {
@@ -348,25 +403,40 @@ Scenario parse_scenario(const TomlTable& root, const std::set<std::string>& fore
 
   const TomlTable sim = root.table("simulation");
   const std::string geometry = sim.get_string("geometry");
-  if (!parse_geometry(geometry, s.geometry))
-    sim.fail("geometry", "unknown geometry '" + geometry + "' (expected planar, cylinder or sphere)");
+  if (geometry == "axisymmetric") s.grid = GridGeometry::axisymmetric;
+  else if (geometry == "3d") s.grid = GridGeometry::cartesian3d;
+  else if (!parse_geometry(geometry, s.geometry))
+    sim.fail("geometry", "unknown geometry '" + geometry + "' (expected planar, cylinder, sphere, axisymmetric or 3d)");
+  const bool grid = s.grid != GridGeometry::none;
   s.duration_s = sim.get_double("duration_s");
   s.output_interval_s = sim.get_double("output_interval_s");
+  reject_unless(sim, "cells_per_phase", !grid, "only used by the 1D geometries (grid runs: cell_size_m)");
+  reject_unless(sim, "time_tolerance", !grid, "only used by the 1D geometries (grid runs: max_step_s)");
+  reject_unless(sim, "cell_size_m", grid, "only used with geometry = \"axisymmetric\" or \"3d\"");
+  reject_unless(sim, "max_step_s", grid, "only used with geometry = \"axisymmetric\" or \"3d\"");
   const std::int64_t cells = sim.get_int("cells_per_phase", s.cells_per_phase);
   if (cells < 4 || cells > 100000) sim.fail("cells_per_phase", "must be between 4 and 100000 (got " + std::to_string(cells) + ")");
   s.cells_per_phase = static_cast<int>(cells);
   s.time_tolerance = sim.get_double("time_tolerance", s.time_tolerance);
+  if (grid) {
+    if (sim.has("cell_size_m")) s.cell_size_m = sim.require_positive("cell_size_m", sim.get_double("cell_size_m"));
+    s.max_step_s = sim.require_positive("max_step_s", sim.get_double("max_step_s", s.max_step_s));
+    if (root.has("shell")) root.fail("shell", "[shell] describes the 1D geometries; geometry = \"" + geometry + "\" takes [shape]");
+    s.shape = parse_shape(root.table("shape"));
+  } else {
+    if (root.has("shape")) root.fail("shape", "only used with geometry = \"axisymmetric\" or \"3d\" (the 1D geometries take [shell])");
+    const TomlTable shell = root.table("shell");
+    s.inner_radius_m = shell.get_double("inner_radius_m");
+    s.outer_radius_m = shell.get_double("outer_radius_m");
+    reject_unless(shell, "length_m", s.geometry == Geometry::cylinder, "only used with geometry = \"cylinder\"");
+    reject_unless(shell, "lateral_size_m", s.geometry == Geometry::planar, "only used with geometry = \"planar\"");
+    // Defaults sized to the shell so that a default capsule or slab looks like one.
+    s.length_m = shell.get_double("length_m", 2.0 * s.outer_radius_m);
+    s.lateral_size_m = shell.get_double("lateral_size_m", 4.0 * s.outer_radius_m);
+  }
 
-  const TomlTable shell = root.table("shell");
-  s.inner_radius_m = shell.get_double("inner_radius_m");
-  s.outer_radius_m = shell.get_double("outer_radius_m");
-  reject_unless(shell, "length_m", s.geometry == Geometry::cylinder, "only used with geometry = \"cylinder\"");
-  reject_unless(shell, "lateral_size_m", s.geometry == Geometry::planar, "only used with geometry = \"planar\"");
-  // Defaults sized to the shell so that a default capsule or slab looks like one.
-  s.length_m = shell.get_double("length_m", 2.0 * s.outer_radius_m);
-  s.lateral_size_m = shell.get_double("lateral_size_m", 4.0 * s.outer_radius_m);
-
-  s.water_initial_temperature_c = root.table("water").get_double("initial_temperature_c");
+  if (!grid || s.shape.cavity || root.has("water"))
+    s.water_initial_temperature_c = root.table("water").get_double("initial_temperature_c");
   s.ice_initial_temperature_c = root.table("ice").get_double("initial_temperature_c");
 
   if (auto inner = root.optional_table("inner_boundary")) {
@@ -457,6 +527,26 @@ nlohmann::json scenario_to_json(const Scenario& s) {
                 {"outer_radius_m", s.outer_radius_m},
                 {"length_m", s.length_m},
                 {"lateral_size_m", s.lateral_size_m}};
+  if (s.grid != GridGeometry::none) {
+    j["simulation"] = {{"geometry", to_string(s.grid)},
+                       {"duration_s", s.duration_s},
+                       {"output_interval_s", s.output_interval_s},
+                       {"cell_size_m", effective_cell_size_m(s)},
+                       {"max_step_s", s.max_step_s}};
+    j.erase("shell");
+    auto shape_json = [](const ShapeSpec& sp) {
+      nlohmann::json o = {{"kind", to_string(sp.kind)}, {"center_m", sp.center_m}};
+      switch (sp.kind) {
+        case ShapeKind::box: o["size_m"] = sp.size_m, o["edge_radius_m"] = sp.edge_radius_m; break;
+        case ShapeKind::sphere: o["radius_m"] = sp.radius_m; break;
+        case ShapeKind::cylinder: o["radius_m"] = sp.radius_m, o["height_m"] = sp.height_m; break;
+        case ShapeKind::obj: o["file"] = sp.file, o["scale"] = sp.scale, o["translate_m"] = sp.translate_m; break;
+      }
+      return o;
+    };
+    j["shape"]["outer"] = shape_json(s.shape.outer);
+    if (s.shape.cavity) j["shape"]["cavity"] = shape_json(*s.shape.cavity);
+  }
   j["water"] = {{"initial_temperature_c", s.water_initial_temperature_c}};
   j["ice"] = {{"initial_temperature_c", s.ice_initial_temperature_c}};
   j["inner_boundary"] = {{"kind", to_string(s.inner_kind)}};

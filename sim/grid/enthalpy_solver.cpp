@@ -1,0 +1,705 @@
+#include "sim/grid/enthalpy_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <numbers>
+
+#include "src/common/check.h"
+
+namespace thaw::sim {
+
+double enthalpy_of_temperature(const Materials& m, double t_c, bool liquid) {
+  const double u = t_c - m.melting_point_c;
+  if (liquid) return m.latent_heat_per_volume() + m.water_heat_capacity() * std::max(u, 0.0);
+  return m.ice_heat_capacity() * std::min(u, 0.0);
+}
+
+namespace {
+
+/// Cells per block of the deterministic sums: partial sums of fixed blocks added in order, so
+/// results do not depend on the thread count.
+constexpr long kBlock = 4096;
+/// Below this many cells a loop runs on one thread (thread start-up would cost more).
+constexpr long kParallelCells = 16384;
+
+template <class F>
+double sum_cells(long n, F&& f) {
+  const long blocks = (n + kBlock - 1) / kBlock;
+  if (blocks == 1) {
+    double s = 0;
+    for (long c = 0; c < n; ++c) s += f(c);
+    return s;
+  }
+  std::vector<double> partial(static_cast<std::size_t>(blocks), 0.0);
+#pragma omp parallel for schedule(static) if (n > kParallelCells)
+  for (long b = 0; b < blocks; ++b) {
+    double s = 0;
+    const long end = std::min(n, (b + 1) * kBlock);
+    for (long c = b * kBlock; c < end; ++c) s += f(c);
+    partial[static_cast<std::size_t>(b)] = s;
+  }
+  double total = 0;
+  for (double s : partial) total += s;
+  return total;
+}
+
+template <class F>
+double max_cells(long n, F&& f) {
+  double m = 0;
+#pragma omp parallel for schedule(static) reduction(max : m) if (n > kParallelCells)
+  for (long c = 0; c < n; ++c) m = std::max(m, f(c));
+  return m;
+}
+
+enum CellType : unsigned char { kAir = 0, kIce = 1, kWater = 2, kMushy = 3 };
+
+/// Newton stops when every cell's balance residual, expressed as a temperature, is below this [K].
+constexpr double kNewtonTolerance_K = 1e-6;
+constexpr int kMaxNewton = 30;
+constexpr int kMaxCg = 5000;
+/// Newton failing at this step accepts its last iterate (energy is conserved by the final
+/// update whatever the iterate) and counts it in GridStatistics::unconverged_steps.
+constexpr double kMinStep_s = 1e-3;
+/// Ice left in a drained cell below this fraction is removed with it: at T_m its enthalpy is
+/// zero, so the energy balance is untouched; the volume is booked as removed_ice_m3.
+constexpr double kRemnantFraction = 1e-3;
+
+}  // namespace
+
+struct EnthalpySolver::Impl {
+  GridProblem p;
+  long n = 0;
+  int nx = 0, ny = 0, nz = 0;
+  bool axisymmetric = false;
+  double s = 0, latent = 0, tm = 0, ci = 0, cw = 0, ki = 0, kw = 0;
+
+  std::vector<double> vol;     ///< cell volume [m^3]
+  std::vector<double> area_x;  ///< area of the face between i and i+1 (per i) [m^2]
+  std::vector<double> area_y;  ///< area of a y face (per i) [m^2]
+  double area_z = 0;           ///< area of a z face [m^2]
+  std::vector<double> m, h, hn, t, t_start, f_start;
+  std::vector<double> kx, ky, kz;    ///< face conductances to the +x, +y, +z neighbour [W/K]
+  std::vector<double> bq0, bq1;      ///< boundary heat into the cell: bq0 - bq1 T [W]
+  std::vector<double> surface_area;  ///< material | air area assigned to the cell [m^2]
+  std::vector<unsigned char> type;
+  std::vector<double> cg_r, cg_z, cg_p, cg_q, dtemp, diag, rhs;
+  std::vector<char> open_prev, enclosed_prev, exposed;
+
+  double time = 0, dt = 0;
+  bool done = false, broke_through = false, melt_started = false, core_frozen = false;
+  bool had_enclosed_liquid = false;
+  double e0 = 0, heat_in = 0, drained = 0, reference = 0, initial_material = 0;
+  std::vector<GridEvent> events;
+  GridStatistics stats;
+
+  explicit Impl(GridProblem problem) : p(std::move(problem)) {
+    nx = p.cells[0];
+    ny = p.cells[1];
+    nz = p.cells[2];
+    n = static_cast<long>(nx) * ny * nz;
+    axisymmetric = p.geometry == GridField::Geometry::axisymmetric;
+    THAW_CHECK(nx > 0 && ny > 0 && nz > 0 && p.spacing_m > 0, "grid problem with an empty grid");
+    THAW_CHECK(!axisymmetric || nz == 1, "axisymmetric grids have one cell in z");
+    THAW_CHECK(static_cast<long>(p.material_fraction.size()) == n &&
+                   static_cast<long>(p.enthalpy_j_m3.size()) == n,
+               "grid problem arrays must have one value per cell");
+    s = p.spacing_m;
+    const Materials& mat = p.materials;
+    latent = mat.latent_heat_per_volume();
+    tm = mat.melting_point_c;
+    ci = mat.ice_heat_capacity();
+    cw = mat.water_heat_capacity();
+    ki = mat.ice_conductivity_w_mk;
+    kw = mat.water_conductivity_w_mk;
+    build_metric();
+    m = p.material_fraction;
+    h = p.enthalpy_j_m3;
+    for (long c = 0; c < n; ++c) {
+      THAW_CHECK(m[c] >= 0 && m[c] <= 1 && std::isfinite(h[c]), "material fraction outside [0, 1]");
+      if (m[c] == 0) h[c] = 0;
+    }
+    for (auto* v : {&hn, &t, &t_start, &f_start, &kx, &ky, &kz, &bq0, &bq1, &surface_area, &cg_r,
+                    &cg_z, &cg_p, &cg_q, &dtemp, &diag, &rhs})
+      v->assign(static_cast<std::size_t>(n), 0.0);
+    type.assign(static_cast<std::size_t>(n), kAir);
+    open_prev.assign(static_cast<std::size_t>(n), 0);
+    enclosed_prev.assign(static_cast<std::size_t>(n), 0);
+    exposed.assign(static_cast<std::size_t>(n), 0);
+    initial_material = sum_cells(n, [&](long c) { return m[c] * vol[c]; });
+    reference = latent * initial_material;
+    THAW_CHECK(reference > 0, "a grid problem needs some material");
+    // The initial state drains nothing by definition: only classify which liquid is enclosed.
+    classify_openness();
+    had_enclosed_liquid = enclosed_liquid_volume() > 0;
+    update_surface_area();
+    e0 = energy();
+    dt = p.fixed_step_s > 0 ? p.fixed_step_s : std::min(p.max_step_s, 0.05);
+  }
+
+  // --- geometry -------------------------------------------------------------------------------
+  void build_metric() {
+    vol.assign(static_cast<std::size_t>(n), 0.0);
+    area_x.assign(static_cast<std::size_t>(nx), 0.0);
+    area_y.assign(static_cast<std::size_t>(nx), 0.0);
+    const double pi = std::numbers::pi;
+    for (int i = 0; i < nx; ++i) {
+      if (axisymmetric) {
+        // Full rings about the y axis: volumes and areas of the whole revolution.
+        const double r0 = i * s, r1 = (i + 1) * s;
+        area_x[i] = 2 * pi * r1 * s;
+        area_y[i] = pi * (r1 * r1 - r0 * r0);
+      } else {
+        area_x[i] = s * s;
+        area_y[i] = s * s;
+      }
+    }
+    area_z = s * s;
+    for (long c = 0; c < n; ++c) vol[c] = area_y[c % nx] * s;
+  }
+  std::array<double, 3> centre(long c) const {
+    const int i = static_cast<int>(c % nx), j = static_cast<int>((c / nx) % ny),
+              k = static_cast<int>(c / (static_cast<long>(nx) * ny));
+    return {p.origin_m[0] + (i + 0.5) * s, p.origin_m[1] + (j + 0.5) * s,
+            axisymmetric ? 0.0 : p.origin_m[2] + (k + 0.5) * s};
+  }
+
+  // --- phase relation -------------------------------------------------------------------------
+  double temperature(double hc) const {
+    if (hc < 0) return tm + hc / ci;
+    if (hc > latent) return tm + (hc - latent) / cw;
+    return tm;
+  }
+  double liquid(double hc) const { return std::clamp(hc / latent, 0.0, 1.0); }
+  double conductivity(double hc) const {
+    const double f = liquid(hc);
+    return (1 - f) * ki + f * kw;
+  }
+  double energy() const {
+    return sum_cells(n, [&](long c) { return m[c] * vol[c] * h[c]; });
+  }
+  double ice_fraction(long c) const { return m[c] * (1 - liquid(h[c])); }
+  double enclosed_liquid_volume() const {
+    return sum_cells(n, [&](long c) { return exposed[c] ? 0.0 : m[c] * vol[c] * liquid(h[c]); });
+  }
+
+  // --- per-step coefficients ------------------------------------------------------------------
+  /// Conductances and boundary terms, frozen over one step at the step's initial state.
+  void build_coefficients() {
+    const long nxy = static_cast<long>(nx) * ny;
+#pragma omp parallel for schedule(static) if (n > kParallelCells)
+    for (long c = 0; c < n; ++c) {
+      const int i = static_cast<int>(c % nx), j = static_cast<int>((c / nx) % ny);
+      const int k = static_cast<int>(c / nxy);
+      kx[c] = ky[c] = kz[c] = bq0[c] = bq1[c] = 0;
+      if (m[c] == 0) continue;
+      const double kc = conductivity(h[c]);
+      auto face = [&](long nb, double area) {
+        if (m[nb] == 0) return 0.0;
+        const double kn = conductivity(h[nb]);
+        return area * 2 * kc * kn / ((kc + kn) * s);  // harmonic mean over two half cells
+      };
+      if (i + 1 < nx) kx[c] = face(c + 1, area_x[i]);
+      if (j + 1 < ny) ky[c] = face(c + nx, area_y[i]);
+      if (k + 1 < nz) kz[c] = face(c + nxy, area_z);
+      // Held walls: two-point flux over half a cell.
+      auto wall = [&](const GridWall& w, double area) {
+        if (!w.held || area == 0) return;
+        const double g = area * kc / (0.5 * s);
+        bq0[c] += g * w.temperature_c;
+        bq1[c] += g;
+      };
+      if (i == 0) wall(p.walls[0], axisymmetric ? 0.0 : area_x[0]);
+      if (i == nx - 1) wall(p.walls[1], area_x[i]);
+      if (j == 0) wall(p.walls[2], area_y[i]);
+      if (j == ny - 1) wall(p.walls[3], area_y[i]);
+      if (!axisymmetric && k == 0) wall(p.walls[4], area_z);
+      if (!axisymmetric && k == nz - 1) wall(p.walls[5], area_z);
+      const double a = surface_area[c];
+      if (a > 0) {
+        switch (p.surface_kind) {
+          case OuterBoundary::convective:
+            bq0[c] += a * p.heat_transfer_coefficient_w_m2k * p.surface_temperature_c;
+            bq1[c] += a * p.heat_transfer_coefficient_w_m2k;
+            break;
+          case OuterBoundary::temperature: {
+            const double g = a * kc / (0.5 * s);
+            bq0[c] += g * p.surface_temperature_c;
+            bq1[c] += g;
+            break;
+          }
+          case OuterBoundary::flux:
+            bq0[c] += a * p.flux_w_m2;
+            break;
+          case OuterBoundary::insulated:
+            break;
+        }
+      }
+    }
+  }
+
+  /// Net heat rate into cell c at temperatures t [W].
+  double heat_rate(long c) const {
+    const long nxy = static_cast<long>(nx) * ny;
+    const int i = static_cast<int>(c % nx), j = static_cast<int>((c / nx) % ny);
+    const int k = static_cast<int>(c / nxy);
+    const double tc = t[c];
+    double q = bq0[c] - bq1[c] * tc;
+    if (i + 1 < nx) q += kx[c] * (t[c + 1] - tc);
+    if (i > 0) q += kx[c - 1] * (t[c - 1] - tc);
+    if (j + 1 < ny) q += ky[c] * (t[c + nx] - tc);
+    if (j > 0) q += ky[c - nx] * (t[c - nx] - tc);
+    if (k + 1 < nz) q += kz[c] * (t[c + nxy] - tc);
+    if (k > 0) q += kz[c - nxy] * (t[c - nxy] - tc);
+    return q;
+  }
+  double conductance_sum(long c) const {
+    const long nxy = static_cast<long>(nx) * ny;
+    const int i = static_cast<int>(c % nx), j = static_cast<int>((c / nx) % ny);
+    const int k = static_cast<int>(c / nxy);
+    double g = bq1[c];
+    if (i + 1 < nx) g += kx[c];
+    if (i > 0) g += kx[c - 1];
+    if (j + 1 < ny) g += ky[c];
+    if (j > 0) g += ky[c - nx];
+    if (k + 1 < nz) g += kz[c];
+    if (k > 0) g += kz[c - nxy];
+    return g;
+  }
+  /// sum over neighbours of K * v[nb] (v is zero outside the pure cells).
+  double neighbour_sum(long c, const std::vector<double>& v) const {
+    const long nxy = static_cast<long>(nx) * ny;
+    const int i = static_cast<int>(c % nx), j = static_cast<int>((c / nx) % ny);
+    const int k = static_cast<int>(c / nxy);
+    double q = 0;
+    if (i + 1 < nx) q += kx[c] * v[c + 1];
+    if (i > 0) q += kx[c - 1] * v[c - 1];
+    if (j + 1 < ny) q += ky[c] * v[c + nx];
+    if (j > 0) q += ky[c - nx] * v[c - nx];
+    if (k + 1 < nz) q += kz[c] * v[c + nxy];
+    if (k > 0) q += kz[c - nxy] * v[c - nxy];
+    return q;
+  }
+
+  // --- one backward Euler step ----------------------------------------------------------------
+  /// Residual of cell c's balance: M/dt (h - h_n) - heat rate [W].
+  double residual(long c) const {
+    return m[c] * vol[c] / dt * (h[c] - hn[c]) - heat_rate(c);
+  }
+
+  /// Conjugate gradients with a Jacobi preconditioner on the pure cells' temperature changes:
+  /// (diag_c) x_c - sum K x_nb = b_c. Returns iterations.
+  int conjugate_gradients(const std::vector<double>& b, std::vector<double>& x, double tol) {
+    auto pure = [&](long c) { return type[c] == kIce || type[c] == kWater; };
+#pragma omp parallel for schedule(static) if (n > kParallelCells)
+    for (long c = 0; c < n; ++c) {
+      x[c] = 0;
+      cg_r[c] = pure(c) ? b[c] : 0.0;
+      cg_z[c] = pure(c) ? cg_r[c] / diag[c] : 0.0;
+      cg_p[c] = cg_z[c];
+    }
+    double rz = sum_cells(n, [&](long c) { return cg_r[c] * cg_z[c]; });
+    for (int it = 0; it < kMaxCg; ++it) {
+      const double res =
+          max_cells(n, [&](long c) { return pure(c) ? std::abs(cg_r[c]) / diag[c] : 0.0; });
+      if (res <= tol || rz == 0) return it;
+#pragma omp parallel for schedule(static) if (n > kParallelCells)
+      for (long c = 0; c < n; ++c)
+        cg_q[c] = pure(c) ? diag[c] * cg_p[c] - neighbour_sum(c, cg_p) : 0.0;
+      const double pq = sum_cells(n, [&](long c) { return cg_p[c] * cg_q[c]; });
+      const double alpha = rz / pq;
+#pragma omp parallel for schedule(static) if (n > kParallelCells)
+      for (long c = 0; c < n; ++c) {
+        x[c] += alpha * cg_p[c];
+        cg_r[c] -= alpha * cg_q[c];
+        cg_z[c] = pure(c) ? cg_r[c] / diag[c] : 0.0;
+      }
+      const double rz_new = sum_cells(n, [&](long c) { return cg_r[c] * cg_z[c]; });
+      const double beta = rz_new / rz;
+      rz = rz_new;
+#pragma omp parallel for schedule(static) if (n > kParallelCells)
+      for (long c = 0; c < n; ++c) cg_p[c] = cg_z[c] + beta * cg_p[c];
+    }
+    return kMaxCg;
+  }
+
+  void update_temperatures() {
+#pragma omp parallel for schedule(static) if (n > kParallelCells)
+    for (long c = 0; c < n; ++c) t[c] = m[c] > 0 ? temperature(h[c]) : 0.0;
+  }
+
+  /// Semismooth Newton on the backward Euler balance; true when converged.
+  bool newton() {
+    for (int it = 0; it < kMaxNewton; ++it) {
+      update_temperatures();
+      std::vector<double>& b = rhs;
+#pragma omp parallel for schedule(static) if (n > kParallelCells)
+      for (long c = 0; c < n; ++c) {
+        if (m[c] == 0) {
+          type[c] = kAir;
+          b[c] = 0;
+          continue;
+        }
+        type[c] = h[c] < 0 ? kIce : (h[c] > latent ? kWater : kMushy);
+        const double mv = m[c] * vol[c] / dt;
+        const double g = conductance_sum(c);
+        diag[c] = mv * (type[c] == kWater ? cw : ci) + g;
+        b[c] = -residual(c);
+      }
+      const double res =
+          max_cells(n, [&](long c) { return m[c] > 0 ? std::abs(b[c]) / diag[c] : 0.0; });
+      if (res <= kNewtonTolerance_K) return true;
+      ++stats.newton_iterations;
+      stats.cell_updates += n;
+      stats.cg_iterations +=
+          conjugate_gradients(b, dtemp, std::max(1e-3 * res, 0.1 * kNewtonTolerance_K));
+#pragma omp parallel for schedule(static) if (n > kParallelCells)
+      for (long c = 0; c < n; ++c) {
+        if (type[c] == kAir) continue;
+        if (type[c] == kMushy) {
+          // dT = 0 here: the cell's own balance gives its enthalpy change
+          h[c] += (b[c] + neighbour_sum(c, dtemp)) * dt / (m[c] * vol[c]);
+        } else if (type[c] == kIce) {
+          h[c] = std::min(h[c] + ci * dtemp[c],
+                          0.0);  // stop at the kink: melting starts next iteration
+        } else {
+          h[c] = std::max(h[c] + cw * dtemp[c], latent);
+        }
+      }
+#pragma omp parallel for schedule(static) if (n > kParallelCells)
+      for (long c = 0; c < n; ++c)
+        if (type[c] != kIce && type[c] != kWater) dtemp[c] = 0;
+    }
+    return false;
+  }
+
+  /// One step of size dt from the current state; false (state restored) if Newton failed.
+  bool step(double& heat_step) {
+    hn = h;
+    build_coefficients();
+    if (!newton()) {
+      if (dt > kMinStep_s) {
+        h = hn;
+        return false;
+      }
+      ++stats.unconverged_steps;
+    }
+    // Conservative final update: each cell's enthalpy from its balance at the final
+    // temperatures, so that the interior fluxes cancel exactly in the total.
+    update_temperatures();
+    std::vector<double> q(static_cast<std::size_t>(n), 0.0);
+#pragma omp parallel for schedule(static) if (n > kParallelCells)
+    for (long c = 0; c < n; ++c)
+      if (m[c] > 0) q[c] = heat_rate(c);
+#pragma omp parallel for schedule(static) if (n > kParallelCells)
+    for (long c = 0; c < n; ++c)
+      if (m[c] > 0) h[c] = hn[c] + dt * q[c] / (m[c] * vol[c]);
+    heat_step = dt * sum_cells(n, [&](long c) { return m[c] > 0 ? bq0[c] - bq1[c] * t[c] : 0.0; });
+    return true;
+  }
+
+  // --- openness, draining, events -------------------------------------------------------------
+  /// Flood fill from the air at the grid's border through cells less than half ice: `open`
+  /// (cell less than half ice), `outside` (connected), exposed = outside or next to it.
+  void flood(std::vector<char>& open, std::vector<char>& outside) {
+    const long nxy = static_cast<long>(nx) * ny;
+    open.assign(static_cast<std::size_t>(n), 0);
+    outside.assign(static_cast<std::size_t>(n), 0);
+    for (long c = 0; c < n; ++c) open[c] = ice_fraction(c) < 0.5;
+    std::deque<long> queue;
+    for (long c = 0; c < n; ++c) {
+      const int i = static_cast<int>(c % nx), j = static_cast<int>((c / nx) % ny),
+                k = static_cast<int>(c / nxy);
+      const bool border = (!axisymmetric && (i == 0 || k == 0 || k == nz - 1)) || i == nx - 1 ||
+                          j == 0 || j == ny - 1;
+      if (border && m[c] == 0 && !outside[c]) {
+        outside[c] = 1;
+        queue.push_back(c);
+      }
+    }
+    while (!queue.empty()) {
+      const long c = queue.front();
+      queue.pop_front();
+      for_neighbours(c, [&](long nb) {
+        if (open[nb] && !outside[nb]) {
+          outside[nb] = 1;
+          queue.push_back(nb);
+        }
+      });
+    }
+    for (long c = 0; c < n; ++c) {
+      exposed[c] = outside[c];
+      if (!outside[c]) for_neighbours(c, [&](long nb) { exposed[c] |= outside[nb]; });
+    }
+  }
+  template <class F>
+  void for_neighbours(long c, F&& f) const {
+    const long nxy = static_cast<long>(nx) * ny;
+    const int i = static_cast<int>(c % nx), j = static_cast<int>((c / nx) % ny),
+              k = static_cast<int>(c / nxy);
+    if (i > 0) f(c - 1);
+    if (i + 1 < nx) f(c + 1);
+    if (j > 0) f(c - nx);
+    if (j + 1 < ny) f(c + nx);
+    if (k > 0) f(c - nxy);
+    if (k + 1 < nz) f(c + nxy);
+  }
+  void classify_openness() {
+    std::vector<char> open, outside;
+    flood(open, outside);
+    for (long c = 0; c < n; ++c) enclosed_prev[c] = open[c] && !outside[c];
+    open_prev = open;
+  }
+
+  /// Drains the liquid of exposed cells, books its enthalpy, records events.
+  void drain_and_detect() {
+    std::vector<char> open, outside;
+    flood(open, outside);
+    if (!broke_through) {
+      long first = -1, fallback = -1;
+      for (long c = 0; c < n && first < 0; ++c) {
+        if (!outside[c] || !enclosed_prev[c]) continue;
+        if (fallback < 0) fallback = c;
+      }
+      if (fallback >= 0) {
+        // the wall cells that opened this step next to the former cavity
+        for (long c = 0; c < n && first < 0; ++c) {
+          if (!outside[c] || open_prev[c]) continue;
+          bool next_to_cavity = false;
+          for_neighbours(c, [&](long nb) { next_to_cavity |= enclosed_prev[nb] != 0; });
+          if (next_to_cavity) first = c;
+        }
+        broke_through = true;
+        events.push_back({"break_through", time, centre(first >= 0 ? first : fallback)});
+      }
+    }
+    double drained_step = 0, most = 0;
+    long most_cell = -1;
+    if (p.drain) {
+      for (long c = 0; c < n; ++c) {
+        if (!exposed[c] || m[c] == 0 || h[c] <= 0) continue;
+        const double e = m[c] * vol[c] * h[c];
+        drained_step += e;
+        if (e > most) {
+          most = e;
+          most_cell = c;
+        }
+        const double f = liquid(h[c]);
+        m[c] = f >= 1 ? 0.0 : m[c] * (1 - f);
+        if (m[c] < kRemnantFraction) {
+          stats.removed_ice_m3 += m[c] * vol[c];
+          m[c] = 0;
+        }
+        h[c] = 0;
+      }
+    }
+    drained += drained_step;
+    if (!melt_started && most_cell >= 0) {
+      melt_started = true;
+      events.push_back({"melt_onset", time, centre(most_cell)});
+    }
+    for (long c = 0; c < n; ++c) enclosed_prev[c] = open[c] && !outside[c];
+    open_prev = open;
+    if (drained_step > 0) update_surface_area();
+  }
+
+  /// |grad m| V per cell (central differences, mirrored at the grid's walls and the axis),
+  /// with the share computed in air cells handed to their material neighbours by fraction.
+  void update_surface_area() {
+    const long nxy = static_cast<long>(nx) * ny;
+    std::vector<double> g(static_cast<std::size_t>(n)), w(static_cast<std::size_t>(n));
+#pragma omp parallel for schedule(static) if (n > kParallelCells)
+    for (long c = 0; c < n; ++c) {
+      const int i = static_cast<int>(c % nx), j = static_cast<int>((c / nx) % ny),
+                k = static_cast<int>(c / nxy);
+      auto at = [&](int ii, int jj, int kk) {
+        ii = std::clamp(ii, 0, nx - 1);
+        jj = std::clamp(jj, 0, ny - 1);
+        kk = std::clamp(kk, 0, nz - 1);
+        return m[ii + static_cast<long>(nx) * (jj + static_cast<long>(ny) * kk)];
+      };
+      const double gx = (at(i + 1, j, k) - at(i - 1, j, k)) / (2 * s);
+      const double gy = (at(i, j + 1, k) - at(i, j - 1, k)) / (2 * s);
+      const double gz = nz > 1 ? (at(i, j, k + 1) - at(i, j, k - 1)) / (2 * s) : 0.0;
+      g[c] = std::sqrt(gx * gx + gy * gy + gz * gz) * vol[c];
+      double sum = 0;
+      if (m[c] == 0) for_neighbours(c, [&](long nb) { sum += m[nb]; });
+      w[c] = sum;
+    }
+#pragma omp parallel for schedule(static) if (n > kParallelCells)
+    for (long c = 0; c < n; ++c) {
+      if (m[c] == 0) {
+        surface_area[c] = 0;
+        continue;
+      }
+      double a = g[c];
+      for_neighbours(c, [&](long nb) {
+        if (m[nb] == 0 && w[nb] > 0) a += g[nb] * m[c] / w[nb];
+      });
+      surface_area[c] = a;
+    }
+  }
+
+  double ice_volume() const {
+    return sum_cells(n, [&](long c) { return ice_fraction(c) * vol[c]; });
+  }
+
+  void check_end_events() {
+    const double enclosed = enclosed_liquid_volume();
+    if (had_enclosed_liquid && !broke_through && !core_frozen && enclosed == 0) {
+      core_frozen = true;
+      events.push_back({"core_frozen", time, centre(last_liquid_cell)});
+    }
+    if (enclosed > 0) {
+      long best = -1;
+      double most = -1;
+      for (long c = 0; c < n; ++c) {
+        const double l = exposed[c] ? 0.0 : m[c] * liquid(h[c]);
+        if (l > most) {
+          most = l;
+          best = c;
+        }
+      }
+      last_liquid_cell = best;
+    }
+    if (ice_volume() <= 1e-12 * initial_material) {
+      done = true;
+      long last = 0;
+      for (long c = 0; c < n; ++c)
+        if (m[c] > 0) last = c;
+      events.push_back({"fully_melted", time, centre(last)});
+    }
+  }
+  long last_liquid_cell = 0;
+
+  double advance_to(double target) {
+    while (!done && time < target) {
+      const double remaining = target - time;
+      double step_dt = std::min(dt, remaining);
+      // avoid a sliver step before the target
+      if (remaining - step_dt < 1e-3 * step_dt) step_dt = remaining;
+      const double saved = dt;
+      dt = step_dt;
+#pragma omp parallel for schedule(static) if (n > kParallelCells)
+      for (long c = 0; c < n; ++c) {
+        t_start[c] = m[c] > 0 ? temperature(h[c]) : 0.0;
+        f_start[c] = liquid(h[c]);
+      }
+      const double e_before = energy();
+      double heat_step = 0;
+      if (!step(heat_step)) {
+        ++stats.rejected_steps;
+        dt = std::max(0.5 * step_dt, 0.99 * kMinStep_s);
+        continue;
+      }
+      time = step_dt == remaining ? target : time + step_dt;
+      heat_in += heat_step;
+      const double drained_before = drained;
+      drain_and_detect();
+      const double e_drained = energy();
+      const double err =
+          std::abs(e_drained - e_before - heat_step + (drained - drained_before)) / reference;
+      stats.max_step_energy_error = std::max(stats.max_step_energy_error, err);
+      stats.steps++;
+      stats.min_step_s = stats.steps == 1 ? step_dt : std::min(stats.min_step_s, step_dt);
+      stats.max_step_s = std::max(stats.max_step_s, step_dt);
+      check_end_events();
+      if (p.fixed_step_s > 0) {
+        dt = p.fixed_step_s;
+      } else {
+        const double dtemp_max = max_cells(
+            n, [&](long c) { return m[c] > 0 ? std::abs(temperature(h[c]) - t_start[c]) : 0.0; });
+        const double dmelt_max = max_cells(
+            n, [&](long c) { return m[c] > 0 ? std::abs(liquid(h[c]) - f_start[c]) : 0.0; });
+        double factor = 2.0;
+        if (dtemp_max > 0) factor = std::min(factor, 0.9 * p.step_temperature_change_k / dtemp_max);
+        if (dmelt_max > 0) factor = std::min(factor, 0.9 * p.step_melt_fraction / dmelt_max);
+        factor = std::max(0.3, factor);
+        // a step shortened to land on the target keeps the previous size unless it must shrink
+        dt = step_dt < saved ? std::min(saved, step_dt * factor)
+                             : std::min(p.max_step_s, step_dt * factor);
+        if (step_dt < saved && factor >= 1) dt = saved;
+      }
+    }
+    return time;
+  }
+
+  GridSnapshot snapshot() const {
+    GridSnapshot out;
+    out.time_s = time;
+    out.liquid_volume_m3 = sum_cells(n, [&](long c) { return m[c] * liquid(h[c]) * vol[c]; });
+    out.ice_volume_m3 = ice_volume();
+    out.enclosed_liquid_volume_m3 = enclosed_liquid_volume();
+    out.enthalpy_j = energy();
+    out.heat_in_j = heat_in;
+    out.drained_j = drained;
+    out.energy_balance_error = std::abs(out.enthalpy_j - e0 - heat_in + drained) / reference;
+    return out;
+  }
+
+  GridField field() const {
+    GridField f;
+    f.geometry = p.geometry;
+    f.cells = p.cells;
+    f.origin_m = p.origin_m;
+    f.spacing_m = s;
+    f.time_s = time;
+    f.temperature_c.resize(static_cast<std::size_t>(n));
+    f.ice_fraction.resize(static_cast<std::size_t>(n));
+    f.water_fraction.resize(static_cast<std::size_t>(n));
+    for (long c = 0; c < n; ++c) {
+      // air cells show the temperature of the surrounding air / held surface
+      f.temperature_c[c] =
+          static_cast<float>(m[c] > 0 ? temperature(h[c]) : p.surface_temperature_c);
+      const double liq = liquid(h[c]);
+      f.water_fraction[c] = static_cast<float>(m[c] * liq);
+      f.ice_fraction[c] = static_cast<float>(std::min(m[c] * (1 - liq), 1.0 - f.water_fraction[c]));
+    }
+    return f;
+  }
+};
+
+EnthalpySolver::EnthalpySolver(GridProblem problem)
+    : m_impl(std::make_unique<Impl>(std::move(problem))) {}
+EnthalpySolver::~EnthalpySolver() = default;
+double EnthalpySolver::advance_to(double t_target) {
+  return m_impl->advance_to(t_target);
+}
+double EnthalpySolver::time() const {
+  return m_impl->time;
+}
+bool EnthalpySolver::finished() const {
+  return m_impl->done;
+}
+GridSnapshot EnthalpySolver::snapshot() const {
+  return m_impl->snapshot();
+}
+GridField EnthalpySolver::field() const {
+  return m_impl->field();
+}
+const std::vector<GridEvent>& EnthalpySolver::events() const {
+  return m_impl->events;
+}
+const GridStatistics& EnthalpySolver::statistics() const {
+  return m_impl->stats;
+}
+double EnthalpySolver::reference_energy() const {
+  return m_impl->reference;
+}
+std::vector<double> EnthalpySolver::liquid_fraction() const {
+  std::vector<double> out(static_cast<std::size_t>(m_impl->n));
+  for (long c = 0; c < m_impl->n; ++c) out[c] = m_impl->m[c] * m_impl->liquid(m_impl->h[c]);
+  return out;
+}
+const std::vector<double>& EnthalpySolver::material_fraction() const {
+  return m_impl->m;
+}
+const std::vector<double>& EnthalpySolver::enthalpy() const {
+  return m_impl->h;
+}
+double EnthalpySolver::cell_volume(int i, int j, int k) const {
+  return m_impl->vol[i + static_cast<long>(m_impl->nx) * (j + static_cast<long>(m_impl->ny) * k)];
+}
+
+}  // namespace thaw::sim

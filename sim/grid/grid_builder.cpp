@@ -1,0 +1,116 @@
+#include "sim/grid/grid_builder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "sim/grid/grid_rules.h"
+#include "src/common/check.h"
+
+namespace thaw::sim {
+
+namespace {
+
+/// Sub-samples per axis in a cell that the surface may cut (4^3 in 3D, 4^2 in (r, y)).
+constexpr int kSamples = 4;
+/// Fractions below this are dropped (initial state only: the same limit as the solver's remnants).
+constexpr double kMinFraction = 1e-3;
+
+/// Fraction of the cell [lo, lo + s]^3 (axisymmetric: the ring [lo_r, lo_r + s] x [lo_y, ..])
+/// inside `d`; `centre_distance` decides cells the surface cannot reach.
+double inside_fraction(const SignedDistance& d, bool exact, bool axisymmetric,
+                       const std::array<double, 3>& lo, double s) {
+  const std::array<double, 3> c{lo[0] + 0.5 * s, lo[1] + 0.5 * s,
+                                axisymmetric ? 0.0 : lo[2] + 0.5 * s};
+  const double dc = d(c);
+  const double reach = (axisymmetric ? std::sqrt(0.5) : std::sqrt(0.75)) * s;
+  if (dc <= -reach) return 1;
+  if (dc >= reach) return 0;
+  if (!exact) return std::clamp(0.5 - dc / s, 0.0, 1.0);  // OBJ: a ramp across the cell
+  double inside = 0, total = 0;
+  for (int a = 0; a < kSamples; ++a)
+    for (int b = 0; b < kSamples; ++b)
+      for (int e = 0; e < (axisymmetric ? 1 : kSamples); ++e) {
+        const double x = lo[0] + (a + 0.5) * s / kSamples, y = lo[1] + (b + 0.5) * s / kSamples;
+        const double z = axisymmetric ? 0.0 : lo[2] + (e + 0.5) * s / kSamples;
+        const double w = axisymmetric ? x : 1.0;  // ring volume grows with r
+        total += w;
+        if (d({x, y, z}) < 0) inside += w;
+      }
+  return inside / total;
+}
+
+}  // namespace
+
+void shape_fractions(const Scenario& sc, const GridProblem& g, std::vector<double>& ice,
+                     std::vector<double>& water) {
+  const SignedDistance outer = make_signed_distance(sc.shape.outer, "shape.outer");
+  std::optional<SignedDistance> cavity;
+  if (sc.shape.cavity) cavity = make_signed_distance(*sc.shape.cavity, "shape.cavity");
+  const bool axisymmetric = g.geometry == GridField::Geometry::axisymmetric;
+  const long nx = g.cells[0], ny = g.cells[1], nz = g.cells[2], n = nx * ny * nz;
+  ice.assign(static_cast<std::size_t>(n), 0.0);
+  water.assign(static_cast<std::size_t>(n), 0.0);
+  const bool outer_exact = sc.shape.outer.kind != ShapeKind::obj;
+  const bool cavity_exact = !sc.shape.cavity || sc.shape.cavity->kind != ShapeKind::obj;
+#pragma omp parallel for schedule(dynamic, 64)
+  for (long c = 0; c < n; ++c) {
+    const long i = c % nx, j = (c / nx) % ny, k = c / (nx * ny);
+    const std::array<double, 3> lo{g.origin_m[0] + static_cast<double>(i) * g.spacing_m,
+                                   g.origin_m[1] + static_cast<double>(j) * g.spacing_m,
+                                   g.origin_m[2] + static_cast<double>(k) * g.spacing_m};
+    const double a = inside_fraction(outer, outer_exact, axisymmetric, lo, g.spacing_m);
+    const double b =
+        cavity ? std::min(a, inside_fraction(*cavity, cavity_exact, axisymmetric, lo, g.spacing_m))
+               : 0.0;
+    water[c] = b < kMinFraction ? 0.0 : b;
+    ice[c] = a - b < kMinFraction ? 0.0 : a - b;
+  }
+}
+
+GridProblem build_grid_problem(const Scenario& sc) {
+  THAW_CHECK(sc.grid != GridGeometry::none && !find_grid_problem(sc),
+             "build_grid_problem needs a valid grid scenario");
+  GridProblem g;
+  g.geometry = sc.grid == GridGeometry::axisymmetric ? GridField::Geometry::axisymmetric
+                                                     : GridField::Geometry::cartesian3d;
+  const double s = effective_cell_size_m(sc);
+  g.spacing_m = s;
+  const SignedDistance outer = make_signed_distance(sc.shape.outer, "shape.outer");
+  const auto lo = outer.lower(), hi = outer.upper();
+  // A grid symmetric about the body's bounding-box centre, padded with air on every side
+  // (axisymmetric: from the axis outwards).
+  for (int a = 0; a < 3; ++a) {
+    const int inner = static_cast<int>(std::ceil((hi[a] - lo[a]) / s - 1e-9));
+    g.cells[a] = inner + 2 * kAirPaddingCells;
+    g.origin_m[a] = 0.5 * (lo[a] + hi[a]) - 0.5 * g.cells[a] * s;
+  }
+  if (g.geometry == GridField::Geometry::axisymmetric) {
+    g.cells[0] = static_cast<int>(std::ceil(hi[0] / s - 1e-9)) + kAirPaddingCells;
+    g.origin_m[0] = 0;
+    g.cells[2] = 1;
+    g.origin_m[2] = 0;
+  }
+  std::vector<double> ice, water;
+  shape_fractions(sc, g, ice, water);
+  const Materials& m = sc.materials;
+  g.materials = m;
+  const double h_ice = enthalpy_of_temperature(m, sc.ice_initial_temperature_c, false);
+  const double h_water = enthalpy_of_temperature(m, sc.water_initial_temperature_c, true);
+  g.material_fraction.resize(ice.size());
+  g.enthalpy_j_m3.resize(ice.size());
+  for (std::size_t c = 0; c < ice.size(); ++c) {
+    const double f = ice[c] + water[c];
+    g.material_fraction[c] = std::min(f, 1.0);
+    g.enthalpy_j_m3[c] = f > 0 ? (ice[c] * h_ice + water[c] * h_water) / f : 0.0;
+  }
+  g.surface_kind = sc.outer_kind;
+  g.surface_temperature_c = sc.outer_temperature_c;
+  g.heat_transfer_coefficient_w_m2k = sc.heat_transfer_coefficient_w_m2k;
+  g.flux_w_m2 = sc.flux_w_m2;
+  g.drain = true;
+  g.max_step_s = sc.max_step_s;
+  return g;
+}
+
+}  // namespace thaw::sim

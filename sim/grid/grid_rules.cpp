@@ -1,0 +1,186 @@
+#include "sim/grid/grid_rules.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+#include "src/common/error.h"
+
+namespace thaw::sim {
+
+const char* to_string(GridGeometry grid) {
+  switch (grid) {
+    case GridGeometry::none:
+      return "";
+    case GridGeometry::axisymmetric:
+      return "axisymmetric";
+    case GridGeometry::cartesian3d:
+      return "3d";
+  }
+  return "?";
+}
+
+namespace {
+
+std::string num(double v) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+std::string vec(const std::array<double, 3>& v) {
+  std::string out = "[";
+  for (int a = 0; a < 3; ++a) out += (a ? ", " : "") + num(v[a]);
+  return out + "]";
+}
+
+/// Sizes of one shape; key is "shape.outer" or "shape.cavity".
+std::optional<GridRuleProblem> size_problem(const ShapeSpec& s, const std::string& key) {
+  auto positive = [&](const char* name, double v) -> std::optional<GridRuleProblem> {
+    if (!(v > 0) || !std::isfinite(v))
+      return GridRuleProblem{key + "." + name, "must be positive (got " + num(v) + ")"};
+    return std::nullopt;
+  };
+  for (double c : s.center_m)
+    if (!std::isfinite(c)) return GridRuleProblem{key + ".center_m", "must be finite"};
+  switch (s.kind) {
+    case ShapeKind::sphere:
+      return positive("radius_m", s.radius_m);
+    case ShapeKind::cylinder:
+      if (auto p = positive("radius_m", s.radius_m)) return p;
+      return positive("height_m", s.height_m);
+    case ShapeKind::box: {
+      for (double v : s.size_m)
+        if (!(v > 0) || !std::isfinite(v))
+          return GridRuleProblem{key + ".size_m",
+                                 "every edge must be positive (got " + vec(s.size_m) + ")"};
+      const double smallest = std::min({s.size_m[0], s.size_m[1], s.size_m[2]});
+      if (!(s.edge_radius_m >= 0) || !(s.edge_radius_m <= 0.5 * smallest))
+        return GridRuleProblem{key + ".edge_radius_m",
+                               "must be in [0, half the smallest edge = " + num(0.5 * smallest) +
+                                   " m] (got " + num(s.edge_radius_m) + ")"};
+      return std::nullopt;
+    }
+    case ShapeKind::obj:
+      if (!(s.scale > 0) || !std::isfinite(s.scale))
+        return GridRuleProblem{key + ".scale", "must be positive (got " + num(s.scale) + ")"};
+      for (double c : s.translate_m)
+        if (!std::isfinite(c)) return GridRuleProblem{key + ".translate_m", "must be finite"};
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+std::optional<GridRuleProblem> axisymmetric_problem(const ShapeSpec& s, const std::string& key) {
+  if (s.kind != ShapeKind::sphere && s.kind != ShapeKind::cylinder)
+    return GridRuleProblem{
+        key + ".kind", std::string("geometry = \"axisymmetric\" accepts only spheres and vertical "
+                                   "cylinders centred on the y axis (got ") +
+                           to_string(s.kind) + "); use geometry = \"3d\""};
+  if (s.center_m[0] != 0 || s.center_m[2] != 0)
+    return GridRuleProblem{key + ".center_m",
+                           "must lie on the vertical y axis (x = z = 0) for geometry = "
+                           "\"axisymmetric\" (got " +
+                               vec(s.center_m) + ")"};
+  return std::nullopt;
+}
+
+double largest_extent(const SignedDistance& d) {
+  const auto lo = d.lower(), hi = d.upper();
+  return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+}
+
+}  // namespace
+
+SignedDistance make_signed_distance(const ShapeSpec& spec, const std::string& key) {
+  if (spec.kind != ShapeKind::obj) return SignedDistance(spec);
+  auto mesh = std::make_shared<const ObjMesh>(
+      read_obj_mesh(spec.file, spec.scale, spec.translate_m, "", key + ".file"));
+  return SignedDistance(spec, std::move(mesh));
+}
+
+double thinnest_wall_m(const SignedDistance& outer, const SignedDistance* cavity) {
+  if (!cavity) {
+    const auto lo = outer.lower(), hi = outer.upper();
+    return 0.5 * std::min({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  }
+  double wall = std::numeric_limits<double>::infinity();
+  for (const auto& p : cavity->surface_samples(6000)) wall = std::min(wall, -outer(p));
+  return wall;
+}
+
+namespace {
+double default_cell(const Scenario& s, double extent, double wall) {
+  const double across = s.grid == GridGeometry::axisymmetric ? kDefaultCellsAcrossAxisymmetric
+                                                             : kDefaultCellsAcross3d;
+  return std::min(extent / across, wall / kDefaultWallCells);
+}
+}  // namespace
+
+double effective_cell_size_m(const Scenario& s) {
+  if (s.cell_size_m > 0) return s.cell_size_m;
+  const SignedDistance outer = make_signed_distance(s.shape.outer, "shape.outer");
+  std::optional<SignedDistance> cavity;
+  if (s.shape.cavity) cavity = make_signed_distance(*s.shape.cavity, "shape.cavity");
+  return default_cell(s, largest_extent(outer),
+                      thinnest_wall_m(outer, cavity ? &*cavity : nullptr));
+}
+
+std::optional<GridRuleProblem> find_grid_problem(const Scenario& s) {
+  if (s.grid == GridGeometry::none) return std::nullopt;
+  if (!(s.max_step_s > 0) || !std::isfinite(s.max_step_s))
+    return GridRuleProblem{"simulation.max_step_s",
+                           "must be positive (got " + num(s.max_step_s) + ")"};
+  if (!(s.cell_size_m >= 0) || !std::isfinite(s.cell_size_m))
+    return GridRuleProblem{"simulation.cell_size_m",
+                           "must be positive (got " + num(s.cell_size_m) + ")"};
+  if (auto p = size_problem(s.shape.outer, "shape.outer")) return p;
+  if (s.shape.cavity)
+    if (auto p = size_problem(*s.shape.cavity, "shape.cavity")) return p;
+  if (s.grid == GridGeometry::axisymmetric) {
+    if (auto p = axisymmetric_problem(s.shape.outer, "shape.outer")) return p;
+    if (s.shape.cavity)
+      if (auto p = axisymmetric_problem(*s.shape.cavity, "shape.cavity")) return p;
+  }
+  std::optional<SignedDistance> outer, cavity;
+  try {
+    outer = make_signed_distance(s.shape.outer, "shape.outer");
+    if (s.shape.cavity) cavity = make_signed_distance(*s.shape.cavity, "shape.cavity");
+  } catch (const UserError& e) {
+    return GridRuleProblem{e.where(), e.problem()};
+  }
+  const double wall = thinnest_wall_m(*outer, cavity ? &*cavity : nullptr);
+  if (cavity && !(wall > 0))
+    return GridRuleProblem{"shape.cavity",
+                           "must lie strictly inside the outer body, but it reaches " + num(-wall) +
+                               " m outside its surface (or touches it)"};
+  const double extent = largest_extent(*outer);
+  const double cell = s.cell_size_m > 0 ? s.cell_size_m : default_cell(s, extent, wall);
+  if (wall < kMinWallCells * cell) {
+    std::string message = s.cell_size_m > 0 ? "(" + num(cell) + " m) is too coarse: "
+                                            : "the default cell size is too coarse: ";
+    message += cavity ? "the thinnest wall is " : "the thinnest half-thickness of the body is ";
+    message += num(wall) + " m = " + num(std::floor(wall / cell * 100) / 100) + " cells, at least ";
+    message +=
+        num(kMinWallCells) + " are needed (use cell_size_m <= " + num(wall / kMinWallCells) + ")";
+    return GridRuleProblem{"simulation.cell_size_m", message};
+  }
+  const auto lo = outer->lower(), hi = outer->upper();
+  double cells = 1;
+  if (s.grid == GridGeometry::axisymmetric)
+    cells = (std::max(std::abs(lo[0]), std::abs(hi[0])) / cell + 3) * ((hi[1] - lo[1]) / cell + 5);
+  else
+    for (int a = 0; a < 3; ++a) cells *= (hi[a] - lo[a]) / cell + 5;
+  if (cells > kMaxGridCells)
+    return GridRuleProblem{"simulation.cell_size_m", "(" + num(cell) + " m) needs " +
+                                                         num(std::round(cells)) +
+                                                         " cells, more than the limit of " +
+                                                         num(kMaxGridCells) + "; use larger cells"};
+  if (s.shape.cavity && s.water_initial_temperature_c < s.materials.melting_point_c)
+    return GridRuleProblem{"water.initial_temperature_c",
+                           "(" + num(s.water_initial_temperature_c) +
+                               " C) is below the melting point: supercooled water is not modelled"};
+  return std::nullopt;
+}
+
+}  // namespace thaw::sim

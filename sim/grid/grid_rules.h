@@ -1,0 +1,41 @@
+#pragma once
+// The rules of a grid run's [shape] and resolution, in one place for the parser, the builder
+// and validate_scenario: sizes, kinds allowed per geometry, the cavity strictly inside the outer
+// body, the default cell size and the thinnest wall it must resolve. Knows nothing of TOML.
+#include <optional>
+#include <string>
+
+#include "sim/scenario/scenario.h"
+#include "sim/shape/signed_distance.h"
+
+namespace thaw::sim {
+
+/// A wall must be at least this many cells thick.
+constexpr double kMinWallCells = 3.0;
+/// Default resolution: cells across the outer body's largest extent (and at least
+/// kDefaultWallCells across the thinnest wall).
+constexpr double kDefaultCellsAcross3d = 48.0;
+constexpr double kDefaultCellsAcrossAxisymmetric = 120.0;
+constexpr double kDefaultWallCells = 5.0;
+/// Largest grid accepted [cells].
+constexpr double kMaxGridCells = 8.0e6;
+
+struct GridRuleProblem {
+  std::string key;  ///< dotted key, e.g. "shape.cavity"
+  std::string message;
+};
+
+/// The signed distance of a shape (loads OBJ files; throws thaw::UserError("", key, problem)).
+SignedDistance make_signed_distance(const ShapeSpec& spec, const std::string& key);
+
+/// Thinnest ice between the cavity and the outer surface [m] (negative: the cavity pokes out),
+/// or the outer body's smallest half-extent when there is no cavity.
+double thinnest_wall_m(const SignedDistance& outer, const SignedDistance* cavity);
+
+/// cell_size_m if set, else min(largest extent / cells across, thinnest wall / kDefaultWallCells).
+double effective_cell_size_m(const Scenario& s);
+
+/// First violated rule of a grid scenario (std::nullopt if none; nothing checked for 1D).
+std::optional<GridRuleProblem> find_grid_problem(const Scenario& s);
+
+}  // namespace thaw::sim
