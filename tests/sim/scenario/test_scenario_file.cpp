@@ -82,16 +82,19 @@ TEST(ScenarioFile, ParsesKeysAndFillsDefaults) {
   EXPECT_EQ(s.duration_s, 100.0);
   EXPECT_EQ(s.inner_radius_m, 0.01);
   EXPECT_EQ(s.heat_transfer_coefficient_w_m2k, 15.0);
-  EXPECT_EQ(s.cells_per_phase, Scenario{}.cells_per_phase);
+  const Scenario defaults;
+  EXPECT_EQ(s.cells_per_phase, defaults.cells_per_phase);
   EXPECT_EQ(s.materials.latent_heat_j_kg, 333400.0);
-  const Scenario o = parse_scenario_string(kMinimal + std::string("[materials]\nlatent_heat_j_kg = 3e5\n"), "m.toml");
+  const Scenario o = parse_scenario_string(
+      kMinimal + std::string("[materials]\nlatent_heat_j_kg = 3e5\n"), "m.toml");
   EXPECT_EQ(o.materials.latent_heat_j_kg, 3e5);
   EXPECT_EQ(o.materials.ice_density_kg_m3, 917.0);
 }
 
 TEST(ScenarioFile, EchoHoldsEveryParameterTheMesherReads) {
   for (const char* g : {"sphere", "cylinder", "planar"}) {
-    const Scenario s = parse_scenario_string(with(kMinimal, "\"sphere\"", std::string("\"") + g + "\""), "m.toml");
+    const Scenario s =
+        parse_scenario_string(with(kMinimal, "\"sphere\"", std::string("\"") + g + "\""), "m.toml");
     const nlohmann::json j = scenario_to_json(s);
     EXPECT_EQ(j.at("simulation").at("geometry"), g);
     EXPECT_GT(j.at("shell").at("length_m").get<double>(), 0.0);
@@ -160,35 +163,42 @@ TEST(ScenarioFile, RejectsBadInputNamingKeyAndProblem) {
        "materials.latent_heat_j_kg"},
   };
   for (const BadCase& c : cases) {
-    const std::string msg = error_of([&] { parse_scenario_string(with(kMinimal, c.from, c.to), "bad.toml"); });
+    const std::string msg =
+        error_of([&] { parse_scenario_string(with(kMinimal, c.from, c.to), "bad.toml"); });
     EXPECT_NE(msg.find(c.must_contain), std::string::npos) << c.to << " -> " << msg;
-    EXPECT_EQ(msg.rfind("bad.toml", 0), 0u) << msg;  // starts with the file name
+    EXPECT_EQ(msg.rfind("bad.toml", 0), 0u) << msg;       // starts with the file name
     EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;  // one line
   }
 }
 
 TEST(ScenarioFile, OtherStagesTablesAreLeftUnreadForTheirOwners) {
-  const std::string text = kMinimal + std::string("[film]\nfps = 12.0\n[render.image]\nwidth = 640\n[mesh]\nx = 1\n");
+  const std::string text =
+      kMinimal + std::string("[film]\nfps = 12.0\n[render.image]\nwidth = 640\n[mesh]\nx = 1\n");
   const TomlTable t = TomlTable::parse_string(text, "run.toml");
   EXPECT_NO_THROW(parse_scenario(t));
   // the owner's own check (thaw run) still sees them as unread
   EXPECT_NE(error_of([&] { t.check_no_unknown_keys(); }).find("film"), std::string::npos);
   // a typo among the simulation's tables or keys is still an error
-  EXPECT_NE(error_of([&] { parse_scenario_string(with(text, "[water]", "[watr]"), "run.toml"); }).find("watr"),
+  EXPECT_NE(error_of([&] {
+              parse_scenario_string(with(text, "[water]", "[watr]"), "run.toml");
+            }).find("watr"),
             std::string::npos);
-  EXPECT_NE(error_of([&] { parse_scenario_string(text + "[films]\n", "run.toml"); }).find("films"), std::string::npos);
+  EXPECT_NE(error_of([&] { parse_scenario_string(text + "[films]\n", "run.toml"); }).find("films"),
+            std::string::npos);
 }
 
 TEST(ScenarioFile, ErrorsCarryTheLineOfTheKey) {
   const std::string msg = error_of([&] {
-    parse_scenario_string(with(kMinimal, "inner_radius_m = 0.01", "inner_radius_m = 0.05"), "bad.toml");
+    parse_scenario_string(with(kMinimal, "inner_radius_m = 0.01", "inner_radius_m = 0.05"),
+                          "bad.toml");
   });
   EXPECT_NE(msg.find("line 7"), std::string::npos) << msg;
 }
 
 TEST(ScenarioFile, EveryShippedScenarioParses) {
   int count = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(std::string(THAW_SOURCE_DIR) + "/data/scenarios")) {
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(THAW_SOURCE_DIR) + "/data/scenarios")) {
     if (entry.path().extension() != ".toml") continue;
     EXPECT_NO_THROW(read_scenario_file(entry.path())) << entry.path();
     ++count;
@@ -204,7 +214,9 @@ TEST(ScenarioFile, MissingFileIsAUserError) {
 TEST(ScenarioFile, ValidateScenarioChecksCodeBuiltScenarios) {
   Scenario s = default_scenario();
   s.output_interval_s = 2 * s.duration_s;
-  EXPECT_NE(error_of([&] { validate_scenario(s, "pipeline"); }).find("simulation.output_interval_s"), std::string::npos);
+  EXPECT_NE(
+      error_of([&] { validate_scenario(s, "pipeline"); }).find("simulation.output_interval_s"),
+      std::string::npos);
   s = default_scenario();
   s.inner_radius_m = std::nan("");
   EXPECT_NE(error_of([&] { validate_scenario(s); }).find("finite"), std::string::npos);
