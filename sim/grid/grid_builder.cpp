@@ -42,6 +42,21 @@ double inside_fraction(const SignedDistance& d, bool exact, bool axisymmetric,
 
 }  // namespace
 
+/// Block of kBlock^3 cells (kBlock^2 in (r, y)) whose fractions are all 0 or all 1 when its
+/// centre's distance exceeds the block's half-diagonal plus a cell's reach (signed distances
+/// are 1-Lipschitz): the expensive OBJ distance is then evaluated once per block, not per cell.
+constexpr int kBlock = 4;
+
+/// 1: block entirely inside, 0: entirely outside, -1: mixed (evaluate its cells).
+int block_state(const SignedDistance& d, bool axisymmetric, const std::array<double, 3>& lo,
+                double s) {
+  const double half = 0.5 * kBlock * s;
+  const std::array<double, 3> c{lo[0] + half, lo[1] + half, axisymmetric ? 0.0 : lo[2] + half};
+  const double margin = (axisymmetric ? std::sqrt(2.0) : std::sqrt(3.0)) * (half + 0.5 * s);
+  const double dc = d(c);
+  return dc <= -margin ? 1 : (dc >= margin ? 0 : -1);
+}
+
 void shape_fractions(const Scenario& sc, const GridProblem& g, std::vector<double>& ice,
                      std::vector<double>& water) {
   const SignedDistance outer = make_signed_distance(sc.shape.outer, "shape.outer");
@@ -53,18 +68,35 @@ void shape_fractions(const Scenario& sc, const GridProblem& g, std::vector<doubl
   water.assign(static_cast<std::size_t>(n), 0.0);
   const bool outer_exact = sc.shape.outer.kind != ShapeKind::obj;
   const bool cavity_exact = !sc.shape.cavity || sc.shape.cavity->kind != ShapeKind::obj;
-#pragma omp parallel for schedule(dynamic, 64)
-  for (long c = 0; c < n; ++c) {
-    const long i = c % nx, j = (c / nx) % ny, k = c / (nx * ny);
-    const std::array<double, 3> lo{g.origin_m[0] + static_cast<double>(i) * g.spacing_m,
-                                   g.origin_m[1] + static_cast<double>(j) * g.spacing_m,
-                                   g.origin_m[2] + static_cast<double>(k) * g.spacing_m};
-    const double a = inside_fraction(outer, outer_exact, axisymmetric, lo, g.spacing_m);
-    const double b =
-        cavity ? std::min(a, inside_fraction(*cavity, cavity_exact, axisymmetric, lo, g.spacing_m))
-               : 0.0;
-    water[c] = b < kMinFraction ? 0.0 : b;
-    ice[c] = a - b < kMinFraction ? 0.0 : a - b;
+  const long bx = (nx + kBlock - 1) / kBlock, by = (ny + kBlock - 1) / kBlock,
+             bz = (nz + kBlock - 1) / kBlock;
+  const double s = g.spacing_m;
+#pragma omp parallel for schedule(dynamic, 1)
+  for (long b = 0; b < bx * by * bz; ++b) {
+    const long i0 = (b % bx) * kBlock, j0 = ((b / bx) % by) * kBlock, k0 = (b / (bx * by)) * kBlock;
+    auto corner = [&](long i, long j, long k) {
+      return std::array<double, 3>{g.origin_m[0] + static_cast<double>(i) * s,
+                                   g.origin_m[1] + static_cast<double>(j) * s,
+                                   g.origin_m[2] + static_cast<double>(k) * s};
+    };
+    const int outer_state = block_state(outer, axisymmetric, corner(i0, j0, k0), s);
+    const int cavity_state = cavity ? block_state(*cavity, axisymmetric, corner(i0, j0, k0), s) : 0;
+    for (long k = k0; k < std::min(nz, k0 + kBlock); ++k)
+      for (long j = j0; j < std::min(ny, j0 + kBlock); ++j)
+        for (long i = i0; i < std::min(nx, i0 + kBlock); ++i) {
+          const long c = i + nx * (j + ny * k);
+          const auto lo = corner(i, j, k);
+          const double a = outer_state >= 0
+                               ? outer_state
+                               : inside_fraction(outer, outer_exact, axisymmetric, lo, s);
+          double w = 0;
+          if (cavity)
+            w = cavity_state >= 0 ? cavity_state
+                                  : inside_fraction(*cavity, cavity_exact, axisymmetric, lo, s);
+          w = std::min(a, w);
+          water[c] = w < kMinFraction ? 0.0 : w;
+          ice[c] = a - w < kMinFraction ? 0.0 : a - w;
+        }
   }
 }
 

@@ -105,7 +105,7 @@ double thinnest_wall_m(const SignedDistance& outer, const SignedDistance* cavity
     return 0.5 * std::min({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
   }
   double wall = std::numeric_limits<double>::infinity();
-  for (const auto& p : cavity->surface_samples(6000)) wall = std::min(wall, -outer(p));
+  for (const auto& p : cavity->surface_samples(1500)) wall = std::min(wall, -outer(p));
   return wall;
 }
 

@@ -1,0 +1,110 @@
+// The rules of grid scenarios (sim/grid/grid_rules.h) through the parser: every bad [shape] or
+// resolution gives one UserError naming the file, the key and the problem with its numbers.
+#include "sim/grid/grid_rules.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "sim/scenario/scenario_file.h"
+#include "src/common/error.h"
+
+namespace thaw::sim {
+namespace {
+
+std::string scenario(const std::string& geometry, const std::string& shape,
+                     const std::string& sim_extra = "") {
+  return "[simulation]\ngeometry = \"" + geometry +
+         "\"\nduration_s = 60.0\noutput_interval_s = 30.0\n" + sim_extra + "\n[shape]\n" + shape +
+         "\n[water]\ninitial_temperature_c = 10.0\n[ice]\ninitial_temperature_c = -5.0\n"
+         "[outer_boundary]\nkind = \"convective\"\ntemperature_c = "
+         "25.0\nheat_transfer_coefficient_w_m2k = 50.0\n";
+}
+
+const std::string kCube = "outer = { kind = \"box\", size_m = [0.04, 0.04, 0.04] }\n";
+
+/// Parsing must fail with a one-line message containing the file, `key` and `fragment`.
+void expect_refused(const std::string& text, const std::string& key, const std::string& fragment) {
+  try {
+    parse_scenario_string(text, "bad.toml");
+    FAIL() << "accepted: " << text;
+  } catch (const UserError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("bad.toml"), std::string::npos) << what;
+    EXPECT_NE(what.find(key), std::string::npos) << what;
+    EXPECT_NE(what.find(fragment), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+}
+
+TEST(GridRules, ValidShapesParse) {
+  const Scenario s = parse_scenario_string(
+      scenario(
+          "3d",
+          kCube +
+              "cavity = { kind = \"box\", size_m = [0.024, 0.024, 0.024], edge_radius_m = 0.002 }"),
+      "good.toml");
+  EXPECT_EQ(s.grid, GridGeometry::cartesian3d);
+  ASSERT_TRUE(s.shape.cavity.has_value());
+  EXPECT_EQ(s.shape.cavity->edge_radius_m, 0.002);
+  // default cell: 1/48 of the 4 cm extent (the 8 mm wall is 9.6 cells)
+  EXPECT_NEAR(effective_cell_size_m(s), 0.04 / kDefaultCellsAcross3d, 1e-15);
+  const Scenario a = parse_scenario_string(
+      scenario("axisymmetric",
+               "outer = { kind = \"cylinder\", radius_m = 0.02, height_m = 0.06 }\n"
+               "cavity = { kind = \"sphere\", radius_m = 0.01, center_m = [0, 0.01, 0] }"),
+      "good.toml");
+  EXPECT_EQ(a.grid, GridGeometry::axisymmetric);
+}
+
+TEST(GridRules, CavityMustLieStrictlyInside) {
+  expect_refused(scenario("3d", kCube + "cavity = { kind = \"box\", size_m = [0.04, 0.02, 0.02] }"),
+                 "shape.cavity", "strictly inside");
+  expect_refused(
+      scenario("3d",
+               kCube + "cavity = { kind = \"sphere\", radius_m = 0.01, center_m = [0.015, 0, 0] }"),
+      "shape.cavity", "outside");
+  expect_refused(
+      scenario("3d",
+               kCube + "cavity = { kind = \"sphere\", radius_m = 0.01, center_m = [0.1, 0, 0] }"),
+      "shape.cavity", "outside");
+}
+
+TEST(GridRules, AxisymmetricAcceptsOnlyBodiesOfRevolutionOnTheAxis) {
+  expect_refused(scenario("axisymmetric", kCube), "shape.outer.kind",
+                 "only spheres and vertical cylinders");
+  expect_refused(
+      scenario("axisymmetric",
+               "outer = { kind = \"sphere\", radius_m = 0.02, center_m = [0.01, 0, 0] }"),
+      "shape.outer.center_m", "y axis");
+}
+
+TEST(GridRules, SizesKindsAndKeys) {
+  expect_refused(scenario("3d", "outer = { kind = \"sphere\", radius_m = 0.0 }"), "radius_m",
+                 "must be positive");
+  expect_refused(scenario("3d", "outer = { kind = \"box\", size_m = [0.04, -0.01, 0.04] }"),
+                 "size_m", "positive");
+  expect_refused(scenario("3d", "outer = { kind = \"cone\", radius_m = 0.02 }"), "kind",
+                 "unknown kind 'cone'");
+  expect_refused(
+      scenario("3d", "outer = { kind = \"sphere\", radius_m = 0.02, size_m = [1, 1, 1] }"),
+      "size_m", "unknown key");
+  expect_refused(
+      scenario(
+          "3d",
+          kCube + "cavity = { kind = \"box\", size_m = [0.02, 0.02, 0.02], edge_radius_m = 0.5 }"),
+      "edge_radius_m", "half the smallest edge");
+  expect_refused(scenario("cube", kCube), "geometry", "unknown geometry 'cube'");
+  expect_refused(scenario("3d", kCube, "cells_per_phase = 10"), "cells_per_phase", "1D");
+}
+
+TEST(GridRules, TooCoarseForTheThinnestWallGivesTheNumbers) {
+  // 8 mm walls with 4 mm cells: 2 cells, at least 3 needed, so cell_size_m <= 8/3 mm
+  expect_refused(
+      scenario("3d", kCube + "cavity = { kind = \"box\", size_m = [0.024, 0.024, 0.024] }",
+               "cell_size_m = 0.004"),
+      "cell_size_m", "0.008 m = 2 cells, at least 3 are needed (use cell_size_m <= 0.00266");
+}
+
+}  // namespace
+}  // namespace thaw::sim
