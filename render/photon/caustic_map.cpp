@@ -42,8 +42,45 @@ struct ConePlan {
   long long first = 0, count = 0;
   /// Phi / (light colour) per photon: Omega / N, times D^2 for lights without falloff
   double scale = 0;
+  /// spectral scenes: per channel, the light's colour over the mean sRGB of the cone's photon
+  /// wavelengths (photon_colour), so that they sum to the light's colour exactly
+  Rgb normalise{1.0f, 1.0f, 1.0f};
   std::uint32_t medium = 0;
 };
+
+/// Spectral photon i of a cone: its wavelength [nm] (Halton dimension 2, the film's visible
+/// density p) and the linear sRGB of the light's spectrum S there, M (S(lambda) cmf(lambda)) /
+/// p(lambda): on average over the photons, the light's colour.
+Rgb photon_colour(const RgbIlluminantSpectrum& light, std::uint64_t i, double& lambda) {
+  lambda = SampledWavelengths::sample(ScrambledHalton::sample(i, 2)).lambda_nm(0);
+  const double s = light(lambda) / SampledWavelengths::hero_pdf(lambda, HeroDensity::visible);
+  const Xyz bar = cie_xyz_bar(lambda);
+  const LinearSrgb c = xyz_to_linear_srgb({bar.x * s, bar.y * s, bar.z * s});
+  return {float(c.r), float(c.g), float(c.b)};
+}
+
+/// The ratio estimator of the light's colour over a cone's photon wavelengths (ConePlan): exact
+/// for light that meets only wavelength-independent interfaces (grey scenes then match the RGB
+/// renderer), consistent with O(1/N) bias otherwise, as the spectral film's ratio mode. A
+/// channel the light (almost) lacks is left as sampled (a red light's dispersed photons keep
+/// their small green and blue).
+Rgb colour_normalisation(const RgbIlluminantSpectrum& light, const Rgb& colour, long long count) {
+  double sum[3] = {0, 0, 0};
+  for (long long i = 0; i < count; ++i) {
+    double lambda;
+    const Rgb c = photon_colour(light, static_cast<std::uint64_t>(i), lambda);
+    sum[0] += c.r;
+    sum[1] += c.g;
+    sum[2] += c.b;
+  }
+  const float want[3] = {colour.r, colour.g, colour.b};
+  const float peak = colour.max_component();
+  float f[3];
+  for (int k = 0; k < 3; ++k)
+    f[k] = want[k] > 1e-3f * peak && sum[k] > 0 ? float(double(want[k]) * double(count) / sum[k])
+                                                : 1.0f;
+  return {f[0], f[1], f[2]};
+}
 
 Flux flux_of(const Rgb& c, double w) {
   return {c.r * w, c.g * w, c.b * w};
@@ -104,10 +141,15 @@ CausticMap CausticMap::build(const Scene& scene, int threads) {
     for (double& r : radius) r = *settings.radius;
   const long long photons = next;
 
-  const bool spectral = scene.spectral();
+  const bool spectral = photons_carry_wavelengths(scene);
   std::vector<RgbIlluminantSpectrum> spectra;
   for (const Emitter& l : lights)
     spectra.emplace_back(LinearSrgb{l.intensity.r, l.intensity.g, l.intensity.b});
+  if (spectral)
+    for (ConePlan& p : plans) {
+      const Rgb& colour = lights[p.cone.emitter].intensity;
+      p.normalise = colour_normalisation(spectra[p.cone.emitter], colour, p.count);
+    }
 
   const long long chunks = (photons + kChunk - 1) / kChunk;
   std::vector<ChunkResult> parts(static_cast<std::size_t>(chunks));
@@ -137,16 +179,9 @@ CausticMap CausticMap::build(const Scene& scene, int threads) {
           const Emitter& light = lights[plan.cone.emitter];
           double lambda = media::kFraunhoferD_nm;
           Rgb power = light.intensity * static_cast<float>(plan.scale);
-          if (spectral) {
-            const SampledWavelengths w = SampledWavelengths::sample(ScrambledHalton::sample(i, 2));
-            lambda = w.lambda_nm(0);
-            const double s = spectra[plan.cone.emitter](lambda) /
-                             SampledWavelengths::hero_pdf(lambda, HeroDensity::visible);
-            const Xyz bar = cie_xyz_bar(lambda);
-            const LinearSrgb rgb = xyz_to_linear_srgb({bar.x * s, bar.y * s, bar.z * s});
-            power = Rgb{float(rgb.r * plan.scale), float(rgb.g * plan.scale),
-                        float(rgb.b * plan.scale)};
-          }
+          if (spectral)
+            power = photon_colour(spectra[plan.cone.emitter], i, lambda) * plan.normalise *
+                    static_cast<float>(plan.scale);
           ++part.traced;
           part.emitted += flux_of(power, 1.0);
           const Vec3 origin = emission_point(light, dir, ScrambledHalton::sample(i, 3),

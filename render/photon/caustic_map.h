@@ -19,18 +19,18 @@
 //     distance from the light to the target's centre, so the caustic has the brightness the
 //     direct light has at the object's distance (and then falls off as 1/d^2 beyond, as light
 //     does).
-// In spectral scenes a photon carries one wavelength (Halton dimension 2, drawn with the visible
-// density of the film) and its power is the sRGB of the light's uplifted spectrum at that
-// wavelength: Phi_rgb = scale * M_xyz->srgb (S(lambda) cmf(lambda)) / p(lambda), which averages
-// to the light's colour (a white light's photons sum to white).
-// Automatic settings (docs/render.md "Caustics"): N = 250k photons in all; cone k gets N_k in
-// proportion to sqrt(power_k) (between equal shares, which would blur large targets, and shares
-// in proportion to power, which give every target the same radius, too coarse for a small
-// shell beside a large puddle); target t's radius is r_t = min_k R_k sqrt(K / N_k) over its
-// cones (R_k the cone's aiming radius): where the light is not focused, K photons fall in the
-// kernel's disc.
-// Photons are traced in fixed chunks in parallel (OpenMP) and stored in photon index order, so
-// the maps do not depend on the thread count. Nothing throws inside the parallel loop.
+// In spectral scenes with a dispersive or absorbing medium a photon carries one wavelength (Halton
+// dimension 2, drawn with the visible density of the film) and its power is the sRGB of the light's
+// uplifted spectrum at that wavelength: Phi_rgb = scale * M_xyz->srgb (S(lambda) cmf(lambda)) /
+// p(lambda), which averages to the light's colour (a white light's photons sum to white). Otherwise
+// photons carry the light's RGB colour (photons_carry_wavelengths). Automatic settings
+// (docs/render.md "Caustics"): N = 250k photons in all; cone k gets N_k in proportion to
+// sqrt(power_k) (between equal shares, which would blur large targets, and shares in proportion to
+// power, which give every target the same radius, too coarse for a small shell beside a large
+// puddle); target t's radius is r_t = min_k R_k sqrt(K / N_k) over its cones (R_k the cone's aiming
+// radius): where the light is not focused, K photons fall in the kernel's disc. Photons are traced
+// in fixed chunks in parallel (OpenMP) and stored in photon index order, so the maps do not depend
+// on the thread count. Nothing throws inside the parallel loop.
 #include <cstdint>
 #include <vector>
 

@@ -56,7 +56,7 @@ constexpr int kMaxStack = kMaxDepth + 2;
 
 PhotonTracer::PhotonTracer(const Scene& scene, float roulette_weight)
     : m_scene(scene),
-      m_spectral(scene.spectral()),
+      m_spectral(photons_carry_wavelengths(scene)),
       m_max_depth(std::min(scene.settings().max_depth, kMaxDepth)),
       m_min_weight(static_cast<float>(scene.settings().min_weight)),
       m_roulette_weight(roulette_weight) {
@@ -75,6 +75,13 @@ PhotonTracer::PhotonTracer(const Scene& scene, float roulette_weight)
     m_ior.push_back(std::move(n));
     m_alpha.push_back(std::move(alpha));
   }
+}
+
+bool photons_carry_wavelengths(const Scene& scene) {
+  if (!scene.spectral()) return false;
+  for (const auto& m : scene.media())
+    if (m.optics.is_dispersive() || m.optics.absorbs()) return true;
+  return false;
 }
 
 float PhotonTracer::ior(std::uint32_t m, double lambda_nm) const {

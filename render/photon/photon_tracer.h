@@ -65,10 +65,16 @@ struct PathEvent {
 /// Reusable buffer for one photon's events (keeps its capacity between photons).
 using PathEvents = std::vector<PathEvent>;
 
+/// Whether photons need a wavelength: spectral scenes with a dispersive or absorbing medium.
+/// Otherwise every wavelength takes the same path with the same losses, so photons carry the
+/// light's RGB colour and use n_d (exact, no wavelength-sampling noise), in spectral scenes too.
+bool photons_carry_wavelengths(const Scene& scene);
+
 class PhotonTracer {
  public:
-  /// Precomputes n(lambda) and alpha(lambda) of every medium at 1 nm steps (spectral scenes) or
-  /// n_d (RGB scenes). `roulette_weight` in [0, 1): see above (0 = split down to min_weight).
+  /// Precomputes n(lambda) and alpha(lambda) of every medium at 1 nm steps when photons carry
+  /// wavelengths (photons_carry_wavelengths), else n_d. `roulette_weight` in [0, 1): see above (0 =
+  /// split down to min_weight).
   explicit PhotonTracer(const Scene& scene, float roulette_weight = 0.0f);
 
   /// Traces a photon of unit weight along `ray` (unit direction) starting in `medium`, at

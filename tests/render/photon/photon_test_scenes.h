@@ -18,10 +18,11 @@ look_at = [0.0, 0.0, 0.0]
 vertical_fov_deg = 40.0
 )";
 
-/// A ball of radius 1 and constant index `n` at the origin in vacuum over a matte plane at
+/// A ball of radius 1 of medium `glass` (its keys: "ior = 1.31", "preset = \"n-bk7\"") at the
+/// origin in vacuum over a matte plane at
 /// y = `floor_y`, a point light at `light` ("[x, y, z]") with inverse-square falloff; `extra`
 /// is appended (image keys go through `image`).
-inline Scene ball_over_floor(double n, double floor_y, const std::string& light,
+inline Scene ball_over_floor(const std::string& glass, double floor_y, const std::string& light,
                              const std::string& image = "", const std::string& caustics = "",
                              const std::string& extra = "") {
   return scene_from("[image]\n" + image + "\n[caustics]\n" + caustics + R"(
@@ -31,8 +32,7 @@ position = )" + light +
 falloff = "inverse_square"
 intensity = 100.0
 [media.glass]
-ior = )" + std::to_string(n) +
-                    R"(
+)" + glass + R"(
 [materials.white]
 kind = "matte"
 color = [1.0, 1.0, 1.0]
