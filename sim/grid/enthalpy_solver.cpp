@@ -501,7 +501,10 @@ struct EnthalpySolver::Impl {
     }
     for (long c = 0; c < n; ++c) enclosed_prev[c] = open[c] && !outside[c];
     open_prev = open;
-    if (drained_step > 0) update_surface_area();
+    if (drained_step > 0) {
+      flood(open, outside);  // the drained cells opened: exposure as the next step sees it
+      update_surface_area();
+    }
   }
 
   /// |grad m| V per cell (central differences, mirrored at the grid's walls and the axis),
@@ -519,9 +522,22 @@ struct EnthalpySolver::Impl {
         kk = std::clamp(kk, 0, nz - 1);
         return m[ii + static_cast<long>(nx) * (jj + static_cast<long>(ny) * kk)];
       };
-      const double gx = (at(i + 1, j, k) - at(i - 1, j, k)) / (2 * s);
-      const double gy = (at(i, j + 1, k) - at(i, j - 1, k)) / (2 * s);
-      const double gz = nz > 1 ? (at(i, j, k + 1) - at(i, j, k - 1)) / (2 * s) : 0.0;
+      // Youngs' gradient: central differences smoothed across with weights (1, 2, 1), which
+      // makes the estimated area of a tilted surface nearly independent of its orientation.
+      const bool three = nz > 1;
+      const int kw = three ? 1 : 0;
+      double gx = 0, gy = 0, gz = 0;
+      for (int a = -1; a <= 1; ++a)
+        for (int b = -kw; b <= kw; ++b) {
+          const double w = (2 - std::abs(a)) * (three ? 2 - std::abs(b) : 2);
+          gx += w * (at(i + 1, j + a, k + b) - at(i - 1, j + a, k + b));
+          gy += w * (at(i + a, j + 1, k + b) - at(i + a, j - 1, k + b));
+          if (three) gz += w * (at(i + a, j + b, k + 1) - at(i + a, j + b, k - 1));
+        }
+      const double norm = three ? 16 * 2 * s : 8 * 2 * s;
+      gx /= norm;
+      gy /= norm;
+      gz /= norm;
       g[c] = std::sqrt(gx * gx + gy * gy + gz * gz) * vol[c];
       double sum = 0;
       if (m[c] == 0) for_neighbours(c, [&](long nb) { sum += m[nb]; });
@@ -536,6 +552,32 @@ struct EnthalpySolver::Impl {
       double a = g[c];
       for_neighbours(c, [&](long nb) {
         if (m[nb] == 0 && w[nb] > 0) a += g[nb] * m[c] / w[nb];
+      });
+      g[c] = a;  // now the material cell's own share
+    }
+    // Only cells open to the outside air take surface heat (their melt drains): a share that
+    // the smoothed gradient put one cell deeper goes to its exposed neighbours, evenly.
+    std::vector<double> share(static_cast<std::size_t>(n), 0.0);
+#pragma omp parallel for schedule(static) if (n > kParallelCells)
+    for (long c = 0; c < n; ++c) {
+      if (m[c] == 0 || exposed[c] || g[c] == 0) continue;
+      int count = 0;
+      for_neighbours(c, [&](long nb) { count += m[nb] > 0 && exposed[nb]; });
+      if (count > 0) share[c] = g[c] / count;
+    }
+#pragma omp parallel for schedule(static) if (n > kParallelCells)
+    for (long c = 0; c < n; ++c) {
+      if (m[c] == 0) {
+        surface_area[c] = 0;
+        continue;
+      }
+      if (!exposed[c]) {
+        surface_area[c] = share[c] > 0 ? 0.0 : g[c];  // no exposed neighbour: keep it
+        continue;
+      }
+      double a = g[c];
+      for_neighbours(c, [&](long nb) {
+        if (!exposed[nb]) a += share[nb];
       });
       surface_area[c] = a;
     }

@@ -93,9 +93,13 @@ void shape_fractions(const Scenario& sc, const GridProblem& g, std::vector<doubl
           if (cavity)
             w = cavity_state >= 0 ? cavity_state
                                   : inside_fraction(*cavity, cavity_exact, axisymmetric, lo, s);
-          w = std::min(a, w);
-          water[c] = w < kMinFraction ? 0.0 : w;
-          ice[c] = a - w < kMinFraction ? 0.0 : a - w;
+          // slivers go to the other material, so no air appears inside the body
+          const double body = a < kMinFraction ? 0.0 : a;
+          w = std::min(body, w);
+          if (w < kMinFraction) w = 0;
+          if (body - w < kMinFraction) w = body;
+          water[c] = w;
+          ice[c] = body - w;
         }
   }
 }
