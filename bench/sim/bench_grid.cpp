@@ -1,0 +1,59 @@
+// Cost of the grid (axisymmetric / 3D) Stefan solver on the shipped hollow cube
+// (data/scenarios/hollow_cube.toml: one simulated hour or until the ice is gone).
+// Target (issue 11): at most 30 s on 2 cores at default resolution. Prints, per run: cells,
+// threads, wall and CPU time, steps, Newton iterations, and cell updates per second (cells x
+// Newton iterations / wall time); then 2 threads against 1 and the cost per halving of the cell.
+// Usage: bench_grid [scenario.toml] (default: the shipped hollow cube)
+#include <omp.h>
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <string>
+
+#include "sim/grid/grid_rules.h"
+#include "sim/scenario/scenario_file.h"
+#include "sim/simulate.h"
+
+namespace {
+
+struct Run {
+  double wall_s = 0, cpu_s = 0, updates_per_s = 0;
+  long steps = 0;
+};
+
+Run run(thaw::sim::Scenario sc, int threads, double cell) {
+  sc.cell_size_m = cell;
+  omp_set_num_threads(threads);
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::clock_t c0 = std::clock();
+  const auto r = thaw::sim::simulate(sc);
+  Run out;
+  out.cpu_s = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+  out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto& s = r.grid_statistics;
+  const auto& f = r.fields.front();
+  out.steps = s.steps;
+  out.updates_per_s = static_cast<double>(s.cell_updates) / out.wall_s;
+  std::printf("cell %.3g mm  grid %dx%dx%d  threads %d  wall %.2f s  cpu %.2f s  steps %ld  newton %ld  cg %ld  "
+              "%.3g cell updates/s  simulated %.0f s\n",
+              cell * 1e3, f.cells[0], f.cells[1], f.cells[2], threads, out.wall_s, out.cpu_s, s.steps,
+              s.newton_iterations, s.cg_iterations, out.updates_per_s, r.snapshots.back().time_s);
+  std::fflush(stdout);
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string file = argc > 1 ? argv[1] : std::string(THAW_SOURCE_DIR) + "/data/scenarios/hollow_cube.toml";
+  const thaw::sim::Scenario sc = thaw::sim::read_scenario_file(file);
+  const double cell = thaw::sim::effective_cell_size_m(sc);
+  const Run coarse = run(sc, 1, 2 * cell);
+  const Run one = run(sc, 1, cell);
+  const Run two = run(sc, 2, cell);
+  std::printf("2 threads vs 1: wall %.2fx faster\n", one.wall_s / two.wall_s);
+  std::printf("halving the cell (1 thread): wall %.2fx (cells 8x, steps %.2fx)\n", one.wall_s / coarse.wall_s,
+              static_cast<double>(one.steps) / static_cast<double>(coarse.steps));
+  return 0;
+}
