@@ -1,5 +1,6 @@
 #include "src/mesh/grid_mesher.h"
 
+#include <algorithm>
 #include <numbers>
 #include <vector>
 
@@ -78,7 +79,7 @@ GridSurfaces extract_with_field_volume(const NodeLattice& ice, const NodeLattice
   const double slack = 0.0858 * field.spacing_m * (surface_area(s.outer) + surface_area(s.inner));
   if (target - ice_between(s) <= slack) return s;
   float lo = 0.05f, hi = 0.5f;
-  for (int it = 0; it < 10; ++it) {
+  for (int it = 0; it < 7; ++it) {  // level to 0.45 / 2^7 = 0.004
     const float mid = 0.5f * (lo + hi);
     // A level so low that it seals the hole of a broken-through shell (fewer or more cavities
     // than at 1/2) is too low: the film must open when the solver's shell opens.
@@ -90,7 +91,51 @@ GridSurfaces extract_with_field_volume(const NodeLattice& ice, const NodeLattice
 }
 }  // namespace
 
-GridMeshResult mesh_grid_field(const sim::GridField& field, const GridMeshOptions& o) {
+sim::GridField coarsened_twice(const sim::GridField& f) {
+  const bool axi = f.geometry == sim::GridField::Geometry::axisymmetric;
+  sim::GridField c;
+  c.geometry = f.geometry;
+  c.spacing_m = 2 * f.spacing_m;
+  c.origin_m = f.origin_m;
+  c.time_s = f.time_s;
+  c.cells = {(f.cells[0] + 1) / 2, (f.cells[1] + 1) / 2, axi ? 1 : (f.cells[2] + 1) / 2};
+  c.temperature_c.assign(c.cell_count(), 0.0f);
+  c.ice_fraction.assign(c.cell_count(), 0.0f);
+  c.water_fraction.assign(c.cell_count(), 0.0f);
+  std::vector<double> ice(c.cell_count(), 0.0), water(c.cell_count(), 0.0),
+      temperature(c.cell_count(), 0.0);
+  for (int k = 0; k < f.cells[2]; ++k)
+    for (int j = 0; j < f.cells[1]; ++j)
+      for (int i = 0; i < f.cells[0]; ++i) {
+        const std::size_t n = f.index(i, j, k), m = c.index(i / 2, j / 2, axi ? 0 : k / 2);
+        const double w = cell_volume_m3(f, i);
+        ice[m] += w * f.ice_fraction[n];
+        water[m] += w * f.water_fraction[n];
+        temperature[m] += w * f.temperature_c[n];
+      }
+  // Divided by the whole coarse cell's volume: cells beyond the fine grid count as air (the
+  // fine grid's own outside), so the total ice and water volumes are unchanged.
+  for (int k = 0; k < c.cells[2]; ++k)
+    for (int j = 0; j < c.cells[1]; ++j)
+      for (int i = 0; i < c.cells[0]; ++i) {
+        const std::size_t m = c.index(i, j, k);
+        const double v = cell_volume_m3(c, i);
+        c.ice_fraction[m] = static_cast<float>(std::min(1.0, ice[m] / v));
+        c.water_fraction[m] = static_cast<float>(std::min(1.0 - c.ice_fraction[m], water[m] / v));
+        c.temperature_c[m] = static_cast<float>(temperature[m] / v);
+      }
+  return c;
+}
+
+GridMeshResult mesh_grid_field(const sim::GridField& fine, const GridMeshOptions& o) {
+  const double edge = o.edge_length_m > 0 ? o.edge_length_m : fine.spacing_m;
+  // Edges of two cells or more cannot show the finest cells' detail: extracting on the
+  // block-averaged field (an exact volume-fraction field at 2 h) gives a quarter of the
+  // marching-tetrahedra triangles, which the remesher would otherwise have to collapse (measured
+  // on the hollow cube, 0.83 mm cells, 2.5 mm edges: 92 k triangles remeshed in 0.65 s).
+  const bool coarsen = o.coarsen && edge >= 2 * fine.spacing_m;
+  const sim::GridField coarse = coarsen ? coarsened_twice(fine) : sim::GridField{};
+  const sim::GridField& field = coarsen ? coarse : fine;
   const NodeLattice ice = NodeLattice::from_ice_fraction(field, o.smoothing_passes);
   const NodeLattice water = NodeLattice::from_water_fraction(field);
   GridMeshResult r;
@@ -100,7 +145,6 @@ GridMeshResult mesh_grid_field(const sim::GridField& field, const GridMeshOption
   r.iso_level = level;
   r.cavities = s.cavities;
   r.cavity_water_fraction = s.cavity_water_fraction;
-  const double edge = o.edge_length_m > 0 ? o.edge_length_m : field.spacing_m;
   finish(s.outer, o, edge, false, r.remesh_problem);
   finish(s.inner, o, edge, true, r.remesh_problem);
   r.outer = std::move(s.outer);

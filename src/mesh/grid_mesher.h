@@ -25,6 +25,9 @@ struct GridMeshOptions {
   int remesh_iterations = 3;
   /// Passes of Taubin smoothing of the remeshed surface (taubin_smoothing.h).
   int taubin_passes = 10;
+  /// With edges of two cells or more, extract from the 2 x 2 x 2 block average of the field
+  /// (grid_mesher.cpp; the volumes are unchanged, the marching-tetrahedra surface 4x smaller).
+  bool coarsen = true;
   /// Lower the isosurface level below 1/2 where that level loses more ice than its
   /// interpolation error allows (thin walls of partly melted cells; grid_mesher.cpp).
   bool match_field_volume = true;
@@ -46,6 +49,10 @@ struct GridMeshResult {
 
 /// Volume of cell (i, j, k) of `field` [m^3]: h^3, or the ring pi (2i + 1) h^3 (axisymmetric).
 double cell_volume_m3(const sim::GridField& field, int i);
+
+/// The 2 x 2 x 2 (axisymmetric: 2 x 2 rings) block average of `field`, volume-weighted: an exact
+/// volume-fraction field with twice the cell edge holding the same ice and water volumes.
+sim::GridField coarsened_twice(const sim::GridField& field);
 
 /// Throws MeshError (surface_mesher.h) if a produced surface fails its checks.
 GridMeshResult mesh_grid_field(const sim::GridField& field, const GridMeshOptions& options);

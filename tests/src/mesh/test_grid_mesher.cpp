@@ -166,6 +166,42 @@ TEST(GridMesher, CavityOpenToTheOutsideGivesOneSurface) {
   EXPECT_NEAR(enclosed_volume(m.outer), v, kDelta * h * area + h * h * edges);
 }
 
+double field_volume(const sim::GridField& f, const std::vector<float>& fraction) {
+  double v = 0;
+  for (int k = 0; k < f.cells[2]; ++k)
+    for (int j = 0; j < f.cells[1]; ++j)
+      for (int i = 0; i < f.cells[0]; ++i) v += fraction[f.index(i, j, k)] * cell_volume_m3(f, i);
+  return v;
+}
+
+TEST(GridMesher, BlockAverageKeepsVolumesAndMeshesCoarseEdgesWithinTheCoarseBound) {
+  const double R = 0.01, r = 0.006, h = 0.0005;
+  const auto f = sample_cartesian(
+      [&](double x, double y, double z) { return std::hypot(x, y, z) - R; },
+      [&](double x, double y, double z) { return std::hypot(x, y, z) - r; }, 0.0121, h);
+  // Fractions are stored as float: each coarse value is rounded by at most 2^-24 relative, so the
+  // sums agree to 2^-24 of the total.
+  const sim::GridField c = coarsened_twice(f);  // 49 cells -> 25: the last block half outside
+  EXPECT_EQ(c.cells[0], (f.cells[0] + 1) / 2);
+  EXPECT_NEAR(field_volume(c, c.ice_fraction), field_volume(f, f.ice_fraction),
+              0x1p-24 * field_volume(f, f.ice_fraction));
+  EXPECT_NEAR(field_volume(c, c.water_fraction), field_volume(f, f.water_fraction),
+              0x1p-24 * field_volume(f, f.water_fraction));
+  const auto a = sample_axisymmetric([&](double rr, double y) { return std::hypot(rr, y) - R; },
+                                     nullptr, 0.0121, 0.012, h);
+  const sim::GridField ac = coarsened_twice(a);  // rings weighted by their volume
+  EXPECT_NEAR(field_volume(ac, ac.ice_fraction), field_volume(a, a.ice_fraction),
+              0x1p-24 * field_volume(a, a.ice_fraction));
+  // Edges of 2 h: meshed from the block average, within the bound at cell edge 2 h.
+  GridMeshOptions o;
+  o.edge_length_m = 2 * h;
+  const GridMeshResult m = mesh_grid_field(f, o);
+  ASSERT_EQ(check_closed_oriented_components(m.outer), "");
+  EXPECT_EQ(m.cavities, 1);
+  const double v = 4.0 / 3 * kPi * R * R * R, area = 4 * kPi * R * R;
+  EXPECT_NEAR(enclosed_volume(m.outer), v, kDelta * 2 * h * area);
+}
+
 TEST(GridMesher, NoIceGivesNoSurface) {
   const auto f =
       sample_cartesian([](double, double, double) { return 1.0; }, nullptr, 0.004, 0.0005);
