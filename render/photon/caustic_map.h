@@ -24,7 +24,7 @@
 // uplifted spectrum at that wavelength: Phi_rgb = scale * M_xyz->srgb (S(lambda) cmf(lambda)) /
 // p(lambda), which averages to the light's colour (a white light's photons sum to white). Otherwise
 // photons carry the light's RGB colour (photons_carry_wavelengths). Automatic settings
-// (docs/render.md "Caustics"): N = 250k photons in all; cone k gets N_k in proportion to
+// (docs/render.md "Caustics"): N = 150k photons in all; cone k gets N_k in proportion to
 // sqrt(power_k) (between equal shares, which would blur large targets, and shares in proportion to
 // power, which give every target the same radius, too coarse for a small shell beside a large
 // puddle); target t's radius is r_t = min_k R_k sqrt(K / N_k) over its cones (R_k the cone's aiming
@@ -41,7 +41,7 @@
 namespace thaw::render::photon {
 
 /// Automatic photon count (all lights and targets together) when [caustics] photons is not set.
-inline constexpr long long kDefaultPhotons = 250000;
+inline constexpr long long kDefaultPhotons = 150000;
 /// Automatic radius: photons expected in the kernel's disc where the light is not focused.
 inline constexpr double kPhotonsPerDisc = 32.0;
 

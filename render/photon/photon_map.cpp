@@ -1,8 +1,6 @@
 // Photon density estimate; see photon_map.h.
 #include "render/photon/photon_map.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -96,28 +94,21 @@ void PhotonMap::Grid::for_each_near(const Vec3& p, F&& f) const {
       }
 }
 
-PhotonMap::PhotonMap(const std::vector<Photon>& photons, float radius, double photons_per_disc,
-                     int threads)
+PhotonMap::PhotonMap(const std::vector<Photon>& photons, float radius, double photons_per_disc)
     : m_radius(radius) {
   THAW_CHECK(radius > 0.0f && std::isfinite(radius), "photon map radius must be positive");
   if (photons.empty()) return;
-  // Pilot count: photons of the same surface within r of each photon (itself included).
+  // Pilot count: the photons sharing each photon's grid cell (2r wide; itself included), an
+  // O(1) stand-in for the count within r (a per-photon search cost as much as the frame's
+  // queries). Photons keep their input order per class.
   const Grid all(photons, radius);
   std::vector<std::uint8_t> cls(photons.size());
-  const int nthreads = threads > 0 ? threads : omp_get_max_threads();
-  const auto count = static_cast<long long>(photons.size());
-#pragma omp parallel for schedule(static) num_threads(nthreads)
-  for (long long i = 0; i < count; ++i) {
-    const Photon& ph = photons[static_cast<std::size_t>(i)];
-    std::uint32_t n = 0;
-    // Stops at K (all that matters): the focus of a caustic holds thousands within r.
-    all.for_each_near(ph.position, [&](const Photon& q, const Vec3& v, float) {
-      if (dot(q.normal, ph.normal) >= kMinNormalCos &&
-          std::fabs(dot(v, ph.normal)) <= kMaxPlaneDistance * radius)
-        ++n;
-      return double(n) < photons_per_disc;
-    });
-    cls[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(radius_class(n, photons_per_disc));
+  for (std::size_t i = 0; i < photons.size(); ++i) {
+    const Vec3& p = photons[i].position;
+    const std::uint32_t k =
+        all.bucket(cell_of(p.x, all.cell), cell_of(p.y, all.cell), cell_of(p.z, all.cell));
+    cls[i] =
+        static_cast<std::uint8_t>(radius_class(all.start[k + 1] - all.start[k], photons_per_disc));
   }
   std::vector<std::vector<Photon>> split(kClasses);
   for (std::size_t i = 0; i < photons.size(); ++i) split[cls[i]].push_back(photons[i]);

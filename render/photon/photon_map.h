@@ -6,12 +6,13 @@
 // estimate). Every K_p integrates to 1, so photons keep their power exactly, and a uniform photon
 // density of flux per area F returns exactly E = F, in the units of the photons' power per area:
 // the same units as direct light when Phi = I Omega / N (caustic_map.h).
-// Radius: r_p = r where at least `photons_per_disc` (K) photons lie within r of the photon (the
-// focused, well sampled caustic keeps the sharp kernel); where fewer, n, do (the faint light
+// Radius: r_p = r where at least `photons_per_disc` (K) photons share the photon's grid cell (2r
+// wide: about the count within r, found in O(1)) (the focused, well sampled caustic keeps the
+// sharp kernel); where fewer, n, do (the faint light
 // reflected off the ice and the halo around the caustic, carried by few photons), r_p grows to
 // the smallest 2^c r with 4^c n >= K, at most 8r, so that sparse photons become a smooth glow
-// instead of grain (the adaptive-kernel idea of Silverman sec. 5.3, the pilot count taken at
-// radius r). The price: a caustic's edges, where the disc is half empty, get 2r.
+// instead of grain (the adaptive-kernel idea of Silverman sec. 5.3, the pilot count taken per
+// cell). The price: a caustic's edges, where the cells are partly empty, get 2r.
 // Photons of other surfaces are rejected: a photon counts only if its stored normal is within
 // ~25 degrees of n (cos > 0.9) and it lies within r_p / 4 of the tangent plane (a corner, the far
 // side of a thin wall, a ball resting on the floor). Each radius class (r, 2r, 4r, 8r) sits in a
@@ -40,11 +41,9 @@ class PhotonMap {
   static constexpr int kClasses = 4;
 
   PhotonMap() = default;
-  /// `radius` > 0 [scene units]; `photons_per_disc` (>= 1) photons within `radius` keep it,
-  /// fewer widen the photon's kernel (see above). Counting runs on `threads` OpenMP threads
-  /// (0 = default); the result does not depend on them.
-  PhotonMap(const std::vector<Photon>& photons, float radius, double photons_per_disc,
-            int threads = 0);
+  /// `radius` > 0 [scene units]; photons among at least `photons_per_disc` (>= 1) keep it,
+  /// sparser ones get wider kernels (see above).
+  PhotonMap(const std::vector<Photon>& photons, float radius, double photons_per_disc);
 
   bool empty() const { return size() == 0; }
   std::size_t size() const;

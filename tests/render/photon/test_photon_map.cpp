@@ -55,8 +55,8 @@ TEST(PhotonMap, RejectsPhotonsOfOtherSurfaces) {
   EXPECT_EQ(PhotonMap(above, r, 32.0).irradiance({0, 0, 0}, {0, 1, 0}).r, 0.0f);
 }
 
-// Sparse photons get wider kernels: a photon with n neighbours within r (itself included) is
-// spread over r 2^c, the smallest c with 4^c n >= 32 (at most 8 r). Every kernel
+// Sparse photons get wider kernels: a photon with n photons in its grid cell (2r wide, itself
+// included) is spread over r 2^c, the smallest c with 4^c n >= 32 (at most 8 r). Every kernel
 // integrates to 1, so the power is kept: integrating E over the plane returns the photons' power
 // (midpoint rule on a grid of r / 8 cells over a smooth kernel: 1e-3).
 TEST(PhotonMap, SparsePhotonsAreSpreadAndKeepTheirPower) {
