@@ -35,10 +35,12 @@ Run run(thaw::sim::Scenario sc, int threads, double cell) {
   const auto& f = r.fields.front();
   out.steps = s.steps;
   out.updates_per_s = static_cast<double>(s.cell_updates) / out.wall_s;
-  std::printf("cell %.3g mm  grid %dx%dx%d  threads %d  wall %.2f s  cpu %.2f s  steps %ld  newton %ld  cg %ld  "
-              "%.3g cell updates/s  simulated %.0f s\n",
-              cell * 1e3, f.cells[0], f.cells[1], f.cells[2], threads, out.wall_s, out.cpu_s, s.steps,
-              s.newton_iterations, s.cg_iterations, out.updates_per_s, r.snapshots.back().time_s);
+  std::printf(
+      "cell %.3g mm  grid %dx%dx%d  threads %d  wall %.2f s  cpu %.2f s  steps %ld  newton %ld  cg "
+      "%ld  "
+      "%.3g cell updates/s  simulated %.0f s\n",
+      cell * 1e3, f.cells[0], f.cells[1], f.cells[2], threads, out.wall_s, out.cpu_s, s.steps,
+      s.newton_iterations, s.cg_iterations, out.updates_per_s, r.snapshots.back().time_s);
   std::fflush(stdout);
   return out;
 }
@@ -46,14 +48,16 @@ Run run(thaw::sim::Scenario sc, int threads, double cell) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string file = argc > 1 ? argv[1] : std::string(THAW_SOURCE_DIR) + "/data/scenarios/hollow_cube.toml";
+  const std::string file =
+      argc > 1 ? argv[1] : std::string(THAW_SOURCE_DIR) + "/data/scenarios/hollow_cube.toml";
   const thaw::sim::Scenario sc = thaw::sim::read_scenario_file(file);
   const double cell = thaw::sim::effective_cell_size_m(sc);
   const Run coarse = run(sc, 1, 2 * cell);
   const Run one = run(sc, 1, cell);
   const Run two = run(sc, 2, cell);
   std::printf("2 threads vs 1: wall %.2fx faster\n", one.wall_s / two.wall_s);
-  std::printf("halving the cell (1 thread): wall %.2fx (cells 8x, steps %.2fx)\n", one.wall_s / coarse.wall_s,
+  std::printf("halving the cell (1 thread): wall %.2fx (cells 8x, steps %.2fx)\n",
+              one.wall_s / coarse.wall_s,
               static_cast<double>(one.steps) / static_cast<double>(coarse.steps));
   return 0;
 }

@@ -44,6 +44,7 @@ struct GridStatistics {
   double min_step_s = 0, max_step_s = 0;
   double max_step_energy_error = 0;  ///< max over steps of |dE - heat + drained| / reference
   long long cell_updates = 0;        ///< cells x Newton iterations
+  long loose_steps = 0;              ///< steps accepted with a Newton residual in (1e-5, 1e-3] K
   long unconverged_steps = 0;  ///< steps accepted at the smallest step without Newton convergence
   double removed_ice_m3 =
       0;  ///< ice remnants (< 0.1 % of a cell, at T_m) removed with drained melt

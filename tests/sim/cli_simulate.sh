@@ -59,4 +59,37 @@ check_bad long_interval "simulation.output_interval_s" "longer than the run" "${
 hot=${base/kind = \"convective\"/kind = \"temperature\"}
 hot=${hot/heat_transfer_coefficient_w_m2k = 50.0/}
 check_bad hot_surface "outer_boundary.temperature_c" "ill-posed" "$hot"
+# Grid runs ([shape]): a shipped scenario shortened to one minute writes fields/*.grid.
+for name in bored_cylinder hollow_cube; do
+  sed -e 's/^duration_s = 3600.0/duration_s = 60.0/' -e 's/^output_interval_s = 60.0/output_interval_s = 30.0/' \
+    "$src/data/scenarios/$name.toml" > "$work/$name.toml"
+  out="$work/grid_$name"
+  if ! "$thaw" simulate "$work/$name.toml" --out "$out" -q; then note "grid $name: exit code"; continue; fi
+  for f in interfaces.csv summary.json fields/step_000000.grid fields/step_000002.grid; do
+    [ -s "$out/$f" ] || note "grid $name: missing $f"
+  done
+done
+grid='[simulation]
+geometry = "3d"
+duration_s = 60.0
+output_interval_s = 30.0
+[shape]
+outer = { kind = "box", size_m = [0.04, 0.04, 0.04] }
+cavity = { kind = "box", size_m = [0.024, 0.024, 0.024] }
+[water]
+initial_temperature_c = 10.0
+[ice]
+initial_temperature_c = -5.0
+[outer_boundary]
+kind = "convective"
+temperature_c = 25.0
+heat_transfer_coefficient_w_m2k = 50.0'
+check_bad grid_cube_axisymmetric "shape.outer.kind" "only spheres and vertical cylinders" "${grid/\"3d\"/\"axisymmetric\"}"
+check_bad grid_cavity_touching "shape.cavity" "strictly inside" "${grid/\[0.024, 0.024, 0.024\]/[0.04, 0.024, 0.024]}"
+check_bad grid_too_coarse "cell_size_m" "at least 3 are needed" "${grid/output_interval_s = 30.0/output_interval_s = 30.0
+cell_size_m = 0.004}"
+check_bad grid_unknown_kind "shape.outer" "unknown kind 'cube'" "${grid/kind = \"box\", size_m = \[0.04, 0.04, 0.04\]/kind = \"cube\"}"
+check_bad grid_negative_size "shape.outer.size_m" "positive" "${grid/\[0.04, 0.04, 0.04\]/[0.04, -0.04, 0.04]}"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n' > "$work/open.obj"
+check_bad grid_open_obj "open.obj" "at least 4 triangles" "${grid/kind = \"box\", size_m = \[0.04, 0.04, 0.04\]/kind = \"obj\", file = \"$work/open.obj\", scale = 0.05}"
 exit $fail
