@@ -20,16 +20,20 @@ int cell_of(float x, float cell) {
   return static_cast<int>(std::floor(x / cell));
 }
 
-/// The radius class for n photons within r of a photon: the smallest c with 4^c n >= K (the
-/// disc of radius 2^c r would hold about K such photons), at most kClasses - 1. (Keeping r for
-/// n >= K/4 kept the caustic's edges sharper but left its sparse halo grainy.)
-int radius_class(std::uint32_t n, double photons_per_disc) {
+/// A photon's kernel radius over the base radius r, for n photons in its grid cell (2r wide):
+/// the cell's area 4r^2 holds n, so a disc of radius r about n pi / 4, and a disc of radius
+/// r sqrt(K / (n pi / 4)) about K; never below 1 (the focused caustic keeps r), at most 8.
+/// Continuous in n, so a uniform region whose cell counts scatter around K gets radii within
+/// a few percent of r, not a pattern of cells with different kernels.
+float radius_scale(std::uint32_t n, double photons_per_disc) {
+  const double in_disc = std::max(double(n), 1.0) * (kPi / 4.0);
+  return static_cast<float>(std::clamp(std::sqrt(photons_per_disc / in_disc), 1.0, 8.0));
+}
+
+/// The grid a photon of radius scale s goes to: the smallest c with 2^c >= s.
+int radius_class(float scale) {
   int c = 0;
-  double reach = std::max<double>(n, 0.5);
-  while (c + 1 < PhotonMap::kClasses && reach < photons_per_disc) {
-    reach *= 4.0;
-    ++c;
-  }
+  while (c + 1 < PhotonMap::kClasses && float(1 << c) < scale) ++c;
   return c;
 }
 
@@ -98,20 +102,20 @@ PhotonMap::PhotonMap(const std::vector<Photon>& photons, float radius, double ph
     : m_radius(radius) {
   THAW_CHECK(radius > 0.0f && std::isfinite(radius), "photon map radius must be positive");
   if (photons.empty()) return;
-  // Pilot count: the photons sharing each photon's grid cell (2r wide; itself included), an
-  // O(1) stand-in for the count within r (a per-photon search cost as much as the frame's
+  // Pilot count: the photons sharing each photon's grid cell (itself included), an O(1)
+  // estimate of the local density (a per-photon neighbour search cost as much as the frame's
   // queries). Photons keep their input order per class.
   const Grid all(photons, radius);
-  std::vector<std::uint8_t> cls(photons.size());
-  for (std::size_t i = 0; i < photons.size(); ++i) {
-    const Vec3& p = photons[i].position;
+  std::vector<std::vector<Photon>> split(kClasses);
+  for (const Photon& in : photons) {
+    const Vec3& p = in.position;
     const std::uint32_t k =
         all.bucket(cell_of(p.x, all.cell), cell_of(p.y, all.cell), cell_of(p.z, all.cell));
-    cls[i] =
-        static_cast<std::uint8_t>(radius_class(all.start[k + 1] - all.start[k], photons_per_disc));
+    const float scale = radius_scale(all.start[k + 1] - all.start[k], photons_per_disc);
+    Photon out = in;
+    out.inv_radius2 = 1.0f / (radius * scale * radius * scale);
+    split[std::size_t(radius_class(scale))].push_back(out);
   }
-  std::vector<std::vector<Photon>> split(kClasses);
-  for (std::size_t i = 0; i < photons.size(); ++i) split[cls[i]].push_back(photons[i]);
   for (int c = 0; c < kClasses; ++c)
     m_grids.emplace_back(std::move(split[std::size_t(c)]), radius * float(1 << c));
 }
@@ -123,23 +127,23 @@ std::size_t PhotonMap::size() const {
 }
 
 Rgb PhotonMap::irradiance(const Vec3& p, const Vec3& n) const {
-  Rgb e;
+  float sum_r = 0, sum_g = 0, sum_b = 0;
   for (const Grid& g : m_grids) {
-    const float r2 = g.radius * g.radius;
-    float sum_r = 0, sum_g = 0, sum_b = 0;
+    // The grid's radius bounds its photons' own radii; each photon uses its own.
     g.for_each_near(p, [&](const Photon& ph, const Vec3& v, float d2) {
-      if (dot(ph.normal, n) < kMinNormalCos || std::fabs(dot(v, n)) > kMaxPlaneDistance * g.radius)
-        return true;
-      const float w = 1.0f - d2 / r2;
+      const float u = d2 * ph.inv_radius2;
+      if (u >= 1.0f || dot(ph.normal, n) < kMinNormalCos) return true;
+      const float h = dot(v, n);
+      if (h * h * ph.inv_radius2 > kMaxPlaneDistance * kMaxPlaneDistance) return true;
+      const float w = (1.0f - u) * ph.inv_radius2;
       sum_r += ph.power.r * w;
       sum_g += ph.power.g * w;
       sum_b += ph.power.b * w;
       return true;
     });
-    const float norm = 2.0f / (kPi * r2);
-    e += Rgb{sum_r * norm, sum_g * norm, sum_b * norm};
   }
-  return e;
+  const float norm = 2.0f / kPi;
+  return {sum_r * norm, sum_g * norm, sum_b * norm};
 }
 
 }  // namespace thaw::render::photon

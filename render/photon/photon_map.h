@@ -6,19 +6,21 @@
 // estimate). Every K_p integrates to 1, so photons keep their power exactly, and a uniform photon
 // density of flux per area F returns exactly E = F, in the units of the photons' power per area:
 // the same units as direct light when Phi = I Omega / N (caustic_map.h).
-// Radius: r_p = r where at least `photons_per_disc` (K) photons share the photon's grid cell (2r
-// wide: about the count within r, found in O(1)) (the focused, well sampled caustic keeps the
-// sharp kernel); where fewer, n, do (the faint light
-// reflected off the ice and the halo around the caustic, carried by few photons), r_p grows to
-// the smallest 2^c r with 4^c n >= K, at most 8r, so that sparse photons become a smooth glow
-// instead of grain (the adaptive-kernel idea of Silverman sec. 5.3, the pilot count taken per
-// cell). The price: a caustic's edges, where the cells are partly empty, get 2r.
+// Radius: each photon's r_p = r sqrt(K / n_r), clamped to [r, 8r], where n_r estimates the photons
+// within r of it from the count of its grid cell (2r wide, found in O(1)) and K =
+// `photons_per_disc`: the focused, well sampled caustic keeps the sharp kernel r, while the faint
+// light reflected off the ice and the halo around the caustic, carried by few photons, is spread
+// into a smooth glow instead of grain (the adaptive-kernel idea of Silverman sec. 5.3, the pilot
+// density taken per cell). r_p is continuous in the count, so a uniform region (cell counts
+// scattering around K) keeps radii within a few percent of r instead of a cell pattern of two
+// kernels. The price: a caustic's edges, where cells are partly empty, get a wider kernel.
 // Photons of other surfaces are rejected: a photon counts only if its stored normal is within
 // ~25 degrees of n (cos > 0.9) and it lies within r_p / 4 of the tangent plane (a corner, the far
-// side of a thin wall, a ball resting on the floor). Each radius class (r, 2r, 4r, 8r) sits in a
-// hashed uniform grid of cells 2 r_class wide (Teschner et al. 2003, "Optimized spatial hashing
-// for collision detection of deformable objects"), so a query visits at most 2 x 2 x 2 cells
-// per class. Built once, immutable, thread-safe to query. Knows nothing about lights or tracing.
+// side of a thin wall, a ball resting on the floor). Photons whose r_p is at most r, 2r, 4r, 8r
+// sit in four hashed uniform grids of cells 2 r_class wide (Teschner et al. 2003, "Optimized
+// spatial hashing for collision detection of deformable objects"), so a query visits at most 2 x 2
+// x 2 cells per class. Built once, immutable, thread-safe to query. Knows nothing about lights or
+// tracing.
 #include <cstdint>
 #include <vector>
 
@@ -33,11 +35,13 @@ struct Photon {
   Vec3 normal;
   /// power [light units x sr, e.g. W for a light in W/sr]
   Rgb power;
+  /// 1 / r_p^2 of its kernel [1 / scene units^2] (set by PhotonMap)
+  float inv_radius2 = 0;
 };
 
 class PhotonMap {
  public:
-  /// Radius classes r, 2r, 4r, 8r.
+  /// Grids for kernel radii up to r, 2r, 4r, 8r.
   static constexpr int kClasses = 4;
 
   PhotonMap() = default;
@@ -49,7 +53,7 @@ class PhotonMap {
   std::size_t size() const;
   /// the base radius r
   float radius() const { return m_radius; }
-  /// Photons of radius class c (radius r 2^c), in a fixed order.
+  /// Photons whose kernel radius is in (r 2^(c-1), r 2^c] (c = 0: exactly r), in a fixed order.
   const std::vector<Photon>& photons(int radius_class) const {
     return m_grids[std::size_t(radius_class)].photons;
   }

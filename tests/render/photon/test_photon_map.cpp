@@ -56,19 +56,19 @@ TEST(PhotonMap, RejectsPhotonsOfOtherSurfaces) {
 }
 
 // Sparse photons get wider kernels: a photon with n photons in its grid cell (2r wide, itself
-// included) is spread over r 2^c, the smallest c with 4^c n >= 32 (at most 8 r). Every kernel
-// integrates to 1, so the power is kept: integrating E over the plane returns the photons' power
-// (midpoint rule on a grid of r / 8 cells over a smooth kernel: 1e-3).
+// included) gets r sqrt(32 / (n pi / 4)), clamped to [r, 8r]. Every kernel integrates to 1, so
+// the power is kept: integrating E over the plane returns the photons' power (midpoint rule on a
+// grid of r / 8 cells over kernels at least 4.5 r wide: 1e-3).
 TEST(PhotonMap, SparsePhotonsAreSpreadAndKeepTheirPower) {
   const float r = 0.1f;
-  // A lone photon (n = 1 -> class 3, radius 8r) and a pair (n = 2 -> class 2, radius 4r).
+  // A lone photon (n = 1: 6.4 r) and a pair in one cell (n = 2: 4.5 r).
   std::vector<Photon> photons{{Vec3{0, 0, 0}, Vec3{0, 1, 0}, Rgb{1, 1, 1}},
                               {Vec3{5, 0, 0}, Vec3{0, 1, 0}, Rgb{1, 1, 1}},
                               {Vec3{5.05f, 0, 0}, Vec3{0, 1, 0}, Rgb{1, 1, 1}}};
   const PhotonMap map(photons, r, 32.0);
-  EXPECT_EQ(map.photons(3).size(), 1u);
-  EXPECT_EQ(map.photons(2).size(), 2u);
-  EXPECT_NEAR(map.irradiance({0, 0, 0}, {0, 1, 0}).g, 2 / (M_PI * 0.64), 1e-5);
+  EXPECT_EQ(map.photons(3).size(), 3u);
+  const double lone = r * std::sqrt(32.0 / (M_PI / 4));
+  EXPECT_NEAR(map.irradiance({0, 0, 0}, {0, 1, 0}).g, 2 / (M_PI * lone * lone), 1e-4);
   double total = 0;
   const float h = r / 8;
   for (int i = -80; i <= 120 * 5; ++i)
@@ -76,6 +76,13 @@ TEST(PhotonMap, SparsePhotonsAreSpreadAndKeepTheirPower) {
       total +=
           map.irradiance({(float(i) + 0.5f) * h, 0, (float(k) + 0.5f) * h}, {0, 1, 0}).g * h * h;
   EXPECT_NEAR(total, 3.0, 3e-3);
+}
+
+// In a uniform density (a lattice of spacing h, cells of 2r = 40 h hold 1600 photons) every
+// photon keeps r.
+TEST(PhotonMap, DenseRegionsKeepTheBaseRadius) {
+  const PhotonMap map(lattice(0.01f, 1.0f, 1.0f), 0.2f, 32.0);
+  EXPECT_EQ(map.photons(0).size(), map.size());
 }
 
 TEST(PhotonMap, EmptyMapIsDark) {
