@@ -134,7 +134,8 @@ SceneDescription parse_scene_string(const std::string& text, const std::string& 
   return s;
 }
 
-SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem::path& base_dir) {
+SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem::path& base_dir,
+                                   bool camera_optional) {
   SceneDescription s;
   s.source_name = root.source_name();
   s.base_dir = base_dir;
@@ -224,7 +225,7 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
                   d[0] * s.camera.up[1] - d[1] * s.camera.up[0]};
     if (length3(c) <= 1e-9 * length3(d))
       cam->fail("up", "must not be parallel to the viewing direction");
-  } else {
+  } else if (!camera_optional) {
     root.fail("camera", "required table [camera] is missing");
   }
   if (auto amb = root.optional_table("ambient")) {

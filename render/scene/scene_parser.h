@@ -23,7 +23,10 @@ SceneDescription parse_scene_string(const std::string& text, const std::string& 
 /// Reads the scene keys of `table` (a document's root, or e.g. a scenario's [render] table: keys
 /// are then reported as "render.camera.up"). Every key it reads is marked, but unknown keys are
 /// not checked here: the owner of the document calls check_no_unknown_keys() once at the end.
-SceneDescription parse_scene_table(const TomlTable& table, const std::filesystem::path& base_dir);
+/// With camera_optional (thaw run, whose built-in camera frames the shell), a missing [camera]
+/// leaves the default CameraDescription instead of being an error.
+SceneDescription parse_scene_table(const TomlTable& table, const std::filesystem::path& base_dir,
+                                   bool camera_optional = false);
 
 /// Largest accepted image side [pixels] and pixel count.
 inline constexpr int kMaxImageSide = 16384;

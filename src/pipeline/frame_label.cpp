@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <cstdio>
 
+#include "src/pipeline/caption_font.h"
+
 namespace thaw::pipeline {
 
 namespace {
@@ -85,6 +87,25 @@ void stamp_label(float* rgb, int width, int height, int x, int y, const std::str
     }
     pen_x += (kGlyphW + 1) * scale;
   }
+}
+
+void stamp_caption(float* rgb, int width, int height, const std::string& text,
+                   const CaptionFont* font) {
+  if (!font) {
+    const int scale = std::max(1, height / 160);
+    stamp_label(rgb, width, height, scale * 3, scale * 3, text, scale);
+    return;
+  }
+  const double px = std::max(9.0, height / 24.0);
+  const double pad = 0.35 * px, margin = 0.4 * px;
+  const double ascent = font->ascent_px(px), descent = font->descent_px(px);
+  const int x0 = static_cast<int>(margin), y0 = static_cast<int>(margin);
+  const int x1 = static_cast<int>(std::ceil(margin + font->text_width_px(text, px) + 2 * pad));
+  const int y1 = static_cast<int>(std::ceil(margin + ascent + descent + 2 * pad));
+  for (int y = std::max(0, y0); y < std::min(height, y1); ++y)
+    for (int x = std::max(0, x0); x < std::min(width, x1); ++x)
+      for (int c = 0; c < 3; ++c) rgb[(static_cast<std::size_t>(y) * width + x) * 3 + c] *= 0.35f;
+  font->draw(rgb, width, height, x0 + pad, y0 + pad + ascent, text, px);
 }
 
 }  // namespace thaw::pipeline

@@ -18,8 +18,10 @@
 #include "src/inspect/pvd_writer.h"
 #include "src/inspect/radius_plot.h"
 #include "src/mesh/mesh_series.h"
+#include "src/pipeline/caption_font.h"
 #include "src/pipeline/content_hash.h"
 #include "src/pipeline/film_encoder.h"
+#include "src/pipeline/frame_camera.h"
 #include "src/pipeline/frame_label.h"
 #include "src/pipeline/frame_puddle.h"
 #include "src/pipeline/run_manifest.h"
@@ -82,8 +84,9 @@ render::SceneDescription frame_scene(const RunScenario& sc, const fs::path& mesh
     for (const auto& p : outer->positions) min_y = std::min<double>(min_y, p.y);
     offset[1] = sc.shell.floor_y - min_y;
   }
-  // One surface per interface: ice|outside (outer) and water|ice (inner). Without ice the
-  // water has drained: nothing is left to draw.
+  // One surface per interface: ice|outside (outer) and water|ice (inner). Without ice there is
+  // no mesh (src/mesh meshes neither surface): a drop before it freezes is not drawn; after a
+  // break-through the water is in the puddle.
   if (outer) {
     auto& o = desc.add_dielectric_mesh(outer, sc.shell.ice_medium, sc.shell.outside_medium, "shell outer surface");
     o.translate = offset;
@@ -101,7 +104,7 @@ render::SceneDescription frame_scene(const RunScenario& sc, const fs::path& mesh
   return desc;
 }
 
-void stamp_caption(render::Image& image, double time_s) {
+void stamp_frame_caption(render::Image& image, double time_s, const CaptionFont* font) {
   const int w = image.width(), h = image.height();
   std::vector<float> rgb(std::size_t(w) * h * 3);
   for (int y = 0; y < h; ++y)
@@ -110,8 +113,7 @@ void stamp_caption(render::Image& image, double time_s) {
       float* q = &rgb[(std::size_t(y) * w + x) * 3];
       q[0] = p.r, q[1] = p.g, q[2] = p.b;
     }
-  const int scale = std::max(1, h / 160);
-  stamp_label(rgb.data(), w, h, scale * 3, scale * 3, format_sim_time_label(time_s), scale);
+  stamp_caption(rgb.data(), w, h, format_sim_time_label(time_s), font);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const float* q = &rgb[(std::size_t(y) * w + x) * 3];
@@ -187,9 +189,26 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
   // 3. render one frame per step
   ContentHash render_hash;
   render_hash.add("render").add(mesh_hash.hex()).add(sc.render_text).add(sc.film.caption ? "caption" : "");
+  // The caption's font: DejaVu Sans, or the bitmap font if it cannot be loaded (said once).
+  std::unique_ptr<CaptionFont> font;
+  if (sc.film.caption) {
+    std::string problem;
+    font = CaptionFont::load(kDefaultCaptionFont, problem);
+    if (font)
+      render_hash.add_file(kDefaultCaptionFont);
+    else
+      say(opt, "caption: " + problem + "; using the built-in bitmap font");
+  }
   for (const auto& o : sc.scene.objects)
     if (!o.mesh_file.empty()) render_hash.add_file(o.mesh_file.is_absolute() ? o.mesh_file : sc.scene.base_dir / o.mesh_file);
   const long frame_count = static_cast<long>(meshes.steps.size());
+  // The built-in camera frames the shell's largest extent over the run: one camera for all frames.
+  RunScenario framed = sc;
+  if (!sc.camera_set)
+    framed.scene.camera =
+        framing_camera(shell_extent(rows, meshes.geometry, sc.shell.center, sc.shell.rest_on_floor,
+                                    sc.shell.floor_y),
+                       static_cast<double>(sc.scene.image.width) / sc.scene.image.height);
   const std::vector<WaterBudget> water =
       water_budget(rows, meshes.geometry, sc.simulation.materials.ice_density_kg_m3,
                    sc.simulation.materials.water_density_kg_m3);
@@ -212,11 +231,11 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
       }
       const mesh::StepRecord& step = meshes.steps[static_cast<std::size_t>(k)];
       const render::Scene scene = render::build_scene(frame_scene(
-          sc, mesh_dir, meshes.geometry, step, water.at(static_cast<std::size_t>(step.step))));
+          framed, mesh_dir, meshes.geometry, step, water.at(static_cast<std::size_t>(step.step))));
       render::RenderOptions ro;
       ro.threads = opt.jobs;
       render::RenderResult result = render::render(scene, ro);
-      if (sc.film.caption) stamp_caption(result.image, step.time_s);
+      if (sc.film.caption) stamp_frame_caption(result.image, step.time_s, font.get());
       render::write_png(png, result.image, sc.scene.image.exposure);
       manifest.mark_item_done("render", frame_name(k));
       ++clock.timing().items_done;

@@ -124,9 +124,11 @@ PuddleShape make_puddle_shape(double volume_m3, double floor_y, double center_x,
 
 namespace {
 
-/// Appends q unless it repeats the last point (a puddle of zero top width), keeping a crease.
+/// Appends q unless it repeats the last point (a puddle of nearly zero top width), keeping a
+/// crease. Points closer than 0.1 um would coincide once the mesh's vertices are rounded to
+/// float (1 ulp is 7 nm at 0.1 m), leaving degenerate facets.
 void push_distinct(std::vector<ProfilePoint>& p, const ProfilePoint& q) {
-  if (std::abs(p.back().d - q.d) < 1e-15 && std::abs(p.back().y - q.y) < 1e-15) {
+  if (std::abs(p.back().d - q.d) < 1e-7 && std::abs(p.back().y - q.y) < 1e-7) {
     p.back().crease = p.back().crease || q.crease;
     return;
   }
@@ -145,9 +147,9 @@ std::vector<ProfilePoint> PuddleShape::profile(const PuddleSettings& st) const {
   p.push_back({contact_d, 0.0, true});
   for (int k = 1; k < st.rim_segments; ++k) {
     const double t = t_floor + (0.5 * kPi - t_floor) * k / st.rim_segments;
-    p.push_back({big_r + rho * std::cos(t), h - rho + rho * std::sin(t)});
+    push_distinct(p, {big_r + rho * std::cos(t), h - rho + rho * std::sin(t)});
   }
-  p.push_back({big_r, h});
+  push_distinct(p, {big_r, h});
   if (!ice) {
     push_distinct(p, {0.0, h});
     return p;
@@ -207,7 +209,7 @@ render::TriangleMesh puddle_mesh(const PuddleShape& s, const PuddleSettings& st)
   for (const ProfilePoint& q : profile) {
     ring_start.push_back(static_cast<std::uint32_t>(mesh.positions.size()));
     const float y = static_cast<float>(s.floor_y + q.y);
-    pole.push_back(q.d == 0 && l == 0);
+    pole.push_back(q.d < 1e-7 && l == 0);  // on the axis, to float resolution
     if (pole.back()) {
       mesh.positions.push_back({static_cast<float>(s.center_x), y, static_cast<float>(s.center_z)});
       continue;

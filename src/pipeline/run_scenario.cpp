@@ -100,16 +100,18 @@ RunScenario parse_run_scenario(const TomlTable& root) {
     r.scene = builtin.scene;
     r.shell = builtin.shell;
     r.render_text = builtin.render_text;
+    r.camera_set = builtin.camera_set;
   }
   else {
-  r.scene = render::parse_scene_table(*render_table, base_dir);
-  r.render_text = render_table->canonical_text();
-  const auto shell = render_table->optional_table("shell");
-  if (shell) {
-    r.shell = parse_shell(*shell);
-    check_medium_declared(*shell, r.scene, "ice_medium", r.shell.ice_medium);
-    check_medium_declared(*shell, r.scene, "water_medium", r.shell.water_medium);
-    check_medium_declared(*shell, r.scene, "outside_medium", r.shell.outside_medium);
+    r.scene = render::parse_scene_table(*render_table, base_dir, /*camera_optional=*/true);
+    r.render_text = render_table->canonical_text();
+    r.camera_set = render_table->optional_table("camera").has_value();
+    const auto shell = render_table->optional_table("shell");
+    if (shell) {
+      r.shell = parse_shell(*shell);
+      check_medium_declared(*shell, r.scene, "ice_medium", r.shell.ice_medium);
+      check_medium_declared(*shell, r.scene, "water_medium", r.shell.water_medium);
+      check_medium_declared(*shell, r.scene, "outside_medium", r.shell.outside_medium);
   } else {
     for (const auto& name : {r.shell.ice_medium, r.shell.water_medium}) {
       bool found = false;

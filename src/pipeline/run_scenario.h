@@ -50,6 +50,9 @@ struct RunScenario {
   mesh::MeshOptions mesh;
   render::SceneDescription scene;  ///< everything but the shell
   ShellPlacement shell;
+  /// the scenario sets [render.camera]; otherwise the frames use the built-in framing camera
+  /// (src/pipeline/frame_camera.h)
+  bool camera_set = false;
   /// canonical text of each section, for fingerprinting what a stage depends on
   std::string simulation_text, film_text, mesh_text, render_text;
 };
