@@ -330,7 +330,7 @@ Scene build_scene(const SceneDescription& desc) {
         std::string mesh_name;
         if (od.mesh) {
           mesh = *od.mesh;
-          mesh_name = label;
+          mesh_name = src;  // built in code: the label names it (not twice, as file and key)
           if (auto problem = validate_mesh(mesh)) throw UserError(src, label, "mesh: " + *problem);
         } else {
           if (od.mesh_file.empty())

@@ -74,6 +74,8 @@ TEST(Scene, OpenDielectricMeshIsRejected) {
   } catch (const UserError& e) {
     EXPECT_NE(std::string(e.what()).find("leaky"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("closed"), std::string::npos) << e.what();
+    // an in-memory mesh is named once, by its label (not as file and key: "leaky: leaky:")
+    EXPECT_EQ(std::string(e.what()).find("leaky: leaky"), std::string::npos) << e.what();
   }
 }
 
