@@ -30,48 +30,72 @@ void run_simulate(const SimulateArgs& a) {
   if (a.out.empty()) throw UserError("", "--out", "required: the result folder");
   // Parse and validate everything before touching DIR: a scenario file may also hold thaw run's
   // [film], [mesh] and [render] sections, which are checked too (one file serves every command).
-  const sim::Scenario scenario =
-      a.scenario.empty() ? sim::default_scenario() : pipeline::read_run_scenario(a.scenario).simulation;
+  const sim::Scenario scenario = a.scenario.empty()
+                                     ? sim::default_scenario()
+                                     : pipeline::read_run_scenario(a.scenario).simulation;
   const std::filesystem::path out(a.out);
   if (std::filesystem::exists(out) && !std::filesystem::is_directory(out))
     throw UserError(a.out, "--out", "exists and is not a directory");
   StagingDirectory staging(out);
   sim::SimulationResult result;
   {
-    ProgressReporter progress("simulate", static_cast<std::int64_t>(sim::output_times(scenario).size()), a.quiet);
+    ProgressReporter progress(
+        "simulate", static_cast<std::int64_t>(sim::output_times(scenario).size()), a.quiet);
     result = sim::simulate(scenario, progress.callback());
     progress.finish();
   }
   sim::write_simulation_outputs(staging.path(), result);
   staging.commit();
   if (a.quiet) return;
-  std::printf("thaw simulate: %s -> %s\n", a.scenario.empty() ? "built-in default scenario" : a.scenario.c_str(),
+  std::printf("thaw simulate: %s -> %s\n",
+              a.scenario.empty() ? "built-in default scenario" : a.scenario.c_str(),
               (out / "").string().c_str());
   const auto& last = result.snapshots.back();
-  std::printf("  %zu rows to t = %.6g s; water|ice front %.6g m, ice surface %.6g m\n", result.snapshots.size(),
-              last.time_s, last.inner_radius_m, last.outer_radius_m);
-  for (const auto& e : result.events)
-    std::printf("  event %s at t = %.6g s, r = %.6g m\n", e.kind.c_str(), e.time_s, e.radius_m);
+  const bool grid = !result.fields.empty();
+  if (grid)
+    std::printf(
+        "  %zu rows to t = %.6g s; liquid %.6g m^3, ice %.6g m^3 (volume-equivalent radii %.6g / "
+        "%.6g m)\n",
+        result.snapshots.size(), last.time_s, last.liquid_volume_m3, last.ice_volume_m3,
+        last.inner_radius_m, last.outer_radius_m);
+  else
+    std::printf("  %zu rows to t = %.6g s; water|ice front %.6g m, ice surface %.6g m\n",
+                result.snapshots.size(), last.time_s, last.inner_radius_m, last.outer_radius_m);
+  if (grid)
+    for (const auto& e : result.grid_events)
+      std::printf("  event %s at t = %.6g s, at (%.4g, %.4g, %.4g) m\n", e.kind.c_str(), e.time_s,
+                  e.position_m[0], e.position_m[1], e.position_m[2]);
+  else
+    for (const auto& e : result.events)
+      std::printf("  event %s at t = %.6g s, r = %.6g m\n", e.kind.c_str(), e.time_s, e.radius_m);
   const auto& s = result.statistics;
-  std::printf("  %ld steps (%ld rejected), max energy balance error %.2e, wall time %.3f s\n", s.steps,
-              s.rejected_steps, s.max_step_energy_error, result.wall_time_s);
+  std::printf("  %ld steps (%ld rejected), max energy balance error %.2e, wall time %.3f s\n",
+              s.steps, s.rejected_steps, s.max_step_energy_error, result.wall_time_s);
   std::printf("  results: %s, %s, %s\n", (out / "interfaces.csv").string().c_str(),
-              (out / "profiles").string().c_str(), (out / "summary.json").string().c_str());
+              (out / (grid ? "fields" : "profiles")).string().c_str(),
+              (out / "summary.json").string().c_str());
 }
 
 }  // namespace
 
 void register_simulate(CLI::App& app) {
   auto args = std::make_shared<SimulateArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "simulate",
-      "Simulate a hollow ice shell holding water as it melts (radial two-phase Stefan problem with an "
-      "ablating surface; planar, cylinder or sphere). Without SCENARIO the built-in default runs "
-      "(see --print-default and docs/simulate.md). Writes DIR/interfaces.csv, DIR/profiles/step_NNNNNN.csv "
-      "and DIR/summary.json.");
-  cmd->add_option("scenario", args->scenario, "scenario file (TOML); omit for the built-in default");
-  cmd->add_option("-o,--out", args->out, "result folder (replaced as a whole when the run succeeds)");
-  cmd->add_flag("--print-default", args->print_default, "print the built-in default scenario and exit");
+  CLI::App* cmd = app.add_subcommand("simulate",
+                                     "Simulate a hollow ice shell holding water as it melts "
+                                     "(radial two-phase Stefan problem with an "
+                                     "ablating surface; planar, cylinder or sphere; any shape with "
+                                     "geometry = axisymmetric or 3d). "
+                                     "Without SCENARIO the built-in default runs (see "
+                                     "--print-default and docs/simulate.md). Writes "
+                                     "DIR/interfaces.csv, DIR/profiles/step_NNNNNN.csv (1D) or "
+                                     "DIR/fields/step_NNNNNN.grid (grid runs) "
+                                     "and DIR/summary.json.");
+  cmd->add_option("scenario", args->scenario,
+                  "scenario file (TOML); omit for the built-in default");
+  cmd->add_option("-o,--out", args->out,
+                  "result folder (replaced as a whole when the run succeeds)");
+  cmd->add_flag("--print-default", args->print_default,
+                "print the built-in default scenario and exit");
   cmd->add_flag("-q,--quiet", args->quiet, "no progress bar and no summary");
   cmd->callback([args] { run_simulate(*args); });
 }
