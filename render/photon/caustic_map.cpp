@@ -259,7 +259,7 @@ CausticMap CausticMap::build(const Scene& scene, int threads) {
     st.photons_stored += ts.photons_stored;
     // A target without cones (no light reaches it) keeps an empty map.
     result.m_maps.emplace_back(per_target[t], static_cast<float>(radius[t] > 0 ? radius[t] : 1.0),
-                               kPhotonsPerDisc);
+                               kSmoothPhotons);
   }
   st.cones = static_cast<int>(cones.size());
   st.threads = nthreads;

@@ -20,20 +20,26 @@ int cell_of(float x, float cell) {
   return static_cast<int>(std::floor(x / cell));
 }
 
-/// A photon's kernel radius over the base radius r, for n photons in its grid cell (2r wide):
-/// the cell's area 4r^2 holds n, so a disc of radius r about n pi / 4, and a disc of radius
-/// r sqrt(K / (n pi / 4)) about K; never below 1 (the focused caustic keeps r), at most 8.
-/// Continuous in n, so a uniform region whose cell counts scatter around K gets radii within
-/// a few percent of r, not a pattern of cells with different kernels.
+/// Radius of grid c over the base radius: 2^(c/2).
+float class_scale(int c) {
+  return std::exp2(0.5f * float(c));
+}
+
+/// A photon's kernel radius over the base radius r, for n photons in the 2 x 2 x 2 grid cells
+/// (2r wide) around it, whose 4 cells across a surface cover 16 r^2: a disc of radius r holds
+/// about n pi / 16 of them, and a disc of radius r sqrt(K / (n pi / 16)) about K; never below 1
+/// (the focused caustic keeps r), at most 8. Continuous in n, and n counted over 8 cells
+/// scatters little in an evenly lit region, so the radii there stay smooth.
 float radius_scale(std::uint32_t n, double photons_per_disc) {
-  const double in_disc = std::max(double(n), 1.0) * (kPi / 4.0);
+  const double in_disc = std::max(double(n), 1.0) * (kPi / 16.0);
   return static_cast<float>(std::clamp(std::sqrt(photons_per_disc / in_disc), 1.0, 8.0));
 }
 
-/// The grid a photon of radius scale s goes to: the smallest c with 2^c >= s.
+/// The grid a photon of radius scale s goes to: the smallest c with 2^(c/2) >= s (radii in
+/// steps of sqrt 2, so a query examines few photons beyond each kernel).
 int radius_class(float scale) {
   int c = 0;
-  while (c + 1 < PhotonMap::kClasses && float(1 << c) < scale) ++c;
+  while (c + 1 < PhotonMap::kClasses && class_scale(c) < scale) ++c;
   return c;
 }
 
@@ -98,26 +104,41 @@ void PhotonMap::Grid::for_each_near(const Vec3& p, F&& f) const {
       }
 }
 
+std::uint32_t PhotonMap::Grid::count_near(const Vec3& p) const {
+  const int x0 = cell_of(p.x - radius, cell), y0 = cell_of(p.y - radius, cell),
+            z0 = cell_of(p.z - radius, cell);
+  std::uint32_t seen[8];
+  int nseen = 0;
+  std::uint32_t n = 0;
+  for (int dz = 0; dz < 2; ++dz)
+    for (int dy = 0; dy < 2; ++dy)
+      for (int dx = 0; dx < 2; ++dx) {
+        const std::uint32_t k = bucket(x0 + dx, y0 + dy, z0 + dz);
+        if (std::find(seen, seen + nseen, k) != seen + nseen) continue;
+        seen[nseen++] = k;
+        n += start[k + 1] - start[k];
+      }
+  return n;
+}
+
 PhotonMap::PhotonMap(const std::vector<Photon>& photons, float radius, double photons_per_disc)
     : m_radius(radius) {
   THAW_CHECK(radius > 0.0f && std::isfinite(radius), "photon map radius must be positive");
   if (photons.empty()) return;
-  // Pilot count: the photons sharing each photon's grid cell (itself included), an O(1)
-  // estimate of the local density (a per-photon neighbour search cost as much as the frame's
-  // queries). Photons keep their input order per class.
+  // Pilot count: the photons in the 8 grid cells around each photon (those a query at its
+  // position visits), an O(1) estimate of the local density (a per-photon neighbour search cost
+  // as much as the frame's queries). Photons keep their input order per grid.
   const Grid all(photons, radius);
   std::vector<std::vector<Photon>> split(kClasses);
   for (const Photon& in : photons) {
-    const Vec3& p = in.position;
-    const std::uint32_t k =
-        all.bucket(cell_of(p.x, all.cell), cell_of(p.y, all.cell), cell_of(p.z, all.cell));
-    const float scale = radius_scale(all.start[k + 1] - all.start[k], photons_per_disc);
+    const std::uint32_t n = all.count_near(in.position);
+    const float scale = radius_scale(n, photons_per_disc);
     Photon out = in;
     out.inv_radius2 = 1.0f / (radius * scale * radius * scale);
     split[std::size_t(radius_class(scale))].push_back(out);
   }
   for (int c = 0; c < kClasses; ++c)
-    m_grids.emplace_back(std::move(split[std::size_t(c)]), radius * float(1 << c));
+    m_grids.emplace_back(std::move(split[std::size_t(c)]), radius * class_scale(c));
 }
 
 std::size_t PhotonMap::size() const {

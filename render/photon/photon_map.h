@@ -7,7 +7,7 @@
 // density of flux per area F returns exactly E = F, in the units of the photons' power per area:
 // the same units as direct light when Phi = I Omega / N (caustic_map.h).
 // Radius: each photon's r_p = r sqrt(K / n_r), clamped to [r, 8r], where n_r estimates the photons
-// within r of it from the count of its grid cell (2r wide, found in O(1)) and K =
+// within r of it from the count of the 8 grid cells (2r wide) around it (O(1)) and K =
 // `photons_per_disc`: the focused, well sampled caustic keeps the sharp kernel r, while the faint
 // light reflected off the ice and the halo around the caustic, carried by few photons, is spread
 // into a smooth glow instead of grain (the adaptive-kernel idea of Silverman sec. 5.3, the pilot
@@ -16,11 +16,11 @@
 // kernels. The price: a caustic's edges, where cells are partly empty, get a wider kernel.
 // Photons of other surfaces are rejected: a photon counts only if its stored normal is within
 // ~25 degrees of n (cos > 0.9) and it lies within r_p / 4 of the tangent plane (a corner, the far
-// side of a thin wall, a ball resting on the floor). Photons whose r_p is at most r, 2r, 4r, 8r
-// sit in four hashed uniform grids of cells 2 r_class wide (Teschner et al. 2003, "Optimized
-// spatial hashing for collision detection of deformable objects"), so a query visits at most 2 x 2
-// x 2 cells per class. Built once, immutable, thread-safe to query. Knows nothing about lights or
-// tracing.
+// side of a thin wall, a ball resting on the floor). Photons whose r_p is at most r, 1.41r, 2r,
+// ..., 8r sit in seven hashed uniform grids of cells 2 r_class wide (Teschner et al. 2003,
+// "Optimized spatial hashing for collision detection of deformable objects"), so a query visits at
+// most 2 x 2 x 2 cells per class. Built once, immutable, thread-safe to query. Knows nothing about
+// lights or tracing.
 #include <cstdint>
 #include <vector>
 
@@ -41,8 +41,8 @@ struct Photon {
 
 class PhotonMap {
  public:
-  /// Grids for kernel radii up to r, 2r, 4r, 8r.
-  static constexpr int kClasses = 4;
+  /// Grids for kernel radii up to r 2^(c/2), c = 0..6 (r .. 8r in steps of sqrt 2).
+  static constexpr int kClasses = 7;
 
   PhotonMap() = default;
   /// `radius` > 0 [scene units]; photons among at least `photons_per_disc` (>= 1) keep it,
@@ -53,7 +53,8 @@ class PhotonMap {
   std::size_t size() const;
   /// the base radius r
   float radius() const { return m_radius; }
-  /// Photons whose kernel radius is in (r 2^(c-1), r 2^c] (c = 0: exactly r), in a fixed order.
+  /// Photons whose kernel radius is in (r 2^((c-1)/2), r 2^(c/2)] (c = 0: exactly r), in a
+  /// fixed order.
   const std::vector<Photon>& photons(int radius_class) const {
     return m_grids[std::size_t(radius_class)].photons;
   }
@@ -75,6 +76,8 @@ class PhotonMap {
     Grid() = default;
     Grid(std::vector<Photon> photons, float radius);
     std::uint32_t bucket(int ix, int iy, int iz) const;
+    /// Photons in the 2 x 2 x 2 cells a query at p visits.
+    std::uint32_t count_near(const Vec3& p) const;
     /// Calls f(photon, offset from p, squared distance) for the photons within `radius` of p
     /// until f returns false.
     template <class F>

@@ -55,19 +55,19 @@ TEST(PhotonMap, RejectsPhotonsOfOtherSurfaces) {
   EXPECT_EQ(PhotonMap(above, r, 32.0).irradiance({0, 0, 0}, {0, 1, 0}).r, 0.0f);
 }
 
-// Sparse photons get wider kernels: a photon with n photons in its grid cell (2r wide, itself
-// included) gets r sqrt(32 / (n pi / 4)), clamped to [r, 8r]. Every kernel integrates to 1, so
+// Sparse photons get wider kernels: a photon with n photons in the 8 grid cells (2r wide)
+// around it gets r sqrt(32 / (n pi / 16)), clamped to [r, 8r]. Every kernel integrates to 1, so
 // the power is kept: integrating E over the plane returns the photons' power (midpoint rule on a
-// grid of r / 8 cells over kernels at least 4.5 r wide: 1e-3).
+// grid of r / 8 cells over kernels 8 r wide: 1e-3).
 TEST(PhotonMap, SparsePhotonsAreSpreadAndKeepTheirPower) {
   const float r = 0.1f;
-  // A lone photon (n = 1: 6.4 r) and a pair in one cell (n = 2: 4.5 r).
+  // A lone photon (n = 1) and a pair in one cell (n = 2): both reach 8 r, the last grid.
   std::vector<Photon> photons{{Vec3{0, 0, 0}, Vec3{0, 1, 0}, Rgb{1, 1, 1}},
                               {Vec3{5, 0, 0}, Vec3{0, 1, 0}, Rgb{1, 1, 1}},
                               {Vec3{5.05f, 0, 0}, Vec3{0, 1, 0}, Rgb{1, 1, 1}}};
   const PhotonMap map(photons, r, 32.0);
-  EXPECT_EQ(map.photons(3).size(), 3u);
-  const double lone = r * std::sqrt(32.0 / (M_PI / 4));
+  EXPECT_EQ(map.photons(PhotonMap::kClasses - 1).size(), 3u);
+  const double lone = 8 * r;
   EXPECT_NEAR(map.irradiance({0, 0, 0}, {0, 1, 0}).g, 2 / (M_PI * lone * lone), 1e-4);
   double total = 0;
   const float h = r / 8;
