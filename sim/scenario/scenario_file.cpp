@@ -277,7 +277,8 @@ void reject_unless(const TomlTable& t, const std::string& key, bool allowed, con
 void check_schema(const TomlTable& root, const std::set<std::string>& foreign_sections) {
   static const std::vector<std::pair<std::string, std::vector<std::string>>> schema = {
       {"simulation",
-       {"geometry", "duration_s", "output_interval_s", "cells_per_phase", "time_tolerance", "cell_size_m", "max_step_s"}},
+       {"geometry", "duration_s", "output_interval_s", "cells_per_phase", "time_tolerance",
+        "cell_size_m", "max_step_s"}},
       {"shape", {"outer", "cavity"}},
       {"shell", {"inner_radius_m", "outer_radius_m", "length_m", "lateral_size_m"}},
       {"water", {"initial_temperature_c"}},
@@ -285,8 +286,9 @@ void check_schema(const TomlTable& root, const std::set<std::string>& foreign_se
       {"inner_boundary", {"kind", "temperature_c"}},
       {"outer_boundary", {"kind", "temperature_c", "heat_transfer_coefficient_w_m2k", "flux_w_m2"}},
       {"materials",
-       {"ice_conductivity_w_mk", "ice_density_kg_m3", "ice_specific_heat_j_kgk", "water_conductivity_w_mk",
-        "water_density_kg_m3", "water_specific_heat_j_kgk", "latent_heat_j_kg", "melting_point_c"}}};
+       {"ice_conductivity_w_mk", "ice_density_kg_m3", "ice_specific_heat_j_kgk",
+        "water_conductivity_w_mk", "water_density_kg_m3", "water_specific_heat_j_kgk",
+        "latent_heat_j_kg", "melting_point_c"}}};
   for (const std::string& name : root.keys()) {
     if (foreign_sections.count(name)) continue;
     const auto it = std::find_if(schema.begin(), schema.end(), [&](const auto& e) { return e.first == name; });
@@ -306,15 +308,19 @@ ShapeSpec parse_shape_spec(const TomlTable& t, const std::filesystem::path& dir)
       {"sphere", {"radius_m"}},
       {"cylinder", {"radius_m", "height_m"}},
       {"obj", {"file", "scale", "translate_m"}}};
-  const auto it = std::find_if(keys.begin(), keys.end(), [&](const auto& e) { return e.first == kind; });
-  if (it == keys.end()) t.fail("kind", "unknown kind '" + kind + "' (expected box, sphere, cylinder or obj)");
+  const auto it =
+      std::find_if(keys.begin(), keys.end(), [&](const auto& e) { return e.first == kind; });
+  if (it == keys.end())
+    t.fail("kind", "unknown kind '" + kind + "' (expected box, sphere, cylinder or obj)");
   for (const std::string& key : t.keys())
-    if (key != "kind" && key != "center_m" && std::find(it->second.begin(), it->second.end(), key) == it->second.end())
-      t.fail(key, "unknown key for kind = \"" + kind + "\" (expected " + [&] {
-        std::string list = "center_m";
-        for (const auto& k : it->second) list += ", " + k;
-        return list;
-      }() + ")");
+    if (key != "kind" && key != "center_m" &&
+        std::find(it->second.begin(), it->second.end(), key) == it->second.end())
+      t.fail(
+          key, "unknown key for kind = \"" + kind + "\" (expected " + [&] {
+            std::string list = "center_m";
+            for (const auto& k : it->second) list += ", " + k;
+            return list;
+          }() + ")");
   s.center_m = t.get_vec3("center_m", s.center_m);
   if (kind == "box") {
     s.kind = ShapeKind::box;
@@ -340,7 +346,8 @@ ShapeSpec parse_shape_spec(const TomlTable& t, const std::filesystem::path& dir)
 Shape parse_shape(const TomlTable& t) {
   // relative OBJ paths are relative to the scenario file's folder
   const std::filesystem::path source = t.source_name();
-  const std::filesystem::path dir = std::filesystem::is_regular_file(source) ? source.parent_path() : std::filesystem::path{};
+  const std::filesystem::path dir =
+      std::filesystem::is_regular_file(source) ? source.parent_path() : std::filesystem::path{};
   Shape shape;
   shape.outer = parse_shape_spec(t.table("outer"), dir);
   if (auto cavity = t.optional_table("cavity")) shape.cavity = parse_shape_spec(*cavity, dir);
@@ -403,15 +410,20 @@ Scenario parse_scenario(const TomlTable& root, const std::set<std::string>& fore
 
   const TomlTable sim = root.table("simulation");
   const std::string geometry = sim.get_string("geometry");
-  if (geometry == "axisymmetric") s.grid = GridGeometry::axisymmetric;
-  else if (geometry == "3d") s.grid = GridGeometry::cartesian3d;
+  if (geometry == "axisymmetric")
+    s.grid = GridGeometry::axisymmetric;
+  else if (geometry == "3d")
+    s.grid = GridGeometry::cartesian3d;
   else if (!parse_geometry(geometry, s.geometry))
-    sim.fail("geometry", "unknown geometry '" + geometry + "' (expected planar, cylinder, sphere, axisymmetric or 3d)");
+    sim.fail("geometry", "unknown geometry '" + geometry +
+                             "' (expected planar, cylinder, sphere, axisymmetric or 3d)");
   const bool grid = s.grid != GridGeometry::none;
   s.duration_s = sim.get_double("duration_s");
   s.output_interval_s = sim.get_double("output_interval_s");
-  reject_unless(sim, "cells_per_phase", !grid, "only used by the 1D geometries (grid runs: cell_size_m)");
-  reject_unless(sim, "time_tolerance", !grid, "only used by the 1D geometries (grid runs: max_step_s)");
+  reject_unless(sim, "cells_per_phase", !grid,
+                "only used by the 1D geometries (grid runs: cell_size_m)");
+  reject_unless(sim, "time_tolerance", !grid,
+                "only used by the 1D geometries (grid runs: max_step_s)");
   reject_unless(sim, "cell_size_m", grid, "only used with geometry = \"axisymmetric\" or \"3d\"");
   reject_unless(sim, "max_step_s", grid, "only used with geometry = \"axisymmetric\" or \"3d\"");
   const std::int64_t cells = sim.get_int("cells_per_phase", s.cells_per_phase);
@@ -419,17 +431,25 @@ Scenario parse_scenario(const TomlTable& root, const std::set<std::string>& fore
   s.cells_per_phase = static_cast<int>(cells);
   s.time_tolerance = sim.get_double("time_tolerance", s.time_tolerance);
   if (grid) {
-    if (sim.has("cell_size_m")) s.cell_size_m = sim.require_positive("cell_size_m", sim.get_double("cell_size_m"));
+    if (sim.has("cell_size_m"))
+      s.cell_size_m = sim.require_positive("cell_size_m", sim.get_double("cell_size_m"));
     s.max_step_s = sim.require_positive("max_step_s", sim.get_double("max_step_s", s.max_step_s));
-    if (root.has("shell")) root.fail("shell", "[shell] describes the 1D geometries; geometry = \"" + geometry + "\" takes [shape]");
+    if (root.has("shell"))
+      root.fail("shell", "[shell] describes the 1D geometries; geometry = \"" + geometry +
+                             "\" takes [shape]");
     s.shape = parse_shape(root.table("shape"));
   } else {
-    if (root.has("shape")) root.fail("shape", "only used with geometry = \"axisymmetric\" or \"3d\" (the 1D geometries take [shell])");
+    if (root.has("shape"))
+      root.fail(
+          "shape",
+          "only used with geometry = \"axisymmetric\" or \"3d\" (the 1D geometries take [shell])");
     const TomlTable shell = root.table("shell");
     s.inner_radius_m = shell.get_double("inner_radius_m");
     s.outer_radius_m = shell.get_double("outer_radius_m");
-    reject_unless(shell, "length_m", s.geometry == Geometry::cylinder, "only used with geometry = \"cylinder\"");
-    reject_unless(shell, "lateral_size_m", s.geometry == Geometry::planar, "only used with geometry = \"planar\"");
+    reject_unless(shell, "length_m", s.geometry == Geometry::cylinder,
+                  "only used with geometry = \"cylinder\"");
+    reject_unless(shell, "lateral_size_m", s.geometry == Geometry::planar,
+                  "only used with geometry = \"planar\"");
     // Defaults sized to the shell so that a default capsule or slab looks like one.
     s.length_m = shell.get_double("length_m", 2.0 * s.outer_radius_m);
     s.lateral_size_m = shell.get_double("lateral_size_m", 4.0 * s.outer_radius_m);
@@ -537,10 +557,18 @@ nlohmann::json scenario_to_json(const Scenario& s) {
     auto shape_json = [](const ShapeSpec& sp) {
       nlohmann::json o = {{"kind", to_string(sp.kind)}, {"center_m", sp.center_m}};
       switch (sp.kind) {
-        case ShapeKind::box: o["size_m"] = sp.size_m, o["edge_radius_m"] = sp.edge_radius_m; break;
-        case ShapeKind::sphere: o["radius_m"] = sp.radius_m; break;
-        case ShapeKind::cylinder: o["radius_m"] = sp.radius_m, o["height_m"] = sp.height_m; break;
-        case ShapeKind::obj: o["file"] = sp.file, o["scale"] = sp.scale, o["translate_m"] = sp.translate_m; break;
+        case ShapeKind::box:
+          o["size_m"] = sp.size_m, o["edge_radius_m"] = sp.edge_radius_m;
+          break;
+        case ShapeKind::sphere:
+          o["radius_m"] = sp.radius_m;
+          break;
+        case ShapeKind::cylinder:
+          o["radius_m"] = sp.radius_m, o["height_m"] = sp.height_m;
+          break;
+        case ShapeKind::obj:
+          o["file"] = sp.file, o["scale"] = sp.scale, o["translate_m"] = sp.translate_m;
+          break;
       }
       return o;
     };
