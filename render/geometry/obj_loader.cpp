@@ -115,6 +115,8 @@ TriangleMesh parse_obj(const std::string& text, const std::string& source) {
 
 TriangleMesh load_obj(const std::filesystem::path& path) {
   std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw UserError(path.string(), "", "is a directory, expected an OBJ file");
   if (!std::filesystem::is_regular_file(path, ec)) throw UserError(path.string(), "", "OBJ file not found");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw UserError(path.string(), "", "cannot be read");

@@ -9,6 +9,7 @@
 
 #include "src/common/atomic_file.h"
 #include "src/common/error.h"
+#include "src/common/json_error.h"
 
 namespace thaw::sim {
 
@@ -131,7 +132,7 @@ ShellGeometry read_shell_geometry(const std::filesystem::path& summary_json) {
   try {
     in >> j;
   } catch (const nlohmann::json::exception& e) {
-    throw UserError(name, "", std::string("malformed JSON: ") + e.what());
+    throw UserError(name, "", "malformed JSON: " + json_problem(e));
   }
   ShellGeometry g;
   try {
@@ -146,7 +147,7 @@ ShellGeometry read_shell_geometry(const std::filesystem::path& summary_json) {
       g.planar_symmetric = p.at("inner_boundary").at("kind").get<std::string>() == "symmetry";
     }
   } catch (const nlohmann::json::exception& e) {
-    throw UserError(name, "parameters", std::string("missing or mistyped field: ") + e.what());
+    throw UserError(name, "parameters", "missing or mistyped field: " + json_problem(e));
   }
   for (double v : {g.length_m, g.lateral_size_m})
     if (!std::isfinite(v) || v < 0) throw UserError(name, "parameters.shell", "length/lateral size must be finite and >= 0");

@@ -32,7 +32,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "thaw: error: out of memory\n");
     return 3;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "thaw: internal error: %s\n", e.what());
+    std::fprintf(stderr, "thaw: internal error: %s\n",
+                 thaw::escape_control_characters(e.what()).c_str());
     return 3;
   }
   return 0;

@@ -1,12 +1,38 @@
 #pragma once
 // Errors that are the user's to fix: a file, a key (or line) in it, and what is wrong.
 // Thrown at boundaries (parsing, I/O), caught once at the command boundary, printed as one line,
-// exit code 2. Internal invariants use THAW_CHECK (src/common/check.h) instead; never mix them.
+// exit code 2; control characters in any part are escaped, so the line is always one line.
+// Internal invariants use THAW_CHECK (src/common/check.h) instead; never mix them.
 #include <stdexcept>
 #include <string>
 #include <utility>
 
 namespace thaw {
+
+/// `text` with every control character (newline, tab, escape, DEL ...) written as a C escape
+/// (backslash-n, backslash-t, backslash-x1b), so a message quoting user input stays one line.
+inline std::string escape_control_characters(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  static const char* hex = "0123456789abcdef";
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u != 0x7f) {
+      out += c;
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else {
+      out += "\\x";
+      out += hex[u >> 4];
+      out += hex[u & 15];
+    }
+  }
+  return out;
+}
 
 class UserError : public std::runtime_error {
  public:
@@ -28,7 +54,7 @@ class UserError : public std::runtime_error {
     std::string line;
     if (!file.empty()) line += file + ": ";
     if (!where.empty()) line += where + ": ";
-    return line + problem;
+    return escape_control_characters(line + problem);
   }
   std::string m_file, m_where, m_problem;
 };
