@@ -5,9 +5,13 @@
 //     max_samples), so every stopping point is a (0,m,2)-net of the pixel sampler.
 //   - After each batch the standard error of the pixel's mean is estimated in display space
 //     (each sample's channels exposed, clamped to [0, 1] and sRGB-encoded, as the PNG will show
-//     them): s / sqrt(n), s the sample standard deviation. Sampling stops once the largest
-//     channel's error is at most `threshold` (in display units, 1/255 = one 8-bit step).
-//     The plain-Monte-Carlo error bound is conservative for low-discrepancy samples.
+//     them) from the differences within pairs of samples (2k, 2k+1): s^2 = mean of (a - b)^2 / 2,
+//     error = s / sqrt(n). Both samples of a pair carry the same wavelengths in a spectral render
+//     (render/integrator/spectral_whitted.cpp), so the estimate measures how the image varies
+//     over the pixel (edges, texture, penumbrae), not the colour noise of wavelength sampling,
+//     which more samples of the pixel would not remove (it is shared by all pixels: banding).
+//     Sampling stops once the largest channel's error is at most `threshold` (display units,
+//     1/255 = one 8-bit step). The plain-Monte-Carlo bound is conservative for these samples.
 //   - Offsets within the pixel are drawn from the reconstruction filter (render/film/filter.h);
 //     with a cap of one sample the ray goes through the pixel centre (POV-Ray; today's images).
 // A pixel's samples depend only on the pixel (render/sampling/pixel_sampler.h), so the image is
@@ -28,7 +32,7 @@ struct AntialiasingSettings {
   int max_samples = 1;
   /// [image] adaptive; off: every pixel takes max_samples
   bool adaptive = false;
-  /// [image] min_samples: the first batch (rounded to a power of two by the parser's rule)
+  /// [image] min_samples: the first batch (>= 2: one pair)
   int min_samples = 4;
   /// [image] adaptive_threshold: display-space standard error at which a pixel stops
   float threshold = 0.01f;
@@ -66,8 +70,8 @@ PixelEstimate<Value> estimate_pixel(int x, int y, const sampling::PixelSampler& 
     return out;
   }
   Value sum{};
-  // Welford's running mean and squared deviations of the display values (per channel).
-  std::array<double, 3> mean{0, 0, 0}, m2{0, 0, 0};
+  // Sum over completed pairs of the squared display-value differences, per channel.
+  std::array<double, 3> pair_sq{0, 0, 0}, first{0, 0, 0};
   int n = 0;
   int batch_end = aa.adaptive ? std::min(aa.min_samples, aa.max_samples) : aa.max_samples;
   while (true) {
@@ -77,18 +81,19 @@ PixelEstimate<Value> estimate_pixel(int x, int y, const sampling::PixelSampler& 
       const Value v = radiance(cx + fs.dx, cy + fs.dy, index);
       sum += v * fs.weight;
       const Rgb c = to_rgb(v);
-      const std::array<float, 3> d{display_value(c.r, aa.exposure_scale),
-                                   display_value(c.g, aa.exposure_scale),
-                                   display_value(c.b, aa.exposure_scale)};
+      const std::array<double, 3> d{display_value(c.r, aa.exposure_scale),
+                                    display_value(c.g, aa.exposure_scale),
+                                    display_value(c.b, aa.exposure_scale)};
       for (int k = 0; k < 3; ++k) {
-        const double delta = d[k] - mean[k];
-        mean[k] += delta / (n + 1);
-        m2[k] += delta * (d[k] - mean[k]);
+        if (n % 2 == 0)
+          first[k] = d[k];
+        else
+          pair_sq[k] += (d[k] - first[k]) * (d[k] - first[k]);
       }
     }
     if (batch_end >= aa.max_samples) break;
-    const double worst_variance = std::max({m2[0], m2[1], m2[2]}) / (n - 1);
-    if (std::sqrt(worst_variance / n) <= aa.threshold) break;
+    const double variance = std::max({pair_sq[0], pair_sq[1], pair_sq[2]}) / (2.0 * (n / 2));
+    if (std::sqrt(variance / n) <= aa.threshold) break;
     batch_end = std::min(2 * batch_end, aa.max_samples);
   }
   out.value = sum * (1.0f / float(n));

@@ -6,6 +6,7 @@
 // (0,log2 n,2)-net, and all camera samples of the pixel together form one larger net. The
 // integrator supplies the BSDF through a callback, so RGB and spectral shading share this.
 // Knows nothing about materials or the image.
+#include <cmath>
 #include <cstdint>
 
 #include "render/light/sphere_light.h"
@@ -26,32 +27,54 @@ inline std::uint32_t light_dimension(int depth, std::size_t light) {
   return 1u + static_cast<std::uint32_t>(depth) * 64u + static_cast<std::uint32_t>(light % 64u);
 }
 
-/// For each unoccluded sample towards each sphere light from point p (rounding bound p_error,
-/// geometric normal ng facing the side being lit): `shade(light_index, wi, weight)`, where the
-/// light's contribution is BSDF * |cos| * L_light * weight, weight = falloff_scale / (pdf * n).
-/// Samples below the geometric horizon are skipped without a shadow ray. `rays` counts the
-/// shadow rays traced.
-template <class Shade>
+/// Direct light from every sphere light at point p (rounding bound p_error, geometric normal ng
+/// and shading normal ns facing the side being lit):
+///   diffuse(light_index, e)            irradiance E = L_light * e at p (Lambertian term)
+///   specular(light_index, wi, weight)  per unoccluded sample: radiance L_light * weight arriving
+///                                      along wi, weight = falloff_scale / (pdf * n)
+/// The irradiance is the exact unoccluded value (sphere_irradiance_per_radiance, horizon
+/// included) times the fraction of the cap's cosine-weighted samples that reach the light:
+/// E = E_exact * sum_visible(cos / pdf) / sum_all(cos / pdf), a ratio estimator, consistent, exact
+/// wherever the light is wholly visible or wholly hidden (no noise outside penumbrae; a lone
+/// unshadowed sphere light gives precisely a point light's I cos / d^2). Samples below the
+/// horizon cast no shadow ray. `rays` counts the shadow rays.
+template <class Diffuse, class Specular>
 void sample_sphere_lights(const Scene& scene, const Vec3& p, const Vec3& p_error, const Vec3& ng,
-                          int depth, const CameraSampleContext& ctx, std::uint64_t& rays,
-                          Shade&& shade) {
+                          const Vec3& ns, int depth, const CameraSampleContext& ctx,
+                          std::uint64_t& rays, Diffuse&& diffuse, Specular&& specular) {
   const auto& lights = scene.sphere_lights();
   for (std::size_t k = 0; k < lights.size(); ++k) {
     const SphereLight& light = lights[k];
+    const Vec3 to_c = light.center - p;
+    const double d2 = double(dot(to_c, to_c)), r2 = double(light.radius) * light.radius;
+    if (!(d2 > r2)) continue;  // inside the light: no light is sampled
+    const double e_unit =
+        sphere_irradiance_per_radiance(double(dot(ns, to_c)) / std::sqrt(d2), r2 / d2);
+    if (!(e_unit > 0.0)) continue;  // wholly below the horizon
     const auto n = static_cast<std::uint32_t>(light.samples);
     const std::uint32_t dim = light_dimension(depth, k);
+    double all = 0.0, visible = 0.0;
+    float falloff_scale = 1.0f;
     for (std::uint32_t j = 0; j < n; ++j) {
       SphereLightSample s;
       if (!sample_sphere_light(light, p, ctx.sampler->get_2d(ctx.sample_index * n + j, dim), s))
         break;
-      if (dot(s.wi, ng) <= 0.0f) continue;
+      falloff_scale = s.falloff_scale;
+      const float cos_s = dot(ns, s.wi);
+      if (cos_s <= 0.0f || dot(s.wi, ng) <= 0.0f) continue;
+      const double f = double(cos_s) / s.pdf;
+      all += f;
       const Vec3 origin = offset_ray_origin(p, p_error, ng, s.wi);
       // Stop just short of the point sampled on the light's own (visible, opaque) sphere.
       const Ray shadow{origin, s.wi, length(p + s.wi * s.distance - origin) * (1.0f - 1e-4f)};
       ++rays;
       if (scene.occluded(shadow)) continue;
-      shade(k, s.wi, s.falloff_scale / (s.pdf * float(n)));
+      visible += f;
+      specular(k, s.wi, s.falloff_scale / (s.pdf * float(n)));
     }
+    // No sample above the horizon (a sliver of the cap above it): taken as unshadowed.
+    const double fraction = all > 0.0 ? visible / all : 1.0;
+    if (fraction > 0.0) diffuse(k, static_cast<float>(falloff_scale * e_unit * fraction));
   }
 }
 

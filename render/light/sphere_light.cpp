@@ -10,6 +10,18 @@ Rgb sphere_light_radiance(const Rgb& intensity, float radius) {
   return intensity * static_cast<float>(1.0 / (kPi * double(radius) * double(radius)));
 }
 
+double sphere_irradiance_per_radiance(double cos_theta, double sin2_sigma) {
+  constexpr double kPi = 3.14159265358979323846;
+  if (cos_theta * cos_theta > sin2_sigma) return std::max(0.0, kPi * sin2_sigma * cos_theta);
+  const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+  const double x = std::sqrt(std::max(0.0, 1.0 / sin2_sigma - 1.0));
+  const double y = std::clamp(-x * cos_theta / sin_theta, -1.0, 1.0);
+  const double s = sin_theta * std::sqrt(1.0 - y * y);
+  // x = 0 (a point on the sphere): the half-space limit, pi (1 + cos) / 2 ... handled by atan.
+  const double a = x > 0.0 ? std::atan(s / x) : kPi / 2;
+  return std::max(0.0, (cos_theta * std::acos(y) - x * s) * sin2_sigma + a);
+}
+
 bool sample_sphere_light(const SphereLight& light, const Vec3& p, sampling::Point2 u,
                          SphereLightSample& out) {
   constexpr double kPi = 3.14159265358979323846;

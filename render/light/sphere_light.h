@@ -10,6 +10,8 @@
 // point light, E = I cos(theta)) multiplies every sample by d^2, d = distance to the centre: the
 // same image as a point light without falloff where the light is unoccluded and small, with soft
 // shadows and the horizon handled by the samples. Knows nothing about scenes or occlusion.
+#include <cstdint>
+
 #include "render/math/color.h"
 #include "render/math/vec3.h"
 #include "render/sampling/pixel_sampler.h"
@@ -26,6 +28,8 @@ struct SphereLight {
   bool inverse_square = true;
   /// shadow rays per shading point and camera sample
   int samples = 4;
+  /// index of its visible sphere's emissive material (radiance L) in Scene::materials()
+  std::uint32_t material = 0;
 };
 
 struct SphereLightSample {
@@ -44,6 +48,13 @@ struct SphereLightSample {
 /// The light's radiance L for colour * intensity `power` [W/sr-like units] and radius [m]:
 /// L = I / (pi r^2).
 Rgb sphere_light_radiance(const Rgb& intensity, float radius);
+
+/// Irradiance per unit radiance [sr] from a uniform sphere subtending half-angle sigma
+/// (sin^2 sigma = r^2 / d^2) on a surface whose normal makes angle theta with the direction to the
+/// centre: pi sin^2(sigma) cos(theta) when the sphere is above the horizon, Snyder's closed form
+/// when the horizon cuts it (Snyder 1996, "Area light sources for real-time graphics",
+/// MSR-TR-96-11; Lagarde & de Rousiers 2014, "Moving Frostbite to PBR", eq. 19), 0 below.
+double sphere_irradiance_per_radiance(double cos_theta, double sin2_sigma);
 
 /// A direction towards the light from `p`, uniform in the solid angle of the visible cap, from
 /// the unit square point `u`. False when p lies inside (or on) the sphere: no light is sampled.

@@ -146,14 +146,15 @@ void check_lights_outside_objects(const SceneDescription& desc) {
 /// ice). Shadow rays towards a light stop just short of the point sampled on it.
 void add_visible_sphere_lights(Scene& s, std::vector<Aabb>& bounds, std::vector<Primitive>& prims) {
   for (std::size_t i = 0; i < s.m_sphere_lights.size(); ++i) {
-    const SphereLight& l = s.m_sphere_lights[i];
+    SphereLight& l = s.m_sphere_lights[i];
+    l.material = static_cast<std::uint32_t>(s.m_materials.size());
     Material m;
     m.kind = Material::Kind::emissive;
     m.emission = l.radiance;
     SceneObject obj;
     obj.label = "lights[" + std::to_string(i) + "]";
     obj.shape = ObjectDescription::Shape::sphere;
-    obj.material = static_cast<std::uint32_t>(s.m_materials.size());
+    obj.material = l.material;
     s.m_materials.push_back(m);
     const auto object_id = static_cast<std::uint32_t>(s.m_objects.size());
     s.m_objects.push_back(std::move(obj));

@@ -28,7 +28,9 @@ struct ImageSettings {
   /// adaptive anti-aliasing: min_samples everywhere, doubled while the pixel's display-space
   /// standard error exceeds adaptive_threshold, up to samples_per_pixel
   bool adaptive = true;
-  int min_samples = 4;
+  /// the first batch, >= 2 (one pair); in spectral renders also the wavelength strata (one per
+  /// pair) every pixel averages
+  int min_samples = 2;
   /// [display units: 1/255 is one 8-bit step]
   double adaptive_threshold = 0.01;
   /// reconstruction filter (render/film/filter.h) and its radius [pixels]

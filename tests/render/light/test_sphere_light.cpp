@@ -12,18 +12,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-/// Irradiance of a uniform sphere of radiance 1 on a surface whose normal makes angle theta with
-/// the direction to the centre, the sphere subtending half-angle sigma: Snyder 1996 ("Area light
-/// sources for real-time graphics", MSR-TR-96-11), as printed in Lagarde & de Rousiers 2014
-/// ("Moving Frostbite to PBR", eq. 19): pi sin^2 sigma cos theta when the sphere is above the
-/// horizon, the horizon-clipped closed form when it straddles it, 0 below.
+/// The closed form under test (render/light/sphere_light.h).
 double snyder_irradiance(double cos_theta, double sin2_sigma) {
-  if (cos_theta * cos_theta > sin2_sigma) return std::max(0.0, kPi * sin2_sigma * cos_theta);
-  const double sin_theta = std::sqrt(1.0 - cos_theta * cos_theta);
-  const double x = std::sqrt(1.0 / sin2_sigma - 1.0);
-  const double y = -x * cos_theta / sin_theta;
-  const double s = sin_theta * std::sqrt(1.0 - y * y);
-  return std::max(0.0, (cos_theta * std::acos(y) - x * s) * sin2_sigma + std::atan(s / x));
+  return sphere_irradiance_per_radiance(cos_theta, sin2_sigma);
 }
 
 struct Estimate {

@@ -210,7 +210,7 @@ TEST(SceneParser, SphereLightsAndAntialiasingSettings) {
   const SceneDescription defaults = parse_scene_string(kExample, "example.toml");
   EXPECT_EQ(defaults.lights[0].kind, LightDescription::Kind::point);
   EXPECT_TRUE(defaults.image.adaptive);
-  EXPECT_EQ(defaults.image.min_samples, 4);
+  EXPECT_EQ(defaults.image.min_samples, 2);
   EXPECT_EQ(defaults.image.filter, FilterKind::gaussian);
   EXPECT_DOUBLE_EQ(defaults.image.filter_radius, 1.5);
   std::string text = kExample;
