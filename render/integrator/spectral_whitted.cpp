@@ -1,14 +1,12 @@
 #include "render/integrator/spectral_whitted.h"
 
-#include <omp.h>
-
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <vector>
 
+#include "render/integrator/image_tile_integrator.h"
+#include "render/integrator/whitted_shading.h"
 #include "render/material/fresnel.h"
 #include "render/math/rng.h"
 #include "render/spectrum/colour.h"
@@ -18,7 +16,9 @@ namespace thaw::render {
 
 namespace {
 
-LinearSrgb to_srgb(const Rgb& c) { return {c.r, c.g, c.b}; }
+LinearSrgb to_srgb(const Rgb& c) {
+  return {c.r, c.g, c.b};
+}
 
 /// Largest throughput over the wavelengths still carried (after termination only the hero's
 /// value enters the estimator): the pruning weight, as Rgb::max_component() in RGB mode.
@@ -31,7 +31,8 @@ float live_max(const SampledSpectrum& s, const SampledWavelengths& w) {
 /// (1/N) sum_i L_i cmf_i / pdf_i must give the hero-only estimate L_0 cmf_0 / p(l0), so element
 /// 0 becomes L_0 * pdf_w(0) / pdf_terminated(0) and the others 0. Identity when `w` is already
 /// terminated.
-SampledSpectrum to_caller_wavelengths(const SampledSpectrum& l, const SampledWavelengths& terminated,
+SampledSpectrum to_caller_wavelengths(const SampledSpectrum& l,
+                                      const SampledWavelengths& terminated,
                                       const SampledWavelengths& w) {
   if (w.secondary_terminated()) return l;
   SampledSpectrum out;
@@ -117,14 +118,46 @@ class ReferenceSpectrum {
   RgbReflectanceSpectrum m_shape;
 };
 
-class SpectralTracer {
+/// What rides along a spectral ray: the packet's wavelengths and, after a split dispersive
+/// refraction, the one carried wavelength (lane) it belongs to.
+struct SpectralPath {
+  const SampledWavelengths* w;
+  /// >= 0: the ray belongs to that carried wavelength alone (beta is zero elsewhere and the
+  /// caller keeps only that element of the result); -1: to every live wavelength
+  int lane = -1;
+};
+
+/// What one camera sample's packet of wavelengths gave.
+struct PacketResult {
+  SampledSpectrum radiance;
+  /// light integrated over the spectrum at adaptive dispersive refractions (film adds it after
+  /// the ratio normalisation: it carries no wavelength-sampling noise)
+  Xyz side_xyz;
+  /// some dispersive refraction was split into lanes (the film then traces the camera sample's
+  /// remaining wavelength packets). Before its first dispersive refraction a ray tree is the
+  /// same for every wavelength, so this depends on the camera ray alone, never on the sampled
+  /// wavelengths: refining where it is set keeps the estimator unbiased.
+  bool split_seen = false;
+};
+
+/// The spectral variant of the shading (whitted_shading.h) plus what only spectra have:
+/// wavelength-dependent indices, Beer-Lambert absorption, and the three ways through a
+/// dispersive refraction (split, adaptive, hero). Every ray it traces, also inside the adaptive
+/// machinery, goes through the shared trace().
+class SpectralTracer : public WhittedShading<SpectralTracer> {
  public:
+  using Radiance = SampledSpectrum;
+  using Throughput = SampledSpectrum;
+  using Reflectance = SampledSpectrum;
+  using Path = SpectralPath;
+  static constexpr bool kAbsorption = true, kDispersion = true;
+
   explicit SpectralTracer(const Scene& scene)
-      : m_scene(scene),
-        m_max_depth(scene.settings().max_depth),
-        m_min_weight(static_cast<float>(scene.settings().min_weight)),
+      : WhittedShading(scene),
         m_resolution_nm(scene.settings().dispersion_resolution_nm),
         m_split(scene.settings().dispersion != ImageSettings::Dispersion::hero),
+        m_adaptive(scene.settings().dispersion == ImageSettings::Dispersion::adaptive),
+        m_background_rgb(scene.background()),
         m_background(to_srgb(scene.background())),
         m_ambient(to_srgb(scene.ambient())) {
     for (const auto& l : scene.lights()) m_lights.emplace_back(to_srgb(l.radiance));
@@ -138,79 +171,146 @@ class SpectralTracer {
     set_probe_grid(scene.settings().dispersion_wavelengths);
   }
 
-  /// Radiance along `ray` (unit direction) at tree level `depth` with throughput `beta`,
-  /// travelling in `medium`, at wavelengths `w`. `lane` >= 0: the ray belongs to that carried
-  /// wavelength alone (after a split dispersive refraction; beta is zero elsewhere and the caller
-  /// keeps only that element of the result), -1: to every live wavelength.
-  SampledSpectrum trace(const Ray& ray, int depth, const SampledSpectrum& beta, std::uint32_t medium,
-                        const SampledWavelengths& w, int lane = -1) {
-    ++rays;
-    Hit hit;
-    const bool absorbs = m_absorbs[medium] != 0;
-    if (!m_scene.intersect(ray, hit)) {
-      SampledSpectrum bg = spectra(w).background;
-      // Escaping inside an absorbing medium: an infinite path keeps nothing where alpha > 0
-      // (a huge finite distance avoids 0 * inf where alpha = 0).
-      if (absorbs) bg *= m_scene.media()[medium].optics.transmittance(1e30, w);
-      return bg;
-    }
-    SampledSpectrum transmittance(1.0f);
-    SampledSpectrum b = beta;
-    if (absorbs) {
-      // Beer-Lambert over this segment: |direction| = 1, so t is the distance (scene units = m).
-      transmittance = m_scene.media()[medium].optics.transmittance(hit.t, w);
-      b *= transmittance;
-    }
-    const SurfaceInteraction si = m_scene.interaction(ray, hit);
-    const SceneObject& obj = m_scene.objects()[si.object];
-    SampledSpectrum l;
-    if (obj.dielectric) {
-      l = dielectric(ray, si, obj, depth, b, medium, w, lane);
-    } else {
-      const Material& mat = m_scene.materials()[obj.material];
-      switch (mat.kind) {
-        case Material::Kind::emissive:
-          l = spectra(w).emission[obj.material];
-          break;
-        case Material::Kind::metal:
-          l = metal(ray, si, mat, depth, b, medium, w, lane);
-          break;
-        case Material::Kind::matte:
-        case Material::Kind::phong:
-          l = phong(ray, si, mat, depth, b, medium, w, lane);
-          break;
-      }
-    }
-    return absorbs ? l * transmittance : l;
+  /// Traces a primary ray starting in `medium` at wavelengths `w`.
+  PacketResult trace_primary(const Ray& ray, std::uint32_t medium, const SampledWavelengths& w) {
+    m_split_seen = false;
+    m_side_xyz = Xyz{};
+    PacketResult r;
+    r.radiance = trace(ray, 1, SampledSpectrum(1.0f), medium, SpectralPath{&w, -1});
+    r.side_xyz = m_side_xyz;
+    r.split_seen = m_split_seen;
+    return r;
   }
 
-  std::uint64_t rays = 0, mismatches = 0, adaptive_refractions = 0, split_refractions = 0;
-
-  /// Set when some dispersive refraction was split into lanes (render_spectral then traces the
-  /// camera sample's remaining wavelength packets). Before its first dispersive refraction a ray
-  /// tree is the same for every wavelength, so this depends on the camera ray alone, never on
-  /// the sampled wavelengths: refining where it is set keeps the estimator unbiased.
-  bool split_seen = false;
-
-  /// Adaptive spectral integration of the light transmitted at split dispersive refractions
-  /// (dispersion = "adaptive"; see adaptive_transmission). Its XYZ goes to `side_xyz`, not into
-  /// the returned spectrum; render_spectral adds it to the film outside the ratio normalisation.
-  bool adaptive = false;
-  Xyz side_xyz;
+  /// Adds rays, mismatches and the dispersive refractions integrated adaptively / split.
+  void add_counts(RenderStats& stats) const {
+    WhittedShading::add_counts(stats);
+    stats.adaptive_refractions += m_adaptive_refractions;
+    stats.split_refractions += m_split_refractions;
+  }
 
  private:
+  friend class WhittedShading<SpectralTracer>;
+
+  // ---- The shading's hooks (whitted_shading.h) ----
+  SampledSpectrum illuminant(const Rgb& c, const Path& path) {
+    // The scene's background is uplifted once per packet; any other colour (an environment) here.
+    if (c.r == m_background_rgb.r && c.g == m_background_rgb.g && c.b == m_background_rgb.b)
+      return spectra(*path.w).background;
+    return RgbIlluminantSpectrum(to_srgb(c)).sample(*path.w);
+  }
+  static SampledSpectrum reflectance(const Rgb& c, const Path& path) {
+    return RgbReflectanceSpectrum(to_srgb(c)).sample(*path.w);
+  }
+  SampledSpectrum light_radiance(std::size_t i, const Path& path) {
+    return spectra(*path.w).lights[i];
+  }
+  SampledSpectrum ambient(const Path& path) { return spectra(*path.w).ambient; }
+  SampledSpectrum emission(std::uint32_t material, const Path& path) {
+    return spectra(*path.w).emission[material];
+  }
+  static float weight(const SampledSpectrum& beta, const Path& path) {
+    return live_max(beta, *path.w);
+  }
+  static SampledSpectrum attenuate(const SampledSpectrum& beta, const SampledSpectrum& tint,
+                                   const Path&) {
+    return beta * tint;
+  }
+  bool absorbs(std::uint32_t medium) const { return m_absorbs[medium] != 0; }
+  SampledSpectrum transmittance(std::uint32_t medium, double distance, const Path& path) const {
+    return m_scene.media()[medium].optics.transmittance(distance, *path.w);
+  }
+
+  struct Fresnel {
+    SampledSpectrum r;
+    /// relative index of the ray's single direction (the hero's or the lane's wavelength)
+    float eta;
+    /// the carried wavelengths part ways here: dispersive_transmission() takes over
+    bool dispersive;
+  };
+  Fresnel fresnel(std::uint32_t from, std::uint32_t to, float cos_i, const Path& path) {
+    Fresnel f{};
+    if ((m_dispersive[from] | m_dispersive[to]) == 0) {
+      f.eta = static_cast<float>(m_ior_constant[to] / m_ior_constant[from]);
+      f.r = SampledSpectrum(fresnel_dielectric(cos_i, f.eta));
+      return f;
+    }
+    const PacketSpectra& ps = spectra(*path.w);
+    // A ray of one wavelength refracts with that wavelength's index; its tree's other elements
+    // are discarded by the caller, so their reflectances need not be computed.
+    const int k = path.lane >= 0 ? path.lane : 0;
+    f.eta = ps.n[to][k] / ps.n[from][k];
+    if (path.lane >= 0) {
+      f.r[path.lane] = fresnel_dielectric(cos_i, f.eta);
+    } else {
+      for (int i = 0; i < kSpectrumSamples; ++i)
+        f.r[i] = fresnel_dielectric(cos_i, ps.n[to][i] / ps.n[from][i]);
+    }
+    f.dispersive = path.lane < 0 && !path.w->secondary_terminated();
+    return f;
+  }
+
+  /// The transmitted branch of a dispersive refraction carrying several live wavelengths
+  /// (transmittance t per wavelength): integrated adaptively, split into one ray per wavelength,
+  /// or followed for the hero only ([image] dispersion).
+  void dispersive_transmission(SampledSpectrum& result, const Vec3& d, const SurfaceInteraction& si,
+                               const FacingInterface& fi, float cos_i, int depth,
+                               const SampledSpectrum& beta, const SampledSpectrum& t,
+                               const Path& path) {
+    const SampledWavelengths& w = *path.w;
+    const auto [from, to, ng, ns] = fi;
+    if (m_split) {
+      m_split_seen = true;
+      if (m_adaptive && !m_any_absorbs && is_grey(beta)) {
+        // Upstream throughput independent of the wavelength: integrate the transmitted light
+        // over the whole spectrum here (its XYZ goes to side_xyz).
+        ++m_adaptive_refractions;
+        adaptive_transmission(d, si, ns, ng, cos_i, from, to, depth, beta[0], w);
+        return;
+      }
+      ++m_split_refractions;
+      // Split: each carried wavelength refracts its own way on its own ray (4 rays). Every
+      // wavelength's radiance is then exact, so the film estimator keeps all four: no colour
+      // noise beyond the wavelength sampling itself.
+      const PacketSpectra& ps = spectra(w);
+      for (int i = 0; i < kSpectrumSamples; ++i) {
+        SampledSpectrum mask;
+        mask[i] = t[i];
+        const SampledSpectrum b = beta * mask;
+        if (!(b[i] >= m_min_weight) || b[i] == 0.0f) continue;
+        Vec3 dir;
+        if (!refraction_direction(d, ns, ng, ps.n[to][i] / ps.n[from][i], dir)) continue;
+        const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
+        result += trace(next, depth + 1, b, to, SpectralPath{&w, i}) * mask;
+      }
+      return;
+    }
+    // Hero: the wavelengths part ways; follow the hero only (Wilkie et al.).
+    Vec3 dir;
+    if (!refraction_direction(d, ns, ng, spectra(w).n[to][0] / spectra(w).n[from][0], dir)) return;
+    const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
+    SampledWavelengths hero = w;
+    hero.terminate_secondary();
+    if (beta[0] * t[0] >= m_min_weight) {
+      const SampledSpectrum lt = trace(next, depth + 1, beta * t, to, SpectralPath{&hero, -1}) * t;
+      result += to_caller_wavelengths(lt, hero, w);
+    }
+  }
+
+  // ---- Adaptive dispersion ----
+
   /// Where the main chain of one wavelength ends (see chain_end()).
   struct ChainEnd {
-    std::uint64_t hash = 0;  // objects met, total reflections, end colour (not the lights)
+    std::uint64_t hash = 0;        // objects met, total reflections, end colour (not the lights)
     Rgb colour{1.0f, 1.0f, 1.0f};  // colour it ends on: reference spectrum of its segment
-    bool lit = false;        // ends on a diffuse surface, whose light visibility matters
-    Vec3 p, p_error, g, s;   // that surface point, its error bound, normals facing the chain
+    bool lit = false;              // ends on a diffuse surface, whose light visibility matters
+    Vec3 p, p_error, g, s;         // that surface point, its error bound, normals facing the chain
   };
   struct SpectralNode {
     double lambda_nm;
     ChainEnd end;
     std::uint64_t signature;  // end.hash and the lights it sees (set once probed)
-    double f;      // transmitted radiance t(l) L(l) at this wavelength; valid where traced
+    double f;  // transmitted radiance t(l) L(l) at this wavelength; valid where traced
     bool traced;
   };
 
@@ -243,10 +343,12 @@ class SpectralTracer {
     m_grid_nm.assign(static_cast<std::size_t>(probe_count) + 1, 0.0);
     for (int g = 0; g <= probe_count; ++g) {
       const double u = double(g) / probe_count;
-      const auto i = std::clamp<std::ptrdiff_t>(std::lower_bound(cdf.begin(), cdf.end(), u) - cdf.begin(), 1,
-                                                std::ptrdiff_t(cdf.size()) - 1);
+      const auto i =
+          std::clamp<std::ptrdiff_t>(std::lower_bound(cdf.begin(), cdf.end(), u) - cdf.begin(), 1,
+                                     std::ptrdiff_t(cdf.size()) - 1);
       const double t = (u - cdf[i - 1]) / (cdf[i] - cdf[i - 1]);
-      m_grid_nm[static_cast<std::size_t>(g)] = kLambdaMinNm + double(i - 1) + std::clamp(t, 0.0, 1.0);
+      m_grid_nm[static_cast<std::size_t>(g)] =
+          kLambdaMinNm + double(i - 1) + std::clamp(t, 0.0, 1.0);
     }
     m_grid_nm.front() = kLambdaMinNm;
     m_grid_nm.back() = kLambdaMaxNm;
@@ -255,56 +357,6 @@ class SpectralTracer {
   double index_at(std::uint32_t medium, double lambda_nm) const {
     return m_dispersive[medium] ? m_scene.media()[medium].optics.n_at(lambda_nm)
                                 : m_ior_constant[medium];
-  }
-
-  /// Snell's direction with the shading normal, falling back to the geometric one; false on
-  /// total internal reflection. Normals face the incident side.
-  static bool refraction_direction(const Vec3& d, const Vec3& ns, const Vec3& ng, float eta,
-                                   Vec3& dir) {
-    if (refract(d, ns, eta, dir) && dot(dir, ng) < 0.0f) return true;
-    return refract(d, ng, eta, dir);
-  }
-  /// Mirror direction about the shading normal, about the geometric one if that would go below.
-  static Vec3 reflection_direction(const Vec3& d, const Vec3& ns, const Vec3& ng) {
-    const Vec3 dir = reflect(d, ns);
-    return dot(dir, ng) <= 0.0f ? reflect(d, ng) : dir;
-  }
-
-  /// A dielectric interface as ray direction d meets it: the medium it comes from and goes to,
-  /// the normals turned to face d's side (shading normal replaced by the geometric one where it
-  /// faces away).
-  struct FacingInterface {
-    std::uint32_t from, to;
-    Vec3 ng, ns;
-  };
-  static FacingInterface facing(const Vec3& d, const SurfaceInteraction& si,
-                                const SceneObject& obj) {
-    const bool entering = dot(d, si.ng) < 0.0f;
-    FacingInterface f{entering ? obj.outside : obj.inside, entering ? obj.inside : obj.outside,
-                      entering ? si.ng : -si.ng, entering ? si.ns : -si.ns};
-    if (dot(f.ns, d) >= 0.0f) f.ns = f.ng;
-    return f;
-  }
-
-  /// How point light `light` meets surface point p (normals ng, ns facing the viewer): behind
-  /// the surface (no shadow ray cast), shadowed, or seen; l, cos_l, dist2 describe the
-  /// direction to it.
-  enum class LightVisibility { facing_away, shadowed, seen };
-  LightVisibility light_visibility(const Vec3& p, const Vec3& p_error, const Vec3& ng,
-                                   const Vec3& ns, const PointLight& light, Vec3& l, float& cos_l,
-                                   float& dist2) {
-    const Vec3 to_light = light.position - p;
-    dist2 = dot(to_light, to_light);
-    if (!(dist2 > 0.0f)) return LightVisibility::facing_away;
-    l = to_light / std::sqrt(dist2);
-    if (dot(l, ng) <= 0.0f) return LightVisibility::facing_away;
-    cos_l = dot(ns, l);
-    if (cos_l <= 0.0f) return LightVisibility::facing_away;
-    const Vec3 origin = offset_ray_origin(p, p_error, ng, l);
-    ++rays;
-    return m_scene.occluded(Ray{origin, light.position - origin, 1.0f - 1e-4f})
-               ? LightVisibility::shadowed
-               : LightVisibility::seen;
   }
 
   static bool is_grey(const SampledSpectrum& s) {
@@ -346,7 +398,7 @@ class SpectralTracer {
     Ray ray{offset_ray_origin(at.p, at.p_error, ng, dir), dir};
     std::uint64_t h = 1469598103934665603ULL;
     for (int level = depth + 1; level <= m_max_depth; ++level) {
-      ++rays;
+      ++m_rays;
       Hit hit;
       if (!m_scene.intersect(ray, hit)) {
         end.colour = m_scene.background();
@@ -358,7 +410,7 @@ class SpectralTracer {
       h = mix(h, si.object);
       const Vec3& rd = ray.direction;
       if (obj.dielectric) {
-        const FacingInterface fi = facing(rd, si, obj);
+        const FacingInterface fi = facing_interface(rd, si, obj);
         Vec3 next;
         const float eta =
             static_cast<float>(index_at(fi.to, lambda_nm) / index_at(fi.from, lambda_nm));
@@ -389,7 +441,7 @@ class SpectralTracer {
   }
 
   /// The signature of a chain end: its hash and, on a diffuse surface, the lights it sees
-  /// (shadow rays, as phong() casts them).
+  /// (shadow rays, as add_direct_light() casts them).
   std::uint64_t full_signature(const ChainEnd& end) {
     if (!end.lit) return end.hash;
     std::uint64_t h = end.hash;
@@ -420,12 +472,12 @@ class SpectralTracer {
     SampledSpectrum beta;
     if (lane >= 0) {
       beta[lane] = b * t;
-      return double(t) * double(trace(next, depth + 1, beta, to, w, lane)[lane]);
+      return double(t) * double(trace(next, depth + 1, beta, to, SpectralPath{&w, lane})[lane]);
     }
     const SampledWavelengths single = SampledWavelengths::from(
         SampledSpectrum(static_cast<float>(lambda_nm)), SampledSpectrum(1.0f));
     beta[0] = b * t;
-    return double(t) * double(trace(next, depth + 1, beta, to, single, 0)[0]);
+    return double(t) * double(trace(next, depth + 1, beta, to, SpectralPath{&single, 0})[0]);
   }
 
   /// Adaptive spectral integration of the transmitted light (dispersion = "adaptive"), for a
@@ -476,8 +528,8 @@ class SpectralTracer {
       const std::uint64_t last = end - begin > 1 ? full_signature(m_nodes[end - 1].end) : first;
       for (std::size_t i = begin; i < end; ++i) {
         SpectralNode& n = m_nodes[i];
-        n.signature = i == begin ? first
-                      : i == end - 1 ? last
+        n.signature = i == begin      ? first
+                      : i == end - 1  ? last
                       : first == last ? first
                                       : full_signature(n.end);
       }
@@ -541,154 +593,15 @@ class SpectralTracer {
       lower = upper;
       begin = end;
     }
-    side_xyz.x += double(b) * sum.x;
-    side_xyz.y += double(b) * sum.y;
-    side_xyz.z += double(b) * sum.z;
+    m_side_xyz.x += double(b) * sum.x;
+    m_side_xyz.y += double(b) * sum.y;
+    m_side_xyz.z += double(b) * sum.z;
   }
 
-  SampledSpectrum dielectric(const Ray& ray, const SurfaceInteraction& si, const SceneObject& obj, int depth,
-                             const SampledSpectrum& beta, std::uint32_t medium, const SampledWavelengths& w,
-                             int lane) {
-    const Vec3& d = ray.direction;
-    const auto [from, to, ng, ns] = facing(d, si, obj);
-    if (medium != from) ++mismatches;
-    const float cos_i = -dot(d, ns);
-    SampledSpectrum result;
-    if (depth >= m_max_depth) return result;
-    const bool dispersive = (m_dispersive[from] | m_dispersive[to]) != 0;
-    // Relative index per carried wavelength (one number for a non-dispersive interface).
-    SampledSpectrum r, n_from(1.0f), n_to(1.0f);
-    float eta_hero;
-    if (!dispersive) {
-      eta_hero = static_cast<float>(m_ior_constant[to] / m_ior_constant[from]);
-      r = SampledSpectrum(fresnel_dielectric(cos_i, eta_hero));
-    } else {
-      const PacketSpectra& ps = spectra(w);
-      n_from = ps.n[from];
-      n_to = ps.n[to];
-      // A ray of one wavelength refracts with that wavelength's index; its tree's other elements
-      // are discarded by the caller, so their reflectances need not be computed.
-      const int k = lane >= 0 ? lane : 0;
-      eta_hero = n_to[k] / n_from[k];
-      if (lane >= 0) {
-        r[lane] = fresnel_dielectric(cos_i, eta_hero);
-      } else {
-        for (int i = 0; i < kSpectrumSamples; ++i)
-          r[i] = fresnel_dielectric(cos_i, n_to[i] / n_from[i]);
-      }
-    }
-    // Reflected branch: every carried wavelength, each with its own Fresnel reflectance.
-    if (!r.is_black() && live_max(beta * r, w) >= m_min_weight) {
-      const Vec3 dir = reflection_direction(d, ns, ng);
-      const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
-      result += trace(next, depth + 1, beta * r, from, w, lane) * r;
-    }
-    const SampledSpectrum t = SampledSpectrum(1.0f) - r;
-    if (dispersive && lane < 0 && m_split && !w.secondary_terminated()) {
-      split_seen = true;
-      if (adaptive && !m_any_absorbs && is_grey(beta)) {
-        // Upstream throughput independent of the wavelength: integrate the transmitted light
-        // over the whole spectrum here (its XYZ goes to side_xyz).
-        ++adaptive_refractions;
-        adaptive_transmission(d, si, ns, ng, cos_i, from, to, depth, beta[0], w);
-        return result;
-      }
-      ++split_refractions;
-      // Split: each carried wavelength refracts its own way on its own ray (4 rays). Every
-      // wavelength's radiance is then exact, so the film estimator keeps all four: no colour
-      // noise beyond the wavelength sampling itself.
-      for (int i = 0; i < kSpectrumSamples; ++i) {
-        SampledSpectrum mask;
-        mask[i] = t[i];
-        const SampledSpectrum b = beta * mask;
-        if (!(b[i] >= m_min_weight) || b[i] == 0.0f) continue;
-        Vec3 dir;
-        if (!refraction_direction(d, ns, ng, n_to[i] / n_from[i], dir)) continue;
-        const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
-        result += trace(next, depth + 1, b, to, w, i) * mask;
-      }
-      return result;
-    }
-    Vec3 dir;
-    if (!refraction_direction(d, ns, ng, eta_hero, dir)) return result;
-    const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
-    if (!dispersive || w.secondary_terminated() || lane >= 0) {
-      if (live_max(beta * t, w) >= m_min_weight) result += trace(next, depth + 1, beta * t, to, w, lane) * t;
-      return result;
-    }
-    // Dispersive refraction: the wavelengths part ways; follow the hero only (Wilkie et al.).
-    SampledWavelengths hero = w;
-    hero.terminate_secondary();
-    if (beta[0] * t[0] >= m_min_weight) {
-      const SampledSpectrum lt = trace(next, depth + 1, beta * t, to, hero) * t;
-      result += to_caller_wavelengths(lt, hero, w);
-    }
-    return result;
-  }
-
-  SampledSpectrum metal(const Ray& ray, const SurfaceInteraction& si, const Material& mat, int depth,
-                        const SampledSpectrum& beta, std::uint32_t medium, const SampledWavelengths& w,
-                        int lane) {
-    const SampledSpectrum tint = RgbReflectanceSpectrum(to_srgb(mat.texture.eval(si.p))).sample(w);
-    const SampledSpectrum b = beta * tint;
-    const float wmax = live_max(b, w);
-    if (depth >= m_max_depth || wmax < m_min_weight || wmax == 0.0f) return {};
-    const Vec3 ng = face_forward(si.ng, -ray.direction);
-    const Vec3 ns = face_forward(si.ns, ng);
-    const Vec3 dir = reflection_direction(ray.direction, ns, ng);
-    const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
-    return tint * trace(next, depth + 1, b, medium, w, lane);
-  }
-
-  SampledSpectrum phong(const Ray& ray, const SurfaceInteraction& si, const Material& mat, int depth,
-                        const SampledSpectrum& beta, std::uint32_t medium, const SampledWavelengths& w,
-                        int lane) {
-    const Vec3& d = ray.direction;
-    const Vec3 ng = face_forward(si.ng, -d);
-    const Vec3 ns = face_forward(si.ns, ng);
-    const SampledSpectrum albedo = RgbReflectanceSpectrum(to_srgb(mat.texture.eval(si.p))).sample(w);
-    const PacketSpectra& ps = spectra(w);
-    SampledSpectrum result = albedo * ps.ambient * mat.ka;
-    const auto& lights = m_scene.lights();
-    for (std::size_t li_index = 0; li_index < lights.size(); ++li_index) {
-      const PointLight& light = lights[li_index];
-      Vec3 l;
-      float cos_l, dist2;
-      if (light_visibility(si.p, si.p_error, ng, ns, light, l, cos_l, dist2) !=
-          LightVisibility::seen)
-        continue;
-      SampledSpectrum li = ps.lights[li_index];
-      if (light.inverse_square) li *= 1.0f / dist2;
-      result += albedo * li * (mat.kd * cos_l);
-      if (mat.ks > 0.0f) {
-        const float s = dot(reflect(-l, ns), -d);
-        if (s > 0.0f) result += li * (mat.ks * std::pow(s, mat.shininess));
-      }
-    }
-    if (mat.kind != Material::Kind::phong || depth >= m_max_depth) return result;
-    if (mat.reflectance > 0.0f && live_max(beta, w) * mat.reflectance >= m_min_weight) {
-      const Vec3 dir = reflection_direction(d, ns, ng);
-      const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
-      result += trace(next, depth + 1, beta * mat.reflectance, medium, w, lane) * mat.reflectance;
-    }
-    if (mat.transmittance > 0.0f && live_max(beta, w) * mat.transmittance >= m_min_weight) {
-      // The classic model: a constant ior relative to the front side (not dispersive).
-      const bool entering = dot(d, si.ng) < 0.0f;
-      const float eta = entering ? mat.ior : 1.0f / mat.ior;
-      Vec3 dir;
-      if (refract(d, ns, eta, dir) && dot(dir, ng) < 0.0f) {
-        const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
-        result += trace(next, depth + 1, beta * mat.transmittance, medium, w, lane) * mat.transmittance;
-      }
-    }
-    return result;
-  }
-
-  const Scene& m_scene;
-  int m_max_depth;
-  float m_min_weight;
   double m_resolution_nm;  // adaptive dispersion: jumps located to this width
-  bool m_split;
+  bool m_split;            // dispersion "split" or "adaptive" (else "hero")
+  bool m_adaptive;         // dispersion "adaptive"
+  Rgb m_background_rgb;
   RgbIlluminantSpectrum m_background, m_ambient;
   std::vector<RgbIlluminantSpectrum> m_lights, m_emission;
 
@@ -727,187 +640,175 @@ class SpectralTracer {
   /// adaptive segments' reference spectra do not model, so dispersion falls back to "split".
   bool m_any_absorbs = false;
   std::vector<double> m_ior_constant;
+
+  std::uint64_t m_adaptive_refractions = 0, m_split_refractions = 0;
+  // Outputs of the packet being traced (trace_primary() resets and returns them).
+  bool m_split_seen = false;
+  Xyz m_side_xyz;
+};
+
+/// What every pixel of a spectral render shares: the wavelength stratification and the film's
+/// normalisation.
+struct SpectralFilm {
+  int samples = 1;
+  /// wavelength packets of kSpectrumSamples per camera sample where dispersion splits the rays
+  int packets = 1;
+  /// ratio film: white's exact XYZ under the film's own estimator
+  bool ratio = false;
+  Xyz white;
+  /// shared wavelength pattern: one sub-stratum and one offset for the whole image (from the
+  /// seed), the wavelengths of every sub-stratum and white's XYZ under each, computed once
+  bool shared = false;
+  int shared_first = 0;
+  std::vector<SampledWavelengths> shared_wavelengths;
+  std::vector<Xyz> shared_white;
+
+  SpectralFilm(const ImageSettings& st, std::uint64_t seed) : samples(st.samples_per_pixel) {
+    packets =
+        st.dispersion == ImageSettings::Dispersion::split
+            ? std::max(1, (st.dispersion_wavelengths + kSpectrumSamples - 1) / kSpectrumSamples)
+            : 1;
+    // Ratio film: midpoint quadrature over the hero, 4000 cells (D65 and the CIE functions are
+    // smooth, error < 1e-6).
+    ratio = st.spectral_film == ImageSettings::SpectralFilm::ratio;
+    if (ratio) {
+      constexpr int kCells = 4000;
+      for (int i = 0; i < kCells; ++i) {
+        const auto wl = SampledWavelengths::sample((i + 0.5) / kCells);
+        const Xyz c = spectrum_to_xyz(illuminant_d65(wl), wl);
+        white.x += c.x / kCells, white.y += c.y / kCells, white.z += c.z / kCells;
+      }
+    }
+    shared = st.wavelength_pattern == ImageSettings::WavelengthPattern::shared;
+    Pcg32 pattern_rng(0x7468617770617474ULL, seed);  // stream "thawpatt"
+    shared_first = int(pattern_rng.next_u32() % std::uint32_t(packets));
+    const double shared_jitter = pattern_rng.next_float();
+    if (shared) {
+      for (int i = 0; i < samples * packets; ++i) {
+        shared_wavelengths.push_back(wavelengths_in(i, shared_jitter));
+        shared_white.push_back(
+            spectrum_to_xyz(illuminant_d65(shared_wavelengths.back()), shared_wavelengths.back()));
+      }
+    }
+  }
+
+  /// The wavelengths of hero sub-stratum `stratum` (of samples x packets) at offset `jitter` in it.
+  SampledWavelengths wavelengths_in(int stratum, double jitter) const {
+    const double u = (double(stratum) + jitter) / (double(samples) * packets);
+    return SampledWavelengths::sample(std::min(u, 1.0 - 1e-12));
+  }
+};
+
+/// One thread's share of a spectral render. Pixel positions are stratified as in RGB mode; the
+/// hero wavelength gets its own strata (one per sample) in a random order per pixel, so position
+/// and wavelength strata are not correlated.
+class SpectralPixelWorker {
+ public:
+  struct Sample {
+    /// the sample's XYZ, white's XYZ under the same wavelengths (ratio film), and the adaptive
+    /// dispersion's spectrally integrated light, each averaged over the packets traced
+    Xyz xyz, white, side;
+    Sample& operator+=(const Sample& o) {
+      xyz.x += o.xyz.x, xyz.y += o.xyz.y, xyz.z += o.xyz.z;
+      white.x += o.white.x, white.y += o.white.y, white.z += o.white.z;
+      side.x += o.side.x, side.y += o.side.y, side.z += o.side.z;
+      return *this;
+    }
+  };
+
+  SpectralPixelWorker(const Scene& scene, const SpectralFilm& film)
+      : m_tracer(scene),
+        m_film(film),
+        m_medium(scene.camera_medium()),
+        m_lambda_perm(static_cast<std::size_t>(film.samples)) {}
+
+  void start_pixel(Pcg32& rng) { shuffle_indices(m_lambda_perm, rng); }
+
+  Sample sample(const Ray& camera_ray, int s, Pcg32& rng) {
+    // Wavelength packets: the first always, all of them when the first met a split dispersive
+    // refraction. Packet k takes sub-stratum (first + k) mod packets of the sample's hero
+    // stratum, at offset `jitter` in it. Per pixel, `first` and `jitter` are random for each
+    // sample; shared, they are the same for every pixel (drawn once from the seed): each is
+    // uniform, so an unrefined sample's hero is uniform in its stratum and a refined sample's
+    // heroes are stratified, in both patterns.
+    const int packets = m_film.packets;
+    const int first = m_film.shared ? m_film.shared_first
+                      : packets > 1 ? int(rng.next_u32() % std::uint32_t(packets))
+                                    : 0;
+    Xyz sum, white, side;
+    int traced = 0;
+    for (int k = 0; k < packets; ++k) {
+      const int stratum =
+          m_lambda_perm[static_cast<std::size_t>(s)] * packets + (first + k) % packets;
+      const SampledWavelengths wl =
+          m_film.shared ? m_film.shared_wavelengths[static_cast<std::size_t>(stratum)]
+                        : m_film.wavelengths_in(stratum, rng.next_float());
+      const PacketResult r = m_tracer.trace_primary(camera_ray, m_medium, wl);
+      // Box filter: the mean of the samples' XYZ. Negative sRGB (out-of-gamut spectral colours)
+      // is kept and clamped at output, so the mean stays unbiased.
+      const Xyz c = spectrum_to_xyz(r.radiance, wl);
+      sum.x += c.x, sum.y += c.y, sum.z += c.z;
+      side.x += r.side_xyz.x, side.y += r.side_xyz.y, side.z += r.side_xyz.z;
+      if (m_film.ratio) {
+        const Xyz d = m_film.shared ? m_film.shared_white[static_cast<std::size_t>(stratum)]
+                                    : spectrum_to_xyz(illuminant_d65(wl), wl);
+        white.x += d.x, white.y += d.y, white.z += d.z;
+      }
+      ++traced;
+      if (k == 0 && !r.split_seen) break;
+    }
+    if (traced > 1) ++m_refined;
+    return {{sum.x / traced, sum.y / traced, sum.z / traced},
+            {white.x / traced, white.y / traced, white.z / traced},
+            {side.x / traced, side.y / traced, side.z / traced}};
+  }
+
+  Rgb pixel_value(const Sample& sum, int samples) const {
+    Xyz mean{sum.xyz.x / samples, sum.xyz.y / samples, sum.xyz.z / samples};
+    if (m_film.ratio) {
+      // sum.white > 0: D65 and the CIE functions are positive over 380-780 nm.
+      mean = Xyz{sum.xyz.x / sum.white.x * m_film.white.x, sum.xyz.y / sum.white.y * m_film.white.y,
+                 sum.xyz.z / sum.white.z * m_film.white.z};
+    }
+    // The adaptive dispersion's light carries no wavelength-sampling noise: added after the ratio.
+    mean.x += sum.side.x / samples, mean.y += sum.side.y / samples, mean.z += sum.side.z / samples;
+    const LinearSrgb c = xyz_to_linear_srgb(mean);
+    return Rgb(float(c.r), float(c.g), float(c.b));
+  }
+
+  void add_counts(RenderStats& stats) const {
+    m_tracer.add_counts(stats);
+    stats.refined_samples += m_refined;
+  }
+
+ private:
+  SpectralTracer m_tracer;
+  const SpectralFilm& m_film;
+  std::uint32_t m_medium;
+  std::vector<int> m_lambda_perm;
+  std::uint64_t m_refined = 0;
 };
 
 }  // namespace
 
 bool spectral_refraction(const Vec3& d, const Vec3& n, double n_from, double n_to, Vec3& out) {
-  return refract(d, n, static_cast<float>(static_cast<float>(n_to) / static_cast<float>(n_from)), out);
+  return refract(d, n, static_cast<float>(static_cast<float>(n_to) / static_cast<float>(n_from)),
+                 out);
 }
 
 SampledSpectrum trace_spectral_ray(const Scene& scene, const Ray& ray, std::uint32_t medium,
                                    const SampledWavelengths& wavelengths, RenderStats* stats) {
   SpectralTracer tracer(scene);
-  const SampledSpectrum l = tracer.trace(ray, 1, SampledSpectrum(1.0f), medium, wavelengths);
-  if (stats) {
-    stats->rays += tracer.rays;
-    stats->medium_mismatches += tracer.mismatches;
-  }
-  return l;
+  const PacketResult r = tracer.trace_primary(ray, medium, wavelengths);
+  if (stats) tracer.add_counts(*stats);
+  return r.radiance;
 }
 
-RenderResult render_spectral(const Scene& scene, const RenderOptions& options, const ProgressCallback& progress) {
-  const auto start = std::chrono::steady_clock::now();
-  const ImageSettings& st = scene.settings();
-  const int w = st.width, h = st.height, spp = st.samples_per_pixel;
-  const int tile = std::max(1, options.tile_size);
-  const int tiles_x = (w + tile - 1) / tile, tiles_y = (h + tile - 1) / tile;
-  const int tiles = tiles_x * tiles_y;
-  RenderResult result;
-  result.image = Image(w, h);
-  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
-  // Pixel positions stratified as in RGB mode; the hero wavelength gets its own spp strata in a
-  // random order per pixel, so position and wavelength strata are not correlated.
-  const int grid = static_cast<int>(std::lround(std::sqrt(double(spp))));
-  const bool square = grid * grid == spp;
-  // Ratio film: white's exact XYZ under the film's own estimator (midpoint quadrature over the
-  // hero, 4000 cells: D65 and the CIE functions are smooth, error < 1e-6).
-  const bool ratio = st.spectral_film == ImageSettings::SpectralFilm::ratio;
-  Xyz white;
-  if (ratio) {
-    constexpr int kCells = 4000;
-    for (int i = 0; i < kCells; ++i) {
-      const auto wl = SampledWavelengths::sample((i + 0.5) / kCells);
-      const Xyz c = spectrum_to_xyz(illuminant_d65(wl), wl);
-      white.x += c.x / kCells, white.y += c.y / kCells, white.z += c.z / kCells;
-    }
-  }
-  // Wavelength packets of kSpectrumSamples per camera sample where dispersion splits the rays.
-  const int packets =
-      st.dispersion == ImageSettings::Dispersion::split
-          ? std::max(1, (st.dispersion_wavelengths + kSpectrumSamples - 1) / kSpectrumSamples)
-          : 1;
-  // Shared wavelength pattern: one sub-stratum and one offset for the whole image, from the seed.
-  const bool pattern_shared = st.wavelength_pattern == ImageSettings::WavelengthPattern::shared;
-  Pcg32 pattern_rng(0x7468617770617474ULL, options.seed);  // stream "thawpatt"
-  const int shared_first = int(pattern_rng.next_u32() % std::uint32_t(packets));
-  const double shared_jitter = pattern_rng.next_float();
-  // The wavelengths of hero sub-stratum `stratum` (of spp x packets) at offset `jitter` in it;
-  // with the shared pattern all of them, and white's XYZ under each, are computed once here.
-  auto wavelengths_in = [&](int stratum, double jitter) {
-    const double u = (double(stratum) + jitter) / (double(spp) * packets);
-    return SampledWavelengths::sample(std::min(u, 1.0 - 1e-12));
-  };
-  std::vector<SampledWavelengths> shared_wavelengths;
-  std::vector<Xyz> shared_white;
-  if (pattern_shared) {
-    for (int i = 0; i < spp * packets; ++i) {
-      shared_wavelengths.push_back(wavelengths_in(i, shared_jitter));
-      shared_white.push_back(spectrum_to_xyz(illuminant_d65(shared_wavelengths.back()), shared_wavelengths.back()));
-    }
-  }
-  std::uint64_t rays = 0, mismatches = 0, refined = 0, adaptive_refractions = 0,
-                split_refractions = 0;
-  std::atomic<std::int64_t> tiles_done{0};
-#pragma omp parallel num_threads(threads) \
-    reduction(+ : rays, mismatches, refined, adaptive_refractions, split_refractions)
-  {
-    SpectralTracer tracer(scene);
-    tracer.adaptive = st.dispersion == ImageSettings::Dispersion::adaptive;
-    std::vector<int> perm(static_cast<std::size_t>(spp)), lambda_perm(static_cast<std::size_t>(spp));
-    auto shuffle = [](std::vector<int>& p, Pcg32& rng) {
-      for (std::size_t i = 0; i < p.size(); ++i) p[i] = static_cast<int>(i);
-      for (std::size_t i = p.size() - 1; i > 0; --i)
-        std::swap(p[i], p[rng.next_u32() % static_cast<std::uint32_t>(i + 1)]);
-    };
-#pragma omp for schedule(dynamic, 1)
-    for (int t = 0; t < tiles; ++t) {
-      const int x0 = (t % tiles_x) * tile, y0 = (t / tiles_x) * tile;
-      const int x1 = std::min(x0 + tile, w), y1 = std::min(y0 + tile, h);
-      for (int y = y0; y < y1; ++y) {
-        for (int x = x0; x < x1; ++x) {
-          Pcg32 rng(std::uint64_t(y) * std::uint64_t(w) + std::uint64_t(x), options.seed);
-          if (!square && spp > 1) shuffle(perm, rng);
-          shuffle(lambda_perm, rng);
-          // side_sum: light integrated over the spectrum at adaptive dispersive refractions; it
-          // carries no wavelength-sampling noise, so it is added after the ratio normalisation.
-          Xyz sum, white_sum, side_sum;
-          for (int s = 0; s < spp; ++s) {
-            float sx = 0.5f, sy = 0.5f;  // one sample: the pixel centre (as RGB mode and POV-Ray)
-            if (spp > 1 && square) {
-              sx = (float(s % grid) + rng.next_float()) / float(grid);
-              sy = (float(s / grid) + rng.next_float()) / float(grid);
-            } else if (spp > 1) {
-              sx = (float(s) + rng.next_float()) / float(spp);
-              sy = (float(perm[static_cast<std::size_t>(s)]) + rng.next_float()) / float(spp);
-            }
-            // Wavelength packets: the first always, all of them when the first met a split
-            // dispersive refraction. Packet k takes sub-stratum (first + k) mod packets of the
-            // sample's hero stratum, at offset `jitter` in it. Per pixel, `first` and `jitter` are
-            // random for each sample; shared, they are the same for every pixel (drawn once from
-            // the seed): each is uniform, so an unrefined sample's hero is uniform in its stratum
-            // and a refined sample's heroes are stratified, in both patterns.
-            const int first = pattern_shared ? shared_first
-                              : packets > 1  ? int(rng.next_u32() % std::uint32_t(packets))
-                                             : 0;
-            const Ray camera_ray = scene.camera().generate(float(x) + sx, float(y) + sy);
-            Xyz sample_sum, sample_white, sample_side;
-            int traced = 0;
-            for (int k = 0; k < packets; ++k) {
-              const int stratum = lambda_perm[static_cast<std::size_t>(s)] * packets + (first + k) % packets;
-              const SampledWavelengths wl =
-                  pattern_shared ? shared_wavelengths[static_cast<std::size_t>(stratum)]
-                                 : wavelengths_in(stratum, rng.next_float());
-              tracer.split_seen = false;
-              tracer.side_xyz = Xyz{};
-              const SampledSpectrum l =
-                  tracer.trace(camera_ray, 1, SampledSpectrum(1.0f), scene.camera_medium(), wl);
-              // Box filter: the mean of the samples' XYZ. Negative sRGB (out-of-gamut spectral
-              // colours) is kept and clamped at output, so the mean stays unbiased.
-              const Xyz c = spectrum_to_xyz(l, wl);
-              sample_sum.x += c.x, sample_sum.y += c.y, sample_sum.z += c.z;
-              sample_side.x += tracer.side_xyz.x, sample_side.y += tracer.side_xyz.y;
-              sample_side.z += tracer.side_xyz.z;
-              if (ratio) {
-                const Xyz d = pattern_shared ? shared_white[static_cast<std::size_t>(stratum)]
-                                             : spectrum_to_xyz(illuminant_d65(wl), wl);
-                sample_white.x += d.x, sample_white.y += d.y, sample_white.z += d.z;
-              }
-              ++traced;
-              if (k == 0 && !tracer.split_seen) break;
-            }
-            if (traced > 1) ++refined;
-            sum.x += sample_sum.x / traced, sum.y += sample_sum.y / traced,
-                sum.z += sample_sum.z / traced;
-            white_sum.x += sample_white.x / traced, white_sum.y += sample_white.y / traced;
-            white_sum.z += sample_white.z / traced;
-            side_sum.x += sample_side.x / traced, side_sum.y += sample_side.y / traced;
-            side_sum.z += sample_side.z / traced;
-          }
-          Xyz mean{sum.x / spp, sum.y / spp, sum.z / spp};
-          if (ratio) {
-            // white_sum > 0: D65 and the CIE functions are positive over 380-780 nm.
-            mean = Xyz{sum.x / white_sum.x * white.x, sum.y / white_sum.y * white.y,
-                       sum.z / white_sum.z * white.z};
-          }
-          mean.x += side_sum.x / spp, mean.y += side_sum.y / spp, mean.z += side_sum.z / spp;
-          const LinearSrgb c = xyz_to_linear_srgb(mean);
-          result.image.at(x, y) = Rgb(float(c.r), float(c.g), float(c.b));
-        }
-      }
-      const std::int64_t done = ++tiles_done;
-      if (progress) {
-        try {
-          progress(done, tiles);
-        } catch (...) {
-          // A progress display must never abort a render (and nothing may leave an OpenMP loop).
-        }
-      }
-    }
-    rays += tracer.rays;
-    mismatches += tracer.mismatches;
-    adaptive_refractions += tracer.adaptive_refractions;
-    split_refractions += tracer.split_refractions;
-  }
-  result.stats.rays = rays;
-  result.stats.medium_mismatches = mismatches;
-  result.stats.refined_samples = refined;
-  result.stats.adaptive_refractions = adaptive_refractions;
-  result.stats.split_refractions = split_refractions;
-  result.stats.threads = threads;
-  result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  result.stats.rays_per_second = result.stats.seconds > 0 ? double(rays) / result.stats.seconds : 0.0;
-  return result;
+RenderResult render_spectral(const Scene& scene, const RenderOptions& options,
+                             const ProgressCallback& progress) {
+  const SpectralFilm film(scene.settings(), options.seed);
+  return render_image_tiles(scene, options, progress,
+                            [&] { return SpectralPixelWorker(scene, film); });
 }
 
 }  // namespace thaw::render

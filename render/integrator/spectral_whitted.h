@@ -1,6 +1,7 @@
 #pragma once
-// Spectral Whitted ray tracing: the RGB integrator (render/integrator/whitted.h) with radiance
-// carried at kSpectrumSamples wavelengths per camera sample (hero-wavelength sampling, Wilkie et
+// Spectral Whitted ray tracing: the shading of render/integrator/whitted_shading.h instantiated
+// for radiance carried at kSpectrumSamples wavelengths per camera sample, over the image loop of
+// render/integrator/image_tile_integrator.h (hero-wavelength sampling, Wilkie et
 // al. 2014; render/spectrum/sampled_wavelengths.h), so that dispersion (n(lambda), render/media)
 // and Beer-Lambert absorption come out of the physics. RGB albedos are uplifted with Smits'
 // method, light, ambient, emission and background colours become RGB illuminant spectra (white =
@@ -22,7 +23,8 @@
 // - Every segment travelled inside an absorbing medium (also after total internal reflection)
 //   keeps exp(-alpha(lambda) d), d in scene units taken as metres.
 // Same determinism as the RGB path: per-pixel RNG streams, image independent of thread count.
-// Called by render() when Scene::spectral() is set; knows nothing about TOML or files.
+// The dispersion machinery below is spectral-only; every ray it traces goes through the shared
+// shading. Called by render() when Scene::spectral() is set; knows nothing about TOML or files.
 #include <cstdint>
 
 #include "render/integrator/whitted.h"
@@ -37,9 +39,13 @@ RenderResult render_spectral(const Scene& scene, const RenderOptions& options = 
                              const ProgressCallback& progress = {});
 
 /// Spectral radiance along one ray (for tests), traced as a primary ray starting in `medium`,
-/// expressed in `wavelengths` (convert with spectrum_to_linear_srgb(L, wavelengths)).
+/// expressed in `wavelengths` (convert with spectrum_to_linear_srgb(L, wavelengths)). Dispersive
+/// refractions follow the scene's [image] dispersion; with "adaptive" the light they integrate
+/// over the spectrum goes to the film's XYZ side channel, not into the returned spectrum, so
+/// single-ray tests through dispersive media use "split" or "hero".
 SampledSpectrum trace_spectral_ray(const Scene& scene, const Ray& ray, std::uint32_t medium,
-                                   const SampledWavelengths& wavelengths, RenderStats* stats = nullptr);
+                                   const SampledWavelengths& wavelengths,
+                                   RenderStats* stats = nullptr);
 
 /// The transmitted direction the spectral integrator takes at a dielectric interface for
 /// wavelength `lambda_nm`: unit incident `d`, unit normal `n` facing the incident side, indices

@@ -21,7 +21,9 @@
 namespace thaw::render {
 namespace {
 
-Scene scene_from(const std::string& toml) { return build_scene(parse_scene_string(toml, "test.toml", "")); }
+Scene scene_from(const std::string& toml) {
+  return build_scene(parse_scene_string(toml, "test.toml", ""));
+}
 
 const std::string kCamera = R"(
 [camera]
@@ -109,7 +111,8 @@ TEST(SpectralWhitted, MatchesRgbOnNonDispersiveSceneWithin1Over255) {
       double r = 0, g = 0, b = 0;
       for (int i = 0; i < kCells; ++i) {
         const auto w = SampledWavelengths::sample((i + 0.5) / kCells, HeroDensity::uniform);
-        const LinearSrgb c = spectrum_to_linear_srgb(trace_spectral_ray(scene, ray, scene.camera_medium(), w), w);
+        const LinearSrgb c =
+            spectrum_to_linear_srgb(trace_spectral_ray(scene, ray, scene.camera_medium(), w), w);
         r += c.r;
         g += c.g;
         b += c.b;
@@ -168,7 +171,8 @@ TEST_P(DispersionModes, DispersiveSphereInWhiteEnvironmentIsInvisible) {
   Pcg32 rng(7, 1);
   constexpr int kSamples = 20000;
   const Vec3 origin{0, 0, 5};
-  for (const Vec3 target : {Vec3{0, 0, 0}, Vec3{0.5f, 0.2f, 0}, Vec3{0.85f, 0, 0}, Vec3{0, 0.97f, 0}}) {
+  for (const Vec3 target :
+       {Vec3{0, 0, 0}, Vec3{0.5f, 0.2f, 0}, Vec3{0.85f, 0, 0}, Vec3{0, 0.97f, 0}}) {
     const Ray ray{origin, normalize(target - origin)};
     double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
     bool dispersed = false;
@@ -185,7 +189,8 @@ TEST_P(DispersionModes, DispersiveSphereInWhiteEnvironmentIsInvisible) {
       const double mean = sum[k] / kSamples;
       const double se = std::sqrt(std::max(0.0, sum2[k] / kSamples - mean * mean) / (kSamples - 1));
       EXPECT_GT(se, 0.0) << "wavelength sampling is noisy";
-      EXPECT_NEAR(mean, env[k], 4 * se + 1e-5) << "channel " << k << " target " << target.x << "," << target.y;
+      EXPECT_NEAR(mean, env[k], 4 * se + 1e-5)
+          << "channel " << k << " target " << target.x << "," << target.y;
     }
   }
 }
@@ -240,7 +245,8 @@ std::shared_ptr<TriangleMesh> prism_mesh() {
     m->positions.push_back({-hw, -1.0f, z});
     m->positions.push_back({hw, -1.0f, z});
   }
-  m->triangles = {{3, 4, 5}, {0, 2, 1}, {0, 1, 4}, {0, 4, 3}, {0, 5, 2}, {0, 3, 5}, {1, 2, 5}, {1, 5, 4}};
+  m->triangles = {{3, 4, 5}, {0, 2, 1}, {0, 1, 4}, {0, 4, 3},
+                  {0, 5, 2}, {0, 3, 5}, {1, 2, 5}, {1, 5, 4}};
   return m;
 }
 
@@ -272,7 +278,8 @@ TEST(SpectralWhitted, PrismDeviationFollowsSnellPerWavelength) {
     target[k] = exit + 3.0 * *d2;
     // The traced deviation is the closed-form minimum deviation at 550 nm (a check of this test).
     if (k == 1) {
-      EXPECT_NEAR(std::acos(optics::dot(d0, *d2)), optics::prism_minimum_deviation_rad(n, apex), 1e-9);
+      EXPECT_NEAR(std::acos(optics::dot(d0, *d2)), optics::prism_minimum_deviation_rad(n, apex),
+                  1e-9);
     }
   }
   for (int k = 0; k < 3; ++k) {
@@ -284,11 +291,16 @@ kind = "emissive"
 color = [1.0, 1.0, 1.0]
 [[objects]]
 shape = "sphere"
-center = [)" + std::to_string(target[k].x) + ", " + std::to_string(target[k].y) + R"(, 0.0]
+center = [)" + std::to_string(target[k].x) + ", " +
+                                                std::to_string(target[k].y) + R"(, 0.0]
 radius = 0.02
 material = "lamp"
-)" + kCamera, "prism.toml", "");
+)" + kCamera,
+                                            "prism.toml", "");
     d.add_dielectric_mesh(prism_mesh(), "glass", "vacuum", "prism");
+    // The split below traces one ray per wavelength (the default "adaptive" would integrate the
+    // transmitted light into the film's side channel, which a single ray does not return).
+    d.image.dispersion = ImageSettings::Dispersion::split;
     const Scene scene = build_scene(d);
     const Ray ray{{float(entry.x - 2 * d0.x), float(entry.y - 2 * d0.y), 0.0f},
                   {float(d0.x), float(d0.y), 0.0f}};
@@ -298,7 +310,8 @@ material = "lamp"
                                               SampledSpectrum({1.0f / 400, 0, 0, 0}));
       const float l = trace_spectral_ray(scene, ray, 0, w)[0];
       if (j == k) {
-        EXPECT_GT(l, 0.5f * float(illuminant_d65(lambdas[j]))) << lambdas[j] << " nm hits its target";
+        EXPECT_GT(l, 0.5f * float(illuminant_d65(lambdas[j])))
+            << lambdas[j] << " nm hits its target";
       } else {
         EXPECT_EQ(l, 0.0f) << lambdas[j] << " nm must miss the " << lambdas[k] << " nm target";
       }
@@ -309,16 +322,19 @@ material = "lamp"
     const SampledSpectrum l = trace_spectral_ray(scene, ray, 0, w);
     for (int j = 0; j < 3; ++j) {
       if (j == k) {
-        EXPECT_GT(l[j], 0.5f * float(illuminant_d65(lambdas[j]))) << "split: " << lambdas[j] << " nm";
+        EXPECT_GT(l[j], 0.5f * float(illuminant_d65(lambdas[j])))
+            << "split: " << lambdas[j] << " nm";
       } else {
-        EXPECT_EQ(l[j], 0.0f) << "split: " << lambdas[j] << " nm vs the " << lambdas[k] << " nm target";
+        EXPECT_EQ(l[j], 0.0f) << "split: " << lambdas[j] << " nm vs the " << lambdas[k]
+                              << " nm target";
       }
     }
   }
   // The integrator's Snell step itself, in 3D, against the 2D double-precision one.
   Vec3 out;
   const double n = glass.n_at(486.1);
-  ASSERT_TRUE(spectral_refraction({float(d0.x), float(d0.y), 0}, {float(n1.x), float(n1.y), 0}, 1.0, n, out));
+  ASSERT_TRUE(spectral_refraction({float(d0.x), float(d0.y), 0}, {float(n1.x), float(n1.y), 0}, 1.0,
+                                  n, out));
   const auto ref = optics::refract(d0, n1, 1.0, n);
   EXPECT_NEAR(out.x, ref->x, 1e-6);
   EXPECT_NEAR(out.y, ref->y, 1e-6);
@@ -491,8 +507,8 @@ material = "grey"
 )" + kCamera;
   const RenderResult rgb = render(scene_from("[image]\nspectral = false\n" + grey.substr(8)));
   const RenderResult ratio = render(scene_from("[image]\nspectral = true\n" + grey.substr(8)));
-  const RenderResult plain =
-      render(scene_from("[image]\nspectral = true\nspectral_film = \"unbiased\"\n" + grey.substr(8)));
+  const RenderResult plain = render(
+      scene_from("[image]\nspectral = true\nspectral_film = \"unbiased\"\n" + grey.substr(8)));
   double worst_ratio = 0, worst_plain = 0;
   for (int y = 0; y < 24; ++y)
     for (int x = 0; x < 32; ++x) {
@@ -511,8 +527,10 @@ TEST(SpectralWhitted, SpectralSwitch) {
   EXPECT_FALSE(scene_from(media + "ior = 1.31\n" + kCamera).spectral());
   EXPECT_TRUE(scene_from(media + "preset = \"ice-ih\"\n" + kCamera).spectral());
   EXPECT_TRUE(scene_from(media + "ior = 1.31\nabsorption_per_m = 0.1\n" + kCamera).spectral());
-  EXPECT_FALSE(scene_from("[image]\nspectral = false\n" + media + "preset = \"ice-ih\"\n" + kCamera).spectral());
-  EXPECT_TRUE(scene_from("[image]\nspectral = true\n" + media + "ior = 1.31\n" + kCamera).spectral());
+  EXPECT_FALSE(scene_from("[image]\nspectral = false\n" + media + "preset = \"ice-ih\"\n" + kCamera)
+                   .spectral());
+  EXPECT_TRUE(
+      scene_from("[image]\nspectral = true\n" + media + "ior = 1.31\n" + kCamera).spectral());
   EXPECT_FALSE(scene_from("[image]\nspectral = \"auto\"\n" + kCamera).spectral());
   try {
     scene_from("[image]\nspectral = \"yes\"\n" + kCamera);

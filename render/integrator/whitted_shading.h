@@ -1,0 +1,296 @@
+#pragma once
+// Whitted shading (Whitted 1980), written once for every radiance type: RGB triples and sampled
+// spectra (Mitsuba 3's "variants", here a class template over the concrete tracer, CRTP). One ray
+// tree per camera sample:
+// - dielectric interfaces between named media: exact Fresnel split (R reflected, 1 - R
+//   transmitted), Snell refraction, total internal reflection, the medium carried by every ray
+//   (a ray reaching an interface from a side whose label differs counts as a medium mismatch),
+//   Beer-Lambert absorption along each segment in an absorbing medium (spectral variant);
+// - metal: tinted mirror; matte/phong: ambient + direct light from point lights with hard shadows
+//   + Phong highlight, and the classic reflect/transmit terms; emissive: its emission.
+// The tree is cut at max_depth and where a branch's weight falls below min_weight (POV-Ray's
+// adaptive depth control). Settings come from the Scene in the constructor.
+//
+// Extension points (one function each):
+//   background()       radiance of a direction that leaves the scene (environment, sky)
+//   add_direct_light() direct light at a diffuse hit, one loop over the scene's lights
+//   diffuse()          marks where caustic irradiance E from a photon map enters: albedo kd E
+// The tracer (Derived) supplies what depends on the radiance type; see the "Derived provides"
+// list below. Knows nothing about pixels, tiles, films or files.
+#include <cmath>
+#include <cstdint>
+
+#include "render/material/fresnel.h"
+#include "render/scene/scene.h"
+
+namespace thaw::render {
+
+/// A dielectric interface as ray direction d meets it: the medium it comes from and goes to, the
+/// normals turned to face d's side (a shading normal facing away replaced by the geometric one).
+struct FacingInterface {
+  std::uint32_t from, to;
+  Vec3 ng, ns;
+};
+
+inline FacingInterface facing_interface(const Vec3& d, const SurfaceInteraction& si,
+                                        const SceneObject& obj) {
+  // The side is decided by the geometric normal, never the shading normal.
+  const bool entering = dot(d, si.ng) < 0.0f;
+  FacingInterface f{entering ? obj.outside : obj.inside, entering ? obj.inside : obj.outside,
+                    entering ? si.ng : -si.ng, entering ? si.ns : -si.ns};
+  if (dot(f.ns, d) >= 0.0f) f.ns = f.ng;
+  return f;
+}
+
+/// Mirror direction about the shading normal, about the geometric one if that would go below.
+inline Vec3 reflection_direction(const Vec3& d, const Vec3& ns, const Vec3& ng) {
+  const Vec3 dir = reflect(d, ns);
+  return dot(dir, ng) <= 0.0f ? reflect(d, ng) : dir;
+}
+
+/// Snell's direction with the shading normal, falling back to the geometric one; false on total
+/// internal reflection. Normals face the incident side.
+inline bool refraction_direction(const Vec3& d, const Vec3& ns, const Vec3& ng, float eta,
+                                 Vec3& dir) {
+  if (refract(d, ns, eta, dir) && dot(dir, ng) < 0.0f) return true;
+  return refract(d, ng, eta, dir);
+}
+
+/// How a point light meets a surface point: behind it (no shadow ray cast), shadowed, or seen.
+enum class LightVisibility { facing_away, shadowed, seen };
+
+inline bool is_black(float v) {
+  return v == 0.0f;
+}
+inline bool is_black(const SampledSpectrum& s) {
+  return s.is_black();
+}
+
+/// Derived provides (its hooks may be private if it befriends WhittedShading<Derived>):
+///   Radiance, Throughput (what pruning weighs: a scalar in RGB, a spectrum in spectral mode),
+///   Reflectance (Fresnel's R: same), Path (what rides along a ray: wavelengths, lane, or nothing);
+///   static constexpr bool kAbsorption, kDispersion;
+///   Radiance illuminant(Rgb, Path)    a light/background colour as radiance
+///   Radiance reflectance(Rgb, Path)   a surface colour (albedo, metal tint)
+///   Radiance light_radiance(i, Path), ambient(Path), emission(material index, Path)
+///   float weight(Throughput, Path)    pruning weight of a branch
+///   Throughput attenuate(Throughput, tint, Path)   throughput after a metal's tint
+///   Fresnel fresnel(from, to, cos_i, Path)         R, the relative index, and whether the
+///                                                  transmission is dispersive (kDispersion)
+///   with kAbsorption: bool absorbs(medium); Radiance transmittance(medium, distance, Path)
+///   with kDispersion: void dispersive_transmission(result, d, si, interface, cos_i, depth,
+///                                                  beta, T, Path)
+template <class Derived>
+class WhittedShading {
+ public:
+  explicit WhittedShading(const Scene& scene)
+      : m_scene(scene),
+        m_max_depth(scene.settings().max_depth),
+        m_min_weight(static_cast<float>(scene.settings().min_weight)) {}
+
+  /// Adds the rays traced and medium mismatches met so far to `stats`.
+  void add_counts(RenderStats& stats) const {
+    stats.rays += m_rays;
+    stats.medium_mismatches += m_mismatches;
+  }
+
+  /// Radiance arriving along `ray` (unit direction), at tree level `depth` (primary = 1), with
+  /// throughput `beta`, travelling in `medium`.
+  template <class Throughput, class Path>
+  auto trace(const Ray& ray, int depth, const Throughput& beta, std::uint32_t medium,
+             const Path& path) {
+    using Radiance = typename Derived::Radiance;
+    ++m_rays;
+    Hit hit;
+    if (!m_scene.intersect(ray, hit)) {
+      Radiance bg = self().illuminant(background(ray.direction), path);
+      if constexpr (Derived::kAbsorption) {
+        // Escaping inside an absorbing medium: an infinite path keeps nothing where alpha > 0
+        // (a huge finite distance avoids 0 * inf where alpha = 0).
+        if (self().absorbs(medium)) bg *= self().transmittance(medium, 1e30, path);
+      }
+      return bg;
+    }
+    Throughput b = beta;
+    Radiance segment{};
+    bool absorbs = false;
+    if constexpr (Derived::kAbsorption) {
+      absorbs = self().absorbs(medium);
+      if (absorbs) {
+        // Beer-Lambert over this segment: |direction| = 1, so t is the distance (scene units = m).
+        segment = self().transmittance(medium, hit.t, path);
+        b *= segment;
+      }
+    }
+    const SurfaceInteraction si = m_scene.interaction(ray, hit);
+    const SceneObject& obj = m_scene.objects()[si.object];
+    Radiance l{};
+    if (obj.dielectric) {
+      l = dielectric(ray, si, obj, depth, b, medium, path);
+    } else {
+      const Material& mat = m_scene.materials()[obj.material];
+      switch (mat.kind) {
+        case Material::Kind::emissive:
+          l = self().emission(obj.material, path);
+          break;
+        case Material::Kind::metal:
+          l = metal(ray, si, mat, depth, b, medium, path);
+          break;
+        case Material::Kind::matte:
+        case Material::Kind::phong:
+          l = diffuse(ray, si, mat, depth, b, medium, path);
+          break;
+      }
+    }
+    if constexpr (Derived::kAbsorption) {
+      if (absorbs) l *= segment;
+    }
+    return l;
+  }
+
+  /// Colour of the light leaving the scene in `direction` (miss path): the scene's constant
+  /// background. An environment map or a sky goes here (both variants call this one function).
+  Rgb background([[maybe_unused]] const Vec3& direction) const { return m_scene.background(); }
+
+  /// Point light `light` seen from surface point p (error bound p_error, normals ng, ns facing
+  /// the viewer): casts the shadow ray; l, cos_l, dist2 describe the direction to the light.
+  LightVisibility light_visibility(const Vec3& p, const Vec3& p_error, const Vec3& ng,
+                                   const Vec3& ns, const PointLight& light, Vec3& l, float& cos_l,
+                                   float& dist2) {
+    const Vec3 to_light = light.position - p;
+    dist2 = dot(to_light, to_light);
+    if (!(dist2 > 0.0f)) return LightVisibility::facing_away;
+    l = to_light / std::sqrt(dist2);
+    if (dot(l, ng) <= 0.0f) return LightVisibility::facing_away;  // light behind the surface
+    cos_l = dot(ns, l);
+    if (cos_l <= 0.0f) return LightVisibility::facing_away;
+    const Vec3 origin = offset_ray_origin(p, p_error, ng, l);
+    ++m_rays;
+    // Unnormalised direction: the light sits at t = 1; stop just short of it.
+    return m_scene.occluded(Ray{origin, light.position - origin, 1.0f - 1e-4f})
+               ? LightVisibility::shadowed
+               : LightVisibility::seen;
+  }
+
+ protected:
+  Derived& self() { return static_cast<Derived&>(*this); }
+
+  template <class Throughput, class Path>
+  auto dielectric(const Ray& ray, const SurfaceInteraction& si, const SceneObject& obj, int depth,
+                  const Throughput& beta, std::uint32_t medium, const Path& path) {
+    using Radiance = typename Derived::Radiance;
+    using Reflectance = typename Derived::Reflectance;
+    const Vec3& d = ray.direction;
+    const FacingInterface fi = facing_interface(d, si, obj);
+    if (medium != fi.from) ++m_mismatches;
+    const float cos_i = -dot(d, fi.ns);
+    Radiance result{};
+    if (depth >= m_max_depth) return result;
+    const auto f = self().fresnel(fi.from, fi.to, cos_i, path);
+    // Reflected branch: with its own Fresnel reflectance per carried wavelength.
+    const Throughput br = beta * f.r;
+    if (!is_black(f.r) && self().weight(br, path) >= m_min_weight) {
+      const Vec3 dir = reflection_direction(d, fi.ns, fi.ng);
+      const Ray next{offset_ray_origin(si.p, si.p_error, fi.ng, dir), dir};
+      result += trace(next, depth + 1, br, fi.from, path) * f.r;
+    }
+    const Reflectance t = Reflectance(1.0f) - f.r;
+    if constexpr (Derived::kDispersion) {
+      if (f.dispersive) {
+        // The wavelengths part ways: split, adaptive integration or hero (spectral only).
+        self().dispersive_transmission(result, d, si, fi, cos_i, depth, beta, t, path);
+        return result;
+      }
+    }
+    const Throughput bt = beta * t;
+    if (!is_black(t) && self().weight(bt, path) >= m_min_weight) {
+      Vec3 dir;
+      if (refraction_direction(d, fi.ns, fi.ng, f.eta, dir)) {
+        const Ray next{offset_ray_origin(si.p, si.p_error, fi.ng, dir), dir};
+        result += trace(next, depth + 1, bt, fi.to, path) * t;
+      }
+    }
+    return result;
+  }
+
+  template <class Throughput, class Path>
+  auto metal(const Ray& ray, const SurfaceInteraction& si, const Material& mat, int depth,
+             const Throughput& beta, std::uint32_t medium, const Path& path) {
+    using Radiance = typename Derived::Radiance;
+    const Radiance tint = self().reflectance(mat.texture.eval(si.p), path);
+    const Throughput b = self().attenuate(beta, tint, path);
+    const float w = self().weight(b, path);
+    if (depth >= m_max_depth || w < m_min_weight || w == 0.0f) return Radiance{};
+    const Vec3 ng = face_forward(si.ng, -ray.direction);
+    const Vec3 ns = face_forward(si.ns, ng);
+    const Vec3 dir = reflection_direction(ray.direction, ns, ng);
+    const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
+    return Radiance(tint * trace(next, depth + 1, b, medium, path));
+  }
+
+  /// Matte and phong surfaces: ambient, direct light, Phong highlight; for phong also the classic
+  /// mirror and transmission terms.
+  template <class Throughput, class Path>
+  auto diffuse(const Ray& ray, const SurfaceInteraction& si, const Material& mat, int depth,
+               const Throughput& beta, std::uint32_t medium, const Path& path) {
+    using Radiance = typename Derived::Radiance;
+    const Vec3& d = ray.direction;
+    const Vec3 ng = face_forward(si.ng, -d);
+    const Vec3 ns = face_forward(si.ns, ng);
+    const Radiance albedo = self().reflectance(mat.texture.eval(si.p), path);
+    Radiance result = albedo * self().ambient(path) * mat.ka;
+    add_direct_light(result, si, ng, ns, d, albedo, mat, path);
+    // Caustic irradiance E (light that reached this point through dielectrics, from a photon
+    // map) is added here as albedo * E * kd, in the units of direct light.
+    if (mat.kind != Material::Kind::phong || depth >= m_max_depth) return result;
+    if (mat.reflectance > 0.0f && self().weight(beta, path) * mat.reflectance >= m_min_weight) {
+      const Vec3 dir = reflection_direction(d, ns, ng);
+      const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
+      result += trace(next, depth + 1, beta * mat.reflectance, medium, path) * mat.reflectance;
+    }
+    if (mat.transmittance > 0.0f && self().weight(beta, path) * mat.transmittance >= m_min_weight) {
+      // The classic model: ior relative to the front side; the carried medium is not changed.
+      const bool entering = dot(d, si.ng) < 0.0f;
+      const float eta = entering ? mat.ior : 1.0f / mat.ior;
+      Vec3 dir;
+      if (refract(d, ns, eta, dir) && dot(dir, ng) < 0.0f) {
+        const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
+        result +=
+            trace(next, depth + 1, beta * mat.transmittance, medium, path) * mat.transmittance;
+      }
+    }
+    return result;
+  }
+
+  /// Direct light at a diffuse hit (normals ng, ns facing the viewer, unit view direction d):
+  /// adds albedo L kd cos + the Phong highlight of every light seen to `result` (accumulated in
+  /// place, light by light). All lights of the scene are handled in this one loop.
+  template <class Radiance, class Path>
+  void add_direct_light(Radiance& result, const SurfaceInteraction& si, const Vec3& ng,
+                        const Vec3& ns, const Vec3& d, const Radiance& albedo, const Material& mat,
+                        const Path& path) {
+    const auto& lights = m_scene.lights();
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+      const PointLight& light = lights[i];
+      Vec3 l;
+      float cos_l, dist2;
+      if (light_visibility(si.p, si.p_error, ng, ns, light, l, cos_l, dist2) !=
+          LightVisibility::seen)
+        continue;
+      Radiance li = self().light_radiance(i, path);
+      if (light.inverse_square) li *= 1.0f / dist2;
+      result += albedo * li * (mat.kd * cos_l);
+      if (mat.ks > 0.0f) {
+        const float s = dot(reflect(-l, ns), -d);
+        if (s > 0.0f) result += li * (mat.ks * std::pow(s, mat.shininess));
+      }
+    }
+  }
+
+  const Scene& m_scene;
+  int m_max_depth;
+  float m_min_weight;
+  std::uint64_t m_rays = 0, m_mismatches = 0;
+};
+
+}  // namespace thaw::render
