@@ -1,6 +1,7 @@
 #pragma once
 // What a render takes besides the scene (threads, tile size, seed) and what it returns: the linear
 // image and its statistics. Shared by every integrator; knows nothing about how they trace.
+#include <cstddef>
 #include <cstdint>
 
 #include "render/image/image.h"
@@ -26,6 +27,11 @@ struct RenderStats {
   /// spectral mode: dispersive refractions integrated over the spectrum (adaptive) and split
   /// into one ray per carried wavelength (split, or adaptive's fallback)
   std::uint64_t adaptive_refractions = 0, split_refractions = 0;
+  /// caustics (render/photon): photons traced and stored by the frame's photon pass, and its
+  /// wall time [s] (before the tracing, not included in `seconds`)
+  long long caustic_photons = 0;
+  std::size_t caustic_photons_stored = 0;
+  double caustic_seconds = 0;
   /// wall time of the tracing [s]
   double seconds = 0;
   double rays_per_second = 0;

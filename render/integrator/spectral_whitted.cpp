@@ -152,8 +152,8 @@ class SpectralTracer : public WhittedShading<SpectralTracer> {
   using Path = SpectralPath;
   static constexpr bool kAbsorption = true, kDispersion = true;
 
-  explicit SpectralTracer(const Scene& scene)
-      : WhittedShading(scene),
+  explicit SpectralTracer(const Scene& scene, const photon::CausticMap* caustics = nullptr)
+      : WhittedShading(scene, caustics),
         m_resolution_nm(scene.settings().dispersion_resolution_nm),
         m_split(scene.settings().dispersion != ImageSettings::Dispersion::hero),
         m_adaptive(scene.settings().dispersion == ImageSettings::Dispersion::adaptive),
@@ -716,8 +716,9 @@ class SpectralPixelWorker {
     }
   };
 
-  SpectralPixelWorker(const Scene& scene, const SpectralFilm& film)
-      : m_tracer(scene),
+  SpectralPixelWorker(const Scene& scene, const SpectralFilm& film,
+                      const photon::CausticMap* caustics)
+      : m_tracer(scene, caustics),
         m_film(film),
         m_medium(scene.camera_medium()),
         m_lambda_perm(static_cast<std::size_t>(film.samples)) {}
@@ -805,10 +806,11 @@ SampledSpectrum trace_spectral_ray(const Scene& scene, const Ray& ray, std::uint
 }
 
 RenderResult render_spectral(const Scene& scene, const RenderOptions& options,
-                             const ProgressCallback& progress) {
+                             const ProgressCallback& progress,
+                             const photon::CausticMap* caustics) {
   const SpectralFilm film(scene.settings(), options.seed);
   return render_image_tiles(scene, options, progress,
-                            [&] { return SpectralPixelWorker(scene, film); });
+                            [&] { return SpectralPixelWorker(scene, film, caustics); });
 }
 
 }  // namespace thaw::render

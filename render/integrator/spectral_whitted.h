@@ -29,14 +29,17 @@
 
 #include "render/integrator/whitted.h"
 #include "render/math/vec3.h"
+#include "render/photon/caustic_map.h"
 #include "render/spectrum/sampled_spectrum.h"
 #include "render/spectrum/sampled_wavelengths.h"
 
 namespace thaw::render {
 
-/// Spectral render of `scene` (same contract as render()): image in linear sRGB.
+/// Spectral render of `scene` (same contract as render()): image in linear sRGB. `caustics`:
+/// the frame's photon map (render() builds it), or null for none.
 RenderResult render_spectral(const Scene& scene, const RenderOptions& options = {},
-                             const ProgressCallback& progress = {});
+                             const ProgressCallback& progress = {},
+                             const photon::CausticMap* caustics = nullptr);
 
 /// Spectral radiance along one ray (for tests), traced as a primary ray starting in `medium`,
 /// expressed in `wavelengths` (convert with spectrum_to_linear_srgb(L, wavelengths)). Dispersive

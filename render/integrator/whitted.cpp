@@ -18,7 +18,8 @@ class RgbTracer : public WhittedShading<RgbTracer> {
   struct Path {};
   static constexpr bool kAbsorption = false, kDispersion = false;
 
-  explicit RgbTracer(const Scene& scene) : WhittedShading(scene) {
+  explicit RgbTracer(const Scene& scene, const photon::CausticMap* caustics = nullptr)
+      : WhittedShading(scene, caustics) {
     for (const auto& m : scene.media())
       m_ior.push_back(static_cast<float>(m.optics.n_at(media::kFraunhoferD_nm)));
   }
@@ -59,7 +60,8 @@ class RgbTracer : public WhittedShading<RgbTracer> {
 class RgbPixelWorker {
  public:
   using Sample = Rgb;
-  explicit RgbPixelWorker(const Scene& scene) : m_tracer(scene), m_medium(scene.camera_medium()) {}
+  RgbPixelWorker(const Scene& scene, const photon::CausticMap* caustics)
+      : m_tracer(scene, caustics), m_medium(scene.camera_medium()) {}
   void start_pixel(Pcg32&) {}
   Rgb sample(const Ray& camera_ray, int, Pcg32&) {
     return m_tracer.trace_primary(camera_ray, m_medium);
@@ -83,8 +85,18 @@ Rgb trace_ray(const Scene& scene, const Ray& ray, std::uint32_t medium, RenderSt
 
 RenderResult render(const Scene& scene, const RenderOptions& options,
                     const ProgressCallback& progress) {
-  if (scene.spectral()) return render_spectral(scene, options, progress);
-  return render_image_tiles(scene, options, progress, [&] { return RgbPixelWorker(scene); });
+  // The photon pass first (empty when [caustics] enabled = false or nothing can focus light).
+  const photon::CausticMap caustics = photon::CausticMap::build(scene, options.threads);
+  RenderResult result =
+      scene.spectral()
+          ? render_spectral(scene, options, progress, &caustics)
+          : render_image_tiles(scene, options, progress,
+                               [&] { return RgbPixelWorker(scene, &caustics); });
+  const photon::CausticStatistics& cs = caustics.statistics();
+  result.stats.caustic_photons = cs.photons_traced;
+  result.stats.caustic_photons_stored = cs.photons_stored;
+  result.stats.caustic_seconds = cs.seconds;
+  return result;
 }
 
 }  // namespace thaw::render

@@ -14,13 +14,14 @@
 // Extension points (one function each):
 //   background()       radiance of a direction that leaves the scene (environment, sky)
 //   add_direct_light() direct light at a diffuse hit, one loop over the scene's lights
-//   diffuse()          marks where caustic irradiance E from a photon map enters: albedo kd E
+//   diffuse()          adds the caustic irradiance E of the frame's photon map: albedo kd E
 // The tracer (Derived) supplies what depends on the radiance type; see the "Derived provides"
 // list below. Knows nothing about pixels, tiles, films or files.
 #include <cmath>
 #include <cstdint>
 
 #include "render/material/fresnel.h"
+#include "render/photon/caustic_map.h"
 #include "render/scene/scene.h"
 
 namespace thaw::render {
@@ -83,8 +84,10 @@ inline bool is_black(const SampledSpectrum& s) {
 template <class Derived>
 class WhittedShading {
  public:
-  explicit WhittedShading(const Scene& scene)
+  /// `caustics`: the frame's photon map (render/photon/caustic_map.h), or null for none.
+  explicit WhittedShading(const Scene& scene, const photon::CausticMap* caustics = nullptr)
       : m_scene(scene),
+        m_caustics(caustics && !caustics->empty() ? caustics : nullptr),
         m_max_depth(scene.settings().max_depth),
         m_min_weight(static_cast<float>(scene.settings().min_weight)) {}
 
@@ -240,8 +243,13 @@ class WhittedShading {
     const Radiance albedo = self().reflectance(mat.texture.eval(si.p), path);
     Radiance result = albedo * self().ambient(path) * mat.ka;
     add_direct_light(result, si, ng, ns, d, albedo, mat, path);
-    // Caustic irradiance E (light that reached this point through dielectrics, from a photon
-    // map) is added here as albedo * E * kd, in the units of direct light.
+    // Caustic irradiance E: the light that reached this point through dielectrics, which the
+    // shadow rays above do not see (they stop at dielectrics), in the units of direct light;
+    // spectral scenes uplift it as a light's colour (docs/render.md "Caustics").
+    if (m_caustics) {
+      const Rgb e = m_caustics->irradiance(si.p, ng);
+      if (!e.is_black()) result += albedo * self().illuminant(e, path) * mat.kd;
+    }
     if (mat.kind != Material::Kind::phong || depth >= m_max_depth) return result;
     if (mat.reflectance > 0.0f && self().weight(beta, path) * mat.reflectance >= m_min_weight) {
       const Vec3 dir = reflection_direction(d, ns, ng);
@@ -288,6 +296,7 @@ class WhittedShading {
   }
 
   const Scene& m_scene;
+  const photon::CausticMap* m_caustics;
   int m_max_depth;
   float m_min_weight;
   std::uint64_t m_rays = 0, m_mismatches = 0;

@@ -104,6 +104,11 @@ void run_render(const RenderArgs& a) {
       std::printf("  dispersion: %llu camera samples traced at %d wavelengths\n",
                   static_cast<unsigned long long>(st.refined_samples),
                   desc.image.dispersion_wavelengths);
+    if (st.caustic_photons > 0)
+      std::printf("  caustics: %lld photons traced, %zu stored, in %.3f s\n", st.caustic_photons,
+                  st.caustic_photons_stored, st.caustic_seconds);
+    else if (desc.caustics.enabled)
+      std::printf("  caustics: nothing to trace (no light or no dielectric that bends light)\n");
   }
 }
 
