@@ -1,7 +1,8 @@
 #pragma once
 // Image files, always written atomically (temporary file + rename, src/common/atomic_file.h):
-// PNG, 8-bit sRGB after scaling by 2^exposure and clamping to [0, 1] (IEC 61966-2-1 transfer
-// curve), and PFM, linear 32-bit float RGB for HDR work (bottom row first, little endian).
+// PNG, 8- or 16-bit sRGB after scaling by 2^exposure and clamping to [0, 1] (IEC 61966-2-1
+// transfer curve; encoded in parallel by render/image/png_encoder.h), and PFM, linear 32-bit float
+// RGB for HDR work (bottom row first, little endian).
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -18,15 +19,23 @@ std::uint8_t to_srgb8(float v, float scale = 1.0f);
 /// to_srgb8(v) by a table of the 255 rounding thresholds (no pow): what encode_png uses.
 std::uint8_t srgb8_by_table(float v);
 
-/// PNG file bytes of `image` (8-bit sRGB, exposure in stops).
-std::string encode_png(const Image& image, double exposure = 0.0);
+/// 16-bit sRGB of linear `v` scaled by `scale` (clamped, rounded to nearest).
+std::uint16_t to_srgb16(float v, float scale = 1.0f);
+
+/// PNG bit depths thaw writes: 8 or 16 (the one rule the command line and scene files use).
+bool valid_png_bits(int bits);
+
+/// PNG file bytes of `image` (8- or 16-bit sRGB, exposure in stops).
+std::string encode_png(const Image& image, double exposure = 0.0, int bits = 8);
 /// PFM file bytes of `image` (linear float).
 std::string encode_pfm(const Image& image);
 
-void write_png(const std::filesystem::path& path, const Image& image, double exposure = 0.0);
+void write_png(const std::filesystem::path& path, const Image& image, double exposure = 0.0,
+               int bits = 8);
 void write_pfm(const std::filesystem::path& path, const Image& image);
 /// Chooses the format by extension (.png or .pfm); throws UserError for anything else.
-void write_image(const std::filesystem::path& path, const Image& image, double exposure = 0.0);
+void write_image(const std::filesystem::path& path, const Image& image, double exposure = 0.0,
+                 int png_bits = 8);
 /// Throws UserError unless `path` has a supported extension and a writable existing folder.
 void check_output_path(const std::filesystem::path& path);
 

@@ -21,6 +21,7 @@ namespace {
 struct RenderArgs {
   std::string scene, output;
   std::optional<int> width, height, spp, max_depth, threads, dispersion_wavelengths;
+  int png_bits = 8;
   std::optional<double> exposure, dispersion_resolution_nm;
   std::optional<std::string> dispersion;
   std::optional<std::string> wavelength_pattern;
@@ -29,14 +30,17 @@ struct RenderArgs {
 
 int checked(const char* option, int value, int lo, int hi) {
   if (value < lo || value > hi)
-    throw UserError("", option, "must be between " + std::to_string(lo) + " and " + std::to_string(hi) +
-                                    " (got " + std::to_string(value) + ")");
+    throw UserError("", option,
+                    "must be between " + std::to_string(lo) + " and " + std::to_string(hi) +
+                        " (got " + std::to_string(value) + ")");
   return value;
 }
 
 void run_render(const RenderArgs& a) {
   const auto start = std::chrono::steady_clock::now();
   render::check_output_path(a.output);  // fail before any work, never leave a partial file
+  if (!render::valid_png_bits(a.png_bits))
+    throw UserError("", "--png-bits", "must be 8 or 16 (got " + std::to_string(a.png_bits) + ")");
   render::SceneDescription desc = render::parse_scene_file(a.scene);
   if (a.width) desc.image.width = checked("--width", *a.width, 1, render::kMaxImageSide);
   if (a.height) desc.image.height = checked("--height", *a.height, 1, render::kMaxImageSide);
@@ -74,25 +78,33 @@ void run_render(const RenderArgs& a) {
 
   const render::Scene scene = render::build_scene(desc);
   const int tile = options.tile_size;
-  const std::int64_t tiles = std::int64_t((desc.image.width + tile - 1) / tile) * ((desc.image.height + tile - 1) / tile);
+  const std::int64_t tiles =
+      std::int64_t((desc.image.width + tile - 1) / tile) * ((desc.image.height + tile - 1) / tile);
   render::RenderResult result;
   {
     ProgressReporter progress("render", tiles, a.quiet);
     result = render::render(scene, options, progress.callback());
     progress.finish();
   }
-  render::write_image(a.output, result.image, desc.image.exposure);
-  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  render::write_image(a.output, result.image, desc.image.exposure, a.png_bits);
+  const double total =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!a.quiet) {
     const auto& st = result.stats;
     const auto& ss = scene.statistics();
-    std::printf("thaw render: wrote %s (%dx%d, %d spp, depth %d)\n", a.output.c_str(), desc.image.width,
-                desc.image.height, desc.image.samples_per_pixel, desc.image.max_depth);
-    std::printf("  scene: %zu triangles, %zu spheres, %zu boxes, %zu planes; BVH %zu nodes, depth %d, built in %.3f s\n",
-                ss.triangles, ss.spheres, ss.boxes, ss.planes, ss.bvh_nodes, ss.bvh_depth, ss.build_seconds);
+    std::printf("thaw render: wrote %s (%dx%d, %d spp, depth %d)\n", a.output.c_str(),
+                desc.image.width, desc.image.height, desc.image.samples_per_pixel,
+                desc.image.max_depth);
+    std::printf(
+        "  scene: %zu triangles, %zu spheres, %zu boxes, %zu planes; BVH %zu nodes, depth %d, "
+        "built in %.3f s\n",
+        ss.triangles, ss.spheres, ss.boxes, ss.planes, ss.bvh_nodes, ss.bvh_depth,
+        ss.build_seconds);
     std::printf("  rays traced: %llu in %.3f s on %d threads (%.2f Mrays/s); total time %.3f s\n",
-                static_cast<unsigned long long>(st.rays), st.seconds, st.threads, st.rays_per_second * 1e-6, total);
-    std::printf("  medium mismatches: %llu\n", static_cast<unsigned long long>(st.medium_mismatches));
+                static_cast<unsigned long long>(st.rays), st.seconds, st.threads,
+                st.rays_per_second * 1e-6, total);
+    std::printf("  medium mismatches: %llu\n",
+                static_cast<unsigned long long>(st.medium_mismatches));
     if (st.adaptive_refractions + st.split_refractions > 0)
       std::printf(
           "  dispersion: %llu refractions integrated over the spectrum (%d probe wavelengths, "
@@ -117,13 +129,17 @@ void run_render(const RenderArgs& a) {
 void register_render(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "render", "Render a scene file (TOML, see docs/render.md) to PNG (8-bit sRGB) or PFM (linear float) "
-                "with the Whitted ray tracer: refraction through nested media, Fresnel, shadows.");
+      "render",
+      "Render a scene file (TOML, see docs/render.md) to PNG (8-bit sRGB) or PFM (linear float) "
+      "with the Whitted ray tracer: refraction through nested media, Fresnel, shadows.");
   cmd->add_option("scene", args->scene, "scene file (TOML)")->required();
-  cmd->add_option("-o,--output", args->output, "output image: .png (8-bit sRGB) or .pfm (linear float)")->required();
+  cmd->add_option("-o,--output", args->output,
+                  "output image: .png (8-bit sRGB) or .pfm (linear float)")
+      ->required();
   cmd->add_option("--width", args->width, "image width [pixels] (overrides [image] width)");
   cmd->add_option("--height", args->height, "image height [pixels] (overrides [image] height)");
-  cmd->add_option("--spp", args->spp, "samples per pixel, stratified (overrides [image] samples_per_pixel)");
+  cmd->add_option("--spp", args->spp,
+                  "samples per pixel, stratified (overrides [image] samples_per_pixel)");
   cmd->add_option(
       "--dispersion-wavelengths", args->dispersion_wavelengths,
       "wavelengths probed for fringes (adaptive) or traced (split) at a dispersive refraction "
@@ -140,9 +156,13 @@ void register_render(CLI::App& app) {
       "--wavelength-pattern", args->wavelength_pattern,
       "shared (the same wavelengths in every pixel: smooth fringes) or per_pixel (overrides "
       "[image] wavelength_pattern)");
-  cmd->add_option("--max-depth", args->max_depth, "levels of the ray tree, primary = 1 (overrides [image] max_depth)");
+  cmd->add_option("--max-depth", args->max_depth,
+                  "levels of the ray tree, primary = 1 (overrides [image] max_depth)");
   cmd->add_option("--threads", args->threads, "render threads (default: all cores)");
-  cmd->add_option("--exposure", args->exposure, "PNG exposure [stops] (overrides [image] exposure)");
+  cmd->add_option("--exposure", args->exposure,
+                  "PNG exposure [stops] (overrides [image] exposure)");
+  cmd->add_option("--png-bits", args->png_bits,
+                  "PNG bits per sample: 8 (default) or 16 (sRGB either way)");
   cmd->add_flag("-q,--quiet", args->quiet, "no progress bar and no summary");
   cmd->callback([args] { run_render(*args); });
 }

@@ -60,6 +60,7 @@ expect_bad huge_photons "between 1 and 1e9" "$(scene huge_photons 's/^enabled = 
 expect_bad negative_radius "caustics.radius" "$(scene negative_radius 's/^enabled = false/radius = -0.01/')"
 expect_bad bad_enabled "caustics.enabled" "$(scene bad_enabled 's/^enabled = false/enabled = "no"/')"
 expect_bad bad_cli_width "--width" "$good" --width 0
+expect_bad bad_png_bits "--png-bits" "$good" --png-bits 12
 OUT="$work/out.jpg" expect_bad bad_extension "unsupported output format" "$good"
 OUT="$work/no/such/dir/out.png" expect_bad missing_out_dir "does not exist" "$good"
 
