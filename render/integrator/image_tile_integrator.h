@@ -1,37 +1,56 @@
 #pragma once
 // The image loop of every integrator, written once (pbrt-v4's ImageTileIntegrator): the image is
 // cut into square tiles rendered in parallel (OpenMP, dynamic schedule: tiles differ in cost);
-// each pixel's camera samples come from a StratifiedPixelSampler with the pixel's own random
-// stream, so the image does not depend on the thread count; the progress callback is told after
-// every tile. Per pixel:
-//   worker.start_pixel(rng)                       the integrator's per-pixel draws, if any
-//   for each sample s: value += worker.sample(camera ray through the sample position, s, rng)
-//   image(x, y) = worker.pixel_value(value, samples)   film: the box filter's mean (RGB), ...
-// Sample positions, sample counts and the reconstruction filter are decided here (the
-// per-pixel sample loop in render_image_tiles()); the radiance of a camera ray, in the worker.
+// the progress callback is told after every tile. Per pixel, render/film/adaptive_pixel.h takes
+// the camera samples: offsets drawn from the reconstruction filter ([image] filter) with the
+// pixel's own Owen-scrambled Sobol points (render/sampling/pixel_sampler.h, seeded by the pixel
+// and RenderOptions::seed only), min_samples first and more while the pair-difference error
+// metric says the pixel varies, up to samples_per_pixel; a cap of one sample is the pixel centre
+// (POV-Ray, and every image rendered before anti-aliasing). The same points drive the light
+// samples of each camera sample (render/light/light_sampling.h). The worker's own random draws
+// (wavelengths) come from the pixel's PCG32 stream (sequence = pixel index). Nothing depends on
+// the thread count, the tile size or the order: a static scene renders the same image every time.
+//   worker.start_pixel(rng)                              the integrator's per-pixel draws
+//   worker.sample(camera ray, CameraSampleContext, rng)  one camera sample's value
+//   image(x, y) = worker.pixel_value(weighted mean, 1)   film: RGB, or the spectral ratio
 // A Worker (one per thread, made by make_worker()) provides: a type Sample (default-constructible
-// to zero, +=), start_pixel(Pcg32&), Sample sample(const Ray&, int s, Pcg32&),
-// Rgb pixel_value(const Sample& sum, int samples), add_counts(RenderStats&).
-// Knows nothing about shading.
+// to zero, +=, * float), start_pixel(Pcg32&), Sample sample(const Ray&, const
+// CameraSampleContext&, Pcg32&), Rgb pixel_value(const Sample& sum, int samples),
+// add_counts(RenderStats&). Knows nothing about shading.
 #include <omp.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 
+#include "render/film/adaptive_pixel.h"
 #include "render/integrator/render_result.h"
-#include "render/integrator/stratified_pixel_sampler.h"
+#include "render/light/light_sampling.h"
+#include "render/math/rng.h"
+#include "render/sampling/pixel_sampler.h"
 #include "render/scene/scene.h"
 #include "src/common/progress.h"
 
 namespace thaw::render {
+
+/// The film's anti-aliasing settings of `st` (render/film/adaptive_pixel.h).
+inline AntialiasingSettings antialiasing_settings(const ImageSettings& st) {
+  AntialiasingSettings aa;
+  aa.max_samples = st.samples_per_pixel;
+  aa.adaptive = st.adaptive;
+  aa.min_samples = st.min_samples;
+  aa.threshold = static_cast<float>(st.adaptive_threshold);
+  aa.exposure_scale = static_cast<float>(std::exp2(st.exposure));
+  return aa;
+}
 
 template <class MakeWorker>
 RenderResult render_image_tiles(const Scene& scene, const RenderOptions& options,
                                 const ProgressCallback& progress, MakeWorker&& make_worker) {
   const auto start = std::chrono::steady_clock::now();
   const ImageSettings& st = scene.settings();
-  const int w = st.width, h = st.height, spp = st.samples_per_pixel;
+  const int w = st.width, h = st.height;
   const int tile = std::max(1, options.tile_size);
   const int tiles_x = (w + tile - 1) / tile, tiles_y = (h + tile - 1) / tile;
   const int tiles = tiles_x * tiles_y;
@@ -40,26 +59,31 @@ RenderResult render_image_tiles(const Scene& scene, const RenderOptions& options
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   std::atomic<std::int64_t> tiles_done{0};
   RenderStats counts;
-#pragma omp parallel num_threads(threads)
+  const Filter filter(st.filter, st.filter_radius);
+  const AntialiasingSettings aa = antialiasing_settings(st);
+  std::uint64_t camera_samples = 0;
+#pragma omp parallel num_threads(threads) reduction(+ : camera_samples)
   {
     auto worker = make_worker();
     using Sample = typename decltype(worker)::Sample;
-    StratifiedPixelSampler sampler(spp, w, options.seed);
 #pragma omp for schedule(dynamic, 1)
     for (int t = 0; t < tiles; ++t) {
       const int x0 = (t % tiles_x) * tile, y0 = (t / tiles_x) * tile;
       const int x1 = std::min(x0 + tile, w), y1 = std::min(y0 + tile, h);
       for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; ++x) {
-          sampler.start_pixel(x, y);
-          worker.start_pixel(sampler.rng());
-          Sample sum{};
-          for (int s = 0; s < spp; ++s) {
-            const auto [sx, sy] = sampler.position(s);
-            sum += worker.sample(scene.camera().generate(float(x) + sx, float(y) + sy), s,
-                                 sampler.rng());
-          }
-          result.image.at(x, y) = worker.pixel_value(sum, spp);
+          Pcg32 rng(std::uint64_t(y) * std::uint64_t(w) + std::uint64_t(x), options.seed);
+          worker.start_pixel(rng);
+          const sampling::PixelSampler points(x, y, options.seed);
+          const PixelEstimate<Sample> e = estimate_pixel<Sample>(
+              x, y, points, filter, aa,
+              [&](float fx, float fy, std::uint32_t s) {
+                return worker.sample(scene.camera().generate(fx, fy),
+                                     CameraSampleContext{&points, s}, rng);
+              },
+              [&](const Sample& v) { return worker.pixel_value(v, 1); });
+          result.image.at(x, y) = worker.pixel_value(e.value, 1);
+          camera_samples += static_cast<std::uint64_t>(e.samples);
         }
       }
       const std::int64_t done = ++tiles_done;
@@ -75,6 +99,7 @@ RenderResult render_image_tiles(const Scene& scene, const RenderOptions& options
     worker.add_counts(counts);
   }
   result.stats = counts;
+  result.stats.camera_samples = camera_samples;
   result.stats.threads = threads;
   result.stats.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

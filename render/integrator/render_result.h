@@ -20,6 +20,9 @@ struct RenderOptions {
 struct RenderStats {
   /// camera, reflected, refracted and shadow rays
   std::uint64_t rays = 0;
+  /// camera samples taken by the film (adaptive anti-aliasing: between min_samples and the cap
+  /// per pixel)
+  std::uint64_t camera_samples = 0;
   /// rays that reached an interface from a side whose medium differs from the one they carry
   std::uint64_t medium_mismatches = 0;
   /// spectral mode: camera samples traced with all [image] dispersion_wavelengths (split)

@@ -171,8 +171,11 @@ class SpectralTracer : public WhittedShading<SpectralTracer> {
     set_probe_grid(scene.settings().dispersion_wavelengths);
   }
 
-  /// Traces a primary ray starting in `medium` at wavelengths `w`.
-  PacketResult trace_primary(const Ray& ray, std::uint32_t medium, const SampledWavelengths& w) {
+  /// Traces a primary ray starting in `medium` at wavelengths `w`; `camera`: the camera sample it
+  /// belongs to (light samples), null outside a render.
+  PacketResult trace_primary(const Ray& ray, std::uint32_t medium, const SampledWavelengths& w,
+                             const CameraSampleContext* camera = nullptr) {
+    set_camera_sample(camera);
     m_split_seen = false;
     m_side_xyz = Xyz{};
     PacketResult r;
@@ -663,7 +666,19 @@ struct SpectralFilm {
   std::vector<SampledWavelengths> shared_wavelengths;
   std::vector<Xyz> shared_white;
 
-  SpectralFilm(const ImageSettings& st, std::uint64_t seed) : samples(st.samples_per_pixel) {
+  /// Hero wavelength strata: one per pair of camera samples (both samples of a pair carry the
+  /// same wavelengths, so the adaptive film's pair differences measure how the image varies over
+  /// the pixel, not wavelength noise: render/film/adaptive_pixel.h); one for a single sample.
+  /// With adaptive anti-aliasing, as many as the first batch has pairs, cycled by the further
+  /// pairs: every pixel then averages the same wavelengths whatever its sample count, so refined
+  /// and unrefined pixels of one surface get the same colour.
+  static int strata_for(const ImageSettings& st) {
+    const int spp =
+        st.adaptive ? std::min(st.min_samples, st.samples_per_pixel) : st.samples_per_pixel;
+    return (spp + 1) / 2;
+  }
+
+  SpectralFilm(const ImageSettings& st, std::uint64_t seed) : samples(strata_for(st)) {
     packets =
         st.dispersion == ImageSettings::Dispersion::split
             ? std::max(1, (st.dispersion_wavelengths + kSpectrumSamples - 1) / kSpectrumSamples)
@@ -699,9 +714,9 @@ struct SpectralFilm {
   }
 };
 
-/// One thread's share of a spectral render. Pixel positions are stratified as in RGB mode; the
-/// hero wavelength gets its own strata (one per sample) in a random order per pixel, so position
-/// and wavelength strata are not correlated.
+/// One thread's share of a spectral render. The hero wavelength gets its own strata (one per
+/// pair of camera samples, SpectralFilm::strata_for) in a random order per pixel (per_pixel
+/// pattern) or a progressive order shared by every pixel (shared pattern).
 class SpectralPixelWorker {
  public:
   struct Sample {
@@ -714,6 +729,12 @@ class SpectralPixelWorker {
       side.x += o.side.x, side.y += o.side.y, side.z += o.side.z;
       return *this;
     }
+    /// Scaled by a reconstruction filter's weight (render/film/filter.h).
+    Sample operator*(float f) const {
+      return {{xyz.x * f, xyz.y * f, xyz.z * f},
+              {white.x * f, white.y * f, white.z * f},
+              {side.x * f, side.y * f, side.z * f}};
+    }
   };
 
   SpectralPixelWorker(const Scene& scene, const SpectralFilm& film,
@@ -723,9 +744,29 @@ class SpectralPixelWorker {
         m_medium(scene.camera_medium()),
         m_lambda_perm(static_cast<std::size_t>(film.samples)) {}
 
-  void start_pixel(Pcg32& rng) { shuffle_indices(m_lambda_perm, rng); }
+  /// Shared pattern: the strata in a progressive order (bit-reversed: any prefix of a
+  /// power-of-two length is evenly spread), the same for every pixel; per_pixel: a random order.
+  void start_pixel(Pcg32& rng) {
+    if (m_film.shared)
+      progressive_order(m_lambda_perm);
+    else
+      shuffle_indices(m_lambda_perm, rng);
+  }
 
-  Sample sample(const Ray& camera_ray, int s, Pcg32& rng) {
+  static void progressive_order(std::vector<int>& order) {
+    const auto n = static_cast<std::uint32_t>(order.size());
+    std::uint32_t bits = 0;
+    while ((1u << bits) < n) ++bits;
+    std::size_t k = 0;
+    for (std::uint32_t i = 0; k < order.size(); ++i) {
+      const std::uint32_t r = bits == 0 ? 0u : sampling::reverse_bits(i) >> (32 - bits);
+      if (r < n) order[k++] = static_cast<int>(r);
+    }
+  }
+
+  Sample sample(const Ray& camera_ray, const CameraSampleContext& camera, Pcg32& rng) {
+    // The pair's stratum, cycling over the film's strata (SpectralFilm::strata_for).
+    const auto s = static_cast<int>((camera.sample_index / 2) % std::uint32_t(m_film.samples));
     // Wavelength packets: the first always, all of them when the first met a split dispersive
     // refraction. Packet k takes sub-stratum (first + k) mod packets of the sample's hero
     // stratum, at offset `jitter` in it. Per pixel, `first` and `jitter` are random for each
@@ -744,9 +785,9 @@ class SpectralPixelWorker {
       const SampledWavelengths wl =
           m_film.shared ? m_film.shared_wavelengths[static_cast<std::size_t>(stratum)]
                         : m_film.wavelengths_in(stratum, rng.next_float());
-      const PacketResult r = m_tracer.trace_primary(camera_ray, m_medium, wl);
-      // Box filter: the mean of the samples' XYZ. Negative sRGB (out-of-gamut spectral colours)
-      // is kept and clamped at output, so the mean stays unbiased.
+      const PacketResult r = m_tracer.trace_primary(camera_ray, m_medium, wl, &camera);
+      // The film weighs and averages the samples' XYZ. Negative sRGB (out-of-gamut spectral
+      // colours) is kept and clamped at output, so the mean stays unbiased.
       const Xyz c = spectrum_to_xyz(r.radiance, wl);
       sum.x += c.x, sum.y += c.y, sum.z += c.z;
       side.x += r.side_xyz.x, side.y += r.side_xyz.y, side.z += r.side_xyz.z;
@@ -806,8 +847,7 @@ SampledSpectrum trace_spectral_ray(const Scene& scene, const Ray& ray, std::uint
 }
 
 RenderResult render_spectral(const Scene& scene, const RenderOptions& options,
-                             const ProgressCallback& progress,
-                             const photon::CausticMap* caustics) {
+                             const ProgressCallback& progress, const photon::CausticMap* caustics) {
   const SpectralFilm film(scene.settings(), options.seed);
   return render_image_tiles(scene, options, progress,
                             [&] { return SpectralPixelWorker(scene, film, caustics); });

@@ -24,8 +24,11 @@ class RgbTracer : public WhittedShading<RgbTracer> {
       m_ior.push_back(static_cast<float>(m.optics.n_at(media::kFraunhoferD_nm)));
   }
 
-  /// Radiance of a primary ray starting in `medium`.
-  Rgb trace_primary(const Ray& ray, std::uint32_t medium) {
+  /// Radiance of a primary ray starting in `medium`; `camera`: the camera sample it belongs to
+  /// (light samples), null outside a render.
+  Rgb trace_primary(const Ray& ray, std::uint32_t medium,
+                    const CameraSampleContext* camera = nullptr) {
+    set_camera_sample(camera);
     return trace(ray, 1, 1.0f, medium, Path{});
   }
 
@@ -56,15 +59,16 @@ class RgbTracer : public WhittedShading<RgbTracer> {
   std::vector<float> m_ior;
 };
 
-/// One thread's share of an RGB render: the mean of the camera samples (box filter).
+/// One thread's share of an RGB render: each camera sample's radiance; the film
+/// (image_tile_integrator.h) weighs and averages them.
 class RgbPixelWorker {
  public:
   using Sample = Rgb;
   RgbPixelWorker(const Scene& scene, const photon::CausticMap* caustics)
       : m_tracer(scene, caustics), m_medium(scene.camera_medium()) {}
   void start_pixel(Pcg32&) {}
-  Rgb sample(const Ray& camera_ray, int, Pcg32&) {
-    return m_tracer.trace_primary(camera_ray, m_medium);
+  Rgb sample(const Ray& camera_ray, const CameraSampleContext& camera, Pcg32&) {
+    return m_tracer.trace_primary(camera_ray, m_medium, &camera);
   }
   static Rgb pixel_value(const Rgb& sum, int samples) { return sum * (1.0f / float(samples)); }
   void add_counts(RenderStats& stats) const { m_tracer.add_counts(stats); }
@@ -87,11 +91,10 @@ RenderResult render(const Scene& scene, const RenderOptions& options,
                     const ProgressCallback& progress) {
   // The photon pass first (empty when [caustics] enabled = false or nothing can focus light).
   const photon::CausticMap caustics = photon::CausticMap::build(scene, options.threads);
-  RenderResult result =
-      scene.spectral()
-          ? render_spectral(scene, options, progress, &caustics)
-          : render_image_tiles(scene, options, progress,
-                               [&] { return RgbPixelWorker(scene, &caustics); });
+  RenderResult result = scene.spectral() ? render_spectral(scene, options, progress, &caustics)
+                                         : render_image_tiles(scene, options, progress, [&] {
+                                             return RgbPixelWorker(scene, &caustics);
+                                           });
   const photon::CausticStatistics& cs = caustics.statistics();
   result.stats.caustic_photons = cs.photons_traced;
   result.stats.caustic_photons_stored = cs.photons_stored;

@@ -6,8 +6,9 @@
 //   transmitted), Snell refraction, total internal reflection, the medium carried by every ray
 //   (a ray reaching an interface from a side whose label differs counts as a medium mismatch),
 //   Beer-Lambert absorption along each segment in an absorbing medium (spectral variant);
-// - metal: tinted mirror; matte/phong: ambient + direct light from point lights with hard shadows
-//   + Phong highlight, and the classic reflect/transmit terms; emissive: its emission.
+// - metal: tinted mirror; matte/phong: ambient + direct light (point lights with hard shadows,
+//   sphere lights with soft shadows from stratified low-discrepancy samples) + Phong highlight,
+//   and the classic reflect/transmit terms; emissive: its emission.
 // The tree is cut at max_depth and where a branch's weight falls below min_weight (POV-Ray's
 // adaptive depth control). Settings come from the Scene in the constructor.
 //
@@ -20,6 +21,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "render/light/light_sampling.h"
 #include "render/material/fresnel.h"
 #include "render/photon/caustic_map.h"
 #include "render/scene/scene.h"
@@ -90,6 +92,12 @@ class WhittedShading {
         m_caustics(caustics && !caustics->empty() ? caustics : nullptr),
         m_max_depth(scene.settings().max_depth),
         m_min_weight(static_cast<float>(scene.settings().min_weight)) {}
+
+  /// The camera sample about to be traced (its pixel's sampler and index): the light samples'
+  /// points come from it. Null: pixel (0, 0), sample 0 (single rays traced outside a render).
+  void set_camera_sample(const CameraSampleContext* camera) {
+    m_camera_sample = camera ? *camera : CameraSampleContext{};
+  }
 
   /// Adds the rays traced and medium mismatches met so far to `stats`.
   void add_counts(RenderStats& stats) const {
@@ -242,7 +250,7 @@ class WhittedShading {
     const Vec3 ns = face_forward(si.ns, ng);
     const Radiance albedo = self().reflectance(mat.texture.eval(si.p), path);
     Radiance result = albedo * self().ambient(path) * mat.ka;
-    add_direct_light(result, si, ng, ns, d, albedo, mat, path);
+    add_direct_light(result, si, ng, ns, d, albedo, mat, depth, path);
     // Caustic irradiance E: the light that reached this point through dielectrics, which the
     // shadow rays above do not see (they stop at dielectrics), in the units of direct light;
     // spectral scenes uplift it as a light's colour (docs/render.md "Caustics").
@@ -270,13 +278,16 @@ class WhittedShading {
     return result;
   }
 
-  /// Direct light at a diffuse hit (normals ng, ns facing the viewer, unit view direction d):
-  /// adds albedo L kd cos + the Phong highlight of every light seen to `result` (accumulated in
-  /// place, light by light). All lights of the scene are handled in this one loop.
+  /// Direct light at a diffuse hit (normals ng, ns facing the viewer, unit view direction d, tree
+  /// level depth): adds albedo L kd cos + the Phong highlight of every light seen to `result`
+  /// (accumulated in place, light by light). All lights of the scene are handled here. Shadow
+  /// rays stop at every dielectric that is not index-matched, for point and sphere lights alike:
+  /// the light that passes through dielectrics is the caustic term, which the photon map
+  /// (traced from both kinds of light) supplies in diffuse(); nothing is counted twice.
   template <class Radiance, class Path>
   void add_direct_light(Radiance& result, const SurfaceInteraction& si, const Vec3& ng,
                         const Vec3& ns, const Vec3& d, const Radiance& albedo, const Material& mat,
-                        const Path& path) {
+                        int depth, const Path& path) {
     const auto& lights = m_scene.lights();
     for (std::size_t i = 0; i < lights.size(); ++i) {
       const PointLight& light = lights[i];
@@ -293,6 +304,25 @@ class WhittedShading {
         if (s > 0.0f) result += li * (mat.ks * std::pow(s, mat.shininess));
       }
     }
+    if (m_scene.sphere_lights().empty()) return;
+    // Sphere lights (render/light/light_sampling.h): the exact unoccluded irradiance times the
+    // visible share of the camera sample's stratified shadow samples; the highlight per sample.
+    const auto& spheres = m_scene.sphere_lights();
+    const sampling::PixelSampler fallback(0, 0);
+    const CameraSampleContext camera =
+        m_camera_sample.sampler ? m_camera_sample : CameraSampleContext{&fallback, 0};
+    sample_sphere_lights(
+        m_scene, si.p, si.p_error, ng, ns, depth, camera, m_rays,
+        [&](std::size_t k, float e) {
+          result += albedo * self().emission(spheres[k].material, path) * (mat.kd * e);
+        },
+        [&](std::size_t k, const Vec3& wi, float weight) {
+          if (mat.ks <= 0.0f) return;
+          const float s = dot(reflect(-wi, ns), -d);
+          if (s > 0.0f)
+            result += self().emission(spheres[k].material, path) *
+                      (weight * mat.ks * std::pow(s, mat.shininess));
+        });
   }
 
   const Scene& m_scene;
@@ -300,6 +330,8 @@ class WhittedShading {
   int m_max_depth;
   float m_min_weight;
   std::uint64_t m_rays = 0, m_mismatches = 0;
+  /// the camera sample being traced (set_camera_sample()); no sampler: pixel (0, 0), sample 0
+  CameraSampleContext m_camera_sample{};
 };
 
 }  // namespace thaw::render

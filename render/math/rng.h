@@ -2,6 +2,8 @@
 // A small, fast random number generator (PCG32, O'Neill 2014) seeded from a pixel index, so every
 // pixel's samples are the same whatever thread renders it (determinism across thread counts).
 #include <cstdint>
+#include <utility>
+#include <vector>
 
 namespace thaw::render {
 
@@ -28,5 +30,12 @@ class Pcg32 {
  private:
   std::uint64_t m_state, m_inc;
 };
+
+/// Fills p with 0..n-1 in a random order (Fisher-Yates, n - 1 draws from rng).
+inline void shuffle_indices(std::vector<int>& p, Pcg32& rng) {
+  for (std::size_t i = 0; i < p.size(); ++i) p[i] = static_cast<int>(i);
+  for (std::size_t i = p.size(); i-- > 1;)
+    std::swap(p[i], p[rng.next_u32() % static_cast<std::uint32_t>(i + 1)]);
+}
 
 }  // namespace thaw::render
