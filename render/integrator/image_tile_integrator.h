@@ -30,6 +30,7 @@
 #include "render/math/rng.h"
 #include "render/sampling/pixel_sampler.h"
 #include "render/scene/scene.h"
+#include "src/common/interrupt.h"
 #include "src/common/progress.h"
 
 namespace thaw::render {
@@ -68,6 +69,8 @@ RenderResult render_image_tiles(const Scene& scene, const RenderOptions& options
     using Sample = typename decltype(worker)::Sample;
 #pragma omp for schedule(dynamic, 1)
     for (int t = 0; t < tiles; ++t) {
+      // After SIGINT/SIGTERM the remaining tiles are skipped; the caller checks and writes nothing.
+      if (interrupt_requested()) continue;
       const int x0 = (t % tiles_x) * tile, y0 = (t / tiles_x) * tile;
       const int x1 = std::min(x0 + tile, w), y1 = std::min(y0 + tile, h);
       for (int y = y0; y < y1; ++y) {

@@ -10,6 +10,7 @@
 
 #include "src/cli/commands.h"
 #include "src/common/error.h"
+#include "src/common/interrupt.h"
 #include "src/common/progress.h"
 #include "src/inspect/mesh_report.h"
 #include "src/inspect/obj_reader.h"
@@ -42,7 +43,7 @@ void run_inspect(const InspectArgs& a) {
     {
       ProgressReporter progress("inspect", static_cast<std::int64_t>(folder.steps.size()),
                                 a.quiet || folder.steps.size() < 2);
-      reports = inspect::inspect_simulation(folder, progress.callback());
+      reports = inspect::inspect_simulation(folder, interruptible(progress.callback()));
     }
     if (a.json) std::cout << inspect::to_json(reports).dump(2) << "\n";
     else std::cout << inspect::format_table(folder, reports);
@@ -50,7 +51,7 @@ void run_inspect(const InspectArgs& a) {
     if (!a.pvd.empty()) {
       ProgressReporter progress("pvd", static_cast<std::int64_t>(folder.steps.size()),
                                 a.quiet || folder.steps.size() < 2);
-      inspect::write_pvd_series(path, a.pvd, progress.callback());
+      inspect::write_pvd_series(path, a.pvd, interruptible(progress.callback()));
       progress.finish();
       if (!a.quiet) std::fprintf(stderr, "thaw inspect: wrote %s\n", a.pvd.c_str());
     }

@@ -13,6 +13,7 @@
 #include "render/scene/scene_parser.h"
 #include "src/cli/commands.h"
 #include "src/common/error.h"
+#include "src/common/interrupt.h"
 #include "src/common/progress.h"
 
 namespace thaw::cli {
@@ -86,6 +87,7 @@ void run_render(const RenderArgs& a) {
     result = render::render(scene, options, progress.callback());
     progress.finish();
   }
+  throw_if_interrupted();  // the render skipped its remaining tiles: write nothing
   render::write_image(a.output, result.image, desc.image.exposure, a.png_bits);
   const double total =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

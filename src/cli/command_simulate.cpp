@@ -11,6 +11,7 @@
 #include "src/cli/commands.h"
 #include "src/common/atomic_file.h"
 #include "src/common/error.h"
+#include "src/common/interrupt.h"
 #include "src/common/progress.h"
 #include "src/pipeline/run_scenario.h"
 
@@ -41,7 +42,7 @@ void run_simulate(const SimulateArgs& a) {
   {
     ProgressReporter progress(
         "simulate", static_cast<std::int64_t>(sim::output_times(scenario).size()), a.quiet);
-    result = sim::simulate(scenario, progress.callback());
+    result = sim::simulate(scenario, interruptible(progress.callback()));
     progress.finish();
   }
   sim::write_simulation_outputs(staging.path(), result);

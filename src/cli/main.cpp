@@ -1,11 +1,13 @@
 // thaw: the one executable. Sub-commands register themselves on the CLI11 app; user errors
-// (thaw::UserError) are caught here, once, and printed as one line with exit code 2.
+// (thaw::UserError) are caught here, once, and printed as one line with exit code 2; SIGINT and
+// SIGTERM end the command at its next safe point with one line and exit code 130.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 
 #include "src/cli/commands.h"
 #include "src/common/error.h"
+#include "src/common/interrupt.h"
 #include "thaw_version.h"
 
 int main(int argc, char** argv) {
@@ -20,11 +22,15 @@ int main(int argc, char** argv) {
   thaw::cli::register_inspect(app);
   thaw::cli::register_materials(app);
   thaw::cli::register_run(app);
+  thaw::install_interrupt_handlers();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
+  } catch (const thaw::Interrupted& e) {
+    std::fprintf(stderr, "\nthaw: %s\n", e.what());
+    return thaw::kInterruptedExitCode;
   } catch (const thaw::UserError& e) {
     std::fprintf(stderr, "thaw: error: %s\n", e.what());
     return 2;

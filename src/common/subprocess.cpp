@@ -1,6 +1,7 @@
 #include "src/common/subprocess.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -11,6 +12,7 @@
 #include <sstream>
 
 #include "src/common/error.h"
+#include "src/common/interrupt.h"
 
 extern char** environ;
 
@@ -58,6 +60,9 @@ ProcessResult run_process(const std::vector<std::string>& argv) {
     ::close(pipe_fds[0]);
     throw UserError(exe->string(), "", std::string("cannot start: ") + std::strerror(rc));
   }
+  // From here a SIGINT/SIGTERM is passed on to the child; one that came before is passed now.
+  set_interruptible_child(pid);
+  if (interrupt_requested()) ::kill(pid, SIGTERM);
   ProcessResult result;
   char buf[4096];
   for (;;) {
@@ -72,6 +77,9 @@ ProcessResult run_process(const std::vector<std::string>& argv) {
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
+  set_interruptible_child(0);
+  // A child ended by our interrupt is not its failure: report the interrupt instead.
+  throw_if_interrupted();
   if (WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
   else if (WIFSIGNALED(status)) result.exit_code = 128 + WTERMSIG(status);
   return result;

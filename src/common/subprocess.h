@@ -17,7 +17,8 @@ struct ProcessResult {
 std::optional<std::filesystem::path> find_executable(const std::string& name);
 
 /// Runs argv[0] (looked up on PATH) with the given arguments, waits, and captures its output.
-/// Throws thaw::UserError if the program cannot be started at all.
+/// Throws thaw::UserError if the program cannot be started at all, thaw::Interrupted (after the
+/// child has ended) if SIGINT or SIGTERM arrived meanwhile (src/common/interrupt.h).
 ProcessResult run_process(const std::vector<std::string>& argv);
 
 }  // namespace thaw

@@ -11,6 +11,7 @@
 
 #include "src/common/atomic_file.h"
 #include "src/common/error.h"
+#include "src/common/interrupt.h"
 #include "src/mesh/grid_mesher.h"
 #include "src/mesh/obj_writer.h"
 
@@ -110,6 +111,7 @@ MeshManifest mesh_grid_simulation_folder(const fs::path& simdir, const MeshOptio
   // Nothing may throw out of this loop: every exception is caught and stored per step.
 #pragma omp parallel for schedule(dynamic, 1) num_threads(jobs)
   for (long k = 0; k < n; ++k) {
+    if (interrupt_requested()) continue;  // SIGINT/SIGTERM: skip the rest, throw after the loop
     StepResult& r = results[static_cast<std::size_t>(k)];
     const long step = rows[static_cast<std::size_t>(k)].step;
     try {
@@ -126,6 +128,7 @@ MeshManifest mesh_grid_simulation_folder(const fs::path& simdir, const MeshOptio
       progress(++done, total);
     }
   }
+  throw_if_interrupted();
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const StepResult& r = results[k];
     if (r.user_error) throw *r.user_error;

@@ -12,6 +12,7 @@
 
 #include "src/common/atomic_file.h"
 #include "src/common/error.h"
+#include "src/common/interrupt.h"
 #include "src/mesh/grid_series.h"
 #include "src/mesh/obj_writer.h"
 #include "src/mesh/similar_surface.h"
@@ -212,6 +213,7 @@ MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& r
   // Nothing may throw out of these loops: every exception is caught and stored.
 #pragma omp parallel for schedule(dynamic, 1) num_threads(jobs)
   for (long k = 0; k < n_forms; ++k) {
+    if (interrupt_requested()) continue;  // SIGINT/SIGTERM: skip the rest, throw after the loop
     const SimilarSurface& f = forms[static_cast<std::size_t>(k)];
     try {
       unit_meshes[static_cast<std::size_t>(k)] =
@@ -229,6 +231,7 @@ MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& r
   const long n_tasks = static_cast<long>(tasks.size());
 #pragma omp parallel for schedule(dynamic, 4) num_threads(jobs)
   for (long k = 0; k < n_tasks; ++k) {
+    if (interrupt_requested()) continue;
     const Task& t = tasks[static_cast<std::size_t>(k)];
     TaskResult& r = results[static_cast<std::size_t>(k)];
     const std::size_t form = form_of[static_cast<std::size_t>(k)];
@@ -255,6 +258,7 @@ MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& r
     }
   }
 
+  throw_if_interrupted();
   // Gather in step order, so the first error reported does not depend on scheduling.
   std::vector<const TaskResult*> inner_of(manifest.steps.size(), nullptr),
       outer_of(manifest.steps.size(), nullptr);

@@ -14,6 +14,7 @@
 #include "sim/simulate.h"
 #include "src/common/atomic_file.h"
 #include "src/common/error.h"
+#include "src/common/interrupt.h"
 #include "src/common/progress.h"
 #include "src/inspect/pvd_writer.h"
 #include "src/inspect/radius_plot.h"
@@ -151,7 +152,8 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
       say(opt, stage_title(1, "simulate") + ": up to date");
     } else {
       ProgressReporter progress(stage_title(1, "simulate"), static_cast<long>(times.size()), opt.quiet);
-      const sim::SimulationResult result = sim::simulate(sc.simulation, times, progress.callback());
+      const sim::SimulationResult result =
+          sim::simulate(sc.simulation, times, interruptible(progress.callback()));
       StagingDirectory stage(simdir);
       sim::write_simulation_outputs(stage.path(), result);
       stage.commit();
@@ -223,6 +225,7 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
     ProgressReporter progress(stage_title(3, "render"), frame_count, opt.quiet || complete);
     long done_before = 0;
     for (long k = 0; k < frame_count; ++k) {
+      throw_if_interrupted();
       const fs::path png = frames_dir / (frame_name(k) + ".png");
       if (manifest.item_done("render", frame_name(k)) && fs::exists(png)) {
         ++done_before;
@@ -235,6 +238,7 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
       render::RenderOptions ro;
       ro.threads = opt.jobs;
       render::RenderResult result = render::render(scene, ro);
+      throw_if_interrupted();  // the render skipped its remaining tiles: write nothing
       if (sc.film.caption) stamp_frame_caption(result.image, step.time_s, font.get());
       render::write_png(png, result.image, sc.scene.image.exposure);
       manifest.mark_item_done("render", frame_name(k));
@@ -281,7 +285,7 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
       say(opt, stage_title(5, "inspect") + ": up to date");
     } else {
       ProgressReporter progress(stage_title(5, "inspect"), frame_count, opt.quiet);
-      inspect::write_pvd_series(simdir, report.pvd, progress.callback());
+      inspect::write_pvd_series(simdir, report.pvd, interruptible(progress.callback()));
       inspect::write_radius_plot(simdir, report.plot);
       progress.finish();
       manifest.mark_stage_complete("inspect");

@@ -1,6 +1,7 @@
 // End-to-end tests of `thaw run` on a tiny scenario (tests/src/pipeline/data/tiny.toml): the real
 // thaw binary, real CGAL, renderer, ffmpeg and VTK (under Xvfb), run as a separate process so a
 // run can be killed like a user would.
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
@@ -197,6 +198,73 @@ TEST_F(ThawRun, KilledDuringRenderAndRestartedGivesByteIdenticalFrames) {
   EXPECT_EQ(count_video_frames(killed / "melt.mp4"), 6);
   for (const auto& e : fs::recursive_directory_iterator(killed))
     EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos) << e.path();
+}
+
+/// `thaw run SCENARIO --out OUT -q` started in the background with stderr to `err_file`.
+pid_t spawn_run(const fs::path& scenario, const fs::path& out, const fs::path& err_file) {
+  const std::string exe = kThaw.string(), scenario_arg = scenario.string(), out_arg = out.string();
+  std::vector<char*> argv = {const_cast<char*>(exe.c_str()),
+                             const_cast<char*>("run"),
+                             const_cast<char*>(scenario_arg.c_str()),
+                             const_cast<char*>("--out"),
+                             const_cast<char*>(out_arg.c_str()),
+                             const_cast<char*>("-q"),
+                             nullptr};
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_file.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  return rc == 0 ? pid : -1;
+}
+
+// Ctrl-C (SIGINT) and SIGTERM end a run at its next safe point: exit code 130, one line saying
+// how to resume, no temporary or half-written file; the rerun resumes and its frames are
+// byte-identical to those of an uninterrupted run (issue 12).
+TEST_F(ThawRun, InterruptedBySignalEndsCleanlyAndResumesByteIdentical) {
+  const fs::path heavy = variant(m_dir, "frames = 4", "frames = 6");
+  std::string text = read_file(heavy);
+  text.replace(text.find("width = 64"), 10, "width = 200");
+  text.replace(text.find("height = 64"), 11, "height = 200");
+  text.replace(text.find("samples_per_pixel = 1"), 21, "samples_per_pixel = 9");
+  std::ofstream(heavy) << text;
+  const fs::path reference = m_dir / "reference";
+  ASSERT_EQ(thaw({"run", heavy.string(), "--out", reference.string(), "-q"}).exit_code, 0);
+
+  for (const int signal_number : {SIGINT, SIGTERM}) {
+    const fs::path out = m_dir / ("interrupted_" + std::to_string(signal_number));
+    const fs::path err = m_dir / "stderr.txt";
+    const pid_t pid = spawn_run(heavy, out, err);
+    ASSERT_GT(pid, 0);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (!fs::exists(out / "frames/frame_000001.png") &&
+           std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    ::kill(pid, signal_number);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status)) << "ended by the signal instead of handling it";
+    EXPECT_EQ(WEXITSTATUS(status), 130);
+    const std::string message = read_file(err);
+    EXPECT_NE(message.find("thaw: interrupted; run the same command again to resume\n"),
+              std::string::npos)
+        << message;
+    EXPECT_FALSE(fs::exists(out / "melt.mp4"));
+    EXPECT_LT(frames_of(out).size(), 6u) << "the run finished before the signal";
+    for (const auto& e : fs::recursive_directory_iterator(out))
+      EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos) << e.path();
+
+    const auto resumed = thaw({"run", heavy.string(), "--out", out.string()});
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+    EXPECT_NE(resumed.output.find("simulate: up to date"), std::string::npos) << resumed.output;
+    EXPECT_EQ(frames_of(out), frames_of(reference));
+    EXPECT_EQ(read_file(out / "sim/interfaces.csv"), read_file(reference / "sim/interfaces.csv"));
+    EXPECT_EQ(read_file(out / "sim/mesh/manifest.json"),
+              read_file(reference / "sim/mesh/manifest.json"));
+    EXPECT_EQ(count_video_frames(out / "melt.mp4"), 6);
+  }
 }
 
 TEST_F(ThawRun, MissingFfmpegIsAClearErrorAndTheFramesAreKept) {
