@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "render/image/exr_io.h"
 #include "render/image/png_encoder.h"
 #include "src/common/atomic_file.h"
 #include "src/common/check.h"
@@ -134,11 +135,15 @@ std::string lower_extension(const std::filesystem::path& path) {
 }
 }  // namespace
 
+bool is_exr_path(const std::filesystem::path& path) {
+  return lower_extension(path) == ".exr";
+}
+
 void check_output_path(const std::filesystem::path& path) {
   const std::string ext = lower_extension(path);
-  if (ext != ".png" && ext != ".pfm")
+  if (ext != ".png" && ext != ".pfm" && ext != ".exr")
     throw UserError(path.string(), "",
-                    "unsupported output format '" + ext + "' (expected .png or .pfm)");
+                    "unsupported output format '" + ext + "' (expected .png, .pfm or .exr)");
   const std::filesystem::path dir =
       path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
   std::error_code ec;
@@ -152,6 +157,8 @@ void write_image(const std::filesystem::path& path, const Image& image, double e
   check_output_path(path);
   if (lower_extension(path) == ".pfm")
     write_pfm(path, image);
+  else if (is_exr_path(path))
+    write_exr(path, image, nullptr, ExrMetadata{});
   else
     write_png(path, image, exposure, png_bits);
 }

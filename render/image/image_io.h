@@ -1,8 +1,8 @@
 #pragma once
 // Image files, always written atomically (temporary file + rename, src/common/atomic_file.h):
 // PNG, 8- or 16-bit sRGB after scaling by 2^exposure and clamping to [0, 1] (IEC 61966-2-1
-// transfer curve; encoded in parallel by render/image/png_encoder.h), and PFM, linear 32-bit float
-// RGB for HDR work (bottom row first, little endian).
+// transfer curve; encoded in parallel by render/image/png_encoder.h), PFM, linear 32-bit float
+// RGB for HDR work (bottom row first, little endian), and EXR (render/image/exr_io.h).
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -33,7 +33,10 @@ std::string encode_pfm(const Image& image);
 void write_png(const std::filesystem::path& path, const Image& image, double exposure = 0.0,
                int bits = 8);
 void write_pfm(const std::filesystem::path& path, const Image& image);
-/// Chooses the format by extension (.png or .pfm); throws UserError for anything else.
+/// Whether `path` names an EXR file (render/image/exr_io.h), by its extension.
+bool is_exr_path(const std::filesystem::path& path);
+/// Chooses the format by extension (.png, .pfm, or .exr: RGBA only, without AOV layers);
+/// throws UserError for anything else.
 void write_image(const std::filesystem::path& path, const Image& image, double exposure = 0.0,
                  int png_bits = 8);
 /// Throws UserError unless `path` has a supported extension and a writable existing folder.

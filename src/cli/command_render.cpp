@@ -7,7 +7,9 @@
 #include <optional>
 #include <string>
 
+#include "render/image/exr_io.h"
 #include "render/image/image_io.h"
+#include "render/integrator/aov_pass.h"
 #include "render/integrator/whitted.h"
 #include "render/scene/scene.h"
 #include "render/scene/scene_parser.h"
@@ -88,7 +90,15 @@ void run_render(const RenderArgs& a) {
     progress.finish();
   }
   throw_if_interrupted();  // the render skipped its remaining tiles: write nothing
-  render::write_image(a.output, result.image, desc.image.exposure, a.png_bits);
+  if (render::is_exr_path(a.output)) {
+    // The compositing layers come from their own primary-ray pass (render/integrator/aov_pass.h).
+    const render::AovImage aovs = render::render_aovs(scene, options.threads);
+    const render::ExrMetadata meta{a.scene, std::nullopt, desc.image.samples_per_pixel,
+                                   desc.image.exposure};
+    render::write_exr(a.output, result.image, &aovs, meta);
+  } else {
+    render::write_image(a.output, result.image, desc.image.exposure, a.png_bits);
+  }
   const double total =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!a.quiet) {
@@ -132,11 +142,13 @@ void register_render(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand(
       "render",
-      "Render a scene file (TOML, see docs/render.md) to PNG (8-bit sRGB) or PFM (linear float) "
+      "Render a scene file (TOML, see docs/render.md) to PNG (8- or 16-bit sRGB), PFM (linear "
+      "float) or EXR (half RGBA with depth, normal and id layers) "
       "with the Whitted ray tracer: refraction through nested media, Fresnel, shadows.");
   cmd->add_option("scene", args->scene, "scene file (TOML)")->required();
   cmd->add_option("-o,--output", args->output,
-                  "output image: .png (8-bit sRGB) or .pfm (linear float)")
+                  "output image: .png (8- or 16-bit sRGB), .pfm (linear float) or .exr (linear "
+                  "half RGBA + Z, N, id layers)")
       ->required();
   cmd->add_option("--width", args->width, "image width [pixels] (overrides [image] width)");
   cmd->add_option("--height", args->height, "image height [pixels] (overrides [image] height)");
