@@ -7,7 +7,9 @@
 #include <cstdio>
 
 #include "render/geometry/obj_loader.h"
+#include "render/image/exr_io.h"
 #include "render/image/image_io.h"
+#include "render/integrator/aov_pass.h"
 #include "render/integrator/whitted.h"
 #include "render/scene/scene.h"
 #include "sim/io/interface_history.h"
@@ -191,6 +193,8 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
   // 3. render one frame per step
   ContentHash render_hash;
   render_hash.add("render").add(mesh_hash.hex()).add(sc.render_text).add(sc.film.caption ? "caption" : "");
+  const bool exr_frames = sc.film.frames_format == FilmSettings::FramesFormat::exr;
+  if (exr_frames) render_hash.add("frames_format=exr");
   // The caption's font: DejaVu Sans, or the bitmap font if it cannot be loaded (said once).
   std::unique_ptr<CaptionFont> font;
   if (sc.film.caption) {
@@ -220,14 +224,18 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
     ensure_directory(frames_dir);
     const bool complete = manifest.begin_stage("render", render_hash.hex());
     // Frames beyond the current count belong to an older, longer run.
-    for (long k = frame_count; fs::exists(frames_dir / (frame_name(k) + ".png")); ++k)
+    for (long k = frame_count; fs::exists(frames_dir / (frame_name(k) + ".png")); ++k) {
       fs::remove(frames_dir / (frame_name(k) + ".png"));
+      fs::remove(frames_dir / (frame_name(k) + ".exr"));
+    }
     ProgressReporter progress(stage_title(3, "render"), frame_count, opt.quiet || complete);
     long done_before = 0;
     for (long k = 0; k < frame_count; ++k) {
       throw_if_interrupted();
       const fs::path png = frames_dir / (frame_name(k) + ".png");
-      if (manifest.item_done("render", frame_name(k)) && fs::exists(png)) {
+      const fs::path exr = frames_dir / (frame_name(k) + ".exr");
+      if (manifest.item_done("render", frame_name(k)) && fs::exists(png) &&
+          (!exr_frames || fs::exists(exr))) {
         ++done_before;
         progress.set_done(k + 1);
         continue;
@@ -239,6 +247,12 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
       ro.threads = opt.jobs;
       render::RenderResult result = render::render(scene, ro);
       throw_if_interrupted();  // the render skipped its remaining tiles: write nothing
+      if (exr_frames) {        // for compositing: no caption, linear, with the AOV layers
+        const render::AovImage aovs = render::render_aovs(scene, opt.jobs);
+        render::write_exr(exr, result.image, &aovs,
+                          {sc.source_name, step.time_s, sc.scene.image.samples_per_pixel,
+                           sc.scene.image.exposure});
+      }
       if (sc.film.caption) stamp_frame_caption(result.image, step.time_s, font.get());
       render::write_png(png, result.image, sc.scene.image.exposure);
       manifest.mark_item_done("render", frame_name(k));

@@ -27,6 +27,11 @@ FilmSettings parse_film(const TomlTable& t) {
   if (t.has("time_lapse")) f.time_lapse = t.require_positive("time_lapse", t.get_double("time_lapse"));
   f.gif = t.get_bool("gif", f.gif);
   f.caption = t.get_bool("caption", f.caption);
+  const std::string format = t.get_string("frames_format", "png");
+  if (format == "exr")
+    f.frames_format = FilmSettings::FramesFormat::exr;
+  else if (format != "png")
+    t.fail("frames_format", "must be \"png\" or \"exr\" (got \"" + format + "\")");
   return f;
 }
 

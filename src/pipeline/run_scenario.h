@@ -30,6 +30,11 @@ struct FilmSettings {
   bool gif = false;
   /// stamp "t = 12 min 30 s" on every frame
   bool caption = true;
+  /// png: frames/frame_NNNNNN.png only; exr: also frame_NNNNNN.exr beside each PNG, linear half
+  /// RGBA without the caption plus depth, normal and id layers (render/image/exr_io.h); the film
+  /// is encoded from the PNGs either way
+  enum class FramesFormat { png, exr };
+  FramesFormat frames_format = FramesFormat::png;
 };
 
 struct ShellPlacement {

@@ -1,6 +1,11 @@
 // End-to-end tests of `thaw run` on a tiny scenario (tests/src/pipeline/data/tiny.toml): the real
 // thaw binary, real CGAL, renderer, ffmpeg and VTK (under Xvfb), run as a separate process so a
 // run can be killed like a user would.
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfDoubleAttribute.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -10,6 +15,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -300,6 +306,44 @@ TEST_F(ThawRun, OutputFolderThatIsAFile) {
   const auto r = thaw({"run", kTiny.string(), "--out", file.string()});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("not a directory"), std::string::npos) << r.output;
+}
+
+TEST_F(ThawRun, ExrFramesBesideThePngsWithLayersAndFrameTimes) {
+  // [film] frames_format = "exr" (issue 13): each frame also as EXR, read back by OpenEXR; the
+  // film is still made (from the PNGs). The frame times are the film's: 0 first, increasing.
+  const fs::path out = m_dir / "out";
+  const fs::path scenario = variant(m_dir, "frames = 4", "frames = 4\nframes_format = \"exr\"");
+  const auto r = thaw({"run", scenario.string(), "--out", out.string(), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(count_video_frames(out / "melt.mp4"), 4);
+  double previous_time = -1.0;
+  for (int k = 0; k < 4; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%06d", k);
+    ASSERT_TRUE(fs::exists(out / "frames" / (std::string(name) + ".png"))) << name;
+    const fs::path exr = out / "frames" / (std::string(name) + ".exr");
+    ASSERT_TRUE(fs::exists(exr)) << name;
+    Imf::InputFile in(exr.c_str());
+    const Imf::Header& h = in.header();
+    for (const char* c : {"R", "G", "B", "A", "Z", "N.X", "N.Y", "N.Z", "id.object", "id.medium"})
+      EXPECT_NE(h.channels().findChannel(c), nullptr) << c;
+    const double t = h.typedAttribute<Imf::DoubleAttribute>("thaw.simulatedTime_s").value();
+    if (k == 0) {
+      EXPECT_EQ(t, 0.0);
+    }
+    EXPECT_GT(t, previous_time);
+    previous_time = t;
+    EXPECT_EQ(h.typedAttribute<Imf::StringAttribute>("thaw.sceneFile").value(), scenario.string());
+  }
+  // Unknown formats: one line naming the file and the key, exit code 2, nothing written.
+  const fs::path bad = variant(m_dir, "frames = 4", "frames = 4\nframes_format = \"tiff\"");
+  const fs::path bad_out = m_dir / "bad";
+  const auto b = thaw({"run", bad.string(), "--out", bad_out.string()});
+  EXPECT_EQ(b.exit_code, 2) << b.output;
+  EXPECT_NE(b.output.find("frames_format"), std::string::npos) << b.output;
+  EXPECT_NE(b.output.find(bad.string()), std::string::npos) << b.output;
+  EXPECT_EQ(std::count(b.output.begin(), b.output.end(), '\n'), 1) << b.output;
+  EXPECT_FALSE(fs::exists(bad_out / "frames"));
 }
 
 }  // namespace
