@@ -70,7 +70,10 @@ RenderResult render_image_tiles(const Scene& scene, const RenderOptions& options
 #pragma omp for schedule(dynamic, 1)
     for (int t = 0; t < tiles; ++t) {
       // After SIGINT/SIGTERM the remaining tiles are skipped; the caller checks and writes nothing.
-      if (interrupt_requested()) continue;
+      // Cancelled (RenderOptions::cancel): skipped too; the caller discards the image.
+      if (interrupt_requested() ||
+          (options.cancel && options.cancel->load(std::memory_order_relaxed)))
+        continue;
       const int x0 = (t % tiles_x) * tile, y0 = (t / tiles_x) * tile;
       const int x1 = std::min(x0 + tile, w), y1 = std::min(y0 + tile, h);
       for (int y = y0; y < y1; ++y) {

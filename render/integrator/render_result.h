@@ -1,6 +1,7 @@
 #pragma once
 // What a render takes besides the scene (threads, tile size, seed) and what it returns: the linear
 // image and its statistics. Shared by every integrator; knows nothing about how they trace.
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 
@@ -15,6 +16,9 @@ struct RenderOptions {
   int tile_size = 16;
   /// seed of the per-pixel jitter streams
   std::uint64_t seed = 0;
+  /// set from another thread to stop early (an interactive preview restarted by an edit): the
+  /// tiles not yet started are skipped and the returned image is incomplete
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 struct RenderStats {

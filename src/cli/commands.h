@@ -12,5 +12,6 @@ void register_render(CLI::App& app);     ///< thaw render (command_render.cpp)
 void register_inspect(CLI::App& app);    ///< thaw inspect (command_inspect.cpp)
 void register_materials(CLI::App& app);  ///< thaw materials (command_materials.cpp)
 void register_run(CLI::App& app);        ///< thaw run (command_run.cpp)
+void register_gui(CLI::App& app);        ///< thaw gui (command_gui.cpp)
 
 }  // namespace thaw::cli

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   thaw::cli::register_inspect(app);
   thaw::cli::register_materials(app);
   thaw::cli::register_run(app);
+  thaw::cli::register_gui(app);
   thaw::install_interrupt_handlers();
   try {
     app.parse(argc, argv);

@@ -23,6 +23,7 @@
 #include "src/common/progress.h"
 #include "src/inspect/obj_reader.h"
 #include "src/inspect/simulation_folder.h"
+#include "src/inspect/surface_actor.h"
 #include "src/inspect/virtual_display.h"
 #include "src/inspect/vtk_png.h"
 #include "src/inspect/vtk_polydata.h"
@@ -30,21 +31,6 @@
 namespace thaw::inspect {
 namespace fs = std::filesystem;
 namespace {
-
-struct Look {
-  double color[3];
-  double edge[3];
-  double opacity;
-};
-
-Look look_of(SurfaceRole role) {
-  switch (role) {
-    case SurfaceRole::inner: return {{0.16, 0.42, 0.80}, {0.06, 0.18, 0.40}, 1.0};
-    case SurfaceRole::outer: return {{0.80, 0.92, 1.00}, {0.45, 0.62, 0.78}, 0.28};
-    case SurfaceRole::single: break;
-  }
-  return {{0.82, 0.84, 0.86}, {0.20, 0.22, 0.26}, 1.0};
-}
 
 vtkNew<vtkTextActor> text(const std::string& s, int size, const double rgb[3], bool bold) {
   vtkNew<vtkTextActor> t;
@@ -172,28 +158,7 @@ void write_screenshot(const std::vector<ScreenshotPanel>& panels, const fs::path
     });
     for (const SceneSurface* s : order) {
       if (s->mesh.triangles.empty()) continue;
-      vtkNew<vtkPolyDataNormals> normals;  // smooth shading; the edges show the facets
-      normals->SetInputData(to_polydata(s->mesh));
-      normals->SplittingOff();
-      normals->ConsistencyOff();
-      normals->AutoOrientNormalsOff();
-      vtkNew<vtkPolyDataMapper> mapper;
-      mapper->SetInputConnection(normals->GetOutputPort());
-      mapper->ScalarVisibilityOff();
-      vtkNew<vtkActor> actor;
-      actor->SetMapper(mapper);
-      const Look look = look_of(s->role);
-      vtkProperty* prop = actor->GetProperty();
-      prop->SetColor(look.color[0], look.color[1], look.color[2]);
-      prop->SetOpacity(look.opacity);
-      prop->SetSpecular(s->role == SurfaceRole::outer ? 0.6 : 0.3);
-      prop->SetSpecularPower(40);
-      if (options.edges) {
-        prop->EdgeVisibilityOn();
-        prop->SetEdgeColor(look.edge[0], look.edge[1], look.edge[2]);
-        prop->SetLineWidth(1.0);
-      }
-      if (s->role == SurfaceRole::outer) prop->BackfaceCullingOff();
+      auto actor = surface_actor(s->mesh, s->role, options.edges);
       renderer->AddActor(actor);
     }
     if (!panels[i].label.empty()) {

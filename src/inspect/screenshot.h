@@ -8,13 +8,11 @@
 #include <string>
 #include <vector>
 
+#include "src/inspect/surface_role.h"
 #include "src/inspect/triangle_mesh.h"
 
 namespace thaw::inspect {
 
-/// How a surface is drawn: a lone mesh (opaque grey), an inner surface (opaque water blue) or an
-/// outer surface (translucent ice).
-enum class SurfaceRole { single, inner, outer };
 
 struct SceneSurface {
   TriangleMesh mesh;

@@ -27,6 +27,7 @@
 #include "src/pipeline/frame_camera.h"
 #include "src/pipeline/frame_label.h"
 #include "src/pipeline/frame_puddle.h"
+#include "src/pipeline/frame_scene.h"
 #include "src/pipeline/run_manifest.h"
 #include "src/pipeline/water_budget.h"
 #include "thaw_version.h"
@@ -72,39 +73,15 @@ std::string frame_name(long k) {
   return buf;
 }
 
-/// The scene of one frame: the scenario's scene plus the shell's two interfaces and the puddle
-/// holding the water that left the shell (when the shell rests on a floor).
+/// The scene of one frame (frame_scene.h) with the step's meshes read from the mesh stage.
 render::SceneDescription frame_scene(const RunScenario& sc, const fs::path& mesh_dir,
                                      const sim::ShellGeometry& geometry,
                                      const mesh::StepRecord& step, const WaterBudget& water) {
-  render::SceneDescription desc = sc.scene;
-  std::shared_ptr<render::TriangleMesh> outer, inner;
-  if (step.outer.file) outer = std::make_shared<render::TriangleMesh>(render::load_obj(mesh_dir / *step.outer.file));
-  if (step.inner.file) inner = std::make_shared<render::TriangleMesh>(render::load_obj(mesh_dir / *step.inner.file));
-  std::array<double, 3> offset = sc.shell.center;
-  if (sc.shell.rest_on_floor && outer) {
-    double min_y = outer->positions.front().y;
-    for (const auto& p : outer->positions) min_y = std::min<double>(min_y, p.y);
-    offset[1] = sc.shell.floor_y - min_y;
-  }
-  // One surface per interface: ice|outside (outer) and water|ice (inner). Without ice there is
-  // no mesh (src/mesh meshes neither surface): a drop before it freezes is not drawn; after a
-  // break-through the water is in the puddle.
-  if (outer) {
-    auto& o = desc.add_dielectric_mesh(outer, sc.shell.ice_medium, sc.shell.outside_medium, "shell outer surface");
-    o.translate = offset;
-    if (inner) {
-      auto& i = desc.add_dielectric_mesh(inner, sc.shell.water_medium, sc.shell.ice_medium, "shell inner surface");
-      i.translate = offset;
-    }
-  }
-  if (sc.shell.rest_on_floor) {
-    std::optional<IceFootprint> ice;
-    if (outer) ice = ice_footprint(geometry, step.outer_radius_m, offset, sc.shell.floor_y);
-    add_puddle(desc, water.puddle_volume_m3, sc.shell.floor_y, offset, geometry, ice,
-               sc.shell.water_medium, sc.shell.outside_medium);
-  }
-  return desc;
+  FrameShell shell;
+  if (step.outer.file) shell.outer = std::make_shared<render::TriangleMesh>(render::load_obj(mesh_dir / *step.outer.file));
+  if (step.inner.file) shell.inner = std::make_shared<render::TriangleMesh>(render::load_obj(mesh_dir / *step.inner.file));
+  shell.outer_radius_m = step.outer_radius_m;
+  return pipeline::frame_scene(sc, geometry, shell, water);
 }
 
 void stamp_frame_caption(render::Image& image, double time_s, const CaptionFont* font) {

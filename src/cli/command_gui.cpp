@@ -1,0 +1,38 @@
+// thaw gui [SCENARIO.toml] [--screenshot PATH]: argument parsing only (src/gui does the work).
+#include <string>
+
+#include "src/cli/commands.h"
+#include "src/common/error.h"
+#ifdef THAW_WITH_GUI
+#include "src/gui/gui.h"
+#endif
+
+namespace thaw::cli {
+
+void register_gui(CLI::App& app) {
+  struct Args {
+    std::string scenario, screenshot;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* sub = app.add_subcommand(
+      "gui", "The interactive workbench: edit a scenario and its scene, preview the frame, run "
+             "the simulation and scrub through its meshes (Qt + VTK; docs/gui.md).");
+  sub->add_option("scenario", args->scenario, "scenario TOML (default: the built-in default)");
+  sub->add_option("--screenshot", args->screenshot,
+                  "load, lay out, render the preview and the 3D view, save the window as PNG, exit");
+  sub->callback([args] {
+#ifdef THAW_WITH_GUI
+    gui::GuiOptions options;
+    options.scenario = args->scenario;
+    options.screenshot = args->screenshot;
+    const int code = gui::run_gui(options);
+    if (code != 0) throw CLI::RuntimeError(code);
+#else
+    throw UserError("", "gui",
+                    "this thaw was built without Qt (install qtbase5-dev libvtk9-qt-dev, "
+                    "bash scripts/setup, and rebuild)");
+#endif
+  });
+}
+
+}  // namespace thaw::cli

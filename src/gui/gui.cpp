@@ -1,0 +1,48 @@
+#include "src/gui/gui.h"
+
+#include <QApplication>
+#include <QSurfaceFormat>
+#include <QTimer>
+#include <QVTKOpenGLNativeWidget.h>
+#include <cstdlib>
+#include <memory>
+
+#include "src/common/error.h"
+#include "src/gui/main_window.h"
+#include "src/gui/screenshot.h"
+#include "src/inspect/virtual_display.h"
+
+namespace thaw::gui {
+
+int run_gui(const GuiOptions& options) {
+  ScenarioDocument document = options.scenario.empty() ? ScenarioDocument()
+                                                       : ScenarioDocument::load(options.scenario);
+  // Qt's xcb platform needs an X display; --screenshot may start a private Xvfb for it (as
+  // `thaw inspect --screenshot` does). The offscreen platform needs none.
+  const char* platform = std::getenv("QT_QPA_PLATFORM");
+  const bool offscreen = platform && std::string(platform) == "offscreen";
+  std::unique_ptr<inspect::DisplayLease> display;
+  if (!offscreen && !inspect::display_available()) {
+    if (options.screenshot.empty())
+      throw UserError("", "gui", "no X display: run it on a desktop, or with --screenshot under xvfb-run");
+    display = std::make_unique<inspect::DisplayLease>("thaw gui --screenshot");
+  }
+  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
+  static int argc = 1;
+  static char name[] = "thaw";
+  static char* argv[] = {name, nullptr};
+  QApplication app(argc, argv);
+  MainWindow window(std::move(document));
+  window.show();
+  if (options.screenshot.empty()) return app.exec();
+  std::string problem;
+  take_screenshot_when_ready(window, options.screenshot, [&](const std::string& p) {
+    problem = p;
+    app.exit(p.empty() ? 0 : 2);
+  });
+  const int code = app.exec();
+  if (!problem.empty()) throw UserError(options.screenshot.string(), "--screenshot", problem);
+  return code;
+}
+
+}  // namespace thaw::gui

@@ -1,0 +1,319 @@
+#include "src/gui/main_window.h"
+
+#include <QAction>
+#include <QComboBox>
+#include <QFileDialog>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QMenuBar>
+#include <QPushButton>
+#include <QScrollArea>
+#include <QSplitter>
+#include <QStatusBar>
+#include <QTabWidget>
+#include <QVBoxLayout>
+
+#include "src/common/error.h"
+#include "src/gui/key_form.h"
+#include "src/gui/shell_view.h"
+
+namespace thaw::gui {
+namespace {
+
+using pipeline::RunScenario;
+
+QWidget* scrolled(QWidget* inner) {
+  auto* area = new QScrollArea;
+  area->setWidget(inner);
+  area->setWidgetResizable(true);
+  area->setFrameShape(QFrame::NoFrame);
+  return area;
+}
+
+TomlValue d(double v) { return TomlValue{v}; }
+TomlValue i(long long v) { return TomlValue{v}; }
+
+}  // namespace
+
+MainWindow::MainWindow(ScenarioDocument document, QWidget* parent)
+    : QMainWindow(parent), m_document(std::move(document)), m_renderer(new PreviewRenderer(this)) {
+  qRegisterMetaType<thaw::gui::TomlValue>();
+  auto* left = new QSplitter(Qt::Vertical);
+  m_preview = new QLabel;
+  m_preview->setObjectName("preview");
+  m_preview->setAlignment(Qt::AlignCenter);
+  m_preview->setMinimumSize(320, 240);
+  m_preview->setStyleSheet("background: #1b1d22; color: #aab;");
+  m_preview->setText("rendering...");
+  m_view = new ShellView;
+  m_view->setObjectName("shell_view");
+  left->addWidget(m_preview);
+  left->addWidget(m_view);
+  left->setStretchFactor(0, 3);
+  left->setStretchFactor(1, 2);
+
+  m_tabs = new QTabWidget;
+  m_tabs->setObjectName("tabs");
+  m_tabs->addTab(make_render_tab(), "Render");
+  m_tabs->addTab(scrolled(make_scenario_tab()), "Scenario");
+  auto* right = new QWidget;
+  auto* rv = new QVBoxLayout(right);
+  rv->setContentsMargins(0, 0, 0, 0);
+  m_problem = new QLabel;
+  m_problem->setObjectName("problem");
+  m_problem->setWordWrap(true);
+  m_problem->setStyleSheet("color: #c0392b; font-weight: bold;");
+  m_problem->hide();
+  rv->addWidget(m_problem);
+  rv->addWidget(m_tabs);
+
+  auto* split = new QSplitter(Qt::Horizontal);
+  split->addWidget(left);
+  split->addWidget(right);
+  split->setStretchFactor(0, 3);
+  split->setStretchFactor(1, 2);
+  setCentralWidget(split);
+  m_status = new QLabel;
+  m_status->setObjectName("status");
+  statusBar()->addWidget(m_status, 1);
+
+  QMenu* file = menuBar()->addMenu("&File");
+  QAction* open = file->addAction("&Open...", this, [this] {
+    const QString p = QFileDialog::getOpenFileName(this, "Open scenario", {}, "Scenario (*.toml)");
+    if (p.isEmpty()) return;
+    try {
+      open_file(p.toStdString());
+    } catch (const UserError& e) {
+      m_status->setText(QString::fromStdString(e.what()));
+    }
+  });
+  open->setShortcut(QKeySequence::Open);
+  m_save = file->addAction("&Save", this, [this] {
+    if (m_path.empty()) return m_save_as->trigger();
+    save_file(m_path);
+  });
+  m_save->setShortcut(QKeySequence::Save);
+  m_save_as = file->addAction("Save &as...", this, [this] {
+    const QString p = QFileDialog::getSaveFileName(this, "Save scenario", {}, "Scenario (*.toml)");
+    if (!p.isEmpty()) save_file(p.toStdString());
+  });
+  file->addAction("&Quit", this, &QWidget::close)->setShortcut(QKeySequence::Quit);
+
+  connect(m_renderer, &PreviewRenderer::imageReady, this, &MainWindow::on_image);
+  connect(m_renderer, &PreviewRenderer::shellReady, this, &MainWindow::on_shell_ready);
+  connect(m_renderer, &PreviewRenderer::failed, this, [this](const QString& message) {
+    m_status->setText("preview: " + message);
+    m_problem->setText(message);
+    m_problem->show();
+  });
+  for (KeyForm* form : m_forms)
+    connect(form, &KeyForm::edited, this,
+            [this](const std::string& key, const TomlValue& value) { apply_edit(key, value); });
+  if (m_document.source_name() != "<built-in default>") m_path = m_document.source_name();
+  resize(1280, 800);
+  recheck();
+}
+
+MainWindow::~MainWindow() = default;
+
+QWidget* MainWindow::make_render_tab() {
+  auto* page = new QWidget;
+  auto* v = new QVBoxLayout(page);
+  auto* form = new KeyForm;
+  form->add_section("Quality of the film's frames ([render.image])");
+  form->add_integer("Width [px]", "render.image.width", [](const RunScenario& s) { return i(s.scene.image.width); });
+  form->add_integer("Height [px]", "render.image.height", [](const RunScenario& s) { return i(s.scene.image.height); });
+  form->add_integer("Samples per pixel", "render.image.samples_per_pixel",
+                    [](const RunScenario& s) { return i(s.scene.image.samples_per_pixel); });
+  form->add_number("Exposure [stops]", "render.image.exposure", [](const RunScenario& s) { return d(s.scene.image.exposure); });
+  m_forms.push_back(form);
+  v->addWidget(form);
+  auto* row = new QHBoxLayout;
+  row->addWidget(new QLabel("Preview width"));
+  auto* size = new QComboBox;
+  size->setObjectName("preview_size");
+  size->addItems({"160", "320", "480", "640"});
+  size->setCurrentText("320");
+  connect(size, &QComboBox::currentTextChanged, this, [this](const QString& w) {
+    m_preview_width = w.toInt();
+    request_preview();
+  });
+  row->addWidget(size);
+  auto* render = new QPushButton("Render");
+  render->setObjectName("render_button");
+  render->setToolTip("Render the frame at the quality above (in the background)");
+  connect(render, &QPushButton::clicked, this, [this] { request_preview(true); });
+  row->addWidget(render);
+  v->addLayout(row);
+  auto* note = new QLabel(
+      "The preview renders the first film frame as <tt>thaw run</tt> would: a quarter-size pass, "
+      "then the full preview size, then with the frame's anti-aliasing and caustics. Every edit "
+      "restarts it.");
+  note->setWordWrap(true);
+  v->addWidget(note);
+  v->addStretch(1);
+  return page;
+}
+
+QWidget* MainWindow::make_scenario_tab() {
+  auto* form = new KeyForm;
+  form->add_section("Geometry and sizes");
+  form->add_choice("Geometry", "simulation.geometry", {"sphere", "cylinder", "planar"},
+                   [](const RunScenario& s) { return TomlValue{std::string(sim::to_string(s.simulation.geometry))}; });
+  form->add_number("Inner radius [m]", "shell.inner_radius_m", [](const RunScenario& s) { return d(s.simulation.inner_radius_m); });
+  form->add_number("Outer radius [m]", "shell.outer_radius_m", [](const RunScenario& s) { return d(s.simulation.outer_radius_m); });
+  form->add_number("Cylinder length [m]", "shell.length_m", [](const RunScenario& s) { return d(s.simulation.length_m); });
+  form->add_number("Slab lateral size [m]", "shell.lateral_size_m", [](const RunScenario& s) { return d(s.simulation.lateral_size_m); });
+  form->add_section("Temperatures");
+  form->add_number("Water at t = 0 [C]", "water.initial_temperature_c",
+                   [](const RunScenario& s) { return d(s.simulation.water_initial_temperature_c); });
+  form->add_number("Ice at t = 0 [C]", "ice.initial_temperature_c",
+                   [](const RunScenario& s) { return d(s.simulation.ice_initial_temperature_c); });
+  form->add_section("Outer boundary");
+  form->add_choice("Kind", "outer_boundary.kind", {"temperature", "convective", "flux", "insulated"},
+                   [](const RunScenario& s) { return TomlValue{std::string(sim::to_string(s.simulation.outer_kind))}; });
+  form->add_number("Temperature [C]", "outer_boundary.temperature_c", [](const RunScenario& s) { return d(s.simulation.outer_temperature_c); });
+  form->add_number("h [W/(m2 K)]", "outer_boundary.heat_transfer_coefficient_w_m2k",
+                   [](const RunScenario& s) { return d(s.simulation.heat_transfer_coefficient_w_m2k); });
+  form->add_number("Flux [W/m2]", "outer_boundary.flux_w_m2", [](const RunScenario& s) { return d(s.simulation.flux_w_m2); });
+  form->add_section("Materials");
+  const auto& M = [](const RunScenario& s) -> const sim::Materials& { return s.simulation.materials; };
+  form->add_number("Ice conductivity [W/(m K)]", "materials.ice_conductivity_w_mk", [M](const RunScenario& s) { return d(M(s).ice_conductivity_w_mk); });
+  form->add_number("Ice density [kg/m3]", "materials.ice_density_kg_m3", [M](const RunScenario& s) { return d(M(s).ice_density_kg_m3); });
+  form->add_number("Ice specific heat [J/(kg K)]", "materials.ice_specific_heat_j_kgk", [M](const RunScenario& s) { return d(M(s).ice_specific_heat_j_kgk); });
+  form->add_number("Water conductivity [W/(m K)]", "materials.water_conductivity_w_mk", [M](const RunScenario& s) { return d(M(s).water_conductivity_w_mk); });
+  form->add_number("Water density [kg/m3]", "materials.water_density_kg_m3", [M](const RunScenario& s) { return d(M(s).water_density_kg_m3); });
+  form->add_number("Water specific heat [J/(kg K)]", "materials.water_specific_heat_j_kgk", [M](const RunScenario& s) { return d(M(s).water_specific_heat_j_kgk); });
+  form->add_number("Latent heat [J/kg]", "materials.latent_heat_j_kg", [M](const RunScenario& s) { return d(M(s).latent_heat_j_kg); });
+  form->add_number("Melting point [C]", "materials.melting_point_c", [M](const RunScenario& s) { return d(M(s).melting_point_c); });
+  form->add_section("Duration and frames");
+  form->add_number("Duration [s]", "simulation.duration_s", [](const RunScenario& s) { return d(s.simulation.duration_s); });
+  form->add_number("Output interval [s]", "simulation.output_interval_s", [](const RunScenario& s) { return d(s.simulation.output_interval_s); });
+  form->add_integer("Film frames", "film.frames", [](const RunScenario& s) { return i(s.film.frames); });
+  form->add_number("Frames per second", "film.fps", [](const RunScenario& s) { return d(s.film.fps); });
+  m_forms.push_back(form);
+  return form;
+}
+
+bool MainWindow::apply_edit(const std::string& key, const TomlValue& value) {
+  m_document.set(key, value);
+  recheck();
+  return m_check.ok();
+}
+
+void MainWindow::recheck() {
+  m_check = m_document.check();
+  const QString message = QString::fromStdString(m_check.message);
+  bool shown = false;
+  for (KeyForm* form : m_forms) shown |= form->show_problem(m_check.key, message);
+  // A problem no field edits (or a key in another tab) is shown above the tabs as well.
+  m_problem->setText(message);
+  m_problem->setVisible(!m_check.ok() && !shown);
+  if (m_save) m_save->setEnabled(m_check.ok());
+  if (m_save_as) m_save_as->setEnabled(m_check.ok());
+  if (m_check.ok()) {
+    for (KeyForm* form : m_forms) form->refresh(*m_check.scenario);
+    request_preview();
+  } else {
+    m_status->setText("not rendered: " + message);
+  }
+  update_title();
+}
+
+bool MainWindow::can_save() const { return m_check.ok(); }
+
+QString MainWindow::field_problem(const std::string& key) const {
+  for (KeyForm* form : m_forms)
+    if (form->field(key)) return form->problem(key);
+  return {};
+}
+
+void MainWindow::open_file(const std::filesystem::path& path) {
+  m_document = ScenarioDocument::load(path);
+  m_path = path;
+  recheck();
+}
+
+bool MainWindow::save_file(const std::filesystem::path& path) {
+  recheck();
+  if (!m_check.ok()) return false;
+  try {
+    m_document.save(path);
+  } catch (const UserError& e) {
+    m_status->setText(QString::fromStdString(e.what()));
+    return false;
+  }
+  m_path = path;
+  m_document.set_source_name(path.string());
+  m_status->setText("saved " + QString::fromStdString(path.string()));
+  update_title();
+  return true;
+}
+
+void MainWindow::set_preview_size(int width, int height) {
+  m_preview_width = width;
+  m_preview_height = height;
+  request_preview();
+}
+
+void MainWindow::request_preview(bool full_quality) {
+  if (!m_check.ok()) return;
+  const RunScenario& sc = *m_check.scenario;
+  PreviewRequest r;
+  r.scenario = sc;
+  const render::ImageSettings& image = sc.scene.image;
+  if (full_quality) {
+    r.width = image.width, r.height = image.height;
+  } else {
+    // The film's aspect ratio at the preview's width.
+    r.width = m_preview_width;
+    r.height = std::max(1, static_cast<int>(std::lround(double(m_preview_width) * image.height / image.width)));
+    m_preview_height = r.height;
+  }
+  r.samples = image.samples_per_pixel;
+  m_full_quality = full_quality;
+  m_pass = -1;
+  m_renderer->request(std::move(r));
+}
+
+void MainWindow::on_image(const QImage& image, int pass, int passes, double seconds) {
+  m_image = image;
+  m_pass = pass;
+  m_passes = passes;
+  m_seconds = seconds;
+  show_image();
+  m_status->setText(QString("preview pass %1/%2: %3 x %4 in %5 s")
+                        .arg(pass + 1)
+                        .arg(passes)
+                        .arg(image.width())
+                        .arg(image.height())
+                        .arg(seconds, 0, 'f', 2));
+  if (pass + 1 == passes) emit previewFinished();
+}
+
+void MainWindow::show_image() {
+  if (m_image.isNull()) return;
+  const QSize room = m_preview->size() - QSize(4, 4);
+  m_preview->setPixmap(QPixmap::fromImage(m_image.scaled(room, Qt::KeepAspectRatio,
+                                                         m_pass == 0 ? Qt::FastTransformation
+                                                                     : Qt::SmoothTransformation)));
+}
+
+void MainWindow::resizeEvent(QResizeEvent* event) {
+  QMainWindow::resizeEvent(event);
+  show_image();
+}
+
+void MainWindow::on_shell_ready() {
+  if (auto shell = m_renderer->initial_shell()) {
+    m_view->show_step(*shell, true);
+    if (!shell->note.empty()) m_status->setText(QString::fromStdString(shell->note));
+  }
+}
+
+void MainWindow::update_title() {
+  const QString name = m_path.empty() ? "built-in default" : QString::fromStdString(m_path.filename().string());
+  setWindowTitle("thaw gui - " + name + (m_check.ok() ? "" : " (has a problem)"));
+}
+
+}  // namespace thaw::gui

@@ -1,0 +1,91 @@
+#pragma once
+// The workbench window: the rendered preview (top left) and the 3D view of the shell (bottom
+// left); tabs on the right for the render settings, the scenario and (later steps) the simulation
+// and the scene. Every edit goes to the ScenarioDocument, which is re-parsed by the files' own
+// parsers: a problem is shown under its field and blocks saving; a valid scenario restarts the
+// progressive preview (PreviewRenderer, off the GUI thread).
+#include <QImage>
+#include <QMainWindow>
+#include <filesystem>
+#include <optional>
+
+#include "src/gui/preview_renderer.h"
+#include "src/gui/scenario_document.h"
+
+class QLabel;
+class QTabWidget;
+class QAction;
+class QComboBox;
+class QPushButton;
+
+namespace thaw::gui {
+
+class KeyForm;
+class ShellView;
+
+class MainWindow : public QMainWindow {
+  Q_OBJECT
+ public:
+  explicit MainWindow(ScenarioDocument document, QWidget* parent = nullptr);
+  ~MainWindow() override;
+
+  /// Sets one key (as a field does) and re-checks; returns whether the scenario is valid now.
+  bool apply_edit(const std::string& key, const TomlValue& value);
+  /// Opens a scenario file; throws thaw::UserError if it is not TOML.
+  void open_file(const std::filesystem::path& path);
+  /// Saves to `path`; false (and the message shown) when the scenario has a problem.
+  bool save_file(const std::filesystem::path& path);
+
+  const ScenarioDocument& document() const { return m_document; }
+  /// The last check's problem ("" when valid) and the key it names.
+  const ScenarioCheck& check() const { return m_check; }
+  /// Whether Save is enabled (the scenario is valid).
+  bool can_save() const;
+  /// The latest preview image and the pass it came from (-1 before the first).
+  const QImage& preview_image() const { return m_image; }
+  int preview_pass() const { return m_pass; }
+  /// The pass count of a full preview and the seconds from the edit to the latest image.
+  int preview_passes() const { return m_passes; }
+  double preview_seconds() const { return m_seconds; }
+  PreviewRenderer& renderer() { return *m_renderer; }
+  ShellView& shell_view() { return *m_view; }
+  /// The inline message shown for `key` in whichever form has it ("" when none).
+  QString field_problem(const std::string& key) const;
+  /// Preview size (the Render tab's choice).
+  void set_preview_size(int width, int height);
+
+ signals:
+  /// The preview's last pass for the current scenario is shown.
+  void previewFinished();
+
+ private:
+  QWidget* make_render_tab();
+  QWidget* make_scenario_tab();
+  void recheck();
+  void request_preview(bool full_quality = false);
+  void on_image(const QImage& image, int pass, int passes, double seconds);
+  void show_image();
+  void on_shell_ready();
+  void update_title();
+  void resizeEvent(QResizeEvent* event) override;
+
+  ScenarioDocument m_document;
+  ScenarioCheck m_check;
+  std::filesystem::path m_path;
+  PreviewRenderer* m_renderer;
+  ShellView* m_view = nullptr;
+  QLabel* m_preview = nullptr;
+  QLabel* m_status = nullptr;
+  QLabel* m_problem = nullptr;
+  QTabWidget* m_tabs = nullptr;
+  QAction* m_save = nullptr;
+  QAction* m_save_as = nullptr;
+  std::vector<KeyForm*> m_forms;
+  QImage m_image;
+  int m_pass = -1, m_passes = 0;
+  double m_seconds = 0;
+  int m_preview_width = 320, m_preview_height = 240;
+  bool m_full_quality = false;
+};
+
+}  // namespace thaw::gui

@@ -1,0 +1,123 @@
+#include "src/gui/preview_renderer.h"
+
+#include <cmath>
+
+#include "render/image/image_io.h"
+#include "render/integrator/whitted.h"
+#include "render/scene/scene.h"
+#include "src/common/error.h"
+
+namespace thaw::gui {
+
+QImage to_qimage(const render::Image& image, double exposure) {
+  const float scale = static_cast<float>(std::exp2(exposure));
+  QImage q(image.width(), image.height(), QImage::Format_RGB888);
+  for (int y = 0; y < image.height(); ++y) {
+    uchar* line = q.scanLine(y);
+    for (int x = 0; x < image.width(); ++x) {
+      const render::Rgb& p = image.at(x, y);
+      line[3 * x] = render::to_srgb8(p.r, scale);
+      line[3 * x + 1] = render::to_srgb8(p.g, scale);
+      line[3 * x + 2] = render::to_srgb8(p.b, scale);
+    }
+  }
+  return q;
+}
+
+PreviewRenderer::PreviewRenderer(QObject* parent) : QObject(parent) {
+  m_thread = std::thread([this] { loop(); });
+}
+
+PreviewRenderer::~PreviewRenderer() {
+  {
+    std::lock_guard lock(m_mutex);
+    m_quit = true;
+    m_cancel = true;
+  }
+  m_wake.notify_all();
+  m_thread.join();
+}
+
+void PreviewRenderer::request(PreviewRequest request) {
+  {
+    std::lock_guard lock(m_mutex);
+    m_pending = std::move(request);
+    m_requested_at = std::chrono::steady_clock::now();
+    m_cancel = true;  // the pass in flight stops at its next tile
+  }
+  m_wake.notify_all();
+}
+
+std::shared_ptr<const ShellStep> PreviewRenderer::initial_shell() const {
+  std::lock_guard lock(m_mutex);
+  return m_initial;
+}
+
+bool PreviewRenderer::busy() const {
+  std::lock_guard lock(m_mutex);
+  return m_pending.has_value() || m_rendering;
+}
+
+void PreviewRenderer::loop() {
+  for (;;) {
+    PreviewRequest request;
+    std::chrono::steady_clock::time_point start;
+    {
+      std::unique_lock lock(m_mutex);
+      m_wake.wait(lock, [this] { return m_quit || m_pending.has_value(); });
+      if (m_quit) return;
+      request = std::move(*m_pending);
+      m_pending.reset();
+      start = m_requested_at;
+      m_cancel = false;
+      m_rendering = true;
+    }
+    try {
+      serve(request, start);
+    } catch (const UserError& e) {
+      emit failed(QString::fromStdString(e.what()));
+    } catch (const std::exception& e) {
+      emit failed(QString::fromStdString(std::string("internal error: ") + e.what()));
+    }
+    std::lock_guard lock(m_mutex);
+    m_rendering = false;
+  }
+}
+
+void PreviewRenderer::serve(const PreviewRequest& request, std::chrono::steady_clock::time_point start) {
+  std::shared_ptr<const ShellStep> step = request.step;
+  if (!step) {
+    // The initial shell depends on the simulation's and the mesher's keys only.
+    const std::string key = request.scenario.simulation_text + "\n" + request.scenario.mesh_text;
+    std::shared_ptr<const ShellStep> cached;
+    {
+      std::lock_guard lock(m_mutex);
+      if (m_initial && m_initial_key == key) cached = m_initial;
+    }
+    if (!cached) {
+      cached = std::make_shared<const ShellStep>(gui::initial_shell(request.scenario));
+      {
+        std::lock_guard lock(m_mutex);
+        m_initial = cached;
+        m_initial_key = key;
+      }
+      emit shellReady();
+    }
+    step = cached;
+  }
+  const auto passes = preview_passes(request.width, request.height, request.samples);
+  for (std::size_t i = 0; i < passes.size(); ++i) {
+    if (m_cancel) return;
+    const render::Scene scene =
+        render::build_scene(preview_scene(request.scenario, *step, request.camera_rows, passes[i]));
+    render::RenderOptions options;
+    options.cancel = &m_cancel;
+    const render::RenderResult result = render::render(scene, options);
+    if (m_cancel) return;  // incomplete: a newer request replaces it
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    emit imageReady(to_qimage(result.image, request.scenario.scene.image.exposure), static_cast<int>(i),
+                    static_cast<int>(passes.size()), seconds);
+  }
+}
+
+}  // namespace thaw::gui

@@ -1,0 +1,71 @@
+#pragma once
+// The progressive preview, off the GUI thread: one worker thread takes the newest request (a
+// scenario, optionally a simulated shell step, a quality), meshes the initial shell if needed
+// (cached while the shell's keys do not change), then renders preview_passes() one after the
+// other, handing each image to the GUI thread by a queued signal. A new request cancels the
+// render in flight (RenderOptions::cancel: its remaining tiles are skipped) and restarts from the
+// quick pass; the GUI thread only ever takes a mutex for a copy. Knows nothing of the widgets.
+#include <QImage>
+#include <QObject>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "render/image/image.h"
+#include "src/gui/preview_scene.h"
+
+namespace thaw::gui {
+
+struct PreviewRequest {
+  pipeline::RunScenario scenario;
+  /// the simulated step to show; empty: the scenario's initial shell
+  std::shared_ptr<const ShellStep> step;
+  /// rows the built-in camera frames (empty: the step's own row)
+  std::vector<sim::InterfaceRecord> camera_rows;
+  int width = 320, height = 240, samples = 4;
+};
+
+/// The linear image as 8-bit sRGB, scaled by 2^exposure (as the PNG writer does).
+QImage to_qimage(const render::Image& image, double exposure);
+
+class PreviewRenderer : public QObject {
+  Q_OBJECT
+ public:
+  explicit PreviewRenderer(QObject* parent = nullptr);
+  ~PreviewRenderer() override;
+
+  /// Replaces whatever is pending or rendering by `request` (GUI thread; returns at once).
+  void request(PreviewRequest request);
+  /// The initial shell the worker last meshed (for the 3D view); null before the first.
+  std::shared_ptr<const ShellStep> initial_shell() const;
+  /// True while a request is pending or a pass is rendering.
+  bool busy() const;
+
+ signals:
+  /// A pass finished: its image, its index among `passes`, and the seconds since the request.
+  void imageReady(const QImage& image, int pass, int passes, double seconds);
+  /// The initial shell of a new scenario was meshed (initial_shell() has it).
+  void shellReady();
+  /// The request cannot be rendered (a scene problem build_scene found); one line.
+  void failed(const QString& message);
+
+ private:
+  void loop();
+  void serve(const PreviewRequest& request, std::chrono::steady_clock::time_point start);
+
+  mutable std::mutex m_mutex;
+  std::condition_variable m_wake;
+  std::optional<PreviewRequest> m_pending;
+  std::chrono::steady_clock::time_point m_requested_at;
+  bool m_quit = false, m_rendering = false;
+  std::atomic<bool> m_cancel{false};
+  std::shared_ptr<const ShellStep> m_initial;
+  std::string m_initial_key;
+  std::thread m_thread;
+};
+
+}  // namespace thaw::gui

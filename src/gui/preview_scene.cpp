@@ -1,0 +1,44 @@
+#include "src/gui/preview_scene.h"
+
+#include <algorithm>
+
+#include "src/pipeline/frame_camera.h"
+#include "src/pipeline/frame_scene.h"
+#include "src/pipeline/water_budget.h"
+
+namespace thaw::gui {
+
+std::vector<PreviewPass> preview_passes(int width, int height, int samples) {
+  std::vector<PreviewPass> passes;
+  passes.push_back({std::max(1, width / 4), std::max(1, height / 4), 1, false, false});
+  passes.push_back({width, height, 1, false, false});
+  passes.push_back({width, height, std::max(2, samples), true, true});
+  return passes;
+}
+
+render::SceneDescription preview_scene(const pipeline::RunScenario& sc, const ShellStep& step,
+                                       const std::vector<sim::InterfaceRecord>& camera_rows,
+                                       const PreviewPass& pass) {
+  const sim::ShellGeometry geometry = shell_geometry(sc.simulation);
+  pipeline::FrameShell shell{step.outer, step.inner, step.row.outer_radius_m};
+  // The water that left the shell by this step, measured from the run's first row.
+  const sim::InterfaceRecord first = camera_rows.empty() ? step.row : camera_rows.front();
+  const auto water = pipeline::water_budget({first, step.row}, geometry,
+                                            sc.simulation.materials.ice_density_kg_m3,
+                                            sc.simulation.materials.water_density_kg_m3);
+  render::SceneDescription desc = pipeline::frame_scene(sc, geometry, shell, water.back());
+  const double aspect = static_cast<double>(pass.width) / pass.height;
+  if (!sc.camera_set)
+    desc.camera = pipeline::framing_camera(
+        pipeline::shell_extent(camera_rows.empty() ? std::vector{step.row} : camera_rows, geometry,
+                               sc.shell.center, sc.shell.rest_on_floor, sc.shell.floor_y),
+        aspect);
+  desc.image.width = pass.width;
+  desc.image.height = pass.height;
+  desc.image.adaptive = pass.adaptive;
+  desc.image.samples_per_pixel = pass.adaptive ? std::max(pass.samples, desc.image.min_samples) : pass.samples;
+  if (!pass.caustics) desc.caustics.enabled = false;
+  return desc;
+}
+
+}  // namespace thaw::gui

@@ -1,0 +1,88 @@
+#pragma once
+// The scenario being edited in `thaw gui`: the parsed TOML document itself (toml++), so that Save
+// writes back every key, including those the GUI has no widget for, and what is saved loads back
+// identically. Every edit sets one dotted key in the document; check() then runs the scenario
+// parser of `thaw run` (src/pipeline/run_scenario.h, which calls sim/ and render/ parsers) on the
+// re-serialised text: the GUI's messages are the files' messages, no rule is written twice.
+// Qt-free.
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "src/pipeline/run_scenario.h"
+
+namespace toml {
+inline namespace v3 {
+class table;
+}
+}  // namespace toml
+
+namespace thaw::gui {
+
+/// A value the GUI writes: a number, an integer, a flag, a name or a 3-vector (colour, point).
+using TomlValue = std::variant<double, long long, bool, std::string, std::array<double, 3>>;
+
+/// The result of checking the document: the parsed scenario, or the parser's one-line problem and
+/// the dotted key it names ("" when the message names no key).
+struct ScenarioCheck {
+  std::optional<pipeline::RunScenario> scenario;
+  std::string key, message;
+  bool ok() const { return scenario.has_value(); }
+};
+
+class ScenarioDocument {
+ public:
+  /// The built-in default scenario (data/scenarios/default.toml).
+  ScenarioDocument();
+  ScenarioDocument(const ScenarioDocument&);
+  ScenarioDocument& operator=(const ScenarioDocument&);
+  ~ScenarioDocument();
+
+  /// Parses `text`; malformed TOML throws thaw::UserError naming `source_name`. A document whose
+  /// values break a rule is accepted (check() reports it), so a file can be opened and fixed.
+  static ScenarioDocument from_text(const std::string& text, const std::string& source_name);
+  static ScenarioDocument load(const std::filesystem::path& path);
+
+  /// Sets `dotted_key` ("shell.outer_radius_m", "render.camera.position"), creating tables on
+  /// the way. An array of tables is addressed as "render.objects[2].radius".
+  void set(const std::string& dotted_key, const TomlValue& value);
+  /// Removes a key (or a whole table); no-op if absent.
+  void remove(const std::string& dotted_key);
+  bool has(const std::string& dotted_key) const;
+  /// Number of entries in an array of tables ("render.objects"), 0 if absent.
+  std::size_t array_size(const std::string& dotted_key) const;
+  /// Appends an empty table to the array of tables `dotted_key`; returns its index.
+  std::size_t append_table(const std::string& dotted_key);
+  /// Erases entry `index` of the array of tables `dotted_key`.
+  void erase_table(const std::string& dotted_key, std::size_t index);
+  /// The string at `dotted_key`, or `fallback`.
+  std::string string_or(const std::string& dotted_key, const std::string& fallback) const;
+  /// Names of the sub-tables of table `dotted_key` (e.g. the materials), in document order.
+  std::vector<std::string> table_keys(const std::string& dotted_key) const;
+
+  /// The document as TOML (toml++'s serialisation: comments are not kept).
+  std::string text() const;
+  /// Runs the scenario parser on text().
+  ScenarioCheck check() const;
+  /// Writes text() to `path` atomically after check(); throws thaw::UserError (the check's
+  /// message) and writes nothing when the scenario is not valid.
+  void save(const std::filesystem::path& path) const;
+
+  /// The name the parser reports problems under (the file, or "<built-in default>").
+  const std::string& source_name() const { return m_source_name; }
+  void set_source_name(std::string name) { m_source_name = std::move(name); }
+
+ private:
+  explicit ScenarioDocument(std::nullptr_t);
+  std::unique_ptr<toml::table> m_root;
+  std::string m_source_name;
+};
+
+/// The dotted key named in a parser message ("line 3, key 'shell.inner_radius_m'" -> the key),
+/// or "" when it names none.
+std::string key_of_problem(const std::string& where);
+
+}  // namespace thaw::gui

@@ -1,0 +1,99 @@
+#include "src/gui/shell_step.h"
+
+#include "render/geometry/obj_loader.h"
+#include "src/common/error.h"
+#include "src/mesh/shell_shape.h"
+#include "src/mesh/surface_mesher.h"
+#include "src/pipeline/water_budget.h"
+
+namespace thaw::gui {
+
+sim::ShellGeometry shell_geometry(const sim::Scenario& s) {
+  sim::ShellGeometry g;
+  g.geometry = s.geometry;
+  g.length_m = s.length_m;
+  g.lateral_size_m = s.lateral_size_m;
+  g.planar_symmetric = s.inner_kind == sim::InnerBoundary::symmetry;
+  return g;
+}
+
+sim::InterfaceRecord initial_row(const sim::Scenario& s) {
+  sim::InterfaceRecord row;
+  row.inner_radius_m = s.inner_radius_m;
+  row.outer_radius_m = s.outer_radius_m;
+  const sim::ShellGeometry g = shell_geometry(s);
+  row.liquid_volume_m3 = pipeline::shell_surface_volume_m3(g, s.inner_radius_m);
+  row.ice_volume_m3 = pipeline::shell_surface_volume_m3(g, s.outer_radius_m) - row.liquid_volume_m3;
+  return row;
+}
+
+render::TriangleMesh to_render_mesh(const mesh::TriangleMesh& m) {
+  render::TriangleMesh r;
+  r.positions.reserve(m.vertices.size());
+  for (const auto& v : m.vertices)
+    r.positions.emplace_back(static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]));
+  r.triangles.reserve(m.faces.size());
+  for (const auto& f : m.faces)
+    r.triangles.push_back({static_cast<std::uint32_t>(f[0]), static_cast<std::uint32_t>(f[1]),
+                           static_cast<std::uint32_t>(f[2])});
+  if (m.normals.size() == m.vertices.size()) {
+    for (const auto& n : m.normals)
+      r.normals.emplace_back(static_cast<float>(n[0]), static_cast<float>(n[1]), static_cast<float>(n[2]));
+    r.normal_indices = r.triangles;
+  }
+  return r;
+}
+
+inspect::TriangleMesh to_view_mesh(const render::TriangleMesh& m) {
+  inspect::TriangleMesh v;
+  v.vertices.reserve(m.positions.size());
+  for (const auto& p : m.positions) v.vertices.push_back({p.x, p.y, p.z});
+  v.triangles.reserve(m.triangles.size());
+  for (const auto& t : m.triangles) v.triangles.push_back({t[0], t[1], t[2]});
+  return v;
+}
+
+namespace {
+
+void set_surface(ShellStep& step, bool outer, render::TriangleMesh mesh) {
+  auto shared = std::make_shared<const render::TriangleMesh>(std::move(mesh));
+  (outer ? step.outer_view : step.inner_view) = to_view_mesh(*shared);
+  (outer ? step.outer : step.inner) = std::move(shared);
+}
+
+}  // namespace
+
+ShellStep initial_shell(const pipeline::RunScenario& sc) {
+  ShellStep step;
+  step.row = initial_row(sc.simulation);
+  if (sc.simulation.grid != sim::GridGeometry::none) {
+    step.note = "grid scenario: the shell is meshed from the solver's fields (run the simulation)";
+    return step;
+  }
+  const sim::ShellGeometry g = shell_geometry(sc.simulation);
+  const auto outer_shape = mesh::ShellShape::from_geometry(g, sc.simulation.outer_radius_m);
+  const mesh::MeshOptions options = mesh::resolve_triangle_target(
+      mesh::resolve_scene(sc.mesh, outer_shape.bounding_radius()), outer_shape.area());
+  try {
+    if (sc.simulation.outer_radius_m > sc.simulation.inner_radius_m)
+      set_surface(step, true, to_render_mesh(mesh::mesh_surface(outer_shape, options)));
+    const auto inner_shape = mesh::ShellShape::from_geometry(g, sc.simulation.inner_radius_m);
+    if (sc.simulation.inner_radius_m > options.min_radius_m && step.outer)
+      set_surface(step, false, to_render_mesh(mesh::mesh_surface(inner_shape, options)));
+  } catch (const mesh::MeshError& e) {
+    step.note = std::string("the initial shell could not be meshed: ") + e.what();
+  }
+  return step;
+}
+
+ShellStep read_shell_step(const sim::InterfaceRecord& row,
+                          const std::optional<std::filesystem::path>& outer_obj,
+                          const std::optional<std::filesystem::path>& inner_obj) {
+  ShellStep step;
+  step.row = row;
+  if (outer_obj) set_surface(step, true, render::load_obj(*outer_obj));
+  if (inner_obj) set_surface(step, false, render::load_obj(*inner_obj));
+  return step;
+}
+
+}  // namespace thaw::gui

@@ -1,0 +1,74 @@
+#include "src/gui/shell_view.h"
+
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkLightKit.h>
+#include <vtkNew.h>
+#include <vtkRenderer.h>
+#include <vtkTextActor.h>
+#include <vtkTextProperty.h>
+
+#include <cstdio>
+
+#include "src/inspect/surface_actor.h"
+
+namespace thaw::gui {
+
+ShellView::ShellView(QWidget* parent) : QVTKOpenGLNativeWidget(parent) {
+  vtkNew<vtkGenericOpenGLRenderWindow> window;
+  window->SetAlphaBitPlanes(1);  // depth peeling for the translucent outer surface
+  window->SetMultiSamples(0);
+  setRenderWindow(window);
+  m_renderer = vtkSmartPointer<vtkRenderer>::New();
+  m_renderer->GradientBackgroundOn();
+  m_renderer->SetBackground(0.10, 0.11, 0.14);
+  m_renderer->SetBackground2(0.30, 0.33, 0.40);
+  m_renderer->SetUseDepthPeeling(1);
+  m_renderer->SetMaximumNumberOfPeels(12);
+  m_renderer->SetOcclusionRatio(0.0);
+  m_renderer->AutomaticLightCreationOff();
+  vtkNew<vtkLightKit> lights;
+  lights->AddLightsToRenderer(m_renderer);
+  m_label = vtkSmartPointer<vtkTextActor>::New();
+  m_label->GetTextProperty()->SetFontSize(14);
+  m_label->GetTextProperty()->SetColor(0.95, 0.96, 0.98);
+  m_label->SetDisplayPosition(8, 8);
+  m_renderer->AddActor2D(m_label);
+  window->AddRenderer(m_renderer);
+  setMinimumSize(240, 180);
+}
+
+void ShellView::show_step(const ShellStep& step, bool frame) {
+  if (m_outer) m_renderer->RemoveActor(m_outer);
+  if (m_inner) m_renderer->RemoveActor(m_inner);
+  m_outer = m_inner = nullptr;
+  m_triangles = 0;
+  // Opaque water first, then the translucent ice (depth peeling sorts them anyway).
+  if (!step.inner_view.triangles.empty()) {
+    m_inner = inspect::surface_actor(step.inner_view, inspect::SurfaceRole::inner, false);
+    m_renderer->AddActor(m_inner);
+    m_triangles += static_cast<long>(step.inner_view.triangles.size());
+  }
+  if (!step.outer_view.triangles.empty()) {
+    m_outer = inspect::surface_actor(step.outer_view, inspect::SurfaceRole::outer, true);
+    m_renderer->AddActor(m_outer);
+    m_triangles += static_cast<long>(step.outer_view.triangles.size());
+  }
+  char text[160];
+  std::snprintf(text, sizeof text, "t = %.0f s   water %.1f mm   ice %.1f mm%s", step.row.time_s,
+                1e3 * step.row.inner_radius_m, 1e3 * step.row.outer_radius_m,
+                m_triangles == 0 ? "   (no surface)" : "");
+  m_label->SetInput(text);
+  if (frame) {
+    vtkCamera* camera = m_renderer->GetActiveCamera();
+    camera->SetPosition(0.55, 0.38, 0.75);  // an oblique view from above, y up as in the scene
+    camera->SetFocalPoint(0, 0, 0);
+    camera->SetViewUp(0, 1, 0);
+    camera->SetViewAngle(30);
+    m_renderer->ResetCamera();
+  }
+  renderWindow()->Render();
+}
+
+}  // namespace thaw::gui
