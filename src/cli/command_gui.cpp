@@ -15,11 +15,13 @@ void register_gui(CLI::App& app) {
   };
   auto args = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand(
-      "gui", "The interactive workbench: edit a scenario and its scene, preview the frame, run "
-             "the simulation and scrub through its meshes (Qt + VTK; docs/gui.md).");
+      "gui",
+      "The interactive workbench: edit a scenario and its scene, preview the frame, run "
+      "the simulation and scrub through its meshes (Qt + VTK; docs/gui.md).");
   sub->add_option("scenario", args->scenario, "scenario TOML (default: the built-in default)");
-  sub->add_option("--screenshot", args->screenshot,
-                  "load, lay out, render the preview and the 3D view, save the window as PNG, exit");
+  sub->add_option(
+      "--screenshot", args->screenshot,
+      "load, lay out, render the preview and the 3D view, save the window as PNG, exit");
   sub->callback([args] {
 #ifdef THAW_WITH_GUI
     gui::GuiOptions options;

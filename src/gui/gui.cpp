@@ -1,9 +1,9 @@
 #include "src/gui/gui.h"
 
+#include <QVTKOpenGLNativeWidget.h>
 #include <QApplication>
 #include <QSurfaceFormat>
 #include <QTimer>
-#include <QVTKOpenGLNativeWidget.h>
 #include <cstdlib>
 #include <memory>
 
@@ -15,8 +15,8 @@
 namespace thaw::gui {
 
 int run_gui(const GuiOptions& options) {
-  ScenarioDocument document = options.scenario.empty() ? ScenarioDocument()
-                                                       : ScenarioDocument::load(options.scenario);
+  ScenarioDocument document =
+      options.scenario.empty() ? ScenarioDocument() : ScenarioDocument::load(options.scenario);
   // Qt's xcb platform needs an X display; --screenshot may start a private Xvfb for it (as
   // `thaw inspect --screenshot` does). The offscreen platform needs none.
   const char* platform = std::getenv("QT_QPA_PLATFORM");
@@ -24,7 +24,8 @@ int run_gui(const GuiOptions& options) {
   std::unique_ptr<inspect::DisplayLease> display;
   if (!offscreen && !inspect::display_available()) {
     if (options.screenshot.empty())
-      throw UserError("", "gui", "no X display: run it on a desktop, or with --screenshot under xvfb-run");
+      throw UserError("", "gui",
+                      "no X display: run it on a desktop, or with --screenshot under xvfb-run");
     display = std::make_unique<inspect::DisplayLease>("thaw gui --screenshot");
   }
   QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());

@@ -11,7 +11,9 @@
 namespace thaw::gui {
 namespace {
 
-QString number_text(double v) { return QString::number(v, 'g', 10); }
+QString number_text(double v) {
+  return QString::number(v, 'g', 10);
+}
 
 QString vector_text(const std::array<double, 3>& v) {
   return number_text(v[0]) + ", " + number_text(v[1]) + ", " + number_text(v[2]);
@@ -40,8 +42,8 @@ void KeyForm::add_section(const QString& title) {
   m_layout->addRow(label);
 }
 
-void KeyForm::add_row(const QString& label, const std::string& key, QWidget* editor, ValueGetter get,
-                      std::function<void(const TomlValue&)> show) {
+void KeyForm::add_row(const QString& label, const std::string& key, QWidget* editor,
+                      ValueGetter get, std::function<void(const TomlValue&)> show) {
   auto* box = new QWidget(this);
   auto* v = new QVBoxLayout(box);
   v->setContentsMargins(0, 0, 0, 0);
@@ -99,7 +101,8 @@ void KeyForm::add_choice(const QString& label, const std::string& key, const QSt
   auto* combo = new QComboBox(this);
   combo->addItems(choices);
   add_row(label, key, combo, std::move(get), [combo](const TomlValue& v) {
-    if (const std::string* s = std::get_if<std::string>(&v)) combo->setCurrentText(QString::fromStdString(*s));
+    if (const std::string* s = std::get_if<std::string>(&v))
+      combo->setCurrentText(QString::fromStdString(*s));
   });
   connect(combo, &QComboBox::currentTextChanged, this, [this, key](const QString& text) {
     if (!m_refreshing) emit edited(key, TomlValue{text.toStdString()});
@@ -116,7 +119,8 @@ void KeyForm::add_flag(const QString& label, const std::string& key, ValueGetter
   });
 }
 
-void KeyForm::add_vector(const QString& label, const std::string& key, ValueGetter get, bool colour) {
+void KeyForm::add_vector(const QString& label, const std::string& key, ValueGetter get,
+                         bool colour) {
   auto* row = new QWidget(this);
   auto* h = new QHBoxLayout(row);
   h->setContentsMargins(0, 0, 0, 0);

@@ -27,10 +27,12 @@ class KeyForm : public QWidget {
   void add_section(const QString& title);
   void add_number(const QString& label, const std::string& key, ValueGetter get);
   void add_integer(const QString& label, const std::string& key, ValueGetter get);
-  void add_choice(const QString& label, const std::string& key, const QStringList& choices, ValueGetter get);
+  void add_choice(const QString& label, const std::string& key, const QStringList& choices,
+                  ValueGetter get);
   void add_flag(const QString& label, const std::string& key, ValueGetter get);
   /// Three numbers "x, y, z"; with `colour` a button opens a colour picker (linear RGB 0..1).
-  void add_vector(const QString& label, const std::string& key, ValueGetter get, bool colour = false);
+  void add_vector(const QString& label, const std::string& key, ValueGetter get,
+                  bool colour = false);
 
   /// Shows the scenario's values in every field (not emitting `edited`).
   void refresh(const pipeline::RunScenario& scenario);

@@ -30,8 +30,12 @@ QWidget* scrolled(QWidget* inner) {
   return area;
 }
 
-TomlValue d(double v) { return TomlValue{v}; }
-TomlValue i(long long v) { return TomlValue{v}; }
+TomlValue d(double v) {
+  return TomlValue{v};
+}
+TomlValue i(long long v) {
+  return TomlValue{v};
+}
 
 }  // namespace
 
@@ -114,18 +118,24 @@ MainWindow::MainWindow(ScenarioDocument document, QWidget* parent)
   recheck();
 }
 
-MainWindow::~MainWindow() = default;
+// The worker thread is stopped (and joined) before the widgets its signals reach go away.
+MainWindow::~MainWindow() {
+  delete m_renderer;
+}
 
 QWidget* MainWindow::make_render_tab() {
   auto* page = new QWidget;
   auto* v = new QVBoxLayout(page);
   auto* form = new KeyForm;
   form->add_section("Quality of the film's frames ([render.image])");
-  form->add_integer("Width [px]", "render.image.width", [](const RunScenario& s) { return i(s.scene.image.width); });
-  form->add_integer("Height [px]", "render.image.height", [](const RunScenario& s) { return i(s.scene.image.height); });
+  form->add_integer("Width [px]", "render.image.width",
+                    [](const RunScenario& s) { return i(s.scene.image.width); });
+  form->add_integer("Height [px]", "render.image.height",
+                    [](const RunScenario& s) { return i(s.scene.image.height); });
   form->add_integer("Samples per pixel", "render.image.samples_per_pixel",
                     [](const RunScenario& s) { return i(s.scene.image.samples_per_pixel); });
-  form->add_number("Exposure [stops]", "render.image.exposure", [](const RunScenario& s) { return d(s.scene.image.exposure); });
+  form->add_number("Exposure [stops]", "render.image.exposure",
+                   [](const RunScenario& s) { return d(s.scene.image.exposure); });
   m_forms.push_back(form);
   v->addWidget(form);
   auto* row = new QHBoxLayout;
@@ -159,44 +169,104 @@ QWidget* MainWindow::make_scenario_tab() {
   auto* form = new KeyForm;
   form->add_section("Geometry and sizes");
   form->add_choice("Geometry", "simulation.geometry", {"sphere", "cylinder", "planar"},
-                   [](const RunScenario& s) { return TomlValue{std::string(sim::to_string(s.simulation.geometry))}; });
-  form->add_number("Inner radius [m]", "shell.inner_radius_m", [](const RunScenario& s) { return d(s.simulation.inner_radius_m); });
-  form->add_number("Outer radius [m]", "shell.outer_radius_m", [](const RunScenario& s) { return d(s.simulation.outer_radius_m); });
-  form->add_number("Cylinder length [m]", "shell.length_m", [](const RunScenario& s) { return d(s.simulation.length_m); });
-  form->add_number("Slab lateral size [m]", "shell.lateral_size_m", [](const RunScenario& s) { return d(s.simulation.lateral_size_m); });
+                   [](const RunScenario& s) {
+                     return TomlValue{std::string(sim::to_string(s.simulation.geometry))};
+                   });
+  form->add_number("Inner radius [m]", "shell.inner_radius_m",
+                   [](const RunScenario& s) { return d(s.simulation.inner_radius_m); });
+  form->add_number("Outer radius [m]", "shell.outer_radius_m",
+                   [](const RunScenario& s) { return d(s.simulation.outer_radius_m); });
+  form->add_number("Cylinder length [m]", "shell.length_m",
+                   [](const RunScenario& s) { return d(s.simulation.length_m); });
+  form->add_number("Slab lateral size [m]", "shell.lateral_size_m",
+                   [](const RunScenario& s) { return d(s.simulation.lateral_size_m); });
   form->add_section("Temperatures");
-  form->add_number("Water at t = 0 [C]", "water.initial_temperature_c",
-                   [](const RunScenario& s) { return d(s.simulation.water_initial_temperature_c); });
+  form->add_number("Water at t = 0 [C]", "water.initial_temperature_c", [](const RunScenario& s) {
+    return d(s.simulation.water_initial_temperature_c);
+  });
   form->add_number("Ice at t = 0 [C]", "ice.initial_temperature_c",
                    [](const RunScenario& s) { return d(s.simulation.ice_initial_temperature_c); });
   form->add_section("Outer boundary");
-  form->add_choice("Kind", "outer_boundary.kind", {"temperature", "convective", "flux", "insulated"},
-                   [](const RunScenario& s) { return TomlValue{std::string(sim::to_string(s.simulation.outer_kind))}; });
-  form->add_number("Temperature [C]", "outer_boundary.temperature_c", [](const RunScenario& s) { return d(s.simulation.outer_temperature_c); });
-  form->add_number("h [W/(m2 K)]", "outer_boundary.heat_transfer_coefficient_w_m2k",
-                   [](const RunScenario& s) { return d(s.simulation.heat_transfer_coefficient_w_m2k); });
-  form->add_number("Flux [W/m2]", "outer_boundary.flux_w_m2", [](const RunScenario& s) { return d(s.simulation.flux_w_m2); });
+  form->add_choice("Kind", "outer_boundary.kind",
+                   {"temperature", "convective", "flux", "insulated"}, [](const RunScenario& s) {
+                     return TomlValue{std::string(sim::to_string(s.simulation.outer_kind))};
+                   });
+  form->add_number("Temperature [C]", "outer_boundary.temperature_c",
+                   [](const RunScenario& s) { return d(s.simulation.outer_temperature_c); });
+  form->add_number(
+      "h [W/(m2 K)]", "outer_boundary.heat_transfer_coefficient_w_m2k",
+      [](const RunScenario& s) { return d(s.simulation.heat_transfer_coefficient_w_m2k); });
+  form->add_number("Flux [W/m2]", "outer_boundary.flux_w_m2",
+                   [](const RunScenario& s) { return d(s.simulation.flux_w_m2); });
   form->add_section("Materials");
-  const auto& M = [](const RunScenario& s) -> const sim::Materials& { return s.simulation.materials; };
-  form->add_number("Ice conductivity [W/(m K)]", "materials.ice_conductivity_w_mk", [M](const RunScenario& s) { return d(M(s).ice_conductivity_w_mk); });
-  form->add_number("Ice density [kg/m3]", "materials.ice_density_kg_m3", [M](const RunScenario& s) { return d(M(s).ice_density_kg_m3); });
-  form->add_number("Ice specific heat [J/(kg K)]", "materials.ice_specific_heat_j_kgk", [M](const RunScenario& s) { return d(M(s).ice_specific_heat_j_kgk); });
-  form->add_number("Water conductivity [W/(m K)]", "materials.water_conductivity_w_mk", [M](const RunScenario& s) { return d(M(s).water_conductivity_w_mk); });
-  form->add_number("Water density [kg/m3]", "materials.water_density_kg_m3", [M](const RunScenario& s) { return d(M(s).water_density_kg_m3); });
-  form->add_number("Water specific heat [J/(kg K)]", "materials.water_specific_heat_j_kgk", [M](const RunScenario& s) { return d(M(s).water_specific_heat_j_kgk); });
-  form->add_number("Latent heat [J/kg]", "materials.latent_heat_j_kg", [M](const RunScenario& s) { return d(M(s).latent_heat_j_kg); });
-  form->add_number("Melting point [C]", "materials.melting_point_c", [M](const RunScenario& s) { return d(M(s).melting_point_c); });
+  const auto& M = [](const RunScenario& s) -> const sim::Materials& {
+    return s.simulation.materials;
+  };
+  form->add_number("Ice conductivity [W/(m K)]", "materials.ice_conductivity_w_mk",
+                   [M](const RunScenario& s) { return d(M(s).ice_conductivity_w_mk); });
+  form->add_number("Ice density [kg/m3]", "materials.ice_density_kg_m3",
+                   [M](const RunScenario& s) { return d(M(s).ice_density_kg_m3); });
+  form->add_number("Ice specific heat [J/(kg K)]", "materials.ice_specific_heat_j_kgk",
+                   [M](const RunScenario& s) { return d(M(s).ice_specific_heat_j_kgk); });
+  form->add_number("Water conductivity [W/(m K)]", "materials.water_conductivity_w_mk",
+                   [M](const RunScenario& s) { return d(M(s).water_conductivity_w_mk); });
+  form->add_number("Water density [kg/m3]", "materials.water_density_kg_m3",
+                   [M](const RunScenario& s) { return d(M(s).water_density_kg_m3); });
+  form->add_number("Water specific heat [J/(kg K)]", "materials.water_specific_heat_j_kgk",
+                   [M](const RunScenario& s) { return d(M(s).water_specific_heat_j_kgk); });
+  form->add_number("Latent heat [J/kg]", "materials.latent_heat_j_kg",
+                   [M](const RunScenario& s) { return d(M(s).latent_heat_j_kg); });
+  form->add_number("Melting point [C]", "materials.melting_point_c",
+                   [M](const RunScenario& s) { return d(M(s).melting_point_c); });
   form->add_section("Duration and frames");
-  form->add_number("Duration [s]", "simulation.duration_s", [](const RunScenario& s) { return d(s.simulation.duration_s); });
-  form->add_number("Output interval [s]", "simulation.output_interval_s", [](const RunScenario& s) { return d(s.simulation.output_interval_s); });
-  form->add_integer("Film frames", "film.frames", [](const RunScenario& s) { return i(s.film.frames); });
-  form->add_number("Frames per second", "film.fps", [](const RunScenario& s) { return d(s.film.fps); });
+  form->add_number("Duration [s]", "simulation.duration_s",
+                   [](const RunScenario& s) { return d(s.simulation.duration_s); });
+  form->add_number("Output interval [s]", "simulation.output_interval_s",
+                   [](const RunScenario& s) { return d(s.simulation.output_interval_s); });
+  form->add_integer("Film frames", "film.frames",
+                    [](const RunScenario& s) { return i(s.film.frames); });
+  form->add_number("Frames per second", "film.fps",
+                   [](const RunScenario& s) { return d(s.film.fps); });
   m_forms.push_back(form);
   return form;
 }
 
 bool MainWindow::apply_edit(const std::string& key, const TomlValue& value) {
   m_document.set(key, value);
+  recheck();
+  return m_check.ok();
+}
+
+bool MainWindow::add_object(const std::string& shape, const std::string& mesh_file) {
+  std::vector<std::string> materials = m_document.table_keys("render.materials");
+  if (materials.empty()) {
+    m_document.set("render.materials.grey.kind", std::string("matte"));
+    m_document.set("render.materials.grey.color", std::array<double, 3>{0.7, 0.7, 0.7});
+    materials.push_back("grey");
+  }
+  const std::size_t k = m_document.append_table("render.objects");
+  const std::string key = "render.objects[" + std::to_string(k) + "].";
+  m_document.set(key + "shape", shape);
+  // Placed beside the default shell (3 cm radius at the origin, resting on y = 0).
+  if (shape == "sphere") {
+    m_document.set(key + "center", std::array<double, 3>{0.07, 0.015, 0.0});
+    m_document.set(key + "radius", 0.015);
+  } else if (shape == "box") {
+    m_document.set(key + "min", std::array<double, 3>{-0.09, 0.0, -0.03});
+    m_document.set(key + "max", std::array<double, 3>{-0.06, 0.03, 0.0});
+  } else if (shape == "plane") {
+    m_document.set(key + "point", std::array<double, 3>{0.0, 0.0, -0.2});
+    m_document.set(key + "normal", std::array<double, 3>{0.0, 0.0, 1.0});
+  } else if (shape == "mesh") {
+    m_document.set(key + "file", mesh_file);
+  }
+  m_document.set(key + "material", materials.front());
+  recheck();
+  return m_check.ok();
+}
+
+bool MainWindow::remove_object(std::size_t index) {
+  m_document.erase_table("render.objects", index);
   recheck();
   return m_check.ok();
 }
@@ -220,7 +290,9 @@ void MainWindow::recheck() {
   update_title();
 }
 
-bool MainWindow::can_save() const { return m_check.ok(); }
+bool MainWindow::can_save() const {
+  return m_check.ok();
+}
 
 QString MainWindow::field_problem(const std::string& key) const {
   for (KeyForm* form : m_forms)
@@ -267,7 +339,8 @@ void MainWindow::request_preview(bool full_quality) {
   } else {
     // The film's aspect ratio at the preview's width.
     r.width = m_preview_width;
-    r.height = std::max(1, static_cast<int>(std::lround(double(m_preview_width) * image.height / image.width)));
+    r.height = std::max(
+        1, static_cast<int>(std::lround(double(m_preview_width) * image.height / image.width)));
     m_preview_height = r.height;
   }
   r.samples = image.samples_per_pixel;
@@ -294,9 +367,8 @@ void MainWindow::on_image(const QImage& image, int pass, int passes, double seco
 void MainWindow::show_image() {
   if (m_image.isNull()) return;
   const QSize room = m_preview->size() - QSize(4, 4);
-  m_preview->setPixmap(QPixmap::fromImage(m_image.scaled(room, Qt::KeepAspectRatio,
-                                                         m_pass == 0 ? Qt::FastTransformation
-                                                                     : Qt::SmoothTransformation)));
+  m_preview->setPixmap(QPixmap::fromImage(m_image.scaled(
+      room, Qt::KeepAspectRatio, m_pass == 0 ? Qt::FastTransformation : Qt::SmoothTransformation)));
 }
 
 void MainWindow::resizeEvent(QResizeEvent* event) {
@@ -312,7 +384,8 @@ void MainWindow::on_shell_ready() {
 }
 
 void MainWindow::update_title() {
-  const QString name = m_path.empty() ? "built-in default" : QString::fromStdString(m_path.filename().string());
+  const QString name =
+      m_path.empty() ? "built-in default" : QString::fromStdString(m_path.filename().string());
   setWindowTitle("thaw gui - " + name + (m_check.ok() ? "" : " (has a problem)"));
 }
 

@@ -31,6 +31,12 @@ class MainWindow : public QMainWindow {
 
   /// Sets one key (as a field does) and re-checks; returns whether the scenario is valid now.
   bool apply_edit(const std::string& key, const TomlValue& value);
+  /// Adds an opaque object of `shape` (sphere, box, plane; mesh with `mesh_file`) beside the
+  /// shell, with the first material of the scene (a grey matte one is added if there is none);
+  /// returns whether the scenario is valid afterwards.
+  bool add_object(const std::string& shape, const std::string& mesh_file = "");
+  /// Removes [[render.objects]] entry `index`.
+  bool remove_object(std::size_t index);
   /// Opens a scenario file; throws thaw::UserError if it is not TOML.
   void open_file(const std::filesystem::path& path);
   /// Saves to `path`; false (and the message shown) when the scenario has a problem.

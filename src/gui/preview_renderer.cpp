@@ -84,7 +84,8 @@ void PreviewRenderer::loop() {
   }
 }
 
-void PreviewRenderer::serve(const PreviewRequest& request, std::chrono::steady_clock::time_point start) {
+void PreviewRenderer::serve(const PreviewRequest& request,
+                            std::chrono::steady_clock::time_point start) {
   std::shared_ptr<const ShellStep> step = request.step;
   if (!step) {
     // The initial shell depends on the simulation's and the mesher's keys only.
@@ -114,9 +115,10 @@ void PreviewRenderer::serve(const PreviewRequest& request, std::chrono::steady_c
     options.cancel = &m_cancel;
     const render::RenderResult result = render::render(scene, options);
     if (m_cancel) return;  // incomplete: a newer request replaces it
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    emit imageReady(to_qimage(result.image, request.scenario.scene.image.exposure), static_cast<int>(i),
-                    static_cast<int>(passes.size()), seconds);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    emit imageReady(to_qimage(result.image, request.scenario.scene.image.exposure),
+                    static_cast<int>(i), static_cast<int>(passes.size()), seconds);
   }
 }
 

@@ -23,9 +23,9 @@ render::SceneDescription preview_scene(const pipeline::RunScenario& sc, const Sh
   pipeline::FrameShell shell{step.outer, step.inner, step.row.outer_radius_m};
   // The water that left the shell by this step, measured from the run's first row.
   const sim::InterfaceRecord first = camera_rows.empty() ? step.row : camera_rows.front();
-  const auto water = pipeline::water_budget({first, step.row}, geometry,
-                                            sc.simulation.materials.ice_density_kg_m3,
-                                            sc.simulation.materials.water_density_kg_m3);
+  const auto water =
+      pipeline::water_budget({first, step.row}, geometry, sc.simulation.materials.ice_density_kg_m3,
+                             sc.simulation.materials.water_density_kg_m3);
   render::SceneDescription desc = pipeline::frame_scene(sc, geometry, shell, water.back());
   const double aspect = static_cast<double>(pass.width) / pass.height;
   if (!sc.camera_set)
@@ -36,7 +36,8 @@ render::SceneDescription preview_scene(const pipeline::RunScenario& sc, const Sh
   desc.image.width = pass.width;
   desc.image.height = pass.height;
   desc.image.adaptive = pass.adaptive;
-  desc.image.samples_per_pixel = pass.adaptive ? std::max(pass.samples, desc.image.min_samples) : pass.samples;
+  desc.image.samples_per_pixel =
+      pass.adaptive ? std::max(pass.samples, desc.image.min_samples) : pass.samples;
   if (!pass.caustics) desc.caustics.enabled = false;
   return desc;
 }

@@ -1,8 +1,8 @@
 #include "src/gui/scenario_document.h"
 
+#include <toml++/toml.h>
 #include <regex>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "src/common/atomic_file.h"
 #include "src/common/check.h"
@@ -60,7 +60,8 @@ toml::array* table_array(toml::table& root, const std::string& dotted, bool crea
   toml::table* parent = parent_table(root, parts, create);
   if (!parent) return nullptr;
   toml::array* a = parent->get_as<toml::array>(parts.back().name);
-  if (!a && create) a = parent->insert_or_assign(parts.back().name, toml::array{}).first->second.as_array();
+  if (!a && create)
+    a = parent->insert_or_assign(parts.back().name, toml::array{}).first->second.as_array();
   return a;
 }
 
@@ -84,7 +85,8 @@ ScenarioDocument& ScenarioDocument::operator=(const ScenarioDocument& o) {
 
 ScenarioDocument::~ScenarioDocument() = default;
 
-ScenarioDocument ScenarioDocument::from_text(const std::string& text, const std::string& source_name) {
+ScenarioDocument ScenarioDocument::from_text(const std::string& text,
+                                             const std::string& source_name) {
   // TomlTable::parse_string reports malformed TOML as thaw's one-line UserError.
   (void)TomlTable::parse_string(text, source_name);
   ScenarioDocument d(std::nullptr_t{});
@@ -149,7 +151,8 @@ void ScenarioDocument::erase_table(const std::string& dotted_key, std::size_t in
   if (a && a->empty()) remove(dotted_key);
 }
 
-std::string ScenarioDocument::string_or(const std::string& dotted_key, const std::string& fallback) const {
+std::string ScenarioDocument::string_or(const std::string& dotted_key,
+                                        const std::string& fallback) const {
   const auto parts = split_key(dotted_key);
   const toml::table* parent = parent_table(*m_root, parts, false);
   if (!parent) return fallback;

@@ -1,9 +1,9 @@
 #include "src/gui/screenshot.h"
 
+#include <vtkRenderWindow.h>
 #include <QBuffer>
 #include <QElapsedTimer>
 #include <QTimer>
-#include <vtkRenderWindow.h>
 #include <memory>
 
 #include "src/common/atomic_file.h"
@@ -20,7 +20,8 @@ void take_screenshot_when_ready(MainWindow& window, const std::filesystem::path&
   auto* poll = new QTimer(&window);
   poll->setInterval(50);
   QObject::connect(poll, &QTimer::timeout, &window, [&window, png, done, clock, poll, timeout_s] {
-    const bool preview_done = window.preview_pass() >= 0 && window.preview_pass() + 1 == window.preview_passes() &&
+    const bool preview_done = window.preview_pass() >= 0 &&
+                              window.preview_pass() + 1 == window.preview_passes() &&
                               !window.renderer().busy();
     const bool invalid = !window.check().ok();
     const bool view_done = window.renderer().initial_shell() != nullptr || invalid;
@@ -39,7 +40,8 @@ void take_screenshot_when_ready(MainWindow& window, const std::filesystem::path&
     buffer.open(QIODevice::WriteOnly);
     if (!shot.save(&buffer, "PNG")) return done("the window could not be encoded as PNG");
     try {
-      write_file_atomic(png, std::string_view(bytes.constData(), static_cast<std::size_t>(bytes.size())));
+      write_file_atomic(
+          png, std::string_view(bytes.constData(), static_cast<std::size_t>(bytes.size())));
     } catch (const UserError& e) {
       return done(e.problem());
     }

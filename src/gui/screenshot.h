@@ -13,6 +13,7 @@ class MainWindow;
 /// Waits (on the event loop, never blocking it) for the preview and the 3D view, saves the window
 /// to `png` and calls `done("")`, or `done(problem)` when that fails or takes over `timeout_s`.
 void take_screenshot_when_ready(MainWindow& window, const std::filesystem::path& png,
-                                std::function<void(const std::string&)> done, double timeout_s = 300);
+                                std::function<void(const std::string&)> done,
+                                double timeout_s = 300);
 
 }  // namespace thaw::gui

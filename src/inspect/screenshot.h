@@ -13,7 +13,6 @@
 
 namespace thaw::inspect {
 
-
 struct SceneSurface {
   TriangleMesh mesh;
   SurfaceRole role = SurfaceRole::single;

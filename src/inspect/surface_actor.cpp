@@ -18,9 +18,12 @@ struct Look {
 
 Look look_of(SurfaceRole role) {
   switch (role) {
-    case SurfaceRole::inner: return {{0.16, 0.42, 0.80}, {0.06, 0.18, 0.40}, 1.0};
-    case SurfaceRole::outer: return {{0.80, 0.92, 1.00}, {0.45, 0.62, 0.78}, 0.28};
-    case SurfaceRole::single: break;
+    case SurfaceRole::inner:
+      return {{0.16, 0.42, 0.80}, {0.06, 0.18, 0.40}, 1.0};
+    case SurfaceRole::outer:
+      return {{0.80, 0.92, 1.00}, {0.45, 0.62, 0.78}, 0.28};
+    case SurfaceRole::single:
+      break;
   }
   return {{0.82, 0.84, 0.86}, {0.20, 0.22, 0.26}, 1.0};
 }

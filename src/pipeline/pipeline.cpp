@@ -78,8 +78,12 @@ render::SceneDescription frame_scene(const RunScenario& sc, const fs::path& mesh
                                      const sim::ShellGeometry& geometry,
                                      const mesh::StepRecord& step, const WaterBudget& water) {
   FrameShell shell;
-  if (step.outer.file) shell.outer = std::make_shared<render::TriangleMesh>(render::load_obj(mesh_dir / *step.outer.file));
-  if (step.inner.file) shell.inner = std::make_shared<render::TriangleMesh>(render::load_obj(mesh_dir / *step.inner.file));
+  if (step.outer.file)
+    shell.outer =
+        std::make_shared<render::TriangleMesh>(render::load_obj(mesh_dir / *step.outer.file));
+  if (step.inner.file)
+    shell.inner =
+        std::make_shared<render::TriangleMesh>(render::load_obj(mesh_dir / *step.inner.file));
   shell.outer_radius_m = step.outer_radius_m;
   return pipeline::frame_scene(sc, geometry, shell, water);
 }

@@ -1,0 +1,194 @@
+// The workbench window (QTest, under $DISPLAY or a private Xvfb): editing through the fields,
+// saving and reloading; a bad value's message and blocked saving; an added object changing the
+// preview; the screenshot of the default with its panels and a non-empty render.
+#include <QVTKOpenGLNativeWidget.h>
+#include <QApplication>
+#include <QLabel>
+#include <QLineEdit>
+#include <QSignalSpy>
+#include <QSurfaceFormat>
+#include <QTabWidget>
+#include <QtTest>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+#include "src/gui/main_window.h"
+#include "src/gui/screenshot.h"
+#include "src/gui/shell_view.h"
+#include "src/inspect/virtual_display.h"
+
+namespace fs = std::filesystem;
+using thaw::gui::MainWindow;
+using thaw::gui::ScenarioDocument;
+
+namespace {
+
+fs::path temp_dir() {
+  const fs::path dir = fs::temp_directory_path() /
+                       ("thaw_gui_window_" + std::to_string(QCoreApplication::applicationPid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+/// Types `text` into the line edit of `key` as a user would, then leaves the field.
+void type_into(MainWindow& w, const std::string& key, const QString& text) {
+  auto* edit = w.findChild<QLineEdit*>(QString::fromStdString(key));
+  QVERIFY2(edit, key.c_str());
+  edit->setFocus();
+  edit->selectAll();
+  QTest::keyClicks(edit, text);
+  QTest::keyClick(edit, Qt::Key_Return);
+}
+
+/// Mean absolute difference of two images of the same size, per channel [0, 255].
+double mean_difference(const QImage& a, const QImage& b) {
+  if (a.size() != b.size()) return 255;
+  double sum = 0;
+  for (int y = 0; y < a.height(); ++y)
+    for (int x = 0; x < a.width(); ++x) {
+      const QRgb p = a.pixel(x, y), q = b.pixel(x, y);
+      sum += std::abs(qRed(p) - qRed(q)) + std::abs(qGreen(p) - qGreen(q)) +
+             std::abs(qBlue(p) - qBlue(q));
+    }
+  return sum / (3.0 * a.width() * a.height());
+}
+
+/// Standard deviation of the grey level over `r` of `image`.
+double grey_spread(const QImage& image, const QRect& r) {
+  double s = 0, s2 = 0;
+  long n = 0;
+  for (int y = r.top(); y <= r.bottom(); ++y)
+    for (int x = r.left(); x <= r.right(); ++x) {
+      const double g = qGray(image.pixel(x, y));
+      s += g, s2 += g * g, ++n;
+    }
+  const double mean = s / n;
+  return std::sqrt(std::max(0.0, s2 / n - mean * mean));
+}
+
+/// Waits for the preview's full-size pass (pass 1) of the current scenario.
+bool wait_for_full_size(MainWindow& w, int timeout_ms = 60000) {
+  QElapsedTimer t;
+  t.start();
+  while (t.elapsed() < timeout_ms) {
+    QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
+    if (w.preview_pass() >= 1) return true;
+    QTest::qWait(10);
+  }
+  return false;
+}
+
+}  // namespace
+
+class TestMainWindow : public QObject {
+  Q_OBJECT
+ private slots:
+  void editSaveReloadCompare() {
+    MainWindow w{ScenarioDocument()};
+    w.show();
+    type_into(w, "shell.outer_radius_m", "0.032");
+    type_into(w, "render.image.samples_per_pixel", "8");
+    QVERIFY2(w.check().ok(), w.check().message.c_str());
+    const fs::path file = temp_dir() / "edited.toml";
+    QVERIFY(w.save_file(file));
+    MainWindow back{ScenarioDocument::load(file)};
+    QVERIFY2(back.check().ok(), back.check().message.c_str());
+    const auto& a = *w.check().scenario;
+    const auto& b = *back.check().scenario;
+    QCOMPARE(b.simulation.outer_radius_m, 0.032);
+    QCOMPARE(b.scene.image.samples_per_pixel, 8);
+    QCOMPARE(a.simulation_text, b.simulation_text);
+    QCOMPARE(a.render_text, b.render_text);
+    QCOMPARE(a.film_text, b.film_text);
+    QCOMPARE(a.mesh_text, b.mesh_text);
+    // The reloaded window's field shows the saved value.
+    auto* edit = back.findChild<QLineEdit*>("shell.outer_radius_m");
+    QVERIFY(edit);
+    QCOMPARE(edit->text(), QString("0.032"));
+  }
+
+  void badValueShowsItsMessageAndBlocksSaving() {
+    MainWindow w{ScenarioDocument()};
+    w.show();
+    type_into(w, "shell.inner_radius_m", "0.04");  // outside the 0.03 m outer radius
+    QVERIFY(!w.check().ok());
+    QVERIFY(!w.can_save());
+    const QString shown = w.field_problem(w.check().key);
+    QVERIFY2(!shown.isEmpty(), w.check().key.c_str());
+    QCOMPARE(shown.toStdString(), w.check().message);
+    const fs::path file = temp_dir() / "refused.toml";
+    fs::remove(file);
+    QVERIFY(!w.save_file(file));
+    QVERIFY(!fs::exists(file));
+    // Fixing the value clears the message and allows saving again.
+    type_into(w, "shell.inner_radius_m", "0.02");
+    QVERIFY(w.check().ok());
+    QVERIFY(w.field_problem("shell.inner_radius_m").isEmpty());
+    QVERIFY(w.can_save());
+  }
+
+  void addedObjectChangesThePreview() {
+    MainWindow w{ScenarioDocument()};
+    w.show();
+    QVERIFY(wait_for_full_size(w));
+    const QImage before = w.preview_image();
+    // A large matte sphere beside the shell, as the Scene tab adds one.
+    QVERIFY(w.add_object("sphere"));
+    const std::size_t k = w.document().array_size("render.objects") - 1;
+    const std::string key = "render.objects[" + std::to_string(k) + "]";
+    QVERIFY(w.apply_edit(key + ".center", std::array<double, 3>{0.0, 0.02, 0.0}));
+    QVERIFY(w.apply_edit(key + ".radius", 0.05));
+    QVERIFY(wait_for_full_size(w));
+    const QImage after = w.preview_image();
+    QCOMPARE(after.size(), before.size());
+    // A sphere filling much of the frame changes far more than noise would (the passes are
+    // deterministic: the same scene renders the same image).
+    QVERIFY2(mean_difference(before, after) > 5.0,
+             qPrintable(QString::number(mean_difference(before, after))));
+  }
+
+  void screenshotOfTheDefaultHasThePanelsAndARender() {
+    MainWindow w{ScenarioDocument()};
+    w.show();
+    const fs::path png = temp_dir() / "default.png";
+    fs::remove(png);
+    std::string problem = "not finished";
+    thaw::gui::take_screenshot_when_ready(w, png, [&](const std::string& p) { problem = p; });
+    QTRY_VERIFY_WITH_TIMEOUT(problem != "not finished", 300000);
+    QCOMPARE(QString::fromStdString(problem), QString());
+    QImage shot(QString::fromStdString(png.string()));
+    QVERIFY(!shot.isNull());
+    QCOMPARE(shot.size(), w.size());
+    // The panels: the tabs are laid out, and the 3D view holds the shell.
+    auto* tabs = w.findChild<QTabWidget*>("tabs");
+    QVERIFY(tabs && tabs->count() >= 2 && tabs->isVisible());
+    QVERIFY(w.shell_view().triangles() > 100);
+    // The render: the preview label's area of the screenshot is not uniform.
+    auto* preview = w.findChild<QLabel*>("preview");
+    const QRect area(preview->mapTo(&w, QPoint(0, 0)), preview->size());
+    QVERIFY2(grey_spread(shot, area) > 10, qPrintable(QString::number(grey_spread(shot, area))));
+    // The 3D view: water blue (blue clearly above red) appears in its area.
+    auto* view = w.findChild<QWidget*>("shell_view");
+    const QRect varea(view->mapTo(&w, QPoint(0, 0)), view->size());
+    long blue = 0;
+    for (int y = varea.top(); y <= varea.bottom(); y += 2)
+      for (int x = varea.left(); x <= varea.right(); x += 2) {
+        const QRgb p = shot.pixel(x, y);
+        blue += qBlue(p) > qRed(p) + 60;
+      }
+    QVERIFY2(blue > 500, qPrintable(QString::number(blue)));
+  }
+};
+
+int main(int argc, char** argv) {
+  std::unique_ptr<thaw::inspect::DisplayLease> display;
+  if (!thaw::inspect::display_available())
+    display = std::make_unique<thaw::inspect::DisplayLease>("test_gui_window");
+  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
+  QApplication app(argc, argv);
+  TestMainWindow test;
+  return QTest::qExec(&test, argc, argv);
+}
+
+#include "test_main_window.moc"
