@@ -18,6 +18,7 @@
 //   diffuse()          adds the caustic irradiance E of the frame's photon map: albedo kd E
 // The tracer (Derived) supplies what depends on the radiance type; see the "Derived provides"
 // list below. Knows nothing about pixels, tiles, films or files.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -91,12 +92,24 @@ class WhittedShading {
       : m_scene(scene),
         m_caustics(caustics && !caustics->empty() ? caustics : nullptr),
         m_max_depth(scene.settings().max_depth),
-        m_min_weight(static_cast<float>(scene.settings().min_weight)) {}
+        m_min_weight(static_cast<float>(scene.settings().min_weight)),
+        m_pixel_spread(texture_cone_spread(scene)) {}
+
+  /// Spread angle [rad] of the ray cone of one camera sample (0: textures point-sampled): a
+  /// pixel's angle over sqrt(samples_per_pixel), at least 1/8 of it (pbrt's ray-differential
+  /// scale), so the texture's own average and the film's samples share the pixel's footprint.
+  static float texture_cone_spread(const Scene& scene) {
+    const ImageSettings& st = scene.settings();
+    if (!st.texture_filter || st.samples_per_pixel <= 1) return 0.0f;
+    const float scale = std::max(0.125f, 1.0f / std::sqrt(float(st.samples_per_pixel)));
+    return scene.camera().pixel_angle() * scale;
+  }
 
   /// The camera sample about to be traced (its pixel's sampler and index): the light samples'
   /// points come from it. Null: pixel (0, 0), sample 0 (single rays traced outside a render).
   void set_camera_sample(const CameraSampleContext* camera) {
     m_camera_sample = camera ? *camera : CameraSampleContext{};
+    m_cone = RayCone{0.0f, m_pixel_spread};
   }
 
   /// Adds the rays traced and medium mismatches met so far to `stats`.
@@ -135,6 +148,9 @@ class WhittedShading {
     }
     const SurfaceInteraction si = m_scene.interaction(ray, hit);
     const SceneObject& obj = m_scene.objects()[si.object];
+    // The ray cone's width at this hit; the rays leaving it start from here (restored below).
+    const RayCone cone_at_origin = m_cone;
+    m_cone.width += m_cone.spread * hit.t;
     Radiance l{};
     if (obj.dielectric) {
       l = dielectric(ray, si, obj, depth, b, medium, path);
@@ -156,6 +172,7 @@ class WhittedShading {
     if constexpr (Derived::kAbsorption) {
       if (absorbs) l *= segment;
     }
+    m_cone = cone_at_origin;
     return l;
   }
 
@@ -203,6 +220,7 @@ class WhittedShading {
     if (!is_black(f.r) && self().weight(br, path) >= m_min_weight) {
       const Vec3 dir = reflection_direction(d, fi.ns, fi.ng);
       const Ray next{offset_ray_origin(si.p, si.p_error, fi.ng, dir), dir};
+      const ConeBend bend(*this, 1.0f, 2.0f * normal_spread(si, d, cos_i));
       result += trace(next, depth + 1, br, fi.from, path) * f.r;
     }
     const Reflectance t = Reflectance(1.0f) - f.r;
@@ -218,6 +236,11 @@ class WhittedShading {
       Vec3 dir;
       if (refraction_direction(d, fi.ns, fi.ng, f.eta, dir)) {
         const Ray next{offset_ray_origin(si.p, si.p_error, fi.ng, dir), dir};
+        // Snell's law differentiated: d(theta_t) / d(theta_i) = cos_i / (eta cos_t); a tilt of
+        // the normal by delta turns the refracted ray by delta (1 - cos_i / (eta cos_t)) towards
+        // it: a convex surface into a denser medium (ratio < 1) focuses.
+        const float ratio = std::abs(cos_i) / (f.eta * std::max(std::abs(dot(dir, fi.ns)), 1e-3f));
+        const ConeBend bend(*this, ratio, -(1.0f - ratio) * normal_spread(si, d, cos_i));
         result += trace(next, depth + 1, bt, fi.to, path) * t;
       }
     }
@@ -228,7 +251,7 @@ class WhittedShading {
   auto metal(const Ray& ray, const SurfaceInteraction& si, const Material& mat, int depth,
              const Throughput& beta, std::uint32_t medium, const Path& path) {
     using Radiance = typename Derived::Radiance;
-    const Radiance tint = self().reflectance(mat.texture.eval(si.p), path);
+    const Radiance tint = self().reflectance(texture_colour(mat.texture, si, ray.direction), path);
     const Throughput b = self().attenuate(beta, tint, path);
     const float w = self().weight(b, path);
     if (depth >= m_max_depth || w < m_min_weight || w == 0.0f) return Radiance{};
@@ -236,6 +259,8 @@ class WhittedShading {
     const Vec3 ns = face_forward(si.ns, ng);
     const Vec3 dir = reflection_direction(ray.direction, ns, ng);
     const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
+    const ConeBend bend(*this, 1.0f,
+                        2.0f * normal_spread(si, ray.direction, dot(ray.direction, ns)));
     return Radiance(tint * trace(next, depth + 1, b, medium, path));
   }
 
@@ -248,7 +273,7 @@ class WhittedShading {
     const Vec3& d = ray.direction;
     const Vec3 ng = face_forward(si.ng, -d);
     const Vec3 ns = face_forward(si.ns, ng);
-    const Radiance albedo = self().reflectance(mat.texture.eval(si.p), path);
+    const Radiance albedo = self().reflectance(texture_colour(mat.texture, si, d), path);
     Radiance result = albedo * self().ambient(path) * mat.ka;
     add_direct_light(result, si, ng, ns, d, albedo, mat, depth, path);
     // Caustic irradiance E: the light that reached this point through dielectrics, which the
@@ -277,6 +302,56 @@ class WhittedShading {
     }
     return result;
   }
+
+  /// A texture's colour at a hit seen along unit direction d: averaged over the ray cone's
+  /// footprint, an ellipse of minor half-axis w/2 and major half-axis w/(2 cos) along d's
+  /// projection on the surface, boxed per axis (Texture::eval_filtered); point-sampled without
+  /// a cone. The cone's width grows with the distance travelled from the camera, through
+  /// reflections and refractions (their curvature is not followed: flat-surface cones).
+  Rgb texture_colour(const Texture& texture, const SurfaceInteraction& si, const Vec3& d) const {
+    if (texture.kind == Texture::Kind::solid || m_cone.width == 0.0f) return texture.eval(si.p);
+    const float half = 0.5f * std::abs(m_cone.width);
+    const float cos_t = std::max(std::abs(dot(d, si.ng)), 1e-3f);
+    Vec3 along = d - si.ng * dot(d, si.ng);
+    const float len = length(along);
+    // Head-on: any direction in the plane (the footprint is a circle).
+    along = len > 1e-6f
+                ? along / len
+                : normalize(cross(si.ng, std::abs(si.ng.x) < 0.9f ? Vec3{1.0f, 0.0f, 0.0f}
+                                                                  : Vec3{0.0f, 1.0f, 0.0f}));
+    const Vec3 major = along * (half / cos_t), minor = cross(si.ng, along) * half;
+    const Vec3 extent{std::hypot(major.x, minor.x), std::hypot(major.y, minor.y),
+                      std::hypot(major.z, minor.z)};
+    return texture.eval_filtered(si.p, extent);
+  }
+
+  /// How much the surface normal turns across the cone's footprint at a hit [rad], signed:
+  /// curvature times the footprint's length along the surface, |w| / cos (Ray Tracing Gems
+  /// ch. 20's surface spread angle); positive where the surface is convex towards the ray d
+  /// (closed surfaces have outward geometric normals), negative where concave.
+  float normal_spread(const SurfaceInteraction& si, const Vec3& d, float cos_i) const {
+    const float convex = dot(d, si.ng) < 0.0f ? 1.0f : -1.0f;
+    return convex * si.curvature * std::abs(m_cone.width) / std::max(std::abs(cos_i), 1e-3f);
+  }
+
+  /// The ray cone of the rays leaving a curved specular hit, for as long as this object lives:
+  /// spread' = spread * scale + bend, signed (a focusing cone's width passes through 0 and
+  /// changes sign; the footprint uses |width|), within +-1 rad.
+  class ConeBend {
+   public:
+    ConeBend(WhittedShading& shading, float scale, float bend)
+        : m_shading(shading), m_saved(shading.m_cone.spread) {
+      if (shading.m_cone.width != 0.0f || m_saved != 0.0f)
+        shading.m_cone.spread = std::clamp(m_saved * scale + bend, -1.0f, 1.0f);
+    }
+    ~ConeBend() { m_shading.m_cone.spread = m_saved; }
+    ConeBend(const ConeBend&) = delete;
+    ConeBend& operator=(const ConeBend&) = delete;
+
+   private:
+    WhittedShading& m_shading;
+    float m_saved;
+  };
 
   /// Direct light at a diffuse hit (normals ng, ns facing the viewer, unit view direction d, tree
   /// level depth): adds albedo L kd cos + the Phong highlight of every light seen to `result`
@@ -332,6 +407,13 @@ class WhittedShading {
   std::uint64_t m_rays = 0, m_mismatches = 0;
   /// the camera sample being traced (set_camera_sample()); no sampler: pixel (0, 0), sample 0
   CameraSampleContext m_camera_sample{};
+  /// A ray cone (Amanatides 1984; Akenine-Moeller et al. 2019, Ray Tracing Gems ch. 20): width
+  /// [scene units] at the current ray's origin and spread angle [rad].
+  struct RayCone {
+    float width = 0, spread = 0;
+  };
+  float m_pixel_spread = 0;
+  RayCone m_cone{};
 };
 
 }  // namespace thaw::render

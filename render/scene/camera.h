@@ -12,8 +12,8 @@ class Camera {
  public:
   Camera() = default;
   /// `up` need not be orthogonal to the view direction; fov in degrees; width, height in pixels.
-  Camera(const Vec3& position, const Vec3& look_at, const Vec3& up, double vertical_fov_deg, int width,
-         int height)
+  Camera(const Vec3& position, const Vec3& look_at, const Vec3& up, double vertical_fov_deg,
+         int width, int height)
       : m_origin(position) {
     const Vec3 forward = normalize(look_at - position);
     const Vec3 right = normalize(cross(forward, up));
@@ -32,6 +32,8 @@ class Camera {
     return Ray{m_origin, normalize(m_top_left + m_dx * x + m_dy * y)};
   }
   const Vec3& position() const { return m_origin; }
+  /// Angle a pixel subtends at the image centre [rad] (the spread of a ray cone through it).
+  float pixel_angle() const { return length(m_dy); }
 
  private:
   Vec3 m_origin, m_forward, m_dx, m_dy, m_top_left;

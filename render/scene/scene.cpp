@@ -582,6 +582,13 @@ SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {
             ns.normals[idx[0]] * b0 + ns.normals[idx[1]] * hit.b1 + ns.normals[idx[2]] * hit.b2;
         const float sl = length(sn);
         if (sl > 0.0f) si.ns = face_forward(sn / sl, si.ng);
+        const Vec3 na = ns.normals[idx[0]], nb = ns.normals[idx[1]], nc = ns.normals[idx[2]];
+        auto bend = [](const Vec3& n0, const Vec3& n1, const Vec3& p0, const Vec3& p1) {
+          const float l = length(p1 - p0);
+          return l > 0.0f ? length(n1 - n0) / l : 0.0f;
+        };
+        si.curvature = std::max(
+            {bend(na, nb, pr.a, pr.b), bend(nb, nc, pr.b, pr.c), bend(nc, na, pr.c, pr.a)});
       }
       break;
     }
@@ -594,6 +601,7 @@ SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {
       si.p = c + d;  // reprojected onto the sphere (pbrt-v4 Sphere::Intersect)
       si.p_error = (abs(d) + abs(c)) * gamma_bound(6);
       si.ng = si.ns = d / r;
+      si.curvature = 1.0f / r;
       break;
     }
     case PrimitiveKind::box: {

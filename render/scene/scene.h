@@ -82,6 +82,10 @@ inline constexpr std::uint32_t kPlaneBit = 0x80000000u;
 struct SurfaceInteraction {
   Vec3 p, p_error, ng, ns;
   std::uint32_t object = 0;
+  /// estimate of the surface's largest curvature [1/scene units]: 1/r on spheres; on meshes with
+  /// shading normals the largest |n_i - n_j| / |p_i - p_j| over the triangle's edges; 0 on
+  /// planes, boxes and flat-shaded triangles (ray cones, render/integrator/whitted_shading.h)
+  float curvature = 0;
 };
 
 struct SceneStatistics {

@@ -36,6 +36,9 @@ struct ImageSettings {
   /// reconstruction filter (render/film/filter.h) and its radius [pixels]
   FilterKind filter = FilterKind::gaussian;
   double filter_radius = 1.5;
+  /// textures averaged over each camera sample's ray cone (render/material/texture.h), when
+  /// samples_per_pixel > 1; at one sample per pixel everything is point-sampled (POV-Ray)
+  bool texture_filter = true;
   /// levels of the Whitted tree, the primary ray being level 1 (POV-Ray max_trace_level)
   int max_depth = 10;
   /// radiance of every ray that escapes the scene (linear RGB)

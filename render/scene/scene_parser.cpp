@@ -166,6 +166,7 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
       img->fail("filter_radius",
                 "must be between 0.5 and 4 pixels (got " + std::to_string(radius) + ")");
     s.image.filter_radius = radius;
+    s.image.texture_filter = img->get_bool("texture_filter", s.image.texture_filter);
     s.image.max_depth = int_in(*img, "max_depth", 10, 1, 64);
     s.image.background = color3(*img, "background", s.image.background);
     s.image.min_weight =

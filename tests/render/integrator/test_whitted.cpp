@@ -578,5 +578,37 @@ TEST(Whitted, SoftShadowAdaptiveImageIsTheSameForAnyThreadCountAndTileSize) {
   EXPECT_LT(mean, 16.0);
 }
 
+TEST(Whitted, FilteredCheckerHasNoMoireAtTheHorizon) {
+  // A checker floor (cells 0.1, colours 1 and 0, unlit: ambient only, so a pixel shows the
+  // texture) seen 1 m above it towards the horizon. Rows near the horizon cover many cells per
+  // pixel: averaged over the ray cones they converge to the mean 0.5; point-sampled (the same
+  // samples, texture_filter = false) they alias. Bound: a pixel's footprint spans >= 10 cells
+  // along the view within 10 rows of the horizon here, so its mean is within 1/(2 * 10) of 0.5;
+  // the film's filter averages such values.
+  SceneDescription d = base_scene(64, 48);
+  d.camera.position = {0.0, 1.0, 0.0};
+  d.camera.look_at = {0.0, 1.0, -10.0};
+  d.camera.up = {0.0, 1.0, 0.0};
+  d.camera.vertical_fov_deg = 30.0;
+  d.image.samples_per_pixel = 4;
+  d.image.background = {0.5, 0.5, 0.5};
+  d.ambient.intensity = 1.0;
+  add_plane(d, MaterialDescription::Kind::matte, {1.0, 1.0, 1.0});
+  d.materials.back().texture.kind = TextureDescription::Kind::checker;
+  d.materials.back().texture.checker_colors = {RgbD{1.0, 1.0, 1.0}, RgbD{0.0, 0.0, 0.0}};
+  d.materials.back().texture.checker_size = 0.1;
+  d.materials.back().kd = 0.0;
+  auto worst_near_horizon = [&](bool filter) {
+    d.image.texture_filter = filter;
+    const RenderResult r = render(build_scene(d));
+    double worst = 0;
+    for (int y = 25; y < 30; ++y)  // just below the horizon (row 24)
+      for (int x = 0; x < 64; ++x) worst = std::max(worst, std::abs(r.image.at(x, y).g - 0.5));
+    return worst;
+  };
+  EXPECT_LT(worst_near_horizon(true), 0.05);
+  EXPECT_GT(worst_near_horizon(false), 0.1);  // the aliasing the filter removes
+}
+
 }  // namespace
 }  // namespace thaw::render
