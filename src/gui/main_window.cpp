@@ -6,8 +6,10 @@
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QMenuBar>
+#include <QProgressBar>
 #include <QPushButton>
 #include <QScrollArea>
+#include <QSlider>
 #include <QSplitter>
 #include <QStatusBar>
 #include <QTabWidget>
@@ -15,6 +17,7 @@
 
 #include "src/common/error.h"
 #include "src/gui/key_form.h"
+#include "src/gui/radius_plot.h"
 #include "src/gui/shell_view.h"
 
 namespace thaw::gui {
@@ -60,6 +63,7 @@ MainWindow::MainWindow(ScenarioDocument document, QWidget* parent)
   m_tabs->setObjectName("tabs");
   m_tabs->addTab(make_render_tab(), "Render");
   m_tabs->addTab(scrolled(make_scenario_tab()), "Scenario");
+  m_tabs->addTab(make_simulation_tab(), "Simulation");
   auto* right = new QWidget;
   auto* rv = new QVBoxLayout(right);
   rv->setContentsMargins(0, 0, 0, 0);
@@ -231,6 +235,107 @@ QWidget* MainWindow::make_scenario_tab() {
   return form;
 }
 
+QWidget* MainWindow::make_simulation_tab() {
+  m_runner = new SimulationRunner(this);
+  auto* page = new QWidget;
+  auto* v = new QVBoxLayout(page);
+  auto* row = new QHBoxLayout;
+  m_run_button = new QPushButton("Simulate");
+  m_run_button->setObjectName("simulate_button");
+  m_run_button->setToolTip("Simulate and mesh the scenario at the film's frame times (background)");
+  m_cancel_button = new QPushButton("Cancel");
+  m_cancel_button->setObjectName("cancel_button");
+  m_cancel_button->setEnabled(false);
+  row->addWidget(m_run_button);
+  row->addWidget(m_cancel_button);
+  v->addLayout(row);
+  m_sim_progress = new QProgressBar;
+  m_sim_progress->setObjectName("simulation_progress");
+  m_sim_progress->setFormat("%p%");
+  v->addWidget(m_sim_progress);
+  m_sim_status = new QLabel("Not simulated yet: the views show the initial shell.");
+  m_sim_status->setObjectName("simulation_status");
+  m_sim_status->setWordWrap(true);
+  v->addWidget(m_sim_status);
+  m_plot = new RadiusPlot;
+  m_plot->setObjectName("radius_plot");
+  v->addWidget(m_plot, 1);
+  auto* srow = new QHBoxLayout;
+  srow->addWidget(new QLabel("Time"));
+  m_slider = new QSlider(Qt::Horizontal);
+  m_slider->setObjectName("time_slider");
+  m_slider->setEnabled(false);
+  srow->addWidget(m_slider, 1);
+  v->addLayout(srow);
+  connect(m_run_button, &QPushButton::clicked, this, [this] { start_simulation(); });
+  connect(m_cancel_button, &QPushButton::clicked, this, [this] { cancel_simulation(); });
+  connect(m_slider, &QSlider::valueChanged, this, [this](int k) { show_step(k); });
+  connect(m_runner, &SimulationRunner::progress, this,
+          [this](const QString& stage, qint64 done, qint64 total) {
+            m_sim_progress->setMaximum(static_cast<int>(std::max<qint64>(1, total)));
+            m_sim_progress->setValue(static_cast<int>(done));
+            m_sim_progress->setFormat(stage + " %v/%m");
+          });
+  auto ended = [this](const QString& text) {
+    m_run_button->setEnabled(true);
+    m_cancel_button->setEnabled(false);
+    m_sim_status->setText(text);
+  };
+  connect(m_runner, &SimulationRunner::finished, this, [this, ended] {
+    m_run = m_runner->result();
+    ended(QString("%1 steps: simulated in %2 s, meshed in %3 s, loaded in %4 s. Drag the slider.")
+              .arg(m_run->steps.size())
+              .arg(m_run->simulate_seconds, 0, 'f', 2)
+              .arg(m_run->mesh_seconds, 0, 'f', 2)
+              .arg(m_run->load_seconds, 0, 'f', 2));
+    m_plot->set_rows(m_run->rows);
+    m_slider->setRange(0, static_cast<int>(m_run->steps.size()) - 1);
+    m_slider->setEnabled(!m_run->steps.empty());
+    m_step = -1;
+    if (m_slider->value() == 0)
+      show_step(0);
+    else
+      m_slider->setValue(0);
+    emit simulationFinished();
+  });
+  connect(m_runner, &SimulationRunner::cancelled, this, [this, ended] {
+    ended("Cancelled.");
+    emit simulationCancelled();
+  });
+  connect(m_runner, &SimulationRunner::failed, this,
+          [ended](const QString& message) { ended("Failed: " + message); });
+  return page;
+}
+
+bool MainWindow::start_simulation() {
+  if (!m_check.ok() || m_runner->running()) return false;
+  if (!m_runner->start(*m_check.scenario)) return false;
+  m_run_button->setEnabled(false);
+  m_cancel_button->setEnabled(true);
+  m_sim_progress->setValue(0);
+  m_sim_status->setText("Simulating...");
+  return true;
+}
+
+void MainWindow::cancel_simulation() {
+  m_runner->cancel();
+  m_sim_status->setText("Cancelling...");
+}
+
+bool MainWindow::simulation_running() const {
+  return m_runner->running();
+}
+
+void MainWindow::show_step(int index) {
+  if (!m_run || index < 0 || index >= static_cast<int>(m_run->steps.size())) return;
+  m_step = index;
+  const ShellStep& step = *m_run->steps[static_cast<std::size_t>(index)];
+  m_view->show_step(step, false);
+  m_plot->set_marker(step.row.time_s);
+  if (m_slider->value() != index) m_slider->setValue(index);
+  request_preview();
+}
+
 bool MainWindow::apply_edit(const std::string& key, const TomlValue& value) {
   m_document.set(key, value);
   recheck();
@@ -283,6 +388,17 @@ void MainWindow::recheck() {
   if (m_save_as) m_save_as->setEnabled(m_check.ok());
   if (m_check.ok()) {
     for (KeyForm* form : m_forms) form->refresh(*m_check.scenario);
+    const RunScenario& sc = *m_check.scenario;
+    if (m_run &&
+        (m_run->simulation_text != sc.simulation_text || m_run->mesh_text != sc.mesh_text)) {
+      // The run no longer matches the scenario: back to the initial shell.
+      m_run.reset();
+      m_step = -1;
+      m_slider->setEnabled(false);
+      m_plot->set_rows({});
+      m_sim_status->setText("The scenario changed: simulate again to scrub through time.");
+      if (auto shell = m_renderer->initial_shell()) m_view->show_step(*shell, false);
+    }
     request_preview();
   } else {
     m_status->setText("not rendered: " + message);
@@ -344,6 +460,10 @@ void MainWindow::request_preview(bool full_quality) {
     m_preview_height = r.height;
   }
   r.samples = image.samples_per_pixel;
+  if (m_run && m_step >= 0) {
+    r.step = m_run->steps[static_cast<std::size_t>(m_step)];
+    r.camera_rows = m_run->rows;
+  }
   m_full_quality = full_quality;
   m_pass = -1;
   m_renderer->request(std::move(r));

@@ -11,17 +11,21 @@
 
 #include "src/gui/preview_renderer.h"
 #include "src/gui/scenario_document.h"
+#include "src/gui/simulation_runner.h"
 
 class QLabel;
 class QTabWidget;
 class QAction;
 class QComboBox;
 class QPushButton;
+class QProgressBar;
+class QSlider;
 
 namespace thaw::gui {
 
 class KeyForm;
 class ShellView;
+class RadiusPlot;
 
 class MainWindow : public QMainWindow {
   Q_OBJECT
@@ -60,13 +64,26 @@ class MainWindow : public QMainWindow {
   /// Preview size (the Render tab's choice).
   void set_preview_size(int width, int height);
 
+  // Simulation panel
+  /// Starts the simulation of the current (valid) scenario in the background.
+  bool start_simulation();
+  void cancel_simulation();
+  bool simulation_running() const;
+  /// The finished run the slider scrubs (null before one, or once an edit made it stale).
+  std::shared_ptr<const SimulationRun> simulation_run() const { return m_run; }
+  /// Shows step `index` of the run in the 3D view, the plot and the preview (as the slider does).
+  void show_step(int index);
+
  signals:
   /// The preview's last pass for the current scenario is shown.
   void previewFinished();
+  void simulationFinished();
+  void simulationCancelled();
 
  private:
   QWidget* make_render_tab();
   QWidget* make_scenario_tab();
+  QWidget* make_simulation_tab();
   void recheck();
   void request_preview(bool full_quality = false);
   void on_image(const QImage& image, int pass, int passes, double seconds);
@@ -92,6 +109,15 @@ class MainWindow : public QMainWindow {
   double m_seconds = 0;
   int m_preview_width = 320, m_preview_height = 240;
   bool m_full_quality = false;
+  SimulationRunner* m_runner = nullptr;
+  std::shared_ptr<const SimulationRun> m_run;
+  int m_step = -1;
+  RadiusPlot* m_plot = nullptr;
+  QSlider* m_slider = nullptr;
+  QProgressBar* m_sim_progress = nullptr;
+  QPushButton* m_run_button = nullptr;
+  QPushButton* m_cancel_button = nullptr;
+  QLabel* m_sim_status = nullptr;
 };
 
 }  // namespace thaw::gui

@@ -5,7 +5,9 @@
 #include <QApplication>
 #include <QLabel>
 #include <QLineEdit>
+#include <QProgressBar>
 #include <QSignalSpy>
+#include <QSlider>
 #include <QSurfaceFormat>
 #include <QTabWidget>
 #include <QtTest>
@@ -146,6 +148,64 @@ class TestMainWindow : public QObject {
     // deterministic: the same scene renders the same image).
     QVERIFY2(mean_difference(before, after) > 5.0,
              qPrintable(QString::number(mean_difference(before, after))));
+  }
+
+  void startAndCancelASimulation() {
+    ScenarioDocument doc;
+    doc.set("film.frames", 400LL);  // long enough that the run is still going when cancelled
+    MainWindow w{doc};
+    w.show();
+    QSignalSpy cancelled(&w, &MainWindow::simulationCancelled);
+    QSignalSpy finished(&w, &MainWindow::simulationFinished);
+    auto* bar = w.findChild<QProgressBar*>("simulation_progress");
+    QVERIFY(bar);
+    QVERIFY(w.start_simulation());
+    QVERIFY(w.simulation_running());
+    QVERIFY(!w.start_simulation());  // one run at a time
+    // Cancel once the solver has reported progress.
+    QTRY_VERIFY_WITH_TIMEOUT(bar->value() > 0, 60000);
+    w.cancel_simulation();
+    QTRY_VERIFY_WITH_TIMEOUT(!w.simulation_running(), 120000);
+    QTRY_COMPARE_WITH_TIMEOUT(cancelled.count(), 1, 5000);
+    QCOMPARE(finished.count(), 0);
+    QVERIFY(w.simulation_run() == nullptr);
+  }
+
+  void simulateAndScrubTheSlider() {
+    ScenarioDocument doc;
+    doc.set("film.frames", 6LL);
+    MainWindow w{doc};
+    w.show();
+    QSignalSpy finished(&w, &MainWindow::simulationFinished);
+    QVERIFY(w.start_simulation());
+    QTRY_VERIFY_WITH_TIMEOUT(finished.count() == 1, 300000);
+    const auto run = w.simulation_run();
+    QVERIFY(run);
+    // 6 frame times over the hour; those after the break-through (~38 min) are not reached.
+    QCOMPARE(run->steps.size(), run->rows.size());
+    QVERIFY(run->steps.size() >= 3 && run->steps.size() <= 6);
+    // The radii shrink over the run and the views follow the slider.
+    QVERIFY(run->rows.back().outer_radius_m < run->rows.front().outer_radius_m);
+    auto* slider = w.findChild<QSlider*>("time_slider");
+    QVERIFY(slider && slider->isEnabled());
+    const int n = static_cast<int>(run->steps.size());
+    QCOMPARE(slider->maximum(), n - 1);
+    slider->setValue(0);
+    const long first = w.shell_view().triangles();
+    QVERIFY(first > 100);
+    QVERIFY(wait_for_full_size(w));
+    const QImage at_start = w.preview_image();
+    // The last step with ice left: its preview differs from the first step's.
+    int last = n - 1;
+    while (last > 0 && !run->steps[static_cast<std::size_t>(last)]->outer) --last;
+    QVERIFY(last > 0);
+    slider->setValue(last);
+    QVERIFY(wait_for_full_size(w));
+    QVERIFY(mean_difference(at_start, w.preview_image()) > 1.0);
+    // An edit of the simulation makes the run stale.
+    QVERIFY(w.apply_edit("water.initial_temperature_c", 12.0));
+    QVERIFY(w.simulation_run() == nullptr);
+    QVERIFY(!slider->isEnabled());
   }
 
   void screenshotOfTheDefaultHasThePanelsAndARender() {
