@@ -4,7 +4,10 @@
 //
 //  * Unknown: enthalpy h per unit volume of material in each cell; T(h) is piecewise linear
 //    (ice, melting plateau at T_m, water), so the front is where the liquid fraction h / L
-//    crosses one half, reconstructed below the cell size from the liquid fraction.
+//    crosses one half, reconstructed below the cell size from the liquid fraction: between a
+//    melting cell and a neighbour in a pure phase the front (at T_m) is placed inside the
+//    melting cell by its fraction of that phase, which sets the face's conductance (observed
+//    order of the front 1.6 instead of the plain method's 1.0).
 //  * Backward Euler in time with a semismooth Newton on the enthalpy-temperature relation: in
 //    each iteration the cells in a pure phase solve one symmetric positive definite system for
 //    their temperature change (conjugate gradients, Jacobi preconditioner, matrix-free 7-point
@@ -18,10 +21,11 @@
 //    booked as drained); a shrinking ice fraction is ablation. An enclosed cavity joining the
 //    outside is a break-through; an enclosed liquid freezing away is core_frozen.
 //  * The material | air surface area in each cell comes from the gradient of the material
-//    fraction (|grad m| V, central differences), so the heated area of a round body is not the
-//    stair-step area of its cells.
-// Deterministic for any thread count: every parallel loop writes its own cells, and every sum
-// goes over fixed blocks in a fixed order. Knows nothing of files, TOML or shapes.
+//    fraction (|grad m| V, the mean of Youngs' and the plain central differences), so the heated
+//    area of a round body is not the stair-step area of its cells.
+// A step runs in one OpenMP parallel region whose threads meet at sleeping barriers
+// (block_team.h). Deterministic for any thread count: every loop writes its own cells, and every
+// sum goes over fixed blocks in a fixed order. Knows nothing of files, TOML or shapes.
 #include <array>
 #include <memory>
 #include <string>

@@ -106,7 +106,10 @@ void expect_order(GridField::Geometry g) {
   const double order =
       std::log2(errors.front() / errors.back()) / static_cast<double>(errors.size() - 1);
   std::printf("%s: observed order of the front %.3f\n", to_string(g), order);
-  EXPECT_GE(order, 0.95);  // measured 1.0: the issue asks >= 1 (target 1.5); see docs/validation.md
+  // The issue asks >= 1 with 1.5 as the target. Measured 1.59 with the sub-cell front
+  // conductance (enthalpy_solver.cpp, face_conductance_per_area; 1.03 without it, the plain
+  // enthalpy method's first order); the errors fall 2.9x and 3.1x per halving here.
+  EXPECT_GE(order, 1.5);
   EXPECT_LT(errors.back(), 0.5 * nc.length / (n / 2));  // below half a cell at the finest grid
 }
 

@@ -1,8 +1,8 @@
 // The grid solver against the 1D radial solver (sim/stefan1d) on bodies both can describe: the
 // default scenario's hollow sphere run in the axisymmetric and the 3D grids at default
-// resolution (liquid and ice volumes within 1 % of the initial ice volume, the issue's
-// requirement), and the mid-plane of a long axisymmetric cylinder against the 1D cylinder.
-// End-to-end (seconds to a minute): label e2e.
+// resolution (liquid and ice volumes within 1 % of the initial ice volume over the whole run
+// up to break-through, the requirement), and the mid-plane of a long axisymmetric cylinder
+// against the 1D cylinder. End-to-end (seconds to a minute): label e2e.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -41,12 +41,13 @@ void compare_sphere(const std::string& geometry) {
                             "sphere.toml");
   const SimulationResult g = simulate(grid);
   const double v0 = one.snapshots.front().ice_volume_m3;
-  // Until 75 % of the 1D break-through time: the grid's shell opens up to a few cells early
-  // (where the staircase of the two fronts first touches), after which the states differ by design.
-  const double until = 0.75 * break_through_time(one);
+  // The whole run up to the first break-through (the grid's: its shell opens when a path of
+  // cells less than half ice joins the cavity to the outside, i.e. about one cell of shell
+  // thickness early; after that the cavity has drained in one and not in the other).
+  const double until = std::min(break_through_time(g), break_through_time(one));
   double worst_ice = 0, worst_liquid = 0;
   for (std::size_t i = 0; i < std::min(one.snapshots.size(), g.snapshots.size()); ++i) {
-    if (one.snapshots[i].time_s > until) break;
+    if (one.snapshots[i].time_s >= until) break;
     ASSERT_EQ(one.snapshots[i].time_s, g.snapshots[i].time_s);
     worst_ice = std::max(
         worst_ice, std::abs(g.snapshots[i].ice_volume_m3 - one.snapshots[i].ice_volume_m3) / v0);
@@ -59,6 +60,9 @@ void compare_sphere(const std::string& geometry) {
       "break-through %.0f s vs %.0f s\n",
       geometry.c_str(), until, worst_ice, worst_liquid, break_through_time(g),
       break_through_time(one));
+  // The bar: 1 % of the initial ice volume at default resolution (measured 0.18 % in
+  // (r, y) on 0.5 mm cells and 0.39 % in 3D on 1.25 mm cells, both largest at t = 0 where the
+  // cut cells of the cavity's surface mix their water and ice into one enthalpy).
   EXPECT_LT(worst_ice, 0.01);
   EXPECT_LT(worst_liquid, 0.01);
   EXPECT_LT(g.grid_statistics.max_step_energy_error, 1e-8);
