@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <string>
 
@@ -55,7 +56,11 @@ int main(int argc, char** argv) {
   const Run coarse = run(sc, 1, 2 * cell);
   const Run one = run(sc, 1, cell);
   const Run two = run(sc, 2, cell);
-  std::printf("2 threads vs 1: wall %.2fx faster\n", one.wall_s / two.wall_s);
+  std::printf("2 threads vs 1: wall %.2fx faster, CPU %.2fx (parallel overhead)\n",
+              one.wall_s / two.wall_s, two.cpu_s / one.cpu_s);
+  double load[3] = {0, 0, 0};
+  if (getloadavg(load, 3) > 0)
+    std::printf("load average at the end: %.2f %.2f %.2f\n", load[0], load[1], load[2]);
   std::printf("halving the cell (1 thread): wall %.2fx (cells 8x, steps %.2fx)\n",
               one.wall_s / coarse.wall_s,
               static_cast<double>(one.steps) / static_cast<double>(coarse.steps));
