@@ -1,16 +1,18 @@
-// `thaw run [SCENARIO.toml] --out DIR [--force] [--jobs N] [--quiet] [--size WxH] [--spp N]`:
-// simulate, mesh, render, film and inspect in one command (src/pipeline). Parsing and the closing
-// summary only.
+// `thaw run [SCENARIO.toml] --out DIR [--force] [--jobs N] [--quiet] [--size WxH] [--spp N]
+// [--fps F] [--frames A-B|A:B:S] [--stage NAME]`: simulate, mesh, render, film and inspect in one
+// command (src/pipeline). Parsing and the closing summary only.
 #include <cstdio>
 #include <fstream>
 #include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "src/cli/commands.h"
 #include "src/common/error.h"
 #include "src/common/progress.h"
+#include "src/pipeline/frame_selection.h"
 #include "src/pipeline/pipeline.h"
 #include "src/pipeline/render_overrides.h"
 #include "src/pipeline/run_scenario.h"
@@ -24,6 +26,8 @@ struct RunArgs {
   int jobs = 0;
   std::optional<std::string> size;
   std::optional<long long> spp;
+  std::optional<double> fps;
+  std::optional<std::string> frames, stage;
 };
 
 void run_run(const RunArgs& a) {
@@ -35,6 +39,10 @@ void run_run(const RunArgs& a) {
   pipeline::RenderOverrides overrides;
   if (a.size) overrides = pipeline::parse_size_override(*a.size);
   if (a.spp) overrides.samples_per_pixel = pipeline::checked_spp_override(*a.spp);
+  if (a.fps) overrides.fps = pipeline::checked_fps_override(*a.fps);
+  std::optional<pipeline::FrameSelection> frames;
+  if (a.frames) frames = pipeline::parse_frame_selection(*a.frames);
+  if (a.stage) pipeline::check_stage_name(*a.stage);
   // Parse and validate the whole scenario before any work starts.
   pipeline::RunOptions options;
   pipeline::RunScenario scenario;
@@ -49,6 +57,10 @@ void run_run(const RunArgs& a) {
     options.scenario_text = text.str();
   }
   pipeline::apply_render_overrides(scenario, overrides);
+  // A range past the film's last frame is an error before any work starts.
+  if (frames) frames->resolve(static_cast<long>(pipeline::frame_times(scenario).size()));
+  options.frames = frames;
+  options.stage = a.stage.value_or("");
   options.out_dir = a.out;
   options.force = a.force;
   options.jobs = a.jobs;
@@ -58,13 +70,15 @@ void run_run(const RunArgs& a) {
   std::printf("thaw run: %s -> %s (%d frames, %s)\n",
               a.scenario.empty() ? "built-in default scenario" : a.scenario.c_str(), a.out.c_str(),
               report.frames, ProgressReporter::format_duration(report.total_seconds).c_str());
+  for (const auto& e : report.events) std::printf("  %s\n", e.c_str());
   for (const auto& s : report.stages)
     std::printf("  %-9s %s\n", s.stage.c_str(),
                 s.skipped ? "up to date" : ProgressReporter::format_duration(s.seconds).c_str());
-  std::printf("film:  %s\n", report.film.string().c_str());
-  if (!report.gif.empty()) std::printf("gif:   %s\n", report.gif.string().c_str());
-  std::printf("plot:  %s\n", report.plot.string().c_str());
-  std::printf("pvd:   %s\n", report.pvd.string().c_str());
+  for (const auto& [label, path] : {std::pair{"film:  ", report.film},
+                                    {"gif:   ", report.gif},
+                                    {"plot:  ", report.plot},
+                                    {"pvd:   ", report.pvd}})
+    if (!path.empty()) std::printf("%s%s\n", label, path.string().c_str());
 }
 
 }  // namespace
@@ -76,10 +90,12 @@ void register_run(CLI::App& app) {
       "Simulate, mesh, render and film a melting ice shell in one command: DIR/melt.mp4, "
       "DIR/plot.png, DIR/meshes.pvd. Resumable: a rerun redoes only what changed. Without SCENARIO "
       "the built-in default runs (see --print-default and docs/user-guide.md).");
-  cmd->add_option("scenario", args->scenario, "scenario file (TOML); omit for the built-in default");
+  cmd->add_option("scenario", args->scenario,
+                  "scenario file (TOML); omit for the built-in default");
   cmd->add_option("-o,--out", args->out, "output folder (default: thaw-out)");
   cmd->add_flag("--force", args->force, "redo every stage, even those up to date");
-  cmd->add_option("-j,--jobs", args->jobs, "worker threads for meshing and rendering (0 = all cores)");
+  cmd->add_option("-j,--jobs", args->jobs,
+                  "worker threads for meshing and rendering (0 = all cores)");
   cmd->add_flag("-q,--quiet", args->quiet, "no progress display and no summary");
   cmd->add_option(
       "--size", args->size,
@@ -89,7 +105,18 @@ void register_run(CLI::App& app) {
       "--spp", args->spp,
       "samples per pixel (overrides [render.image] samples_per_pixel; only the frames are "
       "re-rendered)");
-  cmd->add_flag("--print-default", args->print_default, "print the built-in default scenario and exit");
+  cmd->add_option("--fps", args->fps,
+                  "frame rate of melt.mp4 (overrides [film] fps for playback only: the frames' "
+                  "simulated times stay, so only the film is re-encoded)");
+  cmd->add_option("--frames", args->frames,
+                  "render only these frames, numbered from 0: N, FIRST-LAST or FIRST:LAST:STEP "
+                  "(e.g. 10-20, 3:40:2) for Slurm job arrays or GNU parallel; the film is made "
+                  "once every frame is rendered (docs/pipeline.md)");
+  cmd->add_option("--stage", args->stage,
+                  "run only this stage: simulate, mesh, render, film or inspect (the stages "
+                  "before it must be up to date)");
+  cmd->add_flag("--print-default", args->print_default,
+                "print the built-in default scenario and exit");
   cmd->callback([args] { run_run(*args); });
 }
 

@@ -15,7 +15,9 @@ ProgressReporter::ProgressReporter(std::string title, std::int64_t total, bool q
       m_start(std::chrono::steady_clock::now()),
       m_last_print(m_start) {}
 
-ProgressReporter::~ProgressReporter() { finish(); }
+ProgressReporter::~ProgressReporter() {
+  finish();
+}
 
 double ProgressReporter::elapsed_s() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
@@ -36,7 +38,9 @@ std::string ProgressReporter::format_duration(double s) {
   return buf;
 }
 
-void ProgressReporter::advance(std::int64_t items) { report(m_done += items, false); }
+void ProgressReporter::advance(std::int64_t items) {
+  report(m_done += items, false);
+}
 
 void ProgressReporter::set_done(std::int64_t items_done) {
   m_done = items_done;
@@ -44,7 +48,14 @@ void ProgressReporter::set_done(std::int64_t items_done) {
 }
 
 ProgressCallback ProgressReporter::callback() {
-  return [this](std::int64_t done, std::int64_t /*total*/) { set_done(done); };
+  // The algorithm knows its total best (a mesher counts shared meshes and copies).
+  return [this](std::int64_t done, std::int64_t total) {
+    if (total > 0) {
+      std::lock_guard<std::mutex> lock(m_mutex);
+      m_total = total;
+    }
+    set_done(done);
+  };
 }
 
 void ProgressReporter::report(std::int64_t done, bool force) {
@@ -78,14 +89,23 @@ void ProgressReporter::report(std::int64_t done, bool force) {
 }
 
 void ProgressReporter::finish() {
+  print_final("done", false);
+}
+
+void ProgressReporter::finish_early(const std::string& why) {
+  print_final(why, true);
+}
+
+void ProgressReporter::print_final(const std::string& middle, bool parenthesised_time) {
   if (m_quiet) return;
   std::lock_guard<std::mutex> lock(m_mutex);
   if (m_finished) return;
   m_finished = true;
-  const double elapsed = elapsed_s();
-  std::fprintf(stderr, "%s%s: %lld/%lld done in %s\n", m_tty ? "\r\033[K" : "", m_title.c_str(),
+  const std::string elapsed = format_duration(elapsed_s());
+  std::fprintf(stderr, "%s%s: %lld/%lld %s %s%s%s\n", m_tty ? "\r\033[K" : "", m_title.c_str(),
                static_cast<long long>(m_done.load()), static_cast<long long>(m_total),
-               format_duration(elapsed).c_str());
+               middle.c_str(), parenthesised_time ? "(" : "in ", elapsed.c_str(),
+               parenthesised_time ? ")" : "");
   std::fflush(stderr);
 }
 

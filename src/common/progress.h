@@ -22,9 +22,14 @@ class ProgressReporter {
 
   void advance(std::int64_t items = 1);
   void set_done(std::int64_t items_done);
-  /// Prints the final line (elapsed time); called by the destructor if not called before.
+  /// Prints the final line, "title: 41/41 done in 2.10 s"; called by the destructor if not
+  /// called before.
   void finish();
+  /// The final line of work that legitimately stopped short of its total, saying why:
+  /// "title: 51/80 steps: the ice is gone (2.10 s)" for finish_early("steps: the ice is gone").
+  void finish_early(const std::string& why);
   double elapsed_s() const;
+  /// For algorithms: set_done(done), and a positive total replaces the one given here.
   ProgressCallback callback();
 
   /// Human-readable duration: "0.42 s", "3 min 05 s", "1 h 02 min".
@@ -32,6 +37,7 @@ class ProgressReporter {
 
  private:
   void report(std::int64_t done, bool force);
+  void print_final(const std::string& middle, bool parenthesised_time);
   std::string m_title;
   std::int64_t m_total;
   bool m_quiet, m_tty, m_finished = false;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "render/geometry/obj_loader.h"
 #include "render/image/exr_io.h"
@@ -105,75 +107,89 @@ void stamp_frame_caption(render::Image& image, double time_s, const CaptionFont*
     }
 }
 
+RunReport& finish_report(RunReport& report, std::chrono::steady_clock::time_point start) {
+  report.total_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+}  // namespace
+
+const std::vector<std::string> kStageNames = {"simulate", "mesh", "render", "film", "inspect"};
+
+void check_stage_name(const std::string& name) {
+  for (const auto& s : kStageNames)
+    if (s == name) return;
+  throw UserError("", "--stage",
+                  "must be simulate, mesh, render, film or inspect (got \"" + name + "\")");
+}
+
+namespace {
+
+/// The simulation's events as `thaw simulate` prints them, from DIR/sim/summary.json.
+std::vector<std::string> event_lines(const fs::path& summary_json) {
+  std::vector<std::string> lines;
+  std::ifstream in(summary_json);
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    char buf[256];
+    for (const auto& e : j.at("events")) {
+      const std::string kind = e.at("kind").get<std::string>();
+      const double t = e.at("time_s").get<double>();
+      if (e.contains("position_m")) {
+        const auto p = e.at("position_m").get<std::array<double, 3>>();
+        std::snprintf(buf, sizeof buf, "event %s at t = %.6g s, at (%.4g, %.4g, %.4g) m",
+                      kind.c_str(), t, p[0], p[1], p[2]);
+      } else {
+        std::snprintf(buf, sizeof buf, "event %s at t = %.6g s, r = %.6g m", kind.c_str(), t,
+                      e.at("radius_m").get<double>());
+      }
+      lines.push_back(buf);
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw UserError(summary_json.string(), "", std::string("malformed summary: ") + e.what());
+  }
+  return lines;
+}
+
+/// Work this process leaves to others: a stage before --stage must already be up to date.
+void require_up_to_date(const RunManifest& manifest, const std::string& stage,
+                        const std::string& hash, const RunOptions& opt) {
+  if (manifest.is_complete(stage, hash)) return;
+  throw UserError(opt.out_dir.string(), "--stage " + opt.stage,
+                  "the " + stage + " stage is not up to date; run `thaw run ... --stage " + stage +
+                      "` (or thaw run without --stage) first");
+}
+
 }  // namespace
 
 RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
+  const std::unique_ptr<RunRanks> alone = opt.ranks ? nullptr : single_process();
+  RunRanks& ranks = opt.ranks ? *opt.ranks : *alone;
+  const bool leader = ranks.leader();
+  // Only the leader speaks and keeps the manifest; the other ranks render and write their items.
+  RunOptions o = opt;
+  o.quiet = opt.quiet || !leader;
+  const auto wanted = [&](const std::string& stage) { return o.stage.empty() || o.stage == stage; };
+  // Stages after render need every frame; a --frames or --stage render process leaves them.
+  const bool subset = o.frames.has_value();
+
   RunReport report;
-  const fs::path out = opt.out_dir;
-  ensure_directory(out);
-  // A run killed while writing leaves its temporary file behind; the finished outputs are intact.
-  remove_stale_temporaries(out);
+  const fs::path out = o.out_dir;
   const fs::path simdir = out / "sim", mesh_dir = simdir / "mesh", frames_dir = out / "frames";
-  RunManifest manifest(out / "run_manifest.json");
-  if (opt.force) manifest.clear();
-  if (!opt.scenario_text.empty()) write_file_atomic(out / "scenario.toml", opt.scenario_text);
-  if (opt.jobs > 0) omp_set_num_threads(opt.jobs);
-
   const std::vector<double> times = frame_times(sc);
-
-  // 1. simulate, sampled at exactly the frame times
+  // What each stage depends on: its scenario sections and the fingerprint of the stage before.
   ContentHash sim_hash;
   sim_hash.add("simulate").add(THAW_VERSION_STRING).add(sc.simulation_text);
   for (double t : times) sim_hash.add(t);
-  {
-    StageClock clock(report, "simulate");
-    const bool up_to_date = manifest.begin_stage("simulate", sim_hash.hex()) &&
-                            fs::exists(simdir / "interfaces.csv") && fs::exists(simdir / "summary.json");
-    if (up_to_date) {
-      clock.timing().skipped = true;
-      say(opt, stage_title(1, "simulate") + ": up to date");
-    } else {
-      ProgressReporter progress(stage_title(1, "simulate"), static_cast<long>(times.size()), opt.quiet);
-      const sim::SimulationResult result =
-          sim::simulate(sc.simulation, times, interruptible(progress.callback()));
-      StagingDirectory stage(simdir);
-      sim::write_simulation_outputs(stage.path(), result);
-      stage.commit();
-      progress.finish();
-      manifest.mark_stage_complete("simulate");
-      clock.timing().items_done = static_cast<int>(result.snapshots.size());
-    }
-  }
-  const std::vector<sim::InterfaceRecord> rows = sim::read_interfaces_csv(simdir / "interfaces.csv");
-
-  // 2. mesh the inner and outer surface of every frame
   ContentHash mesh_hash;
   mesh_hash.add("mesh").add(sim_hash.hex()).add(sc.mesh_text);
-  mesh::MeshManifest meshes;
-  {
-    StageClock clock(report, "mesh");
-    mesh::MeshOptions options = sc.mesh;
-    options.jobs = opt.jobs;
-    const bool up_to_date = manifest.begin_stage("mesh", mesh_hash.hex()) && fs::exists(mesh_dir / "manifest.json");
-    if (up_to_date) {
-      clock.timing().skipped = true;
-      say(opt, stage_title(2, "mesh") + ": up to date");
-    }
-    if (!up_to_date) {
-      ProgressReporter progress(stage_title(2, "mesh"), static_cast<long>(2 * rows.size()), opt.quiet);
-      meshes = mesh::mesh_simulation_folder(simdir, options, progress.callback());
-      progress.finish();
-      manifest.mark_stage_complete("mesh");
-      clock.timing().items_done = static_cast<int>(meshes.steps.size());
-    } else {
-      meshes = mesh::read_mesh_manifest(mesh_dir / "manifest.json");
-    }
-  }
-
-  // 3. render one frame per step
   ContentHash render_hash;
-  render_hash.add("render").add(mesh_hash.hex()).add(sc.render_text).add(sc.film.caption ? "caption" : "");
+  render_hash.add("render")
+      .add(mesh_hash.hex())
+      .add(sc.render_text)
+      .add(sc.film.caption ? "caption" : "");
   const bool exr_frames = sc.film.frames_format == FilmSettings::FramesFormat::exr;
   if (exr_frames) render_hash.add("frames_format=exr");
   // The caption's font: DejaVu Sans, or the bitmap font if it cannot be loaded (said once).
@@ -184,11 +200,119 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
     if (font)
       render_hash.add_file(kDefaultCaptionFont);
     else
-      say(opt, "caption: " + problem + "; using the built-in bitmap font");
+      say(o, "caption: " + problem + "; using the built-in bitmap font");
   }
-  for (const auto& o : sc.scene.objects)
-    if (!o.mesh_file.empty()) render_hash.add_file(o.mesh_file.is_absolute() ? o.mesh_file : sc.scene.base_dir / o.mesh_file);
+  for (const auto& obj : sc.scene.objects)
+    if (!obj.mesh_file.empty())
+      render_hash.add_file(obj.mesh_file.is_absolute() ? obj.mesh_file
+                                                       : sc.scene.base_dir / obj.mesh_file);
+  RunManifest manifest(out / "run_manifest.json");
+  // --stage: the stages it reads must be up to date; checked before anything is written (by
+  // every rank, so that all of them stop).
+  if (!o.stage.empty()) {
+    if (o.force)
+      throw UserError("", "--force", "redoes every stage: it cannot be combined with --stage");
+    const std::pair<const char*, std::string> reads[] = {
+        {"simulate", sim_hash.hex()}, {"mesh", mesh_hash.hex()}, {"render", render_hash.hex()}};
+    const auto index =
+        std::find(kStageNames.begin(), kStageNames.end(), o.stage) - kStageNames.begin();
+    // inspect reads the meshes, not the frames
+    const long count = o.stage == "inspect" ? 2 : static_cast<long>(index);
+    for (long i = 0; i < count; ++i)
+      require_up_to_date(manifest, reads[i].first, reads[i].second, o);
+  }
+  if (leader) {
+    ensure_directory(out);
+    // A run killed while writing leaves its temporary file behind; the finished outputs are
+    // intact. A --frames process may share the folder with live processes on other machines,
+    // whose process ids mean nothing here: it leaves the cleaning to a whole run.
+    if (!subset) remove_stale_temporaries(out);
+  }
+  if (leader && o.force) manifest.clear();
+  if (leader && !o.scenario_text.empty()) write_file_atomic(out / "scenario.toml", o.scenario_text);
+  ranks.barrier();
+  if (o.jobs > 0) omp_set_num_threads(o.jobs);
+
+  // 1. simulate, sampled at exactly the frame times (the leader; the others wait)
+  std::string error;
+  if (leader) try {
+      if (wanted("simulate")) {
+        StageClock clock(report, "simulate");
+        const bool up_to_date = manifest.begin_stage("simulate", sim_hash.hex()) &&
+                                fs::exists(simdir / "interfaces.csv") &&
+                                fs::exists(simdir / "summary.json");
+        if (up_to_date) {
+          clock.timing().skipped = true;
+          say(o, stage_title(1, "simulate") + ": up to date");
+        } else {
+          ProgressReporter progress(stage_title(1, "simulate"), static_cast<long>(times.size()),
+                                    o.quiet);
+          const sim::SimulationResult result =
+              sim::simulate(sc.simulation, times, interruptible(progress.callback()));
+          StagingDirectory stage(simdir);
+          sim::write_simulation_outputs(stage.path(), result);
+          stage.commit();
+          progress.set_done(static_cast<long>(result.snapshots.size()));
+          if (result.ended_early)
+            progress.finish_early(
+                "frame times: the ice is gone at t = " +
+                ProgressReporter::format_duration(result.snapshots.back().time_s));
+          else
+            progress.finish();
+          manifest.mark_stage_complete("simulate");
+          clock.timing().items_done = static_cast<int>(result.snapshots.size());
+        }
+      }
+    } catch (const UserError& e) {
+      error = e.what();
+    } catch (const std::exception& e) {
+      // Other ranks wait for the leader's word: they must hear of any failure.
+      if (ranks.size() == 1) throw;
+      error = std::string("internal error: ") + e.what();
+    }
+  error = ranks.broadcast(error);
+  if (!error.empty()) throw UserError("", "", error);
+  report.events = event_lines(simdir / "summary.json");
+  const std::vector<sim::InterfaceRecord> rows =
+      sim::read_interfaces_csv(simdir / "interfaces.csv");
+
+  // 2. mesh the inner and outer surface of every frame (the leader, with its threads)
+  if (leader) try {
+      if (wanted("mesh")) {
+        StageClock clock(report, "mesh");
+        mesh::MeshOptions options = sc.mesh;
+        options.jobs = o.jobs;
+        const bool up_to_date =
+            manifest.begin_stage("mesh", mesh_hash.hex()) && fs::exists(mesh_dir / "manifest.json");
+        if (up_to_date) {
+          clock.timing().skipped = true;
+          say(o, stage_title(2, "mesh") + ": up to date");
+        } else {
+          ProgressReporter progress(stage_title(2, "mesh"), static_cast<long>(2 * rows.size()),
+                                    o.quiet);
+          const mesh::MeshManifest meshes =
+              mesh::mesh_simulation_folder(simdir, options, progress.callback());
+          progress.finish();
+          manifest.mark_stage_complete("mesh");
+          clock.timing().items_done = static_cast<int>(meshes.steps.size());
+        }
+      }
+    } catch (const UserError& e) {
+      error = e.what();
+    } catch (const std::exception& e) {
+      // Other ranks wait for the leader's word: they must hear of any failure.
+      if (ranks.size() == 1) throw;
+      error = std::string("internal error: ") + e.what();
+    }
+  error = ranks.broadcast(error);
+  if (!error.empty()) throw UserError("", "", error);
+  if (o.stage == "simulate") return finish_report(report, start);
+  const mesh::MeshManifest meshes = mesh::read_mesh_manifest(mesh_dir / "manifest.json");
+
+  // 3. render one frame per step
   const long frame_count = static_cast<long>(meshes.steps.size());
+  report.frames = static_cast<int>(frame_count);
+  if (o.stage == "mesh") return finish_report(report, start);
   // The built-in camera frames the shell's largest extent over the run: one camera for all frames.
   RunScenario framed = sc;
   if (!sc.camera_set)
@@ -199,68 +323,112 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
   const std::vector<WaterBudget> water =
       water_budget(rows, meshes.geometry, sc.simulation.materials.ice_density_kg_m3,
                    sc.simulation.materials.water_density_kg_m3);
-  report.frames = static_cast<int>(frame_count);
-  {
+  bool all_frames_done = true;
+  if (wanted("render")) {
     StageClock clock(report, "render");
-    ensure_directory(frames_dir);
-    const bool complete = manifest.begin_stage("render", render_hash.hex());
-    // Frames beyond the current count belong to an older, longer run.
-    for (long k = frame_count; fs::exists(frames_dir / (frame_name(k) + ".png")); ++k) {
-      fs::remove(frames_dir / (frame_name(k) + ".png"));
-      fs::remove(frames_dir / (frame_name(k) + ".exr"));
+    bool complete = false;
+    if (leader) {
+      ensure_directory(frames_dir);
+      complete = manifest.begin_stage("render", render_hash.hex());
+      // Frames beyond the current count belong to an older, longer run.
+      if (!subset)
+        for (long k = frame_count; fs::exists(frames_dir / (frame_name(k) + ".png")); ++k) {
+          fs::remove(frames_dir / (frame_name(k) + ".png"));
+          fs::remove(frames_dir / (frame_name(k) + ".exr"));
+        }
     }
-    ProgressReporter progress(stage_title(3, "render"), frame_count, opt.quiet || complete);
-    long done_before = 0;
-    for (long k = 0; k < frame_count; ++k) {
-      throw_if_interrupted();
-      const fs::path png = frames_dir / (frame_name(k) + ".png");
-      const fs::path exr = frames_dir / (frame_name(k) + ".exr");
-      if (manifest.item_done("render", frame_name(k)) && fs::exists(png) &&
-          (!exr_frames || fs::exists(exr))) {
-        ++done_before;
-        progress.set_done(k + 1);
-        continue;
-      }
-      const mesh::StepRecord& step = meshes.steps[static_cast<std::size_t>(k)];
-      const render::Scene scene = render::build_scene(frame_scene(
-          framed, mesh_dir, meshes.geometry, step, water.at(static_cast<std::size_t>(step.step))));
-      render::RenderOptions ro;
-      ro.threads = opt.jobs;
-      render::RenderResult result = render::render(scene, ro);
-      throw_if_interrupted();  // the render skipped its remaining tiles: write nothing
-      if (exr_frames) {        // for compositing: no caption, linear, with the AOV layers
-        const render::AovImage aovs = render::render_aovs(scene, opt.jobs);
-        render::write_exr(exr, result.image, &aovs,
-                          {sc.source_name, step.time_s, sc.scene.image.samples_per_pixel,
-                           sc.scene.image.exposure});
-      }
-      if (sc.film.caption) stamp_frame_caption(result.image, step.time_s, font.get());
-      render::write_png(png, result.image, sc.scene.image.exposure);
-      manifest.mark_item_done("render", frame_name(k));
-      ++clock.timing().items_done;
-      progress.set_done(k + 1);
+    ranks.barrier();
+    // The leader has (re)started the stage under this fingerprint: read it back on every rank.
+    if (!leader) manifest = RunManifest(out / "run_manifest.json");
+    std::vector<long> selected;
+    if (o.frames) {
+      selected = o.frames->resolve(static_cast<long>(times.size()));
+      // The simulation may have ended early (no ice left): those frames do not exist.
+      const auto past =
+          std::find_if(selected.begin(), selected.end(), [&](long k) { return k >= frame_count; });
+      if (past != selected.end())
+        say(o, stage_title(3, "render") + ": frames from " + std::to_string(*past) +
+                   " on do not exist (the simulation ended early with " +
+                   std::to_string(frame_count) + " frames)");
+      selected.erase(past, selected.end());
+    } else {
+      for (long k = 0; k < frame_count; ++k) selected.push_back(k);
     }
+    std::vector<long> todo;
+    for (long k : selected)
+      if (!(manifest.item_done("render", frame_name(k)) &&
+            fs::exists(frames_dir / (frame_name(k) + ".png")) &&
+            (!exr_frames || fs::exists(frames_dir / (frame_name(k) + ".exr")))))
+        todo.push_back(k);
+    const long done_before = static_cast<long>(selected.size() - todo.size());
+    ProgressReporter progress(stage_title(3, "render"), static_cast<long>(selected.size()),
+                              o.quiet || todo.empty());
+    progress.set_done(done_before);
+    long rendered_here = 0;
+    ranks.farm(
+        todo,
+        [&](long k) {
+          throw_if_interrupted();
+          const mesh::StepRecord& step = meshes.steps[static_cast<std::size_t>(k)];
+          const render::Scene scene =
+              render::build_scene(frame_scene(framed, mesh_dir, meshes.geometry, step,
+                                              water.at(static_cast<std::size_t>(step.step))));
+          render::RenderOptions ro;
+          ro.threads = o.jobs;
+          render::RenderResult result = render::render(scene, ro);
+          throw_if_interrupted();  // the render skipped its remaining tiles: write nothing
+          if (exr_frames) {        // for compositing: no caption, linear, with the AOV layers
+            const render::AovImage aovs = render::render_aovs(scene, o.jobs);
+            render::write_exr(frames_dir / (frame_name(k) + ".exr"), result.image, &aovs,
+                              {sc.source_name, step.time_s, sc.scene.image.samples_per_pixel,
+                               sc.scene.image.exposure});
+          }
+          if (sc.film.caption) stamp_frame_caption(result.image, step.time_s, font.get());
+          render::write_png(frames_dir / (frame_name(k) + ".png"), result.image,
+                            sc.scene.image.exposure);
+          manifest.mark_item_done("render", frame_name(k));
+          ++rendered_here;
+        },
+        [&](long n) { progress.set_done(done_before + n); });
     progress.finish();
-    manifest.mark_stage_complete("render");
-    clock.timing().skipped = clock.timing().items_done == 0;
-    if (complete && done_before == frame_count) say(opt, stage_title(3, "render") + ": up to date");
+    clock.timing().items_done = static_cast<int>(leader ? todo.size() : rendered_here);
+    clock.timing().skipped = todo.empty();
+    // Every frame (not only this process's) must be there before the film is made.
+    for (long k = 0; k < frame_count && all_frames_done; ++k)
+      all_frames_done = manifest.item_done("render", frame_name(k));
+    if (leader && all_frames_done) manifest.mark_stage_complete("render");
+    if (complete && todo.empty()) say(o, stage_title(3, "render") + ": up to date");
+    if (!all_frames_done) {
+      long rendered = 0;
+      for (long k = 0; k < frame_count; ++k)
+        rendered += manifest.item_done("render", frame_name(k));
+      say(o, "[4/5] film: waits for every frame (" + std::to_string(rendered) + " of " +
+                 std::to_string(frame_count) +
+                 " rendered); render the rest with --frames, then run thaw run again");
+    }
   }
+  if (!leader || o.stage == "render" || !all_frames_done) return finish_report(report, start);
 
   // 4. film
   ContentHash film_hash;
-  film_hash.add("film").add(render_hash.hex()).add(sc.film_text).add(static_cast<double>(frame_count));
-  report.film = out / "melt.mp4";
-  if (sc.film.gif) report.gif = out / "melt.gif";
-  {
+  film_hash.add("film")
+      .add(render_hash.hex())
+      .add(sc.film_text)
+      .add(static_cast<double>(frame_count));
+  if (wanted("film")) {
+    report.film = out / "melt.mp4";
+    if (sc.film.gif) report.gif = out / "melt.gif";
     StageClock clock(report, "film");
-    const bool up_to_date = manifest.begin_stage("film", film_hash.hex()) && fs::exists(report.film) &&
-                            (!sc.film.gif || fs::exists(report.gif));
+    const bool up_to_date = manifest.begin_stage("film", film_hash.hex()) &&
+                            fs::exists(report.film) && (!sc.film.gif || fs::exists(report.gif));
     if (up_to_date) {
       clock.timing().skipped = true;
-      say(opt, stage_title(4, "film") + ": up to date");
+      say(o, stage_title(4, "film") + ": up to date");
     } else {
-      say(opt, stage_title(4, "film") + ": encoding " + std::to_string(frame_count) + " frames with ffmpeg");
-      FilmRequest request{frames_dir / "frame_%06d.png", 0, static_cast<int>(frame_count), sc.film.fps, 18};
+      say(o, stage_title(4, "film") + ": encoding " + std::to_string(frame_count) +
+                 " frames with ffmpeg");
+      FilmRequest request{frames_dir / "frame_%06d.png", 0, static_cast<int>(frame_count),
+                          sc.film.film_fps(), 18};
       encode_mp4(request, report.film);
       if (sc.film.gif) encode_gif(request, report.gif);
       manifest.mark_stage_complete("film");
@@ -269,17 +437,17 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
   }
 
   // 5. inspect: the radius plot and the ParaView series
-  report.plot = out / "plot.png";
-  report.pvd = out / "meshes.pvd";
-  {
+  if (wanted("inspect")) {
+    report.plot = out / "plot.png";
+    report.pvd = out / "meshes.pvd";
     StageClock clock(report, "inspect");
-    const bool up_to_date = manifest.begin_stage("inspect", mesh_hash.hex()) && fs::exists(report.plot) &&
-                            fs::exists(report.pvd);
+    const bool up_to_date = manifest.begin_stage("inspect", mesh_hash.hex()) &&
+                            fs::exists(report.plot) && fs::exists(report.pvd);
     if (up_to_date) {
       clock.timing().skipped = true;
-      say(opt, stage_title(5, "inspect") + ": up to date");
+      say(o, stage_title(5, "inspect") + ": up to date");
     } else {
-      ProgressReporter progress(stage_title(5, "inspect"), frame_count, opt.quiet);
+      ProgressReporter progress(stage_title(5, "inspect"), frame_count, o.quiet);
       inspect::write_pvd_series(simdir, report.pvd, interruptible(progress.callback()));
       inspect::write_radius_plot(simdir, report.plot);
       progress.finish();
@@ -287,8 +455,7 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
       clock.timing().items_done = 1;
     }
   }
-  report.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return report;
+  return finish_report(report, start);
 }
 
 }  // namespace thaw::pipeline

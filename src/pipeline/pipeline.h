@@ -1,9 +1,12 @@
 #pragma once
 // `thaw run`: scenario -> simulate -> mesh -> render -> film -> inspect, each stage reading the
 // previous stage's files (the only place where sim, mesh, render and inspect meet). Resumable:
-// DIR/run_manifest.json fingerprints each stage's inputs and lists finished items; a rerun skips
-// what is up to date and redoes only what changed (editing the camera re-renders but neither
-// re-simulates nor re-meshes). Every file is written under a temporary name and renamed.
+// DIR/run_manifest.json fingerprints each stage's inputs, DIR/run_items/ records finished frames;
+// a rerun skips what is up to date and redoes only what changed (editing the camera re-renders
+// but neither re-simulates nor re-meshes). Every file is written under a temporary name and
+// renamed. --frames / --stage run a part (Slurm arrays, GNU parallel), RunRanks shares the frames
+// of one run among MPI ranks; the frames are byte-identical however the work is split
+// (docs/pipeline.md).
 //
 // DIR/scenario.toml        the scenario as given (or the built-in default)
 // DIR/sim/                 interfaces.csv, profiles/, summary.json (one row per film frame)
@@ -11,8 +14,12 @@
 // DIR/frames/frame_NNNNNN.png
 // DIR/melt.mp4 (+ melt.gif), DIR/plot.png, DIR/meshes.pvd (+ meshes_vtp/)
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <vector>
 
+#include "src/pipeline/frame_selection.h"
+#include "src/pipeline/run_ranks.h"
 #include "src/pipeline/run_scenario.h"
 
 namespace thaw::pipeline {
@@ -27,17 +34,33 @@ struct RunOptions {
   bool quiet = false;
   /// the scenario file's text, copied to DIR/scenario.toml ("" = built-in default)
   std::string scenario_text;
+  /// --frames: render only these frames (the simulation and meshes are the whole run's); the
+  /// film and inspect stages then run only once every frame is rendered. Such a process leaves
+  /// other processes' temporary files alone (they may be rendering into the same folder).
+  std::optional<FrameSelection> frames;
+  /// --stage: run only this stage (one of kStageNames); the stages before it must be up to date.
+  std::string stage;
+  /// the processes sharing this run (MPI ranks); nullptr = this process alone
+  RunRanks* ranks = nullptr;
 };
+
+/// The stages in order: simulate, mesh, render, film, inspect.
+extern const std::vector<std::string> kStageNames;
+/// Throws thaw::UserError("--stage", ...) unless `name` is one of kStageNames.
+void check_stage_name(const std::string& name);
 
 struct StageTiming {
   std::string stage;
   double seconds = 0;
-  bool skipped = false;   ///< up to date: nothing was done
-  int items_done = 0;     ///< items produced in this run (frames rendered, ...)
+  bool skipped = false;  ///< up to date: nothing was done
+  int items_done = 0;    ///< items produced in this run (frames rendered, ...)
 };
 
 struct RunReport {
-  std::filesystem::path film, gif, plot, pvd;
+  std::filesystem::path film, gif, plot, pvd;  ///< empty if not made in this run
+  /// the simulation's events, one line each as `thaw simulate` prints them
+  /// ("event melt_onset at t = 20.6778 s, r = 0.03 m")
+  std::vector<std::string> events;
   std::vector<StageTiming> stages;
   int frames = 0;
   double total_seconds = 0;

@@ -1,15 +1,13 @@
 #include "src/pipeline/render_overrides.h"
 
 #include <charconv>
+#include <cstdio>
 
 #include "render/scene/scene_parser.h"
 #include "src/common/error.h"
 
 namespace thaw::pipeline {
 namespace {
-
-/// Largest [render.image] samples_per_pixel the scene parser accepts.
-constexpr long long kMaxSpp = 65536;
 
 std::optional<long long> whole_number(std::string_view s) {
   long long v = 0;
@@ -41,11 +39,18 @@ RenderOverrides parse_size_override(const std::string& text) {
 }
 
 int checked_spp_override(long long spp) {
-  if (spp < 1 || spp > kMaxSpp)
-    throw UserError(
-        "", "--spp",
-        "must be between 1 and " + std::to_string(kMaxSpp) + " (got " + std::to_string(spp) + ")");
+  // The scene parser's range for [render.image] samples_per_pixel (scene_parser.cpp).
+  if (spp < 1 || spp > render::kMaxSamplesPerPixel)
+    throw UserError("", "--spp",
+                    "must be between 1 and " + std::to_string(render::kMaxSamplesPerPixel) +
+                        " (got " + std::to_string(spp) + ")");
   return static_cast<int>(spp);
+}
+
+double checked_fps_override(double fps) {
+  if (const std::string problem = fps_problem(fps); !problem.empty())
+    throw UserError("", "--fps", problem);
+  return fps;
 }
 
 void apply_render_overrides(RunScenario& sc, const RenderOverrides& o) {
@@ -60,6 +65,12 @@ void apply_render_overrides(RunScenario& sc, const RenderOverrides& o) {
     text += "samples_per_pixel=" + std::to_string(*o.samples_per_pixel) + "\n";
   }
   if (!text.empty()) sc.render_text += "\n[command line]\n" + text;
+  if (o.fps) {
+    sc.film.playback_fps = *o.fps;
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "\n[command line]\nfps=%.17g\n", *o.fps);
+    sc.film_text += buf;
+  }
 }
 
 }  // namespace thaw::pipeline

@@ -1,8 +1,9 @@
 #pragma once
-// `thaw run --size WxH --spp N`: image settings given on the command line for a quick preview or
-// a final render, replacing the scenario's [render.image] values. They count in the render
-// stage's fingerprint only, so changing them re-renders without re-simulating or re-meshing.
-// Validated against the scene parser's limits (render/scene/scene_parser.h).
+// `thaw run --size WxH --spp N --fps F`: image and film settings given on the command line for a
+// quick preview or a final render, replacing the scenario's [render.image] / [film] values. Size
+// and samples count in the render stage's fingerprint only, the frame rate in the film's only,
+// so changing them neither re-simulates nor re-meshes. Validated by the same rules as the
+// scenario's keys (render/scene/scene_parser.h limits, fps_problem in run_scenario.h).
 #include <optional>
 #include <string>
 
@@ -13,6 +14,7 @@ namespace thaw::pipeline {
 struct RenderOverrides {
   std::optional<int> width, height;      ///< [pixels]
   std::optional<int> samples_per_pixel;  ///< [render.image] samples_per_pixel
+  std::optional<double> fps;             ///< melt.mp4's frame rate (FilmSettings::playback_fps)
 };
 
 /// Parses "640x480" (also "640X480"); throws thaw::UserError(--size, problem) for anything else,
@@ -22,7 +24,11 @@ RenderOverrides parse_size_override(const std::string& text);
 /// Checks `spp` against the scene parser's range; throws thaw::UserError(--spp, problem).
 int checked_spp_override(long long spp);
 
-/// Replaces the scenario's image settings and adds the overrides to its render fingerprint.
+/// Checks a --fps value by fps_problem; throws thaw::UserError(--fps, problem).
+double checked_fps_override(double fps);
+
+/// Replaces the scenario's image and film settings and adds the overrides to the render and film
+/// fingerprints.
 void apply_render_overrides(RunScenario& scenario, const RenderOverrides& overrides);
 
 }  // namespace thaw::pipeline

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "src/common/atomic_file.h"
+#include "src/common/check.h"
 #include "src/pipeline/content_hash.h"
 
 namespace thaw::pipeline {
@@ -37,7 +38,8 @@ std::string ContentHash::hex() const {
   return buf;
 }
 
-RunManifest::RunManifest(fs::path file) : m_file(std::move(file)) {
+RunManifest::RunManifest(fs::path file)
+    : m_file(std::move(file)), m_items_dir(m_file.parent_path() / "run_items") {
   std::ifstream in(m_file);
   if (!in) return;
   try {
@@ -46,7 +48,6 @@ RunManifest::RunManifest(fs::path file) : m_file(std::move(file)) {
       Stage stage;
       stage.input_hash = s.at("input_hash").get<std::string>();
       stage.complete = s.at("complete").get<bool>();
-      for (const auto& item : s.at("items")) stage.items.insert(item.get<std::string>());
       m_stages[name] = std::move(stage);
     }
   } catch (const nlohmann::json::exception&) {
@@ -57,19 +58,38 @@ RunManifest::RunManifest(fs::path file) : m_file(std::move(file)) {
 bool RunManifest::begin_stage(const std::string& stage, const std::string& input_hash) {
   Stage& s = m_stages[stage];
   if (s.input_hash == input_hash) return s.complete;
-  s = Stage{input_hash, false, {}};
+  s = Stage{input_hash, false};
+  // Forget the items outright: an output rewritten under the new inputs by a run killed before
+  // it marked the item must not count as done if the inputs change back.
+  std::error_code ec;
+  fs::remove_all(m_items_dir / stage, ec);
   save();
   return false;
 }
 
+bool RunManifest::is_complete(const std::string& stage, const std::string& input_hash) const {
+  const auto it = m_stages.find(stage);
+  return it != m_stages.end() && it->second.input_hash == input_hash && it->second.complete;
+}
+
+fs::path RunManifest::item_file(const std::string& stage, const std::string& item) const {
+  return m_items_dir / stage / item;
+}
+
 bool RunManifest::item_done(const std::string& stage, const std::string& item) const {
   const auto it = m_stages.find(stage);
-  return it != m_stages.end() && it->second.items.count(item) > 0;
+  if (it == m_stages.end() || it->second.input_hash.empty()) return false;
+  // Done under these very inputs: the file holds the hash it was finished under.
+  std::ifstream in(item_file(stage, item));
+  std::string hash;
+  return in && std::getline(in, hash) && hash == it->second.input_hash;
 }
 
 void RunManifest::mark_item_done(const std::string& stage, const std::string& item) {
-  m_stages[stage].items.insert(item);
-  save();
+  const auto it = m_stages.find(stage);
+  THAW_CHECK(it != m_stages.end(), "mark_item_done before begin_stage");
+  ensure_directory(item_file(stage, item).parent_path());
+  write_file_atomic(item_file(stage, item), it->second.input_hash + "\n");
 }
 
 void RunManifest::mark_stage_complete(const std::string& stage) {
@@ -79,6 +99,8 @@ void RunManifest::mark_stage_complete(const std::string& stage) {
 
 void RunManifest::clear() {
   m_stages.clear();
+  std::error_code ec;
+  fs::remove_all(m_items_dir, ec);
   save();
 }
 
@@ -92,7 +114,7 @@ void RunManifest::save() const {
   j["format"] = "thaw-run/1";
   j["stages"] = nlohmann::json::object();
   for (const auto& [name, s] : m_stages)
-    j["stages"][name] = {{"input_hash", s.input_hash}, {"complete", s.complete}, {"items", s.items}};
+    j["stages"][name] = {{"input_hash", s.input_hash}, {"complete", s.complete}};
   write_file_atomic(m_file, j.dump(1) + "\n");
 }
 

@@ -1,6 +1,7 @@
 #include "src/pipeline/run_scenario.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "render/scene/scene_parser.h"
 #include "sim/scenario/scenario_file.h"
@@ -16,15 +17,16 @@ const char* const kBuiltInName = "<built-in data/scenarios/default.toml>";
 
 FilmSettings parse_film(const TomlTable& t) {
   FilmSettings f;
-  f.fps = t.require_positive("fps", t.get_double("fps", f.fps));
-  if (f.fps > 240) t.fail("fps", "must be at most 240");
+  f.fps = t.get_double("fps", f.fps);
+  if (const std::string problem = fps_problem(f.fps); !problem.empty()) t.fail("fps", problem);
   if (t.has("frames") && t.has("time_lapse"))
     t.fail("time_lapse", "give either frames or time_lapse, not both");
   const std::int64_t frames = t.get_int("frames", f.frames);
   if (frames < 1 || frames > 100000)
     t.fail("frames", "must be between 1 and 100000 (got " + std::to_string(frames) + ")");
   f.frames = static_cast<int>(frames);
-  if (t.has("time_lapse")) f.time_lapse = t.require_positive("time_lapse", t.get_double("time_lapse"));
+  if (t.has("time_lapse"))
+    f.time_lapse = t.require_positive("time_lapse", t.get_double("time_lapse"));
   f.gif = t.get_bool("gif", f.gif);
   f.caption = t.get_bool("caption", f.caption);
   const std::string format = t.get_string("frames_format", "png");
@@ -78,6 +80,16 @@ void check_medium_declared(const TomlTable& shell, const render::SceneDescriptio
 
 }  // namespace
 
+std::string fps_problem(double fps) {
+  // Players handle up to a few hundred frames per second; above that a typo is likelier.
+  constexpr double kMaxFps = 240;
+  if (fps > 0 && fps <= kMaxFps) return "";
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "must be greater than 0 and at most %g frames per second (got %g)",
+                kMaxFps, fps);
+  return buf;
+}
+
 RunScenario parse_run_scenario(const TomlTable& root) {
   RunScenario r;
   r.source_name = root.source_name();
@@ -86,7 +98,8 @@ RunScenario parse_run_scenario(const TomlTable& root) {
   r.simulation = sim::parse_scenario(root, {"film", "mesh", "render"});
   for (const char* section : {"simulation", "shell", "shape", "water", "ice", "inner_boundary",
                               "outer_boundary", "materials"})
-    if (auto t = root.optional_table(section)) r.simulation_text += std::string(section) + "\n" + t->canonical_text() + "\n";
+    if (auto t = root.optional_table(section))
+      r.simulation_text += std::string(section) + "\n" + t->canonical_text() + "\n";
 
   const auto film = root.optional_table("film");
   if (film) {
@@ -106,8 +119,7 @@ RunScenario parse_run_scenario(const TomlTable& root) {
     r.shell = builtin.shell;
     r.render_text = builtin.render_text;
     r.camera_set = builtin.camera_set;
-  }
-  else {
+  } else {
     r.scene = render::parse_scene_table(*render_table, base_dir, /*camera_optional=*/true);
     r.render_text = render_table->canonical_text();
     r.camera_set = render_table->optional_table("camera").has_value();
@@ -117,13 +129,15 @@ RunScenario parse_run_scenario(const TomlTable& root) {
       check_medium_declared(*shell, r.scene, "ice_medium", r.shell.ice_medium);
       check_medium_declared(*shell, r.scene, "water_medium", r.shell.water_medium);
       check_medium_declared(*shell, r.scene, "outside_medium", r.shell.outside_medium);
-  } else {
-    for (const auto& name : {r.shell.ice_medium, r.shell.water_medium}) {
-      bool found = false;
-      for (const auto& m : r.scene.media) found = found || m.name == name;
-      if (!found) render_table->fail("media", "the shell needs a medium named '" + name + "' (or set [render.shell] ice_medium / water_medium)");
+    } else {
+      for (const auto& name : {r.shell.ice_medium, r.shell.water_medium}) {
+        bool found = false;
+        for (const auto& m : r.scene.media) found = found || m.name == name;
+        if (!found)
+          render_table->fail("media", "the shell needs a medium named '" + name +
+                                          "' (or set [render.shell] ice_medium / water_medium)");
+      }
     }
-  }
   }
   root.check_no_unknown_keys();
 
@@ -136,7 +150,9 @@ RunScenario read_run_scenario(const fs::path& path) {
   return parse_run_scenario(TomlTable::parse_file(path));
 }
 
-std::string default_run_scenario_text() { return sim::default_scenario_text(); }
+std::string default_run_scenario_text() {
+  return sim::default_scenario_text();
+}
 
 RunScenario default_run_scenario() {
   return parse_run_scenario(TomlTable::parse_string(default_run_scenario_text(), kBuiltInName));

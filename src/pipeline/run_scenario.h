@@ -35,7 +35,16 @@ struct FilmSettings {
   /// is encoded from the PNGs either way
   enum class FramesFormat { png, exr };
   FramesFormat frames_format = FramesFormat::png;
+  /// `thaw run --fps`: melt.mp4 plays at this rate instead (0 = fps). The frames' simulated
+  /// times stay those of `fps`, so the simulation and meshes stay valid; with time_lapse the film
+  /// then plays faster or slower than the time lapse says.
+  double playback_fps = 0.0;
+  double film_fps() const { return playback_fps > 0 ? playback_fps : fps; }
 };
+
+/// The one rule for a film's frame rate ([film] fps and --fps): "" if `fps` is fine, otherwise
+/// the problem ("must be between ...").
+std::string fps_problem(double fps);
 
 struct ShellPlacement {
   /// where the centre of the shell (sphere centre, capsule midpoint, slab mid-plane) sits [m]
@@ -49,7 +58,7 @@ struct ShellPlacement {
 };
 
 struct RunScenario {
-  std::string source_name;   ///< file name, or "<built-in default>"
+  std::string source_name;  ///< file name, or "<built-in default>"
   sim::Scenario simulation;
   FilmSettings film;
   mesh::MeshOptions mesh;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 namespace thaw {
 namespace {
 
@@ -18,6 +20,23 @@ TEST(Progress, CountsFromManyThreads) {
   for (int i = 0; i < 1000; ++i) p.advance();
   p.finish();
   SUCCEED();
+}
+
+TEST(Progress, FinalLinesSayDoneOrWhyTheWorkStoppedShort) {
+  ::testing::internal::CaptureStderr();
+  {
+    ProgressReporter p("[3/5] render", 41);
+    p.set_done(41);
+    p.finish();
+    ProgressReporter q("[1/5] simulate", 80);
+    q.set_done(51);
+    q.finish_early("steps: the ice is gone");
+    q.finish();  // a second final line is never printed
+  }
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("[3/5] render: 41/41 done in "), std::string::npos) << err;
+  EXPECT_NE(err.find("[1/5] simulate: 51/80 steps: the ice is gone ("), std::string::npos) << err;
+  EXPECT_EQ(err.find("51/80 done"), std::string::npos) << err;
 }
 
 }  // namespace

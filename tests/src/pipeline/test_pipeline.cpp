@@ -42,7 +42,8 @@ std::string read_file(const fs::path& p) {
 
 std::map<std::string, std::string> frames_of(const fs::path& out) {
   std::map<std::string, std::string> frames;
-  for (const auto& e : fs::directory_iterator(out / "frames")) frames[e.path().filename()] = read_file(e.path());
+  for (const auto& e : fs::directory_iterator(out / "frames"))
+    frames[e.path().filename()] = read_file(e.path());
   return frames;
 }
 
@@ -60,8 +61,9 @@ fs::path variant(const fs::path& dir, const std::string& from, const std::string
 class ThawRun : public ::testing::Test {
  protected:
   void SetUp() override {
-    m_dir = fs::temp_directory_path() / ("thaw_test_run_" + std::to_string(::getpid()) + "_" +
-                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    m_dir = fs::temp_directory_path() /
+            ("thaw_test_run_" + std::to_string(::getpid()) + "_" +
+             ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(m_dir);
     fs::create_directories(m_dir);
   }
@@ -91,7 +93,8 @@ TEST_F(ThawRun, TinyScenarioEndToEndThenNothingToDo) {
   ASSERT_EQ(second.exit_code, 0) << second.output;
   // Every stage reports "up to date" and nothing was rewritten.
   std::size_t up_to_date = 0;
-  for (std::size_t p = second.output.find("up to date"); p != std::string::npos; p = second.output.find("up to date", p + 1))
+  for (std::size_t p = second.output.find("up to date"); p != std::string::npos;
+       p = second.output.find("up to date", p + 1))
     ++up_to_date;
   EXPECT_GE(up_to_date, 5u) << second.output;
   EXPECT_EQ(fs::last_write_time(out / "melt.mp4"), film_time);
@@ -105,7 +108,8 @@ TEST_F(ThawRun, ChangingOnlyTheCameraReRendersWithoutReSimulatingOrReMeshing) {
   const auto sim_time = fs::last_write_time(out / "sim/interfaces.csv");
   const auto mesh_time = fs::last_write_time(out / "sim/mesh/manifest.json");
   const auto frames = frames_of(out);
-  const fs::path moved = variant(m_dir, "position = [0.0, 0.03, 0.09]", "position = [0.02, 0.03, 0.09]");
+  const fs::path moved =
+      variant(m_dir, "position = [0.0, 0.03, 0.09]", "position = [0.02, 0.03, 0.09]");
   const auto r = thaw({"run", moved.string(), "--out", out.string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(fs::last_write_time(out / "sim/interfaces.csv"), sim_time);
@@ -183,13 +187,18 @@ TEST_F(ThawRun, KilledDuringRenderAndRestartedGivesByteIdenticalFrames) {
   ASSERT_EQ(thaw({"run", heavy.string(), "--out", reference.string(), "-q"}).exit_code, 0);
 
   const std::string out_arg = killed.string(), scenario_arg = heavy.string(), exe = kThaw.string();
-  std::vector<char*> argv = {const_cast<char*>(exe.c_str()), const_cast<char*>("run"),
-                             const_cast<char*>(scenario_arg.c_str()), const_cast<char*>("--out"),
-                             const_cast<char*>(out_arg.c_str()), const_cast<char*>("-q"), nullptr};
+  std::vector<char*> argv = {const_cast<char*>(exe.c_str()),
+                             const_cast<char*>("run"),
+                             const_cast<char*>(scenario_arg.c_str()),
+                             const_cast<char*>("--out"),
+                             const_cast<char*>(out_arg.c_str()),
+                             const_cast<char*>("-q"),
+                             nullptr};
   pid_t pid = 0;
   ASSERT_EQ(posix_spawn(&pid, exe.c_str(), nullptr, nullptr, argv.data(), environ), 0);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (!fs::exists(killed / "frames/frame_000001.png") && std::chrono::steady_clock::now() < deadline)
+  while (!fs::exists(killed / "frames/frame_000001.png") &&
+         std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   ::kill(pid, SIGKILL);
   int status = 0;
@@ -277,8 +286,8 @@ TEST_F(ThawRun, MissingFfmpegIsAClearErrorAndTheFramesAreKept) {
   const fs::path empty_path = m_dir / "bin";
   fs::create_directories(empty_path);
   const fs::path out = m_dir / "out";
-  const auto r = run_process({"env", "PATH=" + empty_path.string(), kThaw.string(), "run", kTiny.string(),
-                              "--out", out.string(), "-q"});
+  const auto r = run_process({"env", "PATH=" + empty_path.string(), kThaw.string(), "run",
+                              kTiny.string(), "--out", out.string(), "-q"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("ffmpeg not found"), std::string::npos) << r.output;
   EXPECT_EQ(frames_of(out).size(), 4u);
@@ -294,7 +303,8 @@ TEST_F(ThawRun, InvalidScenarioIsReportedBeforeAnyWork) {
   EXPECT_NE(r.output.find("unknown key"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
 
-  const fs::path bad_medium = variant(m_dir, "[render.shell]", "[render.shell]\nice_medium = \"glass\"");
+  const fs::path bad_medium =
+      variant(m_dir, "[render.shell]", "[render.shell]\nice_medium = \"glass\"");
   const auto m = thaw({"run", bad_medium.string(), "--out", out.string()});
   EXPECT_EQ(m.exit_code, 2);
   EXPECT_NE(m.output.find("render.shell.ice_medium"), std::string::npos) << m.output;
@@ -344,6 +354,106 @@ TEST_F(ThawRun, ExrFramesBesideThePngsWithLayersAndFrameTimes) {
   EXPECT_NE(b.output.find(bad.string()), std::string::npos) << b.output;
   EXPECT_EQ(std::count(b.output.begin(), b.output.end(), '\n'), 1) << b.output;
   EXPECT_FALSE(fs::exists(bad_out / "frames"));
+}
+
+}  // namespace
+}  // namespace thaw::pipeline
+
+namespace thaw::pipeline {
+namespace {
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+TEST_F(ThawRun, FrameSubsetsTogetherEqualTheWholeRunAndTheLastOneMakesTheFilm) {
+  const fs::path whole = m_dir / "whole", parts = m_dir / "parts";
+  const auto reference = thaw({"run", kTiny.string(), "--out", whole.string()});
+  ASSERT_EQ(reference.exit_code, 0) << reference.output;
+  // thaw run prints the simulation's events as thaw simulate does.
+  EXPECT_TRUE(contains(reference.output, "event break_through at t = ")) << reference.output;
+
+  // As two Slurm array tasks would: frames 1 and 3, then 0 and 2.
+  const auto odd = thaw({"run", kTiny.string(), "--out", parts.string(), "--frames", "1:3:2"});
+  ASSERT_EQ(odd.exit_code, 0) << odd.output;
+  EXPECT_TRUE(contains(odd.output, "render: 2/2 done")) << odd.output;
+  EXPECT_TRUE(contains(odd.output, "waits for every frame (2 of 4 rendered)")) << odd.output;
+  EXPECT_FALSE(fs::exists(parts / "melt.mp4"));
+  EXPECT_EQ(frames_of(parts).size(), 2u);
+  const auto sim_time = fs::last_write_time(parts / "sim/interfaces.csv");
+
+  const auto even = thaw({"run", kTiny.string(), "--out", parts.string(), "--frames", "0:2:2"});
+  ASSERT_EQ(even.exit_code, 0) << even.output;
+  EXPECT_TRUE(contains(even.output, "simulate: up to date")) << even.output;
+  EXPECT_TRUE(contains(even.output, "mesh: up to date")) << even.output;
+  EXPECT_EQ(fs::last_write_time(parts / "sim/interfaces.csv"), sim_time);
+  EXPECT_EQ(frames_of(parts), frames_of(whole));  // byte-identical frames
+  EXPECT_EQ(count_video_frames(parts / "melt.mp4"), 4);
+  EXPECT_EQ(read_file(parts / "melt.mp4"), read_file(whole / "melt.mp4"));
+
+  // --fps re-encodes the film only.
+  const auto faster = thaw({"run", kTiny.string(), "--out", parts.string(), "--fps", "8"});
+  ASSERT_EQ(faster.exit_code, 0) << faster.output;
+  EXPECT_TRUE(contains(faster.output, "render: up to date")) << faster.output;
+  EXPECT_TRUE(contains(faster.output, "film: encoding 4 frames")) << faster.output;
+  EXPECT_NE(read_file(parts / "melt.mp4"), read_file(whole / "melt.mp4"));
+  EXPECT_EQ(count_video_frames(parts / "melt.mp4"), 4);
+}
+
+TEST_F(ThawRun, StageRunsOneStageOnceTheStagesItReadsAreUpToDate) {
+  const fs::path out = m_dir / "out";
+  const auto one_line_error = [&](const std::vector<std::string>& extra, const std::string& part) {
+    std::vector<std::string> args{"run", kTiny.string(), "--out", out.string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto r = thaw(args);
+    EXPECT_EQ(r.exit_code, 2) << extra.back() << ": " << r.output;
+    EXPECT_TRUE(contains(r.output, part)) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  };
+  one_line_error({"--stage", "render"}, "the simulate stage is not up to date");
+  EXPECT_FALSE(fs::exists(out));  // nothing written
+  for (const auto& [flag, value, part] :
+       std::vector<std::array<std::string, 3>>{{"--frames", "4-9", "the film has frames 0-3"},
+                                               {"--frames", "3-1", "last frame comes before"},
+                                               {"--frames", "1:3:0", "step must be at least 1"},
+                                               {"--frames", "one", "expected a frame N"},
+                                               {"--stage", "bake", "must be simulate, mesh"},
+                                               {"--fps", "0", "--fps: must be greater than 0"},
+                                               {"--fps", "1000", "at most 240"}})
+    one_line_error({flag, value}, part);
+  EXPECT_FALSE(fs::exists(out));
+
+  ASSERT_EQ(thaw({"run", kTiny.string(), "--out", out.string(), "--stage", "simulate"}).exit_code,
+            0);
+  EXPECT_TRUE(fs::exists(out / "sim/interfaces.csv"));
+  EXPECT_FALSE(fs::exists(out / "sim/mesh"));
+  ASSERT_EQ(thaw({"run", kTiny.string(), "--out", out.string(), "--stage", "mesh"}).exit_code, 0);
+  EXPECT_TRUE(fs::exists(out / "sim/mesh/manifest.json"));
+  EXPECT_FALSE(fs::exists(out / "frames"));
+  ASSERT_EQ(
+      thaw({"run", kTiny.string(), "--out", out.string(), "--stage", "render", "--frames", "0"})
+          .exit_code,
+      0);
+  EXPECT_EQ(frames_of(out).size(), 1u);
+  one_line_error({"--stage", "film"}, "the render stage is not up to date");
+  ASSERT_EQ(thaw({"run", kTiny.string(), "--out", out.string(), "--stage", "render"}).exit_code, 0);
+  EXPECT_FALSE(fs::exists(out / "melt.mp4"));
+  ASSERT_EQ(thaw({"run", kTiny.string(), "--out", out.string(), "--stage", "film"}).exit_code, 0);
+  EXPECT_EQ(count_video_frames(out / "melt.mp4"), 4);
+  EXPECT_FALSE(fs::exists(out / "plot.png"));
+  ASSERT_EQ(thaw({"run", kTiny.string(), "--out", out.string(), "--stage", "inspect"}).exit_code,
+            0);
+  EXPECT_TRUE(fs::exists(out / "plot.png"));
+  one_line_error({"--stage", "mesh", "--force"}, "--force");
+}
+
+TEST_F(ThawRun, ASimulationThatRunsOutOfIceSaysWhyItStoppedShort) {
+  const fs::path scenario = variant(m_dir, "duration_s = 600.0", "duration_s = 20000.0");
+  const auto r = thaw({"run", scenario.string(), "--out", (m_dir / "out").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(contains(r.output, "[1/5] simulate: 2/4 frame times: the ice is gone at t = "))
+      << r.output;
+  EXPECT_TRUE(contains(r.output, "render: 2/2 done")) << r.output;
 }
 
 }  // namespace

@@ -12,7 +12,8 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path scratch_file(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("thaw_test_manifest_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("thaw_test_manifest_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   fs::remove(dir / name);
   return dir / name;
@@ -49,6 +50,36 @@ TEST(RunManifest, ChangedInputsForgetTheStage) {
   EXPECT_FALSE(m.begin_stage("mesh", "b"));
   EXPECT_FALSE(m.item_done("mesh", "step_000001"));
   EXPECT_EQ(RunManifest(file).stage_hash("mesh"), "b");
+}
+
+TEST(RunManifest, ItemsOfProcessesSharingTheRunAreAllKept) {
+  // Two processes (MPI ranks, Slurm array tasks) load the manifest, then mark different items:
+  // neither may lose the other's.
+  const fs::path file = scratch_file("shared.json");
+  fs::remove_all(file.parent_path() / "run_items");
+  RunManifest leader(file);
+  leader.begin_stage("render", "h1");
+  RunManifest a(file), b(file);
+  a.mark_item_done("render", "frame_000000");
+  b.mark_item_done("render", "frame_000001");
+  RunManifest after(file);
+  EXPECT_TRUE(after.item_done("render", "frame_000000"));
+  EXPECT_TRUE(after.item_done("render", "frame_000001"));
+  EXPECT_FALSE(after.is_complete("render", "h1"));
+  after.mark_stage_complete("render");
+  EXPECT_TRUE(RunManifest(file).is_complete("render", "h1"));
+  EXPECT_FALSE(RunManifest(file).is_complete("render", "h2"));
+  // Items finished under other inputs are forgotten, also when the inputs change back (an
+  // output may have been rewritten in between); --force forgets everything.
+  after.begin_stage("render", "h2");
+  EXPECT_FALSE(after.item_done("render", "frame_000000"));
+  after.mark_item_done("render", "frame_000000");
+  after.begin_stage("render", "h1");
+  EXPECT_FALSE(after.item_done("render", "frame_000000"));
+  after.mark_item_done("render", "frame_000001");
+  after.clear();
+  after.begin_stage("render", "h1");
+  EXPECT_FALSE(after.item_done("render", "frame_000001"));
 }
 
 TEST(RunManifest, UnparsableFileMeansRedoEverything) {

@@ -1,0 +1,36 @@
+#pragma once
+// The processes sharing one `thaw run`: a single process, or the ranks of an MPI job
+// (run_ranks_mpi.h, built with THAW_MPI). The pipeline asks them to wait for each other, to share
+// the leader's word and to farm out frames; it never sees MPI. Rank 0, the leader, simulates,
+// keeps run_manifest.json and makes the film; frames go to whichever rank asks next.
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace thaw::pipeline {
+
+class RunRanks {
+ public:
+  virtual ~RunRanks() = default;
+  virtual int rank() const { return 0; }
+  virtual int size() const { return 1; }
+  bool leader() const { return rank() == 0; }
+  /// Returns when every rank has called it. Waiting ranks sleep rather than spin, so the cores
+  /// stay with the rank that works (the leader simulating, say).
+  virtual void barrier() {}
+  /// The leader's `text` on every rank (what other ranks pass is ignored).
+  virtual std::string broadcast(const std::string& text) { return text; }
+  /// Calls work(item) exactly once for each of `items` over all ranks, one item at a time to
+  /// whichever rank is free next (dynamic: frames differ in cost). On the leader, done(n) is
+  /// called as the n-th item finishes anywhere. If work throws on some rank, no further items are
+  /// handed out and every rank then throws thaw::UserError with that rank's message (the first
+  /// failure); items finished before stay finished. Every rank must call farm with equal items.
+  virtual void farm(const std::vector<long>& items, const std::function<void(long)>& work,
+                    const std::function<void(long)>& done);
+};
+
+/// One process: barrier and broadcast do nothing, farm is a loop.
+std::unique_ptr<RunRanks> single_process();
+
+}  // namespace thaw::pipeline
