@@ -95,14 +95,14 @@ class WhittedShading {
         m_min_weight(static_cast<float>(scene.settings().min_weight)),
         m_pixel_spread(texture_cone_spread(scene)) {}
 
-  /// Spread angle [rad] of the ray cone of one camera sample (0: textures point-sampled): a
-  /// pixel's angle over sqrt(samples_per_pixel), at least 1/8 of it (pbrt's ray-differential
-  /// scale), so the texture's own average and the film's samples share the pixel's footprint.
+  /// Spread angle [rad] of the ray cone of one camera sample (0: textures point-sampled): the
+  /// angle of a pixel, so that texture detail finer than a pixel is averaged away before the film
+  /// samples it (what aliases into moire otherwise), and the image tends to the same limit at
+  /// any sample count.
   static float texture_cone_spread(const Scene& scene) {
     const ImageSettings& st = scene.settings();
     if (!st.texture_filter || st.samples_per_pixel <= 1) return 0.0f;
-    const float scale = std::max(0.125f, 1.0f / std::sqrt(float(st.samples_per_pixel)));
-    return scene.camera().pixel_angle() * scale;
+    return scene.camera().pixel_angle();
   }
 
   /// The camera sample about to be traced (its pixel's sampler and index): the light samples'
@@ -305,9 +305,11 @@ class WhittedShading {
 
   /// A texture's colour at a hit seen along unit direction d: averaged over the ray cone's
   /// footprint, an ellipse of minor half-axis w/2 and major half-axis w/(2 cos) along d's
-  /// projection on the surface, boxed per axis (Texture::eval_filtered); point-sampled without
-  /// a cone. The cone's width grows with the distance travelled from the camera, through
-  /// reflections and refractions (their curvature is not followed: flat-surface cones).
+  /// projection on the surface. Anisotropic, as GPUs filter textures: up to 16 probes spaced
+  /// along the major axis, each a box of the minor axis's size (Texture::eval_filtered, closed
+  /// form), their mean. A single axis-aligned box around a rotated ellipse would leave the
+  /// checker's diagonals as converging stripes. Point-sampled without a cone. The cone's width
+  /// grows with the distance travelled from the camera, through reflections and refractions.
   Rgb texture_colour(const Texture& texture, const SurfaceInteraction& si, const Vec3& d) const {
     if (texture.kind == Texture::Kind::solid || m_cone.width == 0.0f) return texture.eval(si.p);
     const float half = 0.5f * std::abs(m_cone.width);
@@ -319,10 +321,17 @@ class WhittedShading {
                 ? along / len
                 : normalize(cross(si.ng, std::abs(si.ng.x) < 0.9f ? Vec3{1.0f, 0.0f, 0.0f}
                                                                   : Vec3{0.0f, 1.0f, 0.0f}));
-    const Vec3 major = along * (half / cos_t), minor = cross(si.ng, along) * half;
-    const Vec3 extent{std::hypot(major.x, minor.x), std::hypot(major.y, minor.y),
-                      std::hypot(major.z, minor.z)};
-    return texture.eval_filtered(si.p, extent);
+    const float major = half / cos_t;
+    const int probes = std::clamp(static_cast<int>(std::ceil(major / half)), 1, 16);
+    // Each probe covers its share of the major axis and the whole minor axis.
+    const Vec3 a = along * (major / float(probes)), b = cross(si.ng, along) * half;
+    const Vec3 extent{std::hypot(a.x, b.x), std::hypot(a.y, b.y), std::hypot(a.z, b.z)};
+    Rgb sum{0.0f, 0.0f, 0.0f};
+    for (int i = 0; i < probes; ++i) {
+      const float offset = (2.0f * (float(i) + 0.5f) / float(probes) - 1.0f) * major;
+      sum += texture.eval_filtered(si.p + along * offset, extent);
+    }
+    return sum * (1.0f / float(probes));
   }
 
   /// How much the surface normal turns across the cone's footprint at a hit [rad], signed:

@@ -6,6 +6,8 @@
 // (0,log2 n,2)-net, and all camera samples of the pixel together form one larger net. The
 // integrator supplies the BSDF through a callback, so RGB and spectral shading share this.
 // Knows nothing about materials or the image.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 
@@ -27,17 +29,27 @@ inline std::uint32_t light_dimension(int depth, std::size_t light) {
   return 1u + static_cast<std::uint32_t>(depth) * 64u + static_cast<std::uint32_t>(light % 64u);
 }
 
+/// Shadow samples a shading point takes in a penumbra, where its first n samples are neither all
+/// seen nor all hidden: 8 n, at most 64 (but never fewer than n). Elsewhere the ratio estimator
+/// is exact with the first n, so the extra rays go only where the light is partly hidden.
+inline constexpr std::uint32_t kMaxPenumbraSamples = 64;
+inline std::uint32_t penumbra_samples(std::uint32_t n) {
+  return std::max(n, std::min(8 * n, kMaxPenumbraSamples));
+}
+
 /// Direct light from every sphere light at point p (rounding bound p_error, geometric normal ng
 /// and shading normal ns facing the side being lit):
 ///   diffuse(light_index, e)            irradiance E = L_light * e at p (Lambertian term)
 ///   specular(light_index, wi, weight)  per unoccluded sample: radiance L_light * weight arriving
-///                                      along wi, weight = falloff_scale / (pdf * n)
+///                                      along wi, weight = falloff_scale / (pdf * samples taken)
 /// The irradiance is the exact unoccluded value (sphere_irradiance_per_radiance, horizon
 /// included) times the fraction of the cap's cosine-weighted samples that reach the light:
 /// E = E_exact * sum_visible(cos / pdf) / sum_all(cos / pdf), a ratio estimator, consistent, exact
 /// wherever the light is wholly visible or wholly hidden (no noise outside penumbrae; a lone
 /// unshadowed sphere light gives precisely a point light's I cos / d^2). Samples below the
-/// horizon cast no shadow ray. `rays` counts the shadow rays.
+/// horizon cast no shadow ray. For camera sample s a shading point takes points s N .. s N + n - 1
+/// (N = penumbra_samples(n)) and, in a penumbra, the rest up to s N + N - 1: the first n and all
+/// N are both nets of the sequence. `rays` counts the shadow rays.
 template <class Diffuse, class Specular>
 void sample_sphere_lights(const Scene& scene, const Vec3& p, const Vec3& p_error, const Vec3& ng,
                           const Vec3& ns, int depth, const CameraSampleContext& ctx,
@@ -52,12 +64,23 @@ void sample_sphere_lights(const Scene& scene, const Vec3& p, const Vec3& p_error
         sphere_irradiance_per_radiance(double(dot(ns, to_c)) / std::sqrt(d2), r2 / d2);
     if (!(e_unit > 0.0)) continue;  // wholly below the horizon
     const auto n = static_cast<std::uint32_t>(light.samples);
+    const std::uint32_t n_max = penumbra_samples(n);
     const std::uint32_t dim = light_dimension(depth, k);
     double all = 0.0, visible = 0.0;
     float falloff_scale = 1.0f;
-    for (std::uint32_t j = 0; j < n; ++j) {
+    int seen = 0, hidden = 0;
+    struct Highlight {
+      Vec3 wi;
+      float weight;
+    };
+    std::array<Highlight, kMaxPenumbraSamples> highlights;
+    std::size_t highlight_count = 0;
+    std::uint32_t taken = 0;
+    for (std::uint32_t j = 0; j < n_max; ++j, ++taken) {
+      // After the first n: on only in a penumbra (some seen, some hidden).
+      if (j == n && (seen == 0 || hidden == 0)) break;
       SphereLightSample s;
-      if (!sample_sphere_light(light, p, ctx.sampler->get_2d(ctx.sample_index * n + j, dim), s))
+      if (!sample_sphere_light(light, p, ctx.sampler->get_2d(ctx.sample_index * n_max + j, dim), s))
         break;
       falloff_scale = s.falloff_scale;
       const float cos_s = dot(ns, s.wi);
@@ -68,10 +91,20 @@ void sample_sphere_lights(const Scene& scene, const Vec3& p, const Vec3& p_error
       // Stop just short of the point sampled on the light's own (visible, opaque) sphere.
       const Ray shadow{origin, s.wi, length(p + s.wi * s.distance - origin) * (1.0f - 1e-4f)};
       ++rays;
-      if (scene.occluded(shadow)) continue;
+      if (scene.occluded(shadow)) {
+        ++hidden;
+        continue;
+      }
+      ++seen;
       visible += f;
-      specular(k, s.wi, s.falloff_scale / (s.pdf * float(n)));
+      if (highlight_count < highlights.size())
+        highlights[highlight_count++] = {s.wi, s.falloff_scale / s.pdf};
+      else
+        specular(k, s.wi, s.falloff_scale / (s.pdf * float(n)));  // n = N > 64: no refinement
     }
+    // The highlight: the plain estimate over the samples taken.
+    for (std::size_t i = 0; i < highlight_count; ++i)
+      specular(k, highlights[i].wi, highlights[i].weight / float(taken));
     // No sample above the horizon (a sliver of the cap above it): taken as unshadowed.
     const double fraction = all > 0.0 ? visible / all : 1.0;
     if (fraction > 0.0) diffuse(k, static_cast<float>(falloff_scale * e_unit * fraction));

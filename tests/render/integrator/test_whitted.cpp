@@ -534,10 +534,22 @@ TEST(Whitted, SphereLightPenumbraFollowsTheConeGeometry) {
       ++penumbra;
     }
   }
-  // The sweep crossed all three regions (umbra to x ~ 0.36, penumbra to ~ 0.63).
+  // The sweep crossed all three regions (umbra to x ~ 0.53, penumbra to ~ 0.83).
   EXPECT_GT(umbra, 10);
   EXPECT_GT(penumbra, 10);
   EXPECT_GT(lit, 10);
+  // With 4 samples a point takes 4 shadow rays where they all agree (umbra, lit), and
+  // penumbra_samples(4) = 32 where they do not (mid-penumbra: half the light hidden).
+  d.lights[0].samples = 4;
+  const Scene few = build_scene(d);
+  auto shadow_rays = [&](double x) {
+    RenderStats stats;
+    trace_ray(few, Ray{{float(x), 1e-3f, 0.0f}, {0.0f, -1.0f, 0.0f}}, 0, &stats);
+    return stats.rays - 1;  // minus the camera ray
+  };
+  EXPECT_EQ(shadow_rays(0.0), 4u);
+  EXPECT_EQ(shadow_rays(1.2), 4u);
+  EXPECT_EQ(shadow_rays(0.68), 32u);
 }
 
 TEST(Whitted, SoftShadowAdaptiveImageIsTheSameForAnyThreadCountAndTileSize) {
