@@ -1,6 +1,7 @@
 #include "render/image/image_io.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 
@@ -26,7 +27,11 @@ namespace {
 
 /// The same mapping as to_srgb8 without a pow per channel: thresholds[k] is the smallest linear
 /// value that to_srgb8 maps to k + 1 or more (found by bisection on to_srgb8 itself, so the two
-/// agree exactly), and a value's code is the number of thresholds it reaches.
+/// agree exactly), and a value's code is the number of thresholds it reaches. To find it fast, a
+/// table indexed by the float's top 16 bits (sign, exponent, 7 mantissa bits) holds the code of
+/// the smallest value with those bits; the few thresholds inside that bucket (a 2^-7 relative
+/// range, where codes are at least 0.4 % apart) are then stepped over. Negative and NaN buckets
+/// start at code 0 and never pass a threshold; +inf starts at 255.
 class SrgbEncoder {
  public:
   SrgbEncoder() {
@@ -39,18 +44,28 @@ class SrgbEncoder {
       }
       m_thresholds[k] = hi;
     }
+    for (std::uint32_t i = 0; i < 65536; ++i) {
+      const float v = std::bit_cast<float>(i << 16);
+      m_bucket_start[i] = v == v ? by_search(v) : 0;
+    }
   }
   std::uint8_t operator()(float v) const {
-    if (!(v == v)) return 0;
-    // Branch-free binary search over the 255 sorted thresholds.
+    int k = m_bucket_start[std::bit_cast<std::uint32_t>(v) >> 16];
+    while (k < 255 && v >= m_thresholds[k]) ++k;
+    return static_cast<std::uint8_t>(k);
+  }
+
+ private:
+  /// Binary search over the 255 sorted thresholds (v not NaN).
+  std::uint8_t by_search(float v) const {
     int k = 0;
     for (int step = 128; step > 0; step /= 2)
       if (k + step <= 255 && v >= m_thresholds[k + step - 1]) k += step;
     return static_cast<std::uint8_t>(k);
   }
 
- private:
   float m_thresholds[255];
+  std::uint8_t m_bucket_start[65536];
 };
 
 const SrgbEncoder& srgb_encoder() {

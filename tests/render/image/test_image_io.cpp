@@ -6,6 +6,8 @@
 
 #include <unistd.h>
 #include <algorithm>
+#include <bit>
+#include <limits>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -146,7 +148,19 @@ TEST(ImageIo, TableEncoderAgreesWithSrgbCurveEverywhere) {
       ASSERT_EQ(srgb8_by_table(v), to_srgb8(v)) << v;
   }
   EXPECT_EQ(srgb8_by_table(std::nanf("")), 0);
+  EXPECT_EQ(srgb8_by_table(-std::nanf("")), 0);
   EXPECT_EQ(srgb8_by_table(5.0f), 255);
+  EXPECT_EQ(srgb8_by_table(std::numeric_limits<float>::infinity()), 255);
+  EXPECT_EQ(srgb8_by_table(-std::numeric_limits<float>::infinity()), 0);
+  EXPECT_EQ(srgb8_by_table(-0.0f), 0);
+  EXPECT_EQ(srgb8_by_table(std::numeric_limits<float>::denorm_min()), 0);
+  EXPECT_EQ(srgb8_by_table(std::numeric_limits<float>::max()), 255);
+  // Float bit patterns across [0, 2] (every bucket of the table's top-16-bit index, 64 samples
+  // in each at a stride coprime with its size).
+  for (std::uint32_t bits = 0; bits <= 0x40000000u; bits += 1021) {
+    const float v = std::bit_cast<float>(bits);
+    ASSERT_EQ(srgb8_by_table(v), to_srgb8(v)) << v;
+  }
   EXPECT_GT(checked, 1000000);
 }
 
