@@ -7,10 +7,10 @@
 #include <unistd.h>
 #include <algorithm>
 #include <bit>
-#include <limits>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 
 #include "src/common/error.h"
 
