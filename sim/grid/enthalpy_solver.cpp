@@ -686,6 +686,19 @@ struct EnthalpySolver::Impl {
       });
       g[c] = a;  // now the material cell's own share
     }
+    // Remnants thinner than a cell (rods and plates left of a shell's edges, fragments): their
+    // cells are less than half full with no bulk behind them, and |grad m| V, which sees a
+    // smeared surface, gives them a fraction of their true area (a rod of cross-section 0.3 dx^2
+    // has 1.9 dx^2 of surface per cell length, the gradient ~0.6 dx^2), so they lingered for
+    // minutes as sub-cell dust. Such a cell gets at least the area of the most compact body of
+    // its volume: a sphere in 3D, (36 pi)^(1/3) m^(2/3) dx^2, a torus of round cross-section in
+    // (r, y), 2 sqrt(pi m) V / dx; at most 2 V / dx (a plate's two faces).
+    for (long c = 0; c < n; ++c) {
+      if (m[c] == 0 || m[c] >= 0.5 || backed_by_bulk(c)) continue;
+      const double compact = nz > 1 ? std::cbrt(36 * std::numbers::pi) * std::pow(m[c], 2.0 / 3)
+                                    : 2 * std::sqrt(std::numbers::pi * m[c]);
+      g[c] = std::max(g[c], std::min(compact, 2.0) * vol[c] / s);
+    }
     // Only cells open to the outside air take surface heat (their melt drains): a share that
     // the smoothed gradient put one cell deeper goes to its exposed neighbours, evenly.
     std::vector<double> share(static_cast<std::size_t>(n), 0.0);
@@ -710,6 +723,21 @@ struct EnthalpySolver::Impl {
       });
       surface_area[c] = a;
     }
+  }
+
+  /// A cell at least half full within two cells along any axis: cell c is part of a resolved
+  /// body's (smeared) surface rather than a sub-cell remnant.
+  bool backed_by_bulk(long c) const {
+    const long nxy = static_cast<long>(nx) * ny;
+    const int i = static_cast<int>(c % nx), j = static_cast<int>((c / nx) % ny),
+              k = static_cast<int>(c / nxy);
+    for (int d = 1; d <= 2; ++d) {
+      if ((i - d >= 0 && m[c - d] >= 0.5) || (i + d < nx && m[c + d] >= 0.5)) return true;
+      if ((j - d >= 0 && m[c - d * nx] >= 0.5) || (j + d < ny && m[c + d * nx] >= 0.5)) return true;
+      if ((k - d >= 0 && m[c - d * nxy] >= 0.5) || (k + d < nz && m[c + d * nxy] >= 0.5))
+        return true;
+    }
+    return false;
   }
 
   double ice_volume() const {
