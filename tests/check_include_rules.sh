@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Keeps the architecture honest (STYLE.md): CGAL only in src/mesh, VTK only in src/inspect and
 # src/gui (its 3D view), Qt only in src/gui, sim/ and render/ never include each other (nor
-# CGAL/VTK/Qt), src/common includes no other folder, src/cli sees src/gui only through gui.h.
+# CGAL/VTK/Qt), src/common includes no other folder, src/meshio (the mesh files, a plain library
+# like src/common) includes only src/common, src/cli sees src/gui only through gui.h.
 set -u
 root=${1:?usage: check_include_rules.sh REPO_ROOT}
 cd "$root"
@@ -11,13 +12,14 @@ check() { # $1 description, $2 folders to scan, $3 forbidden include regex
   hits=$(grep -rnE "^\s*#\s*include\s*[<\"]($3)" $2 --include='*.h' --include='*.cpp' 2>/dev/null)
   if [ -n "$hits" ]; then echo "violation: $1"; echo "$hits"; fail=1; fi
 }
-check "CGAL outside src/mesh" "sim render src/common src/inspect src/pipeline src/cli src/gui" "CGAL/"
-check "VTK outside src/inspect and src/gui" "sim render src/common src/mesh src/pipeline src/cli" "vtk"
+check "CGAL outside src/mesh" "sim render src/common src/meshio src/inspect src/pipeline src/cli src/gui" "CGAL/"
+check "VTK outside src/inspect and src/gui" "sim render src/common src/meshio src/mesh src/pipeline src/cli" "vtk"
 check "sim includes render" "sim" "render/"
 check "render includes sim" "render" "sim/"
-check "Qt outside src/gui" "sim render src/common src/mesh src/inspect src/pipeline src/cli" "(Q[A-Z][A-Za-z]*|Qt[A-Za-z]*/|QVTK[A-Za-z]*)(\.h)?>"
+check "Qt outside src/gui" "sim render src/common src/meshio src/mesh src/inspect src/pipeline src/cli" "(Q[A-Z][A-Za-z]*|Qt[A-Za-z]*/|QVTK[A-Za-z]*)(\.h)?>"
 check "sim/render include src/ beyond common" "sim render" "src/(mesh|inspect|pipeline|cli|gui)/"
-check "common includes a higher folder" "src/common" "(sim|render|src/mesh|src/inspect|src/pipeline|src/cli|src/gui)/"
+check "common includes a higher folder" "src/common" "(sim|render|src/mesh|src/meshio|src/inspect|src/pipeline|src/cli|src/gui)/"
+check "meshio includes more than src/common" "src/meshio" "(sim|render|src/mesh|src/inspect|src/pipeline|src/cli|src/gui)/"
 check "a library includes src/gui" "src/mesh src/inspect src/pipeline" "src/gui/"
 hits=$(grep -rnE '^\s*#\s*include\s*["<]src/gui/' src/cli --include='*.h' --include='*.cpp' 2>/dev/null | grep -v 'src/gui/gui.h')
 if [ -n "$hits" ]; then echo "violation: src/cli includes more of src/gui than its Qt-free gui.h"; echo "$hits"; fail=1; fi

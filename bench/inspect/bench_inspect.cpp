@@ -11,8 +11,9 @@
 #include <unistd.h>
 
 #include "src/inspect/mesh_report.h"
-#include "src/inspect/obj_reader.h"
 #include "src/inspect/pvd_writer.h"
+#include "src/meshio/obj_reader.h"
+#include "src/meshio/obj_writer.h"
 #include "tests/src/inspect/icosphere.h"
 
 namespace {
@@ -25,7 +26,7 @@ const fs::path& sphere_obj() {
     const fs::path dir = fs::temp_directory_path() / ("thaw-bench-inspect-" + std::to_string(::getpid()));
     fs::create_directories(dir);
     const fs::path p = dir / "sphere.obj";
-    thaw::inspect::write_obj(p, thaw::inspect::testing::icosphere(0.015, 6));
+    thaw::meshio::write_obj(p, thaw::inspect::testing::icosphere(0.015, 6));
     return p;
   }();
   return path;
@@ -34,7 +35,7 @@ const fs::path& sphere_obj() {
 void BM_ReadObjStrict(benchmark::State& state) {
   std::int64_t triangles = 0;
   for (auto _ : state) {
-    const TriangleMesh m = thaw::inspect::read_obj(sphere_obj());
+    const TriangleMesh m = thaw::meshio::read_obj(sphere_obj());
     triangles = static_cast<std::int64_t>(m.triangles.size());
     benchmark::DoNotOptimize(m.vertices.data());
   }
@@ -57,7 +58,7 @@ void BM_ReadObjVtk(benchmark::State& state) {
 BENCHMARK(BM_ReadObjVtk)->Unit(benchmark::kMillisecond);
 
 void BM_InspectMesh(benchmark::State& state) {
-  const TriangleMesh m = thaw::inspect::read_obj(sphere_obj());
+  const TriangleMesh m = thaw::meshio::read_obj(sphere_obj());
   for (auto _ : state) benchmark::DoNotOptimize(thaw::inspect::inspect_mesh(m, "sphere").volume_m3);
   state.counters["triangles_per_s"] = benchmark::Counter(
       static_cast<double>(m.triangles.size()), benchmark::Counter::kIsIterationInvariantRate);
@@ -70,7 +71,7 @@ void BM_InspectObj(benchmark::State& state) {
 BENCHMARK(BM_InspectObj)->Unit(benchmark::kMillisecond);
 
 void BM_WriteVtp(benchmark::State& state) {
-  const TriangleMesh m = thaw::inspect::read_obj(sphere_obj());
+  const TriangleMesh m = thaw::meshio::read_obj(sphere_obj());
   const fs::path out = sphere_obj().parent_path() / "sphere.vtp";
   for (auto _ : state) thaw::inspect::write_vtp(out, m);
 }

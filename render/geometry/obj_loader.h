@@ -1,8 +1,9 @@
 #pragma once
-// Reads a Wavefront OBJ file into a TriangleMesh with tinyobjloader (polygons triangulated,
-// 1-based and negative indices, `vn` normals kept when every face has them). A pre-pass checks
-// that every `v`/`vn` number is finite and well formed (tinyobjloader silently reads "nan" as 0)
-// so a bad file is reported with its line. Errors are thaw::UserError naming the file.
+// Reads a Wavefront OBJ file into the renderer's TriangleMesh through thaw's one strict OBJ
+// reader (src/meshio/obj_reader.h: polygons triangulated, 1-based and negative indices, every
+// malformed number, index or line an error naming the file and line), then converts: float
+// positions, 32-bit indices, unit `vn` normals when every face has them. Errors are
+// thaw::UserError naming the file.
 #include <filesystem>
 
 #include "render/geometry/triangle_mesh.h"

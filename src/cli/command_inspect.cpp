@@ -13,11 +13,11 @@
 #include "src/common/interrupt.h"
 #include "src/common/progress.h"
 #include "src/inspect/mesh_report.h"
-#include "src/inspect/obj_reader.h"
 #include "src/inspect/pvd_writer.h"
 #include "src/inspect/radius_plot.h"
 #include "src/inspect/screenshot.h"
 #include "src/inspect/simulation_folder.h"
+#include "src/meshio/obj_reader.h"
 
 namespace thaw::cli {
 namespace fs = std::filesystem;
@@ -74,7 +74,7 @@ void run_inspect(const InspectArgs& a) {
   std::cout.flush();
   if (!a.pvd.empty()) {
     inspect::PvdWriter writer(a.pvd);
-    const inspect::TriangleMesh mesh = inspect::read_obj(path);
+    const inspect::TriangleMesh mesh = meshio::read_obj(path);
     writer.add(0, 0.0, inspect::SurfacePart::outer, &mesh);
     if (!a.quiet) std::fprintf(stderr, "thaw inspect: wrote %s\n", a.pvd.c_str());
   }

@@ -2,7 +2,6 @@
 
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
-#include <vtkFeatureEdges.h>
 #include <vtkMassProperties.h>
 #include <vtkMeshQuality.h>
 #include <vtkNew.h>
@@ -16,8 +15,9 @@
 
 #include "src/common/check.h"
 #include "src/common/error.h"
-#include "src/inspect/obj_reader.h"
 #include "src/inspect/vtk_polydata.h"
+#include "src/meshio/edge_topology.h"
+#include "src/meshio/obj_reader.h"
 
 namespace thaw::inspect {
 namespace {
@@ -30,20 +30,6 @@ Vec3 cross(const Vec3& a, const Vec3& b) {
 }
 double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
-
-/// Edges used by exactly one triangle (boundary) or by three or more (non-manifold), counted
-/// by vtkFeatureEdges with feature-angle edges switched off (they are on by default).
-std::int64_t count_feature_edges(vtkPolyData* poly, bool boundary) {
-  vtkNew<vtkFeatureEdges> edges;
-  edges->SetInputData(poly);
-  edges->FeatureEdgesOff();
-  edges->ManifoldEdgesOff();
-  edges->SetBoundaryEdges(boundary);
-  edges->SetNonManifoldEdges(!boundary);
-  edges->ColoringOff();
-  edges->Update();
-  return edges->GetOutput()->GetNumberOfLines();
-}
 
 struct QualityStats {
   double min = 0, mean = 0, max = 0;
@@ -71,14 +57,6 @@ QualityStats mesh_quality(vtkPolyData* poly, Configure configure) {
   }
   stats.mean = sum / static_cast<double>(n);
   return stats;
-}
-
-std::int64_t find_root(std::vector<std::int64_t>& parent, std::int64_t i) {
-  while (parent[i] != i) {
-    parent[i] = parent[parent[i]];
-    i = parent[i];
-  }
-  return i;
 }
 
 }  // namespace
@@ -128,7 +106,6 @@ MeshReport inspect_mesh(const TriangleMesh& mesh, const std::string& source) {
       continue;
     }
     topo.push_back(t);
-    for (const std::int64_t i : t) used[i] = 1;
     const Vec3 e0 = sub(mesh.vertices[t[1]], mesh.vertices[t[0]]);
     const Vec3 e1 = sub(mesh.vertices[t[2]], mesh.vertices[t[1]]);
     const Vec3 e2 = sub(mesh.vertices[t[0]], mesh.vertices[t[2]]);
@@ -142,50 +119,20 @@ MeshReport inspect_mesh(const TriangleMesh& mesh, const std::string& source) {
     good.push_back(t);
   }
 
-  // Edges: one record per (triangle, side) with the undirected key and the direction it is
-  // traversed in; sorted, equal keys are the triangles sharing that edge.
-  struct HalfEdge {
-    std::int64_t lo, hi;
-    int dir;  // +1 when traversed lo -> hi
-    bool operator<(const HalfEdge& o) const { return lo != o.lo ? lo < o.lo : hi < o.hi; }
-  };
-  std::vector<HalfEdge> half;
-  half.reserve(3 * topo.size());
-  std::vector<std::int64_t> parent(static_cast<std::size_t>(nv));
-  std::iota(parent.begin(), parent.end(), 0);
-  for (const auto& t : topo) {
-    for (int k = 0; k < 3; ++k) {
-      const std::int64_t a = t[k], b = t[(k + 1) % 3];
-      half.push_back({std::min(a, b), std::max(a, b), a < b ? 1 : -1});
-      const std::int64_t ra = find_root(parent, a), rb = find_root(parent, b);
-      if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
-    }
-  }
-  std::sort(half.begin(), half.end());
-  double edge_sum = 0;
-  r.min_edge_m = std::numeric_limits<double>::infinity();
-  std::int64_t boundary = 0, non_manifold = 0;
-  for (std::size_t k = 0; k < half.size();) {
-    std::size_t j = k;
-    int dir_sum = 0;
-    while (j < half.size() && half[j].lo == half[k].lo && half[j].hi == half[k].hi) {
-      dir_sum += half[j].dir;
-      ++j;
-    }
-    const std::size_t uses = j - k;
-    ++r.edges;
-    if (uses == 1) ++boundary;
-    if (uses >= 3) ++non_manifold;
-    // Two triangles agreeing in orientation traverse their shared edge in opposite directions.
-    if (uses == 2 && dir_sum != 0) ++r.inconsistent_edges;
-    const double len = norm(sub(mesh.vertices[half[k].lo], mesh.vertices[half[k].hi]));
-    edge_sum += len;
-    r.min_edge_m = std::min(r.min_edge_m, len);
-    r.max_edge_m = std::max(r.max_edge_m, len);
-    k = j;
-  }
-  r.mean_edge_m = r.edges > 0 ? edge_sum / static_cast<double>(r.edges) : 0;
-  if (r.edges == 0) r.min_edge_m = 0;
+  // Edges, boundary / non-manifold / inconsistent counts and components in linear time (a hash
+  // table of edges: src/meshio/edge_topology.h). vtkFeatureEdges is not used: it is quadratic in
+  // the triangles around an edge and runs out of memory beyond ~850k vertices.
+  const meshio::EdgeTopology topology = meshio::edge_topology(mesh.vertices, topo);
+  r.edges = topology.edges;
+  r.boundary_edges = topology.boundary_edges;
+  r.non_manifold_edges = topology.non_manifold_edges;
+  r.inconsistent_edges = topology.inconsistent_edges;
+  r.components = topology.components;
+  r.min_edge_m = topology.min_edge_m;
+  r.mean_edge_m = topology.mean_edge_m;
+  r.max_edge_m = topology.max_edge_m;
+  for (const auto& t : topo)
+    for (const std::int64_t i : t) used[i] = 1;
 
   std::int64_t used_vertices = 0;
   r.bbox_min = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
@@ -194,7 +141,6 @@ MeshReport inspect_mesh(const TriangleMesh& mesh, const std::string& source) {
   for (std::int64_t v = 0; v < nv; ++v) {
     if (!used[v]) continue;
     ++used_vertices;
-    if (find_root(parent, v) == v) ++r.components;
     for (int c = 0; c < 3; ++c) {
       r.bbox_min[c] = std::min(r.bbox_min[c], mesh.vertices[v][c]);
       r.bbox_max[c] = std::max(r.bbox_max[c], mesh.vertices[v][c]);
@@ -215,11 +161,6 @@ MeshReport inspect_mesh(const TriangleMesh& mesh, const std::string& source) {
   vtkSmartPointer<vtkPolyData> poly;
   if (!topo.empty()) {
     poly = to_polydata(mesh.vertices, topo);
-    r.boundary_edges = count_feature_edges(poly, true);
-    r.non_manifold_edges = count_feature_edges(poly, false);
-    // vtkFeatureEdges and the edge bookkeeping above define both counts identically.
-    THAW_CHECK(r.boundary_edges == boundary && r.non_manifold_edges == non_manifold,
-               "vtkFeatureEdges disagrees with the edge bookkeeping");
     vtkNew<vtkMassProperties> mass;
     mass->SetInputData(poly);
     mass->Update();
@@ -249,7 +190,7 @@ MeshReport inspect_mesh(const TriangleMesh& mesh, const std::string& source) {
 }
 
 MeshReport inspect_obj(const std::filesystem::path& path) {
-  return inspect_mesh(read_obj(path), path.string());
+  return inspect_mesh(meshio::read_obj(path), path.string());
 }
 
 nlohmann::ordered_json to_json(const MeshReport& r) {

@@ -9,9 +9,9 @@
 
 #include "src/common/atomic_file.h"
 #include "src/common/error.h"
-#include "src/inspect/obj_reader.h"
 #include "src/inspect/simulation_folder.h"
 #include "src/inspect/vtk_polydata.h"
+#include "src/meshio/obj_reader.h"
 
 namespace thaw::inspect {
 namespace fs = std::filesystem;
@@ -113,7 +113,7 @@ void write_pvd_series(const fs::path& simdir, const fs::path& out_pvd,
     for (const SurfacePart part : {SurfacePart::inner, SurfacePart::outer}) {
       const auto& file = part == SurfacePart::inner ? s.inner : s.outer;
       if (file) {
-        const TriangleMesh mesh = read_obj(*file);
+        const TriangleMesh mesh = meshio::read_obj(*file);
         writer.add(s.step, s.time_s, part, &mesh);
       } else {
         writer.add(s.step, s.time_s, part, nullptr);

@@ -21,12 +21,12 @@
 
 #include "src/common/error.h"
 #include "src/common/progress.h"
-#include "src/inspect/obj_reader.h"
 #include "src/inspect/simulation_folder.h"
 #include "src/inspect/surface_actor.h"
 #include "src/inspect/virtual_display.h"
 #include "src/inspect/vtk_png.h"
 #include "src/inspect/vtk_polydata.h"
+#include "src/meshio/obj_reader.h"
 
 namespace thaw::inspect {
 namespace fs = std::filesystem;
@@ -191,7 +191,7 @@ void write_screenshot(const std::vector<ScreenshotPanel>& panels, const fs::path
 
 void write_obj_screenshot(const fs::path& obj, const fs::path& out_png) {
   ScreenshotPanel panel;
-  panel.surfaces.push_back({read_obj(obj), SurfaceRole::single});
+  panel.surfaces.push_back({meshio::read_obj(obj), SurfaceRole::single});
   ScreenshotOptions options;
   options.title = obj.filename().string();
   const auto& m = panel.surfaces.front().mesh;
@@ -235,8 +235,8 @@ void write_simulation_screenshot(const fs::path& simdir, const fs::path& out_png
                   s.inner_radius_m * length_scale, length_unit, s.outer_radius_m * length_scale,
                   length_unit);
     p.label = label;
-    if (s.inner) p.surfaces.push_back({read_obj(*s.inner), SurfaceRole::inner});
-    if (s.outer) p.surfaces.push_back({read_obj(*s.outer), SurfaceRole::outer});
+    if (s.inner) p.surfaces.push_back({meshio::read_obj(*s.inner), SurfaceRole::inner});
+    if (s.outer) p.surfaces.push_back({meshio::read_obj(*s.outer), SurfaceRole::outer});
     panels.push_back(std::move(p));
   }
   ScreenshotOptions options;

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "src/common/error.h"
+#include "src/meshio/mesh_manifest.h"
 
 namespace thaw::inspect {
 namespace fs = std::filesystem;
@@ -19,65 +20,33 @@ bool is_simulation_folder(const fs::path& path) {
 std::vector<MeshedStep> read_mesh_manifest(const fs::path& manifest,
                                            const std::vector<sim::InterfaceRecord>& rows) {
   const std::string name = manifest.string();
-  std::ifstream in(manifest);
-  if (!in) throw UserError(name, "", fs::exists(manifest) ? "cannot be read" : "file not found");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw UserError(name, "", std::string("malformed JSON: ") + e.what());
-  }
-  if (!j.is_object()) throw UserError(name, "", "expected a JSON object");
-  if (!j.contains("format") || j["format"] != "thaw-mesh/1")
-    throw UserError(name, "format", "expected \"thaw-mesh/1\"");
-  if (!j.contains("steps") || !j["steps"].is_array())
-    throw UserError(name, "steps", "missing or not an array");
+  const meshio::MeshManifestFile file = meshio::read_mesh_manifest(manifest);
   const fs::path base = manifest.parent_path();
   std::vector<MeshedStep> steps;
-  for (std::size_t k = 0; k < j["steps"].size(); ++k) {
-    const nlohmann::json& s = j["steps"][k];
+  for (std::size_t k = 0; k < file.steps.size(); ++k) {
+    const meshio::ManifestStep& s = file.steps[k];
     const std::string where = "steps[" + std::to_string(k) + "]";
-    if (!s.is_object()) throw UserError(name, where, "expected an object");
-    if (!s.contains("step") || !s["step"].is_number_integer())
-      throw UserError(name, where + ".step", "missing or not an integer");
     MeshedStep m;
-    m.step = s["step"].get<long>();
-    if (m.step < 0 || static_cast<std::size_t>(m.step) >= rows.size())
+    m.step = s.step;
+    if (static_cast<std::size_t>(m.step) >= rows.size())
       throw UserError(name, where + ".step",
                       "step " + std::to_string(m.step) + " is not a row of interfaces.csv (" +
                           std::to_string(rows.size()) + " rows)");
     const sim::InterfaceRecord& row = rows[static_cast<std::size_t>(m.step)];
-    auto number = [&](const char* key, double fallback) {
-      if (!s.contains(key)) return fallback;
-      if (!s[key].is_number()) throw UserError(name, where + "." + key, "not a number");
-      const double v = s[key].get<double>();
-      if (!std::isfinite(v) || v < 0)
-        throw UserError(name, where + "." + key, "must be finite and >= 0, got " + s[key].dump());
-      return v;
-    };
-    m.time_s = number("time_s", row.time_s);
-    m.inner_radius_m = number("inner_radius_m", row.inner_radius_m);
-    m.outer_radius_m = number("outer_radius_m", row.outer_radius_m);
+    m.time_s = s.time_s;
+    m.inner_radius_m = s.inner_radius_m;
+    m.outer_radius_m = s.outer_radius_m;
     // The manifest and interfaces.csv come from the same run: a different time means the mesh
     // folder belongs to another simulation (relative 1e-9 allows for decimal round trips).
     if (std::abs(m.time_s - row.time_s) > 1e-9 * std::max(1.0, std::abs(row.time_s)))
       throw UserError(name, where + ".time_s",
-                      "time " + s["time_s"].dump() + " s disagrees with interfaces.csv step " +
-                          std::to_string(m.step) + " (" + std::to_string(row.time_s) + " s)");
-    auto surface = [&](const char* key) -> std::optional<fs::path> {
-      if (!s.contains(key)) throw UserError(name, where + "." + key, "missing (use null if vanished)");
-      if (s[key].is_null()) return std::nullopt;
-      if (!s[key].is_string() || s[key].get<std::string>().empty())
-        throw UserError(name, where + "." + key, "expected a file name or null");
-      return base / s[key].get<std::string>();
-    };
-    for (auto [key, out] : {std::pair{"inner_exact_volume_m3", &m.inner_exact_volume_m3},
-                            std::pair{"outer_exact_volume_m3", &m.outer_exact_volume_m3}})
-      if (s.contains(key) && !s[key].is_null()) *out = number(key, 0);
-    m.inner = surface("inner");
-    m.outer = surface("outer");
-    if (!steps.empty() && m.step <= steps.back().step)
-      throw UserError(name, where + ".step", "steps must be increasing");
+                      "time " + std::to_string(m.time_s) +
+                          " s disagrees with interfaces.csv step " + std::to_string(m.step) + " (" +
+                          std::to_string(row.time_s) + " s)");
+    if (s.inner_exact_volume_m3) m.inner_exact_volume_m3 = *s.inner_exact_volume_m3;
+    if (s.outer_exact_volume_m3) m.outer_exact_volume_m3 = *s.outer_exact_volume_m3;
+    if (s.inner) m.inner = base / *s.inner;
+    if (s.outer) m.outer = base / *s.outer;
     steps.push_back(std::move(m));
   }
   return steps;

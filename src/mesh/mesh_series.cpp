@@ -9,6 +9,7 @@
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "src/common/atomic_file.h"
 #include "src/common/error.h"
@@ -17,6 +18,9 @@
 #include "src/mesh/obj_writer.h"
 #include "src/mesh/similar_surface.h"
 #include "src/mesh/surface_mesher.h"
+#include "src/meshio/mesh_manifest.h"
+#include "src/meshio/obj_reader.h"
+#include "thaw_version.h"
 
 namespace thaw::mesh {
 
@@ -95,6 +99,70 @@ void validate_geometry(const sim::ShellGeometry& g, const fs::path& summary) {
   if (g.geometry == sim::Geometry::planar && !(g.lateral_size_m > 0))
     throw UserError(summary.string(), "parameters.shell.lateral_size_m",
                     "must be > 0 for a planar shell, got " + std::to_string(g.lateral_size_m));
+}
+
+// Resume: every distinct mesh is kept in SIMDIR/mesh.partial/ as soon as it is made, so a
+// meshing run that is interrupted (SIGINT, SIGTERM, a kill) keeps its finished surfaces and the
+// next run meshes only the others. The file's first line is the full description of what was
+// meshed (form and options, thaw version); a file is used only if that line matches exactly.
+// Vertices are written with 17 digits and read back bit for bit (src/meshio), so a resumed run
+// writes exactly the bytes a fresh one does. The folder is removed once SIMDIR/mesh is complete.
+std::string form_description(const SimilarSurface& f, const MeshOptions& unit_options) {
+  // Every input of mesh_surface(): the shape (radius too: without reuse of similar surfaces the
+  // "unit" shape is the surface itself), the criteria and the options.
+  const ShellShape& u = f.unit_shape;
+  const SurfaceCriteria& c = f.unit_criteria;
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "thaw %s unit mesh: geometry %d radius %.17g core %.17g angle %.17g size %.17g "
+                "distance %.17g options ",
+                THAW_VERSION_STRING, static_cast<int>(u.geometry), u.radius_m, u.core_half_size_m,
+                c.facet_angle_deg, c.facet_size_m, c.facet_distance_m);
+  return buf + to_json(unit_options).dump();
+}
+
+fs::path form_cache_file(const fs::path& partial_dir, const std::string& description) {
+  std::uint64_t h = 1469598103934665603ULL;  // FNV-1a 64
+  for (const unsigned char c : description) h = (h ^ c) * 1099511628211ULL;
+  char name[40];
+  std::snprintf(name, sizeof name, "form_%016llx.obj", static_cast<unsigned long long>(h));
+  return partial_dir / name;
+}
+
+/// The cached unit mesh for `description`, or nullopt (absent, another description, unreadable).
+std::optional<TriangleMesh> load_cached_form(const fs::path& file, const std::string& description) {
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) return std::nullopt;
+  std::ifstream in(file);
+  std::string first_line;
+  std::getline(in, first_line);
+  if (first_line != "# " + description) return std::nullopt;
+  try {
+    const meshio::TriangleMesh read = meshio::read_obj(file);
+    if (!read.normal_triangles.empty()) return std::nullopt;
+    TriangleMesh m;
+    m.vertices = read.vertices;
+    m.faces.reserve(read.triangles.size());
+    for (const auto& t : read.triangles)
+      m.faces.push_back({static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
+    return m;
+  } catch (const UserError&) {
+    return std::nullopt;  // damaged: mesh it again
+  }
+}
+
+/// Keeps a finished unit mesh for a resumed run. A cache only: a failure to write (disk full) is
+/// not the meshing's failure and is ignored. Meshes with normals are not kept (their 9-digit
+/// normals would not read back bit for bit).
+void store_cached_form(const fs::path& file, const std::string& description,
+                       const TriangleMesh& m) {
+  if (!m.normals.empty()) return;
+  try {
+    std::error_code ec;
+    fs::create_directories(file.parent_path(), ec);
+    write_obj(file, m, description);
+  } catch (const UserError&) {
+  }
 }
 
 }  // namespace
@@ -200,24 +268,41 @@ MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& r
   }
   manifest.distinct_meshes = static_cast<long>(forms.size());
 
+  const fs::path partial_dir = simdir / "mesh.partial";
   std::vector<TriangleMesh> unit_meshes(forms.size());
   std::vector<std::string> form_errors(forms.size());
   std::vector<TaskResult> results(tasks.size());
   const std::int64_t total = static_cast<std::int64_t>(forms.size() + tasks.size());
   std::int64_t done = 0;
-  if (progress) progress(0, total);
   const int jobs = options.jobs > 0 ? options.jobs : omp_get_max_threads();
   const long n_forms = static_cast<long>(forms.size());
   MeshOptions unit_options = options;
   unit_options.normals = false;  // each task takes the normals of its own shape
-  // Nothing may throw out of these loops: every exception is caught and stored.
+  // Meshes kept by an earlier, interrupted run (read before the loop: a mesh made in this run
+  // is never taken for one of them).
+  long resumed = 0;
+  std::vector<char> from_cache(forms.size(), 0);
+  for (std::size_t k = 0; k < forms.size(); ++k) {
+    const std::string description = form_description(forms[k], unit_options);
+    if (auto cached = load_cached_form(form_cache_file(partial_dir, description), description)) {
+      unit_meshes[k] = std::move(*cached);
+      from_cache[k] = 1;
+      ++resumed;
+    }
+  }
+  done = resumed;
+  if (progress) progress(done, total);
+    // Nothing may throw out of these loops: every exception is caught and stored.
 #pragma omp parallel for schedule(dynamic, 1) num_threads(jobs)
   for (long k = 0; k < n_forms; ++k) {
     if (interrupt_requested()) continue;  // SIGINT/SIGTERM: skip the rest, throw after the loop
     const SimilarSurface& f = forms[static_cast<std::size_t>(k)];
+    if (from_cache[static_cast<std::size_t>(k)]) continue;
     try {
-      unit_meshes[static_cast<std::size_t>(k)] =
-          mesh_surface(f.unit_shape, f.unit_criteria, unit_options);
+      const std::string description = form_description(f, unit_options);
+      TriangleMesh& unit = unit_meshes[static_cast<std::size_t>(k)];
+      unit = mesh_surface(f.unit_shape, f.unit_criteria, unit_options);
+      store_cached_form(form_cache_file(partial_dir, description), description, unit);
     } catch (const std::exception& e) {
       form_errors[static_cast<std::size_t>(k)] = e.what();
     } catch (...) {
@@ -297,6 +382,9 @@ MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& r
 
   write_file_atomic(out_dir / "manifest.json", to_json(manifest).dump(1) + "\n");
   staging.commit();
+  std::error_code ec;
+  fs::remove_all(partial_dir, ec);  // complete: nothing left to resume
+  manifest.resumed_meshes = resumed;
   return manifest;
 }
 
@@ -369,30 +457,25 @@ nlohmann::ordered_json to_json(const MeshManifest& m) {
 }
 
 MeshManifest read_mesh_manifest(const std::filesystem::path& manifest_json) {
-  const std::string name = manifest_json.string();
-  std::ifstream in(manifest_json);
-  if (!in)
-    throw UserError(name, "",
-                    std::filesystem::exists(manifest_json) ? "cannot be read" : "file not found");
+  const meshio::MeshManifestFile file = meshio::read_mesh_manifest(manifest_json);
   MeshManifest m;
-  try {
-    const nlohmann::json j = nlohmann::json::parse(in);
-    if (j.at("format").get<std::string>() != "thaw-mesh/1")
-      throw UserError(name, "format", "not a thaw-mesh/1 manifest");
-    for (const auto& e : j.at("steps")) {
-      StepRecord s;
-      s.step = e.at("step").get<long>();
-      s.time_s = e.at("time_s").get<double>();
-      s.inner_radius_m = e.at("inner_radius_m").get<double>();
-      s.outer_radius_m = e.at("outer_radius_m").get<double>();
-      if (!e.at("inner").is_null()) s.inner.file = e.at("inner").get<std::string>();
-      if (!e.at("outer").is_null()) s.outer.file = e.at("outer").get<std::string>();
-      s.inner.triangles = e.at("inner_triangles").get<long>();
-      s.outer.triangles = e.at("outer_triangles").get<long>();
-      m.steps.push_back(std::move(s));
-    }
-  } catch (const nlohmann::json::exception& e) {
-    throw UserError(name, "", std::string("malformed mesh manifest: ") + e.what());
+  // The frame the surfaces are in: a resumed run must place and measure them as the first did.
+  m.grid = file.geometry == "grid";
+  if (!file.geometry.empty() && !m.grid) sim::parse_geometry(file.geometry, m.geometry.geometry);
+  m.geometry.length_m = file.length_m;
+  m.geometry.lateral_size_m = file.lateral_size_m;
+  m.geometry.planar_symmetric = file.planar_symmetric;
+  for (const meshio::ManifestStep& e : file.steps) {
+    StepRecord s;
+    s.step = e.step;
+    s.time_s = e.time_s;
+    s.inner_radius_m = s.inner.radius_m = e.inner_radius_m;
+    s.outer_radius_m = s.outer.radius_m = e.outer_radius_m;
+    s.inner.file = e.inner;
+    s.outer.file = e.outer;
+    s.inner.triangles = e.inner_triangles;
+    s.outer.triangles = e.outer_triangles;
+    m.steps.push_back(std::move(s));
   }
   return m;
 }

@@ -59,6 +59,9 @@ struct MeshManifest {
   /// Meshes actually made: surfaces that are scaled copies of each other (similar_surface.h)
   /// share one (a sphere series with the default relative distance bound needs only a few).
   long distinct_meshes = 0;
+  /// Of those, how many were taken from SIMDIR/mesh.partial/ (kept by an interrupted run)
+  /// instead of being meshed again. Not written to the manifest (it would differ on resume).
+  long resumed_meshes = 0;
 };
 
 /// "step_000012_inner.obj" / "step_000012_outer.obj".

@@ -45,9 +45,30 @@ TEST(ObjLoader, BadFilesAreUserErrors) {
   expect_error("", "no faces");
   expect_error("v 0 0 0\nv 1 0 0\nv 0 1 0\n", "no faces");
   expect_error("v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n", "line 2");
-  expect_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n", "out of range");
-  expect_error("v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n", "3 numbers");
+  expect_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n", "line 4: face refers to vertex 7");
+  expect_error("v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n", "line 2: vertex needs 3 coordinates");
   expect_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0x 1 0\nf 1 2 3\n", "line 4");
+}
+
+// Issue 12: what tinyobjloader accepted (its warnings were dropped) is refused with its line.
+TEST(ObjLoader, MalformedFacesAreRefusedWithTheirLine) {
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  expect_error(tri + "f 1 2 4294967298\n", "line 4: face refers to vertex 4294967298");
+  expect_error(tri + "f 1 2\n", "line 4: face needs at least 3 corners");
+  expect_error(tri + "f 1 2 3 junk\n", "line 4: malformed vertex index 'junk'");
+  expect_error(tri + "f 1 2 1.5\n", "line 4: malformed vertex index '1.5'");
+  expect_error(tri + "f 1 2 3", "line 4: last line has no line end");
+  // Finite in double, infinite in the renderer's float.
+  expect_error("v 0 0 0\nv 1e39 0 0\nv 0 1 0\nf 1 2 3\n", "non-finite");
+}
+
+TEST(ObjLoader, DirectoryIsNamedAsSuch) {
+  try {
+    load_obj(THAW_SOURCE_DIR);
+    FAIL();
+  } catch (const UserError& e) {
+    EXPECT_EQ(e.problem(), "is a directory, expected an OBJ file");
+  }
 }
 
 TEST(ObjLoader, MissingFileIsUserError) {

@@ -14,8 +14,8 @@
 
 #include "sim/io/interface_history.h"
 #include "src/common/atomic_file.h"
-#include "src/inspect/obj_reader.h"
 #include "src/inspect/triangle_mesh.h"
+#include "src/meshio/obj_writer.h"
 #include "tests/src/inspect/icosphere.h"
 
 namespace thaw::inspect::testing {
@@ -62,11 +62,11 @@ inline std::vector<sim::InterfaceRecord> write_sphere_simulation(const std::file
     std::string inner = "null", outer;
     if (r.inner_radius_m > 0) {
       std::snprintf(name, sizeof name, "step_%06d_inner.obj", k);
-      write_obj(dir / "mesh" / name, icosphere(r.inner_radius_m, 3));
+      meshio::write_obj(dir / "mesh" / name, icosphere(r.inner_radius_m, 3));
       inner = std::string("\"") + name + "\"";
     }
     std::snprintf(name, sizeof name, "step_%06d_outer.obj", k);
-    write_obj(dir / "mesh" / name, icosphere(r.outer_radius_m, 3));
+    meshio::write_obj(dir / "mesh" / name, icosphere(r.outer_radius_m, 3));
     outer = std::string("\"") + name + "\"";
     char entry[512];
     std::snprintf(entry, sizeof entry,

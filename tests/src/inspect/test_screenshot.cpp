@@ -14,7 +14,7 @@ namespace fs = std::filesystem;
 TEST(Screenshot, ObjPanelShowsTheMesh) {
   THAW_SKIP_WITHOUT_X();
   testing::ScratchDir dir("shot");
-  write_obj(dir.path() / "ball.obj", testing::icosphere(0.02, 2));
+  meshio::write_obj(dir.path() / "ball.obj", testing::icosphere(0.02, 2));
   const fs::path png = dir.path() / "ball.png";
   write_obj_screenshot(dir.path() / "ball.obj", png);
   const auto image = testing::read_png(png);
@@ -48,7 +48,7 @@ TEST(Screenshot, SimulationFolderHasOnePanelPerPickedStep) {
 TEST(Screenshot, UnwritableOutputIsUserError) {
   THAW_SKIP_WITHOUT_X();
   testing::ScratchDir dir("shot");
-  write_obj(dir.path() / "ball.obj", testing::icosphere(1.0, 0));
+  meshio::write_obj(dir.path() / "ball.obj", testing::icosphere(1.0, 0));
   write_file_atomic(dir.path() / "file", "x");
   EXPECT_THROW(write_obj_screenshot(dir.path() / "ball.obj", dir.path() / "file" / "a.png"),
                UserError);

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "src/common/error.h"
@@ -80,22 +81,37 @@ TEST(SimulationFolder, BadManifestsAreUserErrors) {
       EXPECT_EQ(e.where(), where) << e.what();
     }
   };
+  // A complete step record of row k (the shared manifest reader requires every key).
+  auto step = [&](int k, const std::string& extra = "") {
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  R"({"step":%d,"time_s":%.17g,"inner_radius_m":0.01,"outer_radius_m":0.02%s)", k,
+                  rows[static_cast<std::size_t>(k)].time_s, extra.c_str());
+    return std::string(buf);
+  };
+  const std::string head = R"({"format":"thaw-mesh/1","steps":[)";
   expect_error("{", "");
   expect_error(R"({"format":"thaw-mesh/2","steps":[]})", "format");
   expect_error(R"({"format":"thaw-mesh/1"})", "steps");
-  expect_error(R"({"format":"thaw-mesh/1","steps":[{"step":7,"inner":null,"outer":null}]})",
-               "steps[0].step");
-  expect_error(R"({"format":"thaw-mesh/1","steps":[{"step":1,"time_s":5,"inner":null,"outer":null}]})",
-               "steps[0].time_s");
-  expect_error(R"({"format":"thaw-mesh/1","steps":[{"step":0,"inner":null}]})", "steps[0].outer");
-  expect_error(R"({"format":"thaw-mesh/1","steps":[{"step":0,"inner":3,"outer":null}]})",
-               "steps[0].inner");
-  expect_error(R"({"format":"thaw-mesh/1","steps":[{"step":0,"inner_radius_m":-1,"inner":null,"outer":null}]})",
-               "steps[0].inner_radius_m");
-  expect_error(R"({"format":"thaw-mesh/1","steps":[{"step":1,"inner":null,"outer":null},{"step":0,"inner":null,"outer":null}]})",
+  expect_error(
+      head +
+          R"({"step":7,"time_s":0,"inner_radius_m":0.01,"outer_radius_m":0.02,"inner":null,"outer":null}]})",
+      "steps[0].step");
+  expect_error(
+      head +
+          R"({"step":1,"time_s":5e9,"inner_radius_m":0.01,"outer_radius_m":0.02,"inner":null,"outer":null}]})",
+      "steps[0].time_s");
+  expect_error(head + step(0, R"(,"inner":null})") + "]}", "steps[0].outer");
+  expect_error(head + step(0, R"(,"inner":3,"outer":null})") + "]}", "steps[0].inner");
+  expect_error(
+      head +
+          R"({"step":0,"time_s":0,"inner_radius_m":-1,"outer_radius_m":0.02,"inner":null,"outer":null}]})",
+      "steps[0].inner_radius_m");
+  expect_error(head + step(1, R"(,"inner":null,"outer":null})") + "," +
+                   step(0, R"(,"inner":null,"outer":null})") + "]}",
                "steps[1].step");
   // A manifest naming a file that is not there fails when the step is inspected.
-  write_file_atomic(manifest, R"({"format":"thaw-mesh/1","steps":[{"step":0,"inner":null,"outer":"gone.obj"}]})");
+  write_file_atomic(manifest, head + step(0, R"(,"inner":null,"outer":"gone.obj"})") + "]}");
   EXPECT_THROW(inspect_simulation(read_simulation_folder(dir.path())), UserError);
 }
 

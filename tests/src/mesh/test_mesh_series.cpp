@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "src/common/error.h"
+#include "src/common/interrupt.h"
 
 namespace thaw::mesh {
 namespace {
@@ -102,6 +103,58 @@ TEST(MeshSeries, ParallelEqualsSequentialByteForByte) {
     ++compared;
   }
   EXPECT_EQ(compared, 3 + 1);  // step 0 outer, step 1 inner + outer, manifest
+}
+
+// Issue 12: an interrupted meshing run keeps every surface it finished (SIMDIR/mesh.partial/),
+// leaves no SIMDIR/mesh, and the next run meshes only the rest and writes exactly the bytes of an
+// uninterrupted run.
+TEST(MeshSeries, InterruptedRunResumesSurfaceBySurface) {
+  const fs::path fresh = fresh_copy("cylinder", "resume_fresh"),
+                 cut = fresh_copy("cylinder", "resume_cut");
+  MeshOptions o = coarse(1);
+  o.reuse_similar = false;  // one mesh per surface: resume is surface by surface
+  const MeshManifest reference = mesh_simulation_folder(fresh, o);
+  ASSERT_EQ(reference.distinct_meshes, 3);
+  EXPECT_EQ(reference.resumed_meshes, 0);
+  EXPECT_FALSE(fs::exists(fresh / "mesh.partial"));
+
+  // Interrupt once the first surface is done (as the SIGINT handler would).
+  clear_interrupt_request();
+  EXPECT_THROW(mesh_simulation_folder(cut, o,
+                                      [](std::int64_t done, std::int64_t) {
+                                        if (done >= 1) request_interrupt();
+                                      }),
+               Interrupted);
+  clear_interrupt_request();
+  EXPECT_FALSE(fs::exists(cut / "mesh"));
+  long kept = 0;
+  for (const auto& e : fs::directory_iterator(cut / "mesh.partial")) {
+    EXPECT_EQ(e.path().extension(), ".obj") << e.path();
+    ++kept;
+  }
+  EXPECT_EQ(kept, 1);
+
+  const MeshManifest resumed = mesh_simulation_folder(cut, o);
+  // The kept surface (and any other surface of identical shape) is not meshed again; the rest is.
+  EXPECT_GE(resumed.resumed_meshes, 1);
+  EXPECT_LT(resumed.resumed_meshes, resumed.distinct_meshes);
+  EXPECT_FALSE(fs::exists(cut / "mesh.partial"));
+  int compared = 0;
+  for (const auto& e : fs::directory_iterator(fresh / "mesh")) {
+    EXPECT_EQ(read_text(e.path()), read_text(cut / "mesh" / e.path().filename()))
+        << e.path().filename();
+    ++compared;
+  }
+  EXPECT_EQ(compared, 4);
+
+  // A kept mesh made with other options is not used.
+  MeshOptions finer = o;
+  finer.distance_m = 3e-4;
+  fs::create_directories(cut / "mesh.partial");
+  for (const auto& e : fs::directory_iterator(fresh / "mesh"))
+    if (e.path().extension() == ".obj")
+      fs::copy(e.path(), cut / "mesh.partial" / e.path().filename());
+  EXPECT_EQ(mesh_simulation_folder(cut, finer).resumed_meshes, 0);
 }
 
 TEST(MeshSeries, SphereSeriesMeshedOnceAndScaled) {
