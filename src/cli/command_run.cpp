@@ -2,6 +2,7 @@
 // [--fps F] [--frames A-B|A:B:S] [--stage NAME]`: simulate, mesh, render, film and inspect in one
 // command (src/pipeline). Parsing and the closing summary only.
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <memory>
 #include <optional>
@@ -15,6 +16,7 @@
 #include "src/pipeline/frame_selection.h"
 #include "src/pipeline/pipeline.h"
 #include "src/pipeline/render_overrides.h"
+#include "src/pipeline/run_ranks.h"
 #include "src/pipeline/run_scenario.h"
 
 namespace thaw::cli {
@@ -30,11 +32,35 @@ struct RunArgs {
   std::optional<std::string> frames, stage;
 };
 
+void run_alone_or_as_rank(const RunArgs& a, pipeline::RunRanks* ranks);
+
 void run_run(const RunArgs& a) {
   if (a.print_default) {
     std::fputs(pipeline::default_run_scenario_text().c_str(), stdout);
     return;
   }
+  // Under mpirun every rank runs this; the leader speaks. An error is the leader's word (all
+  // ranks hear it, the leader prints it); a rank that alone failed prints its own.
+  std::unique_ptr<pipeline::RunRanks> ranks = pipeline::mpi_ranks_if_launched();
+  if (!ranks || ranks->size() == 1) return run_alone_or_as_rank(a, ranks.get());
+  std::string error;
+  try {
+    run_alone_or_as_rank(a, ranks.get());
+  } catch (const UserError& e) {
+    error = e.what();
+  }
+  const std::string leaders = ranks->broadcast(error);
+  if (ranks->leader() && !error.empty()) throw UserError("", "", error);
+  if (!ranks->leader() && !error.empty()) {
+    if (leaders.empty())
+      std::fprintf(stderr, "thaw: error (rank %d): %s\n", ranks->rank(), error.c_str());
+    ranks.reset();  // MPI_Finalize, then leave without a second copy of the leader's line
+    std::exit(2);
+  }
+}
+
+void run_alone_or_as_rank(const RunArgs& a, pipeline::RunRanks* ranks) {
+  const bool speaks = !ranks || ranks->leader();
   if (a.jobs < 0) throw UserError("", "--jobs", "must be >= 0 (0 = all cores)");
   pipeline::RenderOverrides overrides;
   if (a.size) overrides = pipeline::parse_size_override(*a.size);
@@ -65,8 +91,9 @@ void run_run(const RunArgs& a) {
   options.force = a.force;
   options.jobs = a.jobs;
   options.quiet = a.quiet;
+  options.ranks = ranks;
   const pipeline::RunReport report = pipeline::run_pipeline(scenario, options);
-  if (a.quiet) return;
+  if (a.quiet || !speaks) return;
   std::printf("thaw run: %s -> %s (%d frames, %s)\n",
               a.scenario.empty() ? "built-in default scenario" : a.scenario.c_str(), a.out.c_str(),
               report.frames, ProgressReporter::format_duration(report.total_seconds).c_str());

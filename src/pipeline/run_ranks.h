@@ -33,4 +33,9 @@ class RunRanks {
 /// One process: barrier and broadcast do nothing, farm is a loop.
 std::unique_ptr<RunRanks> single_process();
 
+/// The ranks of the MPI job this process belongs to when it was started by mpirun / srun (built
+/// with THAW_MPI and an MPI launcher's environment present), otherwise nullptr: a plain `thaw run`
+/// never initialises MPI. MPI is initialised here and finalised when the object is destroyed.
+std::unique_ptr<RunRanks> mpi_ranks_if_launched();
+
 }  // namespace thaw::pipeline

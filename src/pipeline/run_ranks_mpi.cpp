@@ -1,0 +1,176 @@
+// RunRanks over MPI (built with THAW_MPI): the leader (rank 0) hands out frames one at a time from
+// a dispatcher thread while its main thread renders too; other ranks ask for a frame, render it,
+// and ask again (a master/worker queue: frames differ in cost, so static splits would idle).
+// Waiting ranks poll with short sleeps instead of MPI's busy-waiting, so a rank that waits (for
+// the leader's simulation, say) leaves its core to the ranks that work.
+#include <mpi.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <mutex>
+#include <thread>
+
+#include "src/common/error.h"
+#include "src/pipeline/run_ranks.h"
+
+namespace thaw::pipeline {
+namespace {
+
+constexpr int kTagAsk = 1;   // worker -> leader: "ready" ('R'), "done" ('D'), "failed: ..." ('E')
+constexpr int kTagItem = 2;  // leader -> worker: the next item, or -1: no more
+constexpr auto kPoll = std::chrono::milliseconds(1);
+
+void sleepy_wait(MPI_Request& request) {
+  int done = 0;
+  for (MPI_Test(&request, &done, MPI_STATUS_IGNORE); !done;
+       MPI_Test(&request, &done, MPI_STATUS_IGNORE))
+    std::this_thread::sleep_for(kPoll);
+}
+
+class MpiRanks final : public RunRanks {
+ public:
+  MpiRanks() {
+    int provided = 0;
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_MULTIPLE, &provided);
+    // The leader's dispatcher thread calls MPI while its main thread renders (and does not
+    // call MPI then): serialized calls from any thread suffice.
+    m_threads = provided >= MPI_THREAD_SERIALIZED;
+    MPI_Comm_rank(MPI_COMM_WORLD, &m_rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &m_size);
+  }
+  ~MpiRanks() override { MPI_Finalize(); }
+  int rank() const override { return m_rank; }
+  int size() const override { return m_size; }
+
+  void barrier() override {
+    MPI_Request r;
+    MPI_Ibarrier(MPI_COMM_WORLD, &r);
+    sleepy_wait(r);
+  }
+
+  std::string broadcast(const std::string& text) override {
+    long n = static_cast<long>(text.size());
+    MPI_Request r;
+    MPI_Ibcast(&n, 1, MPI_LONG, 0, MPI_COMM_WORLD, &r);
+    sleepy_wait(r);
+    std::string out = leader() ? text : std::string(static_cast<std::size_t>(n), '\0');
+    if (n > 0) {
+      MPI_Ibcast(out.data(), static_cast<int>(n), MPI_CHAR, 0, MPI_COMM_WORLD, &r);
+      sleepy_wait(r);
+    }
+    return out;
+  }
+
+  void farm(const std::vector<long>& items, const std::function<void(long)>& work,
+            const std::function<void(long)>& done) override {
+    if (m_size == 1) return RunRanks::farm(items, work, done);
+    std::string error = leader() ? lead(items, work, done) : follow(work);
+    error = broadcast(error);
+    if (!error.empty()) throw UserError("", "", error);
+  }
+
+ private:
+  static std::string failure(const std::function<void(long)>& work, long item) {
+    try {
+      work(item);
+      return "";
+    } catch (const UserError& e) {
+      return e.what();
+    } catch (const std::exception& e) {
+      return std::string("internal error: ") + e.what();
+    }
+  }
+
+  std::string lead(const std::vector<long>& items, const std::function<void(long)>& work,
+                   const std::function<void(long)>& done) {
+    std::atomic<std::size_t> next{0};
+    std::atomic<long> finished{0};
+    std::atomic<bool> failed{false};
+    std::mutex mutex;
+    std::string first_error;
+    const auto fail = [&](const std::string& e) {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (first_error.empty()) first_error = e;
+      failed = true;
+    };
+    const auto take = [&]() -> long {
+      if (failed) return -1;
+      const std::size_t i = next++;
+      return i < items.size() ? items[i] : -1;
+    };
+    const auto finish = [&] {
+      const long n = ++finished;
+      if (done) done(n);
+    };
+    const auto dispatch = [&] {
+      for (int active = m_size - 1; active > 0;) {
+        int flag = 0;
+        MPI_Status status;
+        MPI_Iprobe(MPI_ANY_SOURCE, kTagAsk, MPI_COMM_WORLD, &flag, &status);
+        if (!flag) {
+          std::this_thread::sleep_for(kPoll);
+          continue;
+        }
+        int length = 0;
+        MPI_Get_count(&status, MPI_CHAR, &length);
+        std::string message(static_cast<std::size_t>(length), '\0');
+        MPI_Recv(message.data(), length, MPI_CHAR, status.MPI_SOURCE, kTagAsk, MPI_COMM_WORLD,
+                 MPI_STATUS_IGNORE);
+        if (message[0] == 'D') finish();
+        if (message[0] == 'E') fail(message.substr(1));
+        long item = take();
+        MPI_Send(&item, 1, MPI_LONG, status.MPI_SOURCE, kTagItem, MPI_COMM_WORLD);
+        if (item < 0) --active;
+      }
+    };
+    if (m_threads) {
+      std::thread dispatcher(dispatch);
+      for (long item = take(); item >= 0; item = take()) {
+        const std::string e = failure(work, item);
+        if (e.empty())
+          finish();
+        else
+          fail(e);
+      }
+      dispatcher.join();
+    } else {
+      dispatch();  // an MPI without thread support: the leader only hands out
+    }
+    return first_error;
+  }
+
+  std::string follow(const std::function<void(long)>& work) {
+    std::string message = "R";
+    for (;;) {
+      MPI_Send(message.data(), static_cast<int>(message.size()), MPI_CHAR, 0, kTagAsk,
+               MPI_COMM_WORLD);
+      long item = -1;
+      MPI_Request r;
+      MPI_Irecv(&item, 1, MPI_LONG, 0, kTagItem, MPI_COMM_WORLD, &r);
+      sleepy_wait(r);
+      if (item < 0) return "";
+      const std::string e = failure(work, item);
+      message = e.empty() ? "D" : "E" + e;
+    }
+  }
+
+  int m_rank = 0, m_size = 1;
+  bool m_threads = false;
+};
+
+bool launched_by_mpi() {
+  // Open MPI's mpirun, MPICH/Hydra and Slurm's srun (PMI, PMIx) set these in every rank.
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
+    if (std::getenv(name)) return true;
+  return false;
+}
+
+}  // namespace
+
+std::unique_ptr<RunRanks> mpi_ranks_if_launched() {
+  if (!launched_by_mpi()) return nullptr;
+  return std::make_unique<MpiRanks>();
+}
+
+}  // namespace thaw::pipeline
