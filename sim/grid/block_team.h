@@ -8,9 +8,9 @@
 // ran 10x slower on 2 threads than on 1 (docs/benchmarks.md). One parallel region per time step
 // with these barriers inside replaces ~10 fork/joins per conjugate-gradient iteration.
 //
-// Deterministic: the blocks are the same for any thread count (each thread takes a contiguous
-// range of them), so a per-block partial sum is computed by the same operations whoever computes
-// it, and every thread adds the partials in block order. Knows nothing of the physics.
+// Deterministic: the blocks are the same for any thread count (threads take them one at a time
+// from a shared counter), so a per-block partial sum is computed by the same operations whoever
+// computes it, and every thread adds the partials in block order. Knows nothing of the physics.
 #include <algorithm>
 #include <atomic>
 
@@ -47,27 +47,47 @@ class SleepingBarrier {
   int m_threads = 1;
 };
 
-/// One thread's view: its contiguous share of `blocks` blocks, and the team's barrier.
+/// What the threads of a team share: the barrier and the block dispensers of the phases.
+struct TeamShared {
+  SleepingBarrier barrier;
+  /// Next block of the current phase (even and odd phases alternate, so one can be reset while
+  /// the other is in use), on separate cache lines.
+  struct alignas(64) Counter {
+    std::atomic<long> next{0};
+  };
+  Counter counters[2];
+};
+
+/// One thread's view of the team. Blocks are handed out one at a time from a shared counter, so
+/// a thread slowed down by the machine's other work (a compile sharing its core) holds up the
+/// others by at most one block instead of its whole share: which thread computes a block does
+/// not change what is computed, so results stay the same for any thread count and any timing.
 class BlockTeam {
  public:
-  BlockTeam(SleepingBarrier& barrier, int thread, int threads, long blocks)
-      : m_barrier(barrier),
-        m_thread(thread),
-        m_first(blocks * thread / threads),
-        m_last(blocks * (thread + 1) / threads) {}
-  /// f(block) for this thread's blocks, then the barrier: afterwards every block is done.
+  BlockTeam(TeamShared& shared, int thread, long blocks)
+      : m_shared(shared), m_thread(thread), m_blocks(blocks) {}
+  /// f(block) for every block, shared out among the threads, then the barrier: afterwards every
+  /// block is done. Every thread of the team must make the same sequence of calls.
   template <class F>
   void for_blocks(F&& f) {
-    for (long b = m_first; b < m_last; ++b) f(b);
-    m_barrier.wait();
+    std::atomic<long>& next = m_shared.counters[m_phase & 1].next;
+    for (long b = next.fetch_add(1, std::memory_order_relaxed); b < m_blocks;
+         b = next.fetch_add(1, std::memory_order_relaxed))
+      f(b);
+    m_shared.barrier.wait();
+    // Everybody is past this phase's counter: ready it for the phase after next. The barrier of
+    // the next phase publishes the reset before anyone uses it again.
+    if (leader()) next.store(0, std::memory_order_relaxed);
+    ++m_phase;
   }
   /// The one thread that updates shared bookkeeping (statistics).
   bool leader() const { return m_thread == 0; }
 
  private:
-  SleepingBarrier& m_barrier;
+  TeamShared& m_shared;
   int m_thread;
-  long m_first, m_last;
+  long m_blocks;
+  long m_phase = 0;
 };
 
 }  // namespace thaw::sim

@@ -482,12 +482,12 @@ struct EnthalpySolver::Impl {
     for (auto* v : {&partial_rz, &partial_res, &partial_pq, &partial_newton})
       v->assign(blocks, 0.0);
     bool converged = false;
-    SleepingBarrier barrier;
+    TeamShared shared;
 #pragma omp parallel if (n > kParallelCells)
     {
 #pragma omp single
-      barrier.reset(omp_get_num_threads());
-      BlockTeam team(barrier, omp_get_thread_num(), omp_get_num_threads(), block_count());
+      shared.barrier.reset(omp_get_num_threads());
+      BlockTeam team(shared, omp_get_thread_num(), block_count());
       // build_coefficients reads the neighbours' h, which nothing writes in this phase
       team.for_blocks([&](long bl) {
         for (long c = bl * kBlock; c < block_end(bl); ++c) {

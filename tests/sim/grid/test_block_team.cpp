@@ -17,12 +17,12 @@ TEST(BlockTeam, EveryBlockOncePerPhaseAndPhasesAreOrdered) {
     std::vector<int> count(blocks, 0);
     std::vector<long> value(blocks, 0);
     std::vector<char> ordered(static_cast<std::size_t>(threads), 1);
-    SleepingBarrier barrier;
+    TeamShared shared;
 #pragma omp parallel num_threads(threads)
     {
 #pragma omp single
-      barrier.reset(omp_get_num_threads());
-      BlockTeam team(barrier, omp_get_thread_num(), omp_get_num_threads(), blocks);
+      shared.barrier.reset(omp_get_num_threads());
+      BlockTeam team(shared, omp_get_thread_num(), blocks);
       for (int phase = 0; phase < phases; ++phase) {
         // each block reads its neighbour's value from the previous phase: wrong if a phase
         // started before the previous one ended everywhere
