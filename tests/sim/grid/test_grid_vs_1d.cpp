@@ -103,9 +103,11 @@ TEST(GridVs1d, LongCylinderMidPlane) {
   const Snapshot& s = r1.snapshots.back();
   std::printf("cylinder mid-plane at %.0f s: inner %.6f vs %.6f, outer %.6f vs %.6f m\n", s.time_s,
               inner, s.inner_radius_m, outer, s.outer_radius_m);
-  // within one cell (0.5 mm): the enthalpy method's O(dx) front error measured on Neumann
-  EXPECT_NEAR(inner, s.inner_radius_m, f.spacing_m);
-  EXPECT_NEAR(outer, s.outer_radius_m, f.spacing_m);
+  // Within a tenth of a cell (50 um): the planar front error at this cell size is ~0.7 um
+  // (Neumann, 0.53 um at 0.42 mm, order 1.6); curvature adds O(dx^2 / r) ~ 12 um at r = 2 cm
+  // (a planar reconstruction of a curved front), so 50 um leaves 4x that. Measured ~1 um.
+  EXPECT_NEAR(inner, s.inner_radius_m, 0.1 * f.spacing_m);
+  EXPECT_NEAR(outer, s.outer_radius_m, 0.1 * f.spacing_m);
 }
 
 }  // namespace
