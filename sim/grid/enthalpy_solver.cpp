@@ -338,6 +338,23 @@ struct EnthalpySolver::Impl {
   }
   bool pure(long c) const { return type[c] == kIce || type[c] == kWater; }
 
+  /// The conjugate gradients' start on block bl (x = 0, r = rhs, z = r / diag, p = 0) and its
+  /// partials of r.z and of the residual; done with the Newton residual, which saves a barrier
+  /// (wasted only when Newton has converged).
+  void start_cg(long bl) {
+    double rz = 0, res = 0;
+    for (long c = bl * kBlock; c < block_end(bl); ++c) {
+      dtemp[c] = 0;
+      cg_r[c] = pure(c) ? rhs[c] : 0.0;
+      cg_z[c] = pure(c) ? cg_r[c] / diag[c] : 0.0;
+      cg_p[c] = 0;  // so that the first fused update gives p = z
+      rz += cg_r[c] * cg_z[c];
+      res = std::max(res, pure(c) ? std::abs(cg_r[c]) / diag[c] : 0.0);
+    }
+    partial_rz[static_cast<std::size_t>(bl)] = rz;
+    partial_res[static_cast<std::size_t>(bl)] = res;
+  }
+
   /// Conjugate gradients with a Jacobi preconditioner on the pure cells' temperature changes:
   /// (diag_c) x_c - sum K x_nb = b_c. Every thread of the team runs this; returns iterations.
   ///
@@ -348,21 +365,9 @@ struct EnthalpySolver::Impl {
   /// the result does not depend on the thread count. Each partial array is written only after
   /// a barrier that follows every read of its previous values.
   int conjugate_gradients(BlockTeam& team, double tol) {
-    const std::vector<double>& b = rhs;
     std::vector<double>& x = dtemp;
-    team.for_blocks([&](long bl) {
-      double rz = 0, res = 0;
-      for (long c = bl * kBlock; c < block_end(bl); ++c) {
-        x[c] = 0;
-        cg_r[c] = pure(c) ? b[c] : 0.0;
-        cg_z[c] = pure(c) ? cg_r[c] / diag[c] : 0.0;
-        cg_p[c] = 0;  // so that the first fused update gives p = z
-        rz += cg_r[c] * cg_z[c];
-        res = std::max(res, pure(c) ? std::abs(cg_r[c]) / diag[c] : 0.0);
-      }
-      partial_rz[static_cast<std::size_t>(bl)] = rz;
-      partial_res[static_cast<std::size_t>(bl)] = res;
-    });
+    // x = 0, r = b, z = r / diag, p = 0 and the partials of r.z and of the residual were set by
+    // prepare_newton_iteration (start_cg), one barrier earlier.
     // every thread holds its own copies of these scalars, equal bit for bit
     double rz = ordered_sum(partial_rz), res = largest(partial_res), beta = 0;
     std::vector<double>* po = &cg_p;
@@ -449,6 +454,7 @@ struct EnthalpySolver::Impl {
         res = std::max(res, std::abs(rhs[c]) / diag[c]);
       }
       partial_newton[static_cast<std::size_t>(bl)] = res;
+      start_cg(bl);
     });
     return largest(partial_newton);
   }
