@@ -90,7 +90,8 @@ Rgb trace_ray(const Scene& scene, const Ray& ray, std::uint32_t medium, RenderSt
 RenderResult render(const Scene& scene, const RenderOptions& options,
                     const ProgressCallback& progress) {
   // The photon pass first (empty when [caustics] enabled = false or nothing can focus light).
-  const photon::CausticMap caustics = photon::CausticMap::build(scene, options.threads);
+  const photon::CausticMap caustics =
+      photon::CausticMap::build(scene, options.threads, options.cancel);
   RenderResult result = scene.spectral() ? render_spectral(scene, options, progress, &caustics)
                                          : render_image_tiles(scene, options, progress, [&] {
                                              return RgbPixelWorker(scene, &caustics);

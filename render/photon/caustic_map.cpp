@@ -99,7 +99,7 @@ std::vector<long long> share(long long total, const std::vector<double>& weight)
 
 }  // namespace
 
-CausticMap CausticMap::build(const Scene& scene, int threads) {
+CausticMap CausticMap::build(const Scene& scene, int threads, const std::atomic<bool>* cancel) {
   const auto start = std::chrono::steady_clock::now();
   CausticMap result;
   const CausticSettings& settings = scene.caustics();
@@ -160,6 +160,7 @@ CausticMap CausticMap::build(const Scene& scene, int threads) {
     PathEvents events;
 #pragma omp for schedule(dynamic, 1)
     for (long long c = 0; c < chunks; ++c) {
+      if (cancel && cancel->load(std::memory_order_relaxed)) continue;
       ChunkResult& part = parts[static_cast<std::size_t>(c)];
       try {
         const long long g0 = c * kChunk, g1 = std::min(photons, g0 + kChunk);

@@ -31,6 +31,7 @@
 // radius): where the light is not focused, K photons fall in the kernel's disc. Photons are traced
 // in fixed chunks in parallel (OpenMP) and stored in photon index order, so the maps do not depend
 // on the thread count. Nothing throws inside the parallel loop.
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -102,7 +103,9 @@ class CausticMap {
 
   /// The photon pass for `scene` at its [caustics] settings (empty when disabled, without
   /// lights or without dielectrics that are not index matched). `threads` 0 = OpenMP default.
-  static CausticMap build(const Scene& scene, int threads = 0);
+  /// `cancel` set (RenderOptions::cancel): the remaining photons are skipped, the map is partial.
+  static CausticMap build(const Scene& scene, int threads = 0,
+                          const std::atomic<bool>* cancel = nullptr);
 
   bool empty() const {
     for (const PhotonMap& m : m_maps)

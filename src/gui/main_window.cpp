@@ -13,6 +13,7 @@
 #include <QSplitter>
 #include <QStatusBar>
 #include <QTabWidget>
+#include <QTimer>
 #include <QVBoxLayout>
 
 #include "src/common/error.h"
@@ -269,6 +270,10 @@ QWidget* MainWindow::make_simulation_tab() {
   v->addLayout(srow);
   connect(m_run_button, &QPushButton::clicked, this, [this] { start_simulation(); });
   connect(m_cancel_button, &QPushButton::clicked, this, [this] { cancel_simulation(); });
+  m_scrub_timer = new QTimer(this);
+  m_scrub_timer->setSingleShot(true);
+  m_scrub_timer->setInterval(120);
+  connect(m_scrub_timer, &QTimer::timeout, this, [this] { request_preview(); });
   connect(m_slider, &QSlider::valueChanged, this, [this](int k) { show_step(k); });
   connect(m_runner, &SimulationRunner::progress, this,
           [this](const QString& stage, qint64 done, qint64 total) {
@@ -333,7 +338,8 @@ void MainWindow::show_step(int index) {
   m_view->show_step(step, false);
   m_plot->set_marker(step.row.time_s);
   if (m_slider->value() != index) m_slider->setValue(index);
-  request_preview();
+  m_pass = -1;             // the image shown is of another step now
+  m_scrub_timer->start();  // the preview follows once the slider rests
 }
 
 bool MainWindow::apply_edit(const std::string& key, const TomlValue& value) {

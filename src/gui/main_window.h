@@ -20,6 +20,7 @@ class QComboBox;
 class QPushButton;
 class QProgressBar;
 class QSlider;
+class QTimer;
 
 namespace thaw::gui {
 
@@ -118,6 +119,9 @@ class MainWindow : public QMainWindow {
   QPushButton* m_run_button = nullptr;
   QPushButton* m_cancel_button = nullptr;
   QLabel* m_sim_status = nullptr;
+  /// While the slider moves, the preview of the step waits for it to rest (the 3D view follows
+  /// at once): renders restarted at every tick would take the CPU from the GUI thread.
+  QTimer* m_scrub_timer = nullptr;
 };
 
 }  // namespace thaw::gui

@@ -1,5 +1,8 @@
 #include "src/gui/preview_renderer.h"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <cmath>
 
 #include "render/image/image_io.h"
@@ -56,6 +59,12 @@ std::shared_ptr<const ShellStep> PreviewRenderer::initial_shell() const {
 bool PreviewRenderer::busy() const {
   std::lock_guard lock(m_mutex);
   return m_pending.has_value() || m_rendering;
+}
+
+void lower_thread_priority() {
+  // Long background work yields to the GUI thread and the preview on a busy machine: nice 10 for
+  // this thread and the OpenMP workers it starts (Linux threads inherit it). Best effort.
+  (void)::setpriority(PRIO_PROCESS, static_cast<id_t>(::gettid()), 10);
 }
 
 void PreviewRenderer::loop() {

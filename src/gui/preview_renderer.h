@@ -29,6 +29,10 @@ struct PreviewRequest {
   int width = 320, height = 240, samples = 4;
 };
 
+/// Lowers the calling thread's scheduling priority (nice 10), so that a simulation run leaves the
+/// GUI thread and the preview responsive. (The preview itself keeps the normal priority.)
+void lower_thread_priority();
+
 /// The linear image as 8-bit sRGB, scaled by 2^exposure (as the PNG writer does).
 QImage to_qimage(const render::Image& image, double exposure);
 

@@ -24,9 +24,9 @@ ShellView::ShellView(QWidget* parent) : QVTKOpenGLNativeWidget(parent) {
   m_renderer->GradientBackgroundOn();
   m_renderer->SetBackground(0.10, 0.11, 0.14);
   m_renderer->SetBackground2(0.30, 0.33, 0.40);
-  m_renderer->SetUseDepthPeeling(1);
-  m_renderer->SetMaximumNumberOfPeels(12);
-  m_renderer->SetOcclusionRatio(0.0);
+  // No depth peeling (thaw inspect's pictures use it): with software OpenGL (Mesa llvmpipe, as
+  // under Xvfb) its passes made every redraw several times slower; the one translucent surface
+  // over an opaque one blends acceptably in drawing order.
   m_renderer->AutomaticLightCreationOff();
   vtkNew<vtkLightKit> lights;
   lights->AddLightsToRenderer(m_renderer);

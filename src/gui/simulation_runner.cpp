@@ -5,6 +5,7 @@
 #include "sim/simulate.h"
 #include "src/common/atomic_file.h"
 #include "src/common/error.h"
+#include "src/gui/preview_renderer.h"
 #include "src/mesh/mesh_series.h"
 
 namespace thaw::gui {
@@ -46,6 +47,7 @@ std::shared_ptr<const SimulationRun> SimulationRunner::result() const {
 }
 
 void SimulationRunner::run(pipeline::RunScenario sc) {
+  lower_thread_priority();
   try {
     if (!m_work.isValid()) throw UserError("", "", "no temporary folder for the simulation");
     auto run = std::make_shared<SimulationRun>();

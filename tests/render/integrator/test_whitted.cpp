@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <string>
 
@@ -104,6 +105,26 @@ TEST(Whitted, OccluderCastsShadow) {
   d.camera.position = {0.0, 2.0, 0.0};  // below the blocker, looking down at (0, 0, 0)
   const RenderResult r = render(build_scene(d));
   EXPECT_EQ(r.image.at(0, 0), Rgb(0, 0, 0));
+}
+
+TEST(Whitted, CancelledRenderSkipsItsTiles) {
+  // RenderOptions::cancel (thaw gui's preview, restarted by an edit): set before the render, no
+  // tile is traced, so every pixel keeps the image's initial black although the background is
+  // blue; unset, the same scene shows the background.
+  SceneDescription d = base_scene(32, 32);
+  d.image.background = {0.3, 0.6, 0.9};
+  const Scene scene = build_scene(d);
+  std::atomic<bool> cancel{true};
+  RenderOptions options;
+  options.cancel = &cancel;
+  const RenderResult stopped = render(scene, options);
+  cancel = false;
+  const RenderResult full = render(scene, options);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) {
+      EXPECT_EQ(stopped.image.at(x, y), Rgb(0, 0, 0));
+      EXPECT_NEAR(full.image.at(x, y).b, 0.9f, 1e-5f);  // the filter's weighted mean of 0.9
+    }
 }
 
 TEST(Whitted, TintedMirrorReflectsBackground) {

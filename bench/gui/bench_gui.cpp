@@ -1,0 +1,128 @@
+// bench_gui: the responsiveness targets of `thaw gui` (issue 14) on the default scenario.
+//   1. preview latency: seconds from an edit (the background colour, alternating) to the first
+//      320x240 image (pass 1 of the progressive preview; pass 0 is the 80x60 quick pass);
+//   2. slider scrub: milliseconds from setting the time slider to the step's meshes drawn in the
+//      3D view (show_step renders the VTK window synchronously), over every step of a run;
+//   3. the longest the GUI thread went without serving its event loop, over everything above,
+//      measured by a 5 ms timer (the gap between two ticks minus the 5 ms period).
+// Usage: bench_gui [EDITS=10]. Prints one line per figure.
+#include <QVTKOpenGLNativeWidget.h>
+#include <QApplication>
+#include <QElapsedTimer>
+#include <QSlider>
+#include <QSurfaceFormat>
+#include <QTimer>
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <vector>
+
+#include "src/gui/main_window.h"
+#include "src/inspect/virtual_display.h"
+
+using thaw::gui::MainWindow;
+
+namespace {
+
+/// Runs the event loop until `done()` or `timeout_ms`; false on timeout.
+template <class Done>
+bool wait_until(Done done, int timeout_ms) {
+  QElapsedTimer t;
+  t.start();
+  while (!done()) {
+    if (t.elapsed() > timeout_ms) return false;
+    QCoreApplication::processEvents(QEventLoop::AllEvents, 5);
+  }
+  return true;
+}
+
+void print_stats(const char* what, std::vector<double> v, const char* unit) {
+  if (v.empty()) return;
+  std::sort(v.begin(), v.end());
+  const double median = v[v.size() / 2];
+  std::printf("%-44s n=%zu  median %.3f %s  max %.3f %s\n", what, v.size(), median, unit, v.back(),
+              unit);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int edits = argc > 1 ? std::atoi(argv[1]) : 10;
+  std::unique_ptr<thaw::inspect::DisplayLease> display;
+  if (!thaw::inspect::display_available())
+    display = std::make_unique<thaw::inspect::DisplayLease>("bench_gui");
+  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
+  QApplication app(argc, argv);
+  MainWindow w{thaw::gui::ScenarioDocument()};
+  w.show();
+
+  // The GUI thread's longest block: gaps between ticks of a 5 ms timer.
+  QElapsedTimer clock;
+  clock.start();
+  qint64 last_tick = 0, worst_gap_ms = 0;
+  QTimer ticker;
+  ticker.setTimerType(Qt::PreciseTimer);
+  QObject::connect(&ticker, &QTimer::timeout, [&] {
+    const qint64 now = clock.elapsed();
+    if (last_tick > 0) worst_gap_ms = std::max(worst_gap_ms, now - last_tick - 5);
+    last_tick = now;
+  });
+  ticker.start(5);
+
+  // Start-up: the initial shell is meshed and the first preview rendered (not counted).
+  if (!wait_until([&] { return w.preview_pass() >= 1; }, 120000)) return std::puts("no preview"), 1;
+  const qint64 startup_gap_ms = worst_gap_ms;
+  worst_gap_ms = 0;
+
+  std::vector<double> quick_s, full_s, worker_s;
+  for (int k = 0; k < edits; ++k) {
+    const double g = (k % 2) ? 0.30 : 0.20;
+    QElapsedTimer t;
+    t.start();
+    w.apply_edit("render.image.background", std::array<double, 3>{0.25, g, 0.40});
+    if (!wait_until([&] { return w.preview_pass() >= 0; }, 60000)) return std::puts("no pass 0"), 1;
+    quick_s.push_back(t.nsecsElapsed() * 1e-9);
+    if (!wait_until([&] { return w.preview_pass() >= 1; }, 60000)) return std::puts("no pass 1"), 1;
+    full_s.push_back(t.nsecsElapsed() * 1e-9);
+    worker_s.push_back(w.preview_seconds());
+    // Let the refinement pass run a little, as a user pausing between edits would, then edit
+    // again (which cancels it): the edit must not wait for the refinement.
+    wait_until([] { return false; }, 150);
+  }
+  const qint64 edit_gap_ms = worst_gap_ms;
+  worst_gap_ms = 0;
+
+  // A simulated run to scrub.
+  QElapsedTimer sim;
+  sim.start();
+  if (!w.start_simulation()) return std::puts("cannot simulate"), 1;
+  if (!wait_until([&] { return w.simulation_run() != nullptr; }, 600000))
+    return std::puts("no run"), 1;
+  const double sim_s = sim.nsecsElapsed() * 1e-9;
+  const qint64 sim_gap_ms = worst_gap_ms;
+  worst_gap_ms = 0;
+  auto* slider = w.findChild<QSlider*>("time_slider");
+  std::vector<double> scrub_ms;
+  for (int pass = 0; pass < 2; ++pass)
+    for (int k = slider->minimum(); k <= slider->maximum(); ++k) {
+      QElapsedTimer t;
+      t.start();
+      slider->setValue(pass == 0 ? k : slider->maximum() - k);
+      scrub_ms.push_back(t.nsecsElapsed() * 1e-6);
+      QCoreApplication::processEvents(QEventLoop::AllEvents, 5);
+    }
+  const qint64 scrub_gap_ms = worst_gap_ms;
+
+  std::printf("thaw gui responsiveness, default scenario, preview 320x240 (pass 0: 80x60)\n");
+  print_stats("edit -> quick pass (80x60) [s]", quick_s, "s");
+  print_stats("edit -> 320x240 preview [s] (GUI clock)", full_s, "s");
+  print_stats("request -> 320x240 preview [s] (worker)", worker_s, "s");
+  print_stats("slider -> step's meshes drawn [ms]", scrub_ms, "ms");
+  std::printf("simulate + mesh + load %d steps: %.2f s\n", slider->maximum() + 1, sim_s);
+  std::printf(
+      "longest GUI-thread block [ms]: start-up %lld, edits %lld, simulation %lld, scrubbing %lld\n",
+      static_cast<long long>(startup_gap_ms), static_cast<long long>(edit_gap_ms),
+      static_cast<long long>(sim_gap_ms), static_cast<long long>(scrub_gap_ms));
+  return 0;
+}
