@@ -19,6 +19,7 @@
 #include "src/common/error.h"
 #include "src/gui/key_form.h"
 #include "src/gui/radius_plot.h"
+#include "src/gui/scene_panel.h"
 #include "src/gui/shell_view.h"
 
 namespace thaw::gui {
@@ -65,6 +66,8 @@ MainWindow::MainWindow(ScenarioDocument document, QWidget* parent)
   m_tabs->addTab(make_render_tab(), "Render");
   m_tabs->addTab(scrolled(make_scenario_tab()), "Scenario");
   m_tabs->addTab(make_simulation_tab(), "Simulation");
+  m_scene = new ScenePanel(*this);
+  m_tabs->addTab(scrolled(m_scene), "Scene");
   auto* right = new QWidget;
   auto* rv = new QVBoxLayout(right);
   rv->setContentsMargins(0, 0, 0, 0);
@@ -115,7 +118,7 @@ MainWindow::MainWindow(ScenarioDocument document, QWidget* parent)
     m_problem->setText(message);
     m_problem->show();
   });
-  for (KeyForm* form : m_forms)
+  for (KeyForm* form : {m_forms[0], m_forms[1]})  // Render and Scenario tabs
     connect(form, &KeyForm::edited, this,
             [this](const std::string& key, const TomlValue& value) { apply_edit(key, value); });
   if (m_document.source_name() != "<built-in default>") m_path = m_document.source_name();
@@ -376,6 +379,23 @@ bool MainWindow::add_object(const std::string& shape, const std::string& mesh_fi
   return m_check.ok();
 }
 
+void MainWindow::modify(const std::function<void(ScenarioDocument&)>& change) {
+  change(m_document);
+  recheck();
+}
+
+void MainWindow::register_form(KeyForm* form, bool connect_edits) {
+  m_forms.push_back(form);
+  if (connect_edits)
+    connect(form, &KeyForm::edited, this,
+            [this](const std::string& key, const TomlValue& value) { apply_edit(key, value); });
+}
+
+void MainWindow::unregister_form(KeyForm* form) {
+  m_forms.erase(std::remove(m_forms.begin(), m_forms.end(), form), m_forms.end());
+  form->disconnect(this);
+}
+
 bool MainWindow::remove_object(std::size_t index) {
   m_document.erase_table("render.objects", index);
   recheck();
@@ -409,6 +429,7 @@ void MainWindow::recheck() {
   } else {
     m_status->setText("not rendered: " + message);
   }
+  if (m_scene) m_scene->refresh();
   update_title();
 }
 

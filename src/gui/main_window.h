@@ -7,6 +7,7 @@
 #include <QImage>
 #include <QMainWindow>
 #include <filesystem>
+#include <functional>
 #include <optional>
 
 #include "src/gui/preview_renderer.h"
@@ -27,6 +28,7 @@ namespace thaw::gui {
 class KeyForm;
 class ShellView;
 class RadiusPlot;
+class ScenePanel;
 
 class MainWindow : public QMainWindow {
   Q_OBJECT
@@ -40,6 +42,12 @@ class MainWindow : public QMainWindow {
   /// shell, with the first material of the scene (a grey matte one is added if there is none);
   /// returns whether the scenario is valid afterwards.
   bool add_object(const std::string& shape, const std::string& mesh_file = "");
+  /// Applies a structural change (adding or removing a table) and re-checks.
+  void modify(const std::function<void(ScenarioDocument&)>& change);
+  /// Puts `form` among the forms that show problems and values; with `connect_edits` its edits
+  /// are applied as they come (the Scene tab's forms of the selected entry come and go).
+  void register_form(KeyForm* form, bool connect_edits);
+  void unregister_form(KeyForm* form);
   /// Removes [[render.objects]] entry `index`.
   bool remove_object(std::size_t index);
   /// Opens a scenario file; throws thaw::UserError if it is not TOML.
@@ -122,6 +130,7 @@ class MainWindow : public QMainWindow {
   /// While the slider moves, the preview of the step waits for it to rest (the 3D view follows
   /// at once): renders restarted at every tick would take the CPU from the GUI thread.
   QTimer* m_scrub_timer = nullptr;
+  ScenePanel* m_scene = nullptr;
 };
 
 }  // namespace thaw::gui

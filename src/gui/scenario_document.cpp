@@ -109,15 +109,28 @@ void ScenarioDocument::set(const std::string& dotted_key, const TomlValue& value
   toml::table* parent = parent_table(*m_root, parts, true);
   THAW_CHECK(parent != nullptr, "no table holds the key");
   const std::string& name = parts.back().name;
+  toml::array* array = nullptr;
+  if (parts.back().index) {  // an element of an array ("checker.colors[1]"), grown as needed
+    array = parent->get_as<toml::array>(name);
+    if (!array) array = parent->insert_or_assign(name, toml::array{}).first->second.as_array();
+    while (array->size() <= *parts.back().index) array->push_back(toml::array{});
+  }
   std::visit(
       [&](const auto& v) {
         using T = std::decay_t<decltype(v)>;
+        auto put = [&](auto&& node) {
+          if (array)
+            array->replace(array->begin() + static_cast<std::ptrdiff_t>(*parts.back().index),
+                           std::forward<decltype(node)>(node));
+          else
+            parent->insert_or_assign(name, std::forward<decltype(node)>(node));
+        };
         if constexpr (std::is_same_v<T, std::array<double, 3>>)
-          parent->insert_or_assign(name, toml::array{v[0], v[1], v[2]});
+          put(toml::array{v[0], v[1], v[2]});
         else if constexpr (std::is_same_v<T, long long>)
-          parent->insert_or_assign(name, static_cast<std::int64_t>(v));
+          put(static_cast<std::int64_t>(v));
         else
-          parent->insert_or_assign(name, v);
+          put(v);
       },
       value);
 }
@@ -149,6 +162,32 @@ void ScenarioDocument::erase_table(const std::string& dotted_key, std::size_t in
   toml::array* a = table_array(*m_root, dotted_key, false);
   if (a && index < a->size()) a->erase(a->begin() + static_cast<std::ptrdiff_t>(index));
   if (a && a->empty()) remove(dotted_key);
+}
+
+std::optional<TomlValue> ScenarioDocument::value(const std::string& dotted_key) const {
+  const auto parts = split_key(dotted_key);
+  const toml::table* parent = parent_table(*m_root, parts, false);
+  if (!parent) return std::nullopt;
+  const toml::node* n = parent->get(parts.back().name);
+  if (n && parts.back().index) {
+    const toml::array* a = n->as_array();
+    n = a && *parts.back().index < a->size() ? a->get(*parts.back().index) : nullptr;
+  }
+  if (!n) return std::nullopt;
+  if (const auto* v = n->as_floating_point()) return TomlValue{v->get()};
+  if (const auto* v = n->as_integer()) return TomlValue{static_cast<long long>(v->get())};
+  if (const auto* v = n->as_boolean()) return TomlValue{v->get()};
+  if (const auto* v = n->as_string()) return TomlValue{v->get()};
+  if (const auto* a = n->as_array(); a && a->size() == 3) {
+    std::array<double, 3> out{};
+    for (std::size_t i = 0; i < 3; ++i) {
+      const auto d = (*a)[i].value<double>();
+      if (!d) return std::nullopt;
+      out[i] = *d;
+    }
+    return TomlValue{out};
+  }
+  return std::nullopt;
 }
 
 std::string ScenarioDocument::string_or(const std::string& dotted_key,

@@ -58,6 +58,9 @@ class ScenarioDocument {
   std::size_t append_table(const std::string& dotted_key);
   /// Erases entry `index` of the array of tables `dotted_key`.
   void erase_table(const std::string& dotted_key, std::size_t index);
+  /// The value at `dotted_key` as the GUI edits it (integers stay integers, arrays of three
+  /// numbers are vectors), or nullopt when absent or of another type.
+  std::optional<TomlValue> value(const std::string& dotted_key) const;
   /// The string at `dotted_key`, or `fallback`.
   std::string string_or(const std::string& dotted_key, const std::string& fallback) const;
   /// Names of the sub-tables of table `dotted_key` (e.g. the materials), in document order.

@@ -6,6 +6,7 @@
 #include <QLabel>
 #include <QLineEdit>
 #include <QProgressBar>
+#include <QPushButton>
 #include <QSignalSpy>
 #include <QSlider>
 #include <QSurfaceFormat>
@@ -35,7 +36,9 @@ fs::path temp_dir() {
 
 /// Types `text` into the line edit of `key` as a user would, then leaves the field.
 void type_into(MainWindow& w, const std::string& key, const QString& text) {
+  // Numbers are a line edit named after the key; vectors a line edit "<key>.text" beside a picker.
   auto* edit = w.findChild<QLineEdit*>(QString::fromStdString(key));
+  if (!edit) edit = w.findChild<QLineEdit*>(QString::fromStdString(key + ".text"));
   QVERIFY2(edit, key.c_str());
   edit->setFocus();
   edit->selectAll();
@@ -135,12 +138,18 @@ class TestMainWindow : public QObject {
     w.show();
     QVERIFY(wait_for_full_size(w));
     const QImage before = w.preview_image();
-    // A large matte sphere beside the shell, as the Scene tab adds one.
-    QVERIFY(w.add_object("sphere"));
-    const std::size_t k = w.document().array_size("render.objects") - 1;
-    const std::string key = "render.objects[" + std::to_string(k) + "]";
-    QVERIFY(w.apply_edit(key + ".center", std::array<double, 3>{0.0, 0.02, 0.0}));
-    QVERIFY(w.apply_edit(key + ".radius", 0.05));
+    // The Scene tab's "Add object" (a sphere by default), then its radius typed into the form
+    // of the new, selected object.
+    const std::size_t before_count = w.document().array_size("render.objects");
+    auto* add = w.findChild<QPushButton*>("add_object");
+    QVERIFY(add);
+    add->click();
+    QCOMPARE(w.document().array_size("render.objects"), before_count + 1);
+    const std::string key = "render.objects[" + std::to_string(before_count) + "]";
+    type_into(w, key + ".center", "0, 0.02, 0");
+    type_into(w, key + ".radius", "0.05");
+    QVERIFY2(w.check().ok(), w.check().message.c_str());
+    QCOMPARE(w.check().scenario->scene.objects.back().radius, 0.05);
     QVERIFY(wait_for_full_size(w));
     const QImage after = w.preview_image();
     QCOMPARE(after.size(), before.size());
@@ -148,6 +157,30 @@ class TestMainWindow : public QObject {
     // deterministic: the same scene renders the same image).
     QVERIFY2(mean_difference(before, after) > 5.0,
              qPrintable(QString::number(mean_difference(before, after))));
+  }
+
+  void sceneTabEditsLightsMaterialsAndMedia() {
+    MainWindow w{ScenarioDocument()};
+    w.show();
+    // A checker texture's colour, through its form.
+    type_into(w, "render.materials.floor.checker.colors[1]", "0.1, 0.3, 0.6");
+    QVERIFY2(w.check().ok(), w.check().message.c_str());
+    const auto& floor = w.check().scenario->scene.materials.front();
+    QCOMPARE(floor.texture.checker_colors[1], (thaw::render::RgbD{0.1, 0.3, 0.6}));
+    // A light's intensity; a negative one is the parser's problem, shown under the field.
+    type_into(w, "render.lights[0].intensity", "-1");
+    QVERIFY(!w.check().ok());
+    QVERIFY(!w.field_problem("render.lights[0].intensity").isEmpty());
+    type_into(w, "render.lights[0].intensity", "0.5");
+    QVERIFY(w.check().ok());
+    QCOMPARE(w.check().scenario->scene.lights.front().intensity, 0.5);
+    // The ice medium's index as Sellmeier coefficients.
+    w.modify([](ScenarioDocument& d) {
+      d.remove("render.media.ice.ior");
+      d.set("render.media.ice.sellmeier.B", std::array<double, 3>{0.7, 0.0, 0.0});
+      d.set("render.media.ice.sellmeier.C", std::array<double, 3>{0.01, 0.0, 0.0});
+    });
+    QVERIFY2(w.check().ok(), w.check().message.c_str());
   }
 
   void startAndCancelASimulation() {

@@ -106,6 +106,22 @@ TEST(ScenarioDocument, ArraysOfTablesAreEditedInPlace) {
   EXPECT_EQ(c.scenario->scene.objects.size(), before);
 }
 
+TEST(ScenarioDocument, ElementsOfArraysAreSetInPlace) {
+  // The default floor's checker colours: [[0.9, 0.9, 0.9], [0.6, 0.08, 0.08]].
+  ScenarioDocument doc;
+  doc.set("render.materials.floor.checker.colors[1]", std::array<double, 3>{0.1, 0.3, 0.6});
+  const ScenarioCheck c = doc.check();
+  ASSERT_TRUE(c.ok()) << c.message << "\n" << doc.text();
+  EXPECT_EQ(c.scenario->scene.materials.front().texture.checker_colors[1],
+            (render::RgbD{0.1, 0.3, 0.6}));
+  EXPECT_EQ(c.scenario->scene.materials.front().texture.checker_colors[0],
+            (render::RgbD{0.9, 0.9, 0.9}));
+  const auto v = doc.value("render.materials.floor.checker.colors[1]");
+  ASSERT_TRUE(v.has_value());
+  using V3 = std::array<double, 3>;
+  EXPECT_EQ(std::get<V3>(*v), (V3{0.1, 0.3, 0.6}));
+}
+
 TEST(ScenarioDocument, KeyOfProblem) {
   EXPECT_EQ(key_of_problem("line 3, key 'shell.inner_radius_m'"), "shell.inner_radius_m");
   EXPECT_EQ(key_of_problem("line 3"), "");
