@@ -11,7 +11,8 @@ namespace thaw::cli {
 
 void register_gui(CLI::App& app) {
   struct Args {
-    std::string scenario, screenshot;
+    std::string scenario, screenshot, tab;
+    bool simulate = false;
   };
   auto args = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand(
@@ -22,11 +23,17 @@ void register_gui(CLI::App& app) {
   sub->add_option(
       "--screenshot", args->screenshot,
       "load, lay out, render the preview and the 3D view, save the window as PNG, exit");
+  sub->add_option("--tab", args->tab, "tab shown first: render, scenario, simulation or scene");
+  sub->add_flag(
+      "--simulate", args->simulate,
+      "start the simulation at once (--screenshot waits for it and shows its middle step)");
   sub->callback([args] {
 #ifdef THAW_WITH_GUI
     gui::GuiOptions options;
     options.scenario = args->scenario;
     options.screenshot = args->screenshot;
+    options.tab = args->tab;
+    options.simulate = args->simulate;
     const int code = gui::run_gui(options);
     if (code != 0) throw CLI::RuntimeError(code);
 #else

@@ -34,7 +34,18 @@ int run_gui(const GuiOptions& options) {
   static char* argv[] = {name, nullptr};
   QApplication app(argc, argv);
   MainWindow window(std::move(document));
+  if (!options.tab.empty() && !window.select_tab(options.tab))
+    throw UserError("", "--tab",
+                    "no tab '" + options.tab + "' (render, scenario, simulation, scene)");
   window.show();
+  if (options.simulate) {
+    if (!window.start_simulation())
+      throw UserError(window.document().source_name(), "--simulate",
+                      "the scenario has a problem: " + window.check().message);
+    QObject::connect(&window, &MainWindow::simulationFinished, &window, [&window] {
+      window.show_step(static_cast<int>(window.simulation_run()->steps.size() / 2));
+    });
+  }
   if (options.screenshot.empty()) return app.exec();
   std::string problem;
   take_screenshot_when_ready(window, options.screenshot, [&](const std::string& p) {

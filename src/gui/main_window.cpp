@@ -465,6 +465,15 @@ bool MainWindow::save_file(const std::filesystem::path& path) {
   return true;
 }
 
+bool MainWindow::select_tab(const std::string& name) {
+  for (int k = 0; k < m_tabs->count(); ++k)
+    if (m_tabs->tabText(k).compare(QString::fromStdString(name), Qt::CaseInsensitive) == 0) {
+      m_tabs->setCurrentIndex(k);
+      return true;
+    }
+  return false;
+}
+
 void MainWindow::set_preview_size(int width, int height) {
   m_preview_width = width;
   m_preview_height = height;

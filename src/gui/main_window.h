@@ -70,6 +70,8 @@ class MainWindow : public QMainWindow {
   ShellView& shell_view() { return *m_view; }
   /// The inline message shown for `key` in whichever form has it ("" when none).
   QString field_problem(const std::string& key) const;
+  /// Shows the tab titled `name` (case-insensitive); false if there is none.
+  bool select_tab(const std::string& name);
   /// Preview size (the Render tab's choice).
   void set_preview_size(int width, int height);
 

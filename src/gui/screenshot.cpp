@@ -24,6 +24,7 @@ void take_screenshot_when_ready(MainWindow& window, const std::filesystem::path&
                               window.preview_pass() + 1 == window.preview_passes() &&
                               !window.renderer().busy();
     const bool invalid = !window.check().ok();
+    if (window.simulation_running()) return;
     const bool view_done = window.renderer().initial_shell() != nullptr || invalid;
     if (!(preview_done || invalid) || !view_done) {
       if (clock->elapsed() > timeout_s * 1000) {
