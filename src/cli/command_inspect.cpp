@@ -76,6 +76,7 @@ void run_inspect(const InspectArgs& a) {
     inspect::PvdWriter writer(a.pvd);
     const inspect::TriangleMesh mesh = meshio::read_obj(path);
     writer.add(0, 0.0, inspect::SurfacePart::outer, &mesh);
+    writer.commit();
     if (!a.quiet) std::fprintf(stderr, "thaw inspect: wrote %s\n", a.pvd.c_str());
   }
   if (!a.screenshot.empty()) {

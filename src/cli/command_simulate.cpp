@@ -13,7 +13,6 @@
 #include "src/common/error.h"
 #include "src/common/interrupt.h"
 #include "src/common/progress.h"
-#include "src/pipeline/run_scenario.h"
 
 namespace thaw::cli {
 namespace {
@@ -29,11 +28,11 @@ void run_simulate(const SimulateArgs& a) {
     return;
   }
   if (a.out.empty()) throw UserError("", "--out", "required: the result folder");
-  // Parse and validate everything before touching DIR: a scenario file may also hold thaw run's
-  // [film], [mesh] and [render] sections, which are checked too (one file serves every command).
-  const sim::Scenario scenario = a.scenario.empty()
-                                     ? sim::default_scenario()
-                                     : pipeline::read_run_scenario(a.scenario).simulation;
+  // Parse and validate before touching DIR. A scenario file may also hold thaw run's [film],
+  // [mesh] and [render] sections: they are thaw run's to check, thaw simulate skips them unread
+  // (docs/simulate.md), so a mistake there never stops a simulation.
+  const sim::Scenario scenario =
+      a.scenario.empty() ? sim::default_scenario() : sim::read_scenario_file(a.scenario);
   const std::filesystem::path out(a.out);
   if (std::filesystem::exists(out) && !std::filesystem::is_directory(out))
     throw UserError(a.out, "--out", "exists and is not a directory");

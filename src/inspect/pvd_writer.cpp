@@ -10,6 +10,7 @@
 #include "src/common/atomic_file.h"
 #include "src/common/error.h"
 #include "src/inspect/simulation_folder.h"
+#include "src/inspect/vtk_messages.h"
 #include "src/inspect/vtk_polydata.h"
 #include "src/meshio/obj_reader.h"
 
@@ -45,11 +46,13 @@ void write_vtp(const fs::path& path, const TriangleMesh& mesh) {
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff();
   writer->SetCompressorTypeToZLib();
+  const VtkMessages messages;  // VTK's own error lines go into the UserError, not to stderr
   const int ok = writer->Write();
   std::error_code ec;
   if (ok != 1 || writer->GetErrorCode() != 0) {
     fs::remove(temp, ec);
-    throw UserError(path.string(), "", "cannot write VTK PolyData (disk full or not writable)");
+    throw UserError(path.string(), "",
+                    "cannot write VTK PolyData (disk full or not writable)" + messages.suffix());
   }
   fs::rename(temp, path, ec);
   if (ec) {
@@ -79,10 +82,9 @@ void PvdWriter::add(long step, double time_s, SurfacePart part, const TriangleMe
   std::stable_sort(m_entries.begin(), m_entries.end(), [](const Entry& a, const Entry& b) {
     return a.time_s != b.time_s ? a.time_s < b.time_s : a.part < b.part;
   });
-  rewrite_pvd();
 }
 
-void PvdWriter::rewrite_pvd() const {
+void PvdWriter::commit() const {
   std::string xml =
       "<?xml version=\"1.0\"?>\n"
       "<!-- thaw: inner (part 0) = water|ice front, outer (part 1) = ice|air surface;\n"
@@ -121,6 +123,7 @@ void write_pvd_series(const fs::path& simdir, const fs::path& out_pvd,
     }
     if (progress) progress(++done, total);
   }
+  writer.commit();
 }
 
 }  // namespace thaw::inspect

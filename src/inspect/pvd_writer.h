@@ -1,9 +1,10 @@
 #pragma once
 // ParaView time series: a .pvd collection (plain XML, written by hand) referencing one .vtp per
 // step and surface, the inner (water|ice) and outer (ice|air) surfaces as separate parts, the
-// timestep being the simulated time in seconds. Every .vtp and every rewrite of the .pvd is atomic
-// (temporary name + rename) and the .pvd is rewritten after each added file, so it is a valid
-// collection of the steps done so far if a run is interrupted. Needs no display.
+// timestep being the simulated time in seconds. Every .vtp is written atomically (temporary name +
+// rename) as it is added; the .pvd only by commit(), once every data set is on disk, so an
+// interrupted or failed export (disk full) leaves no .pvd at all rather than a partial
+// collection. Needs no display.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -24,9 +25,12 @@ class PvdWriter {
   explicit PvdWriter(std::filesystem::path pvd_path);
 
   /// Writes step `step`'s `part` surface (nullptr: vanished, written as an empty data set so the
-  /// part disappears at that time instead of ParaView holding the last surface) and rewrites the
-  /// .pvd. time_s: simulated time [s].
+  /// part disappears at that time instead of ParaView holding the last surface). time_s: simulated
+  /// time [s]. Re-adding a step's part replaces its entry.
   void add(long step, double time_s, SurfacePart part, const TriangleMesh* mesh);
+
+  /// Writes the .pvd (atomically) referencing every data set added; throws thaw::UserError.
+  void commit() const;
 
   const std::filesystem::path& pvd_path() const { return m_pvd; }
   const std::filesystem::path& data_dir() const { return m_data_dir; }
@@ -39,7 +43,6 @@ class PvdWriter {
     int part;
     std::string file;  // relative to the .pvd's folder, '/'-separated
   };
-  void rewrite_pvd() const;
   std::filesystem::path m_pvd, m_data_dir;
   std::vector<Entry> m_entries;
 };

@@ -43,6 +43,11 @@ check_bad() {  # name, expected substring 1, expected substring 2, scenario text
 
 check_good default
 check_good drop "$src/data/scenarios/water_drop_freezing.toml"
+# thaw run's sections are thaw run's to check: mistakes there never stop thaw simulate (issue 12).
+sed -e 's/^\[render.image\]/[render.image]\nwidht = 1/' -e 's/^\[film\]/[film]\nbogus = 1/' \
+  -e 's/^\[mesh\]/[mesh]\nedge_lenght_m = "x"/' "$src/data/scenarios/default.toml" > "$work/foreign_errors.toml"
+grep -q '^widht = 1' "$work/foreign_errors.toml" || note "foreign_errors: fixture not made"
+check_good foreign_errors "$work/foreign_errors.toml"
 grep -q '"kind": "core_frozen"' "$work/drop/summary.json" || note "drop: no core_frozen event"
 grep -q '"kind": "break_through"' "$work/default/summary.json" || note "default: no break_through event"
 

@@ -87,22 +87,45 @@ TEST(PvdWriter, SeriesRoundTripsThroughVtkReaders) {
     EXPECT_EQ(f.path().string().find(".tmp-"), std::string::npos) << f.path();
 }
 
-TEST(PvdWriter, CollectionIsValidAfterEachStep) {
+// Issue 12: an export that stops half-way (disk full, interrupt) leaves no partial .pvd: the
+// collection is written once, by commit(), after every data set is on disk.
+TEST(PvdWriter, CollectionIsWrittenOnlyOnCommit) {
   testing::ScratchDir dir("pvd");
   const fs::path pvd = dir.path() / "live.pvd";
   PvdWriter writer(pvd);
   const TriangleMesh a = testing::icosphere(1.0, 1), b = testing::icosphere(2.0, 1);
   writer.add(0, 0.0, SurfacePart::inner, &a);
-  EXPECT_EQ(parse_pvd(pvd).size(), 1u);
   writer.add(0, 0.0, SurfacePart::outer, &b);
   writer.add(1, 2.5, SurfacePart::inner, nullptr);
+  EXPECT_FALSE(fs::exists(pvd));
+  writer.commit();
   const auto entries = parse_pvd(pvd);
   ASSERT_EQ(entries.size(), 3u);
   EXPECT_EQ(entries[2].time_s, 2.5);
   EXPECT_EQ(read_vtp(pvd.parent_path() / entries[2].file)->GetNumberOfPoints(), 0);
   // Re-adding a step replaces its entry instead of duplicating it.
   writer.add(1, 2.5, SurfacePart::inner, &a);
+  writer.commit();
   EXPECT_EQ(parse_pvd(pvd).size(), 3u);
+}
+
+// A VTK write failure is one UserError carrying VTK's reason; nothing is printed by VTK itself.
+TEST(PvdWriter, VtkWriteFailureIsOneUserErrorWithoutVtkOutput) {
+  testing::ScratchDir dir("pvd");
+  const TriangleMesh a = testing::icosphere(1.0, 1);
+  ::testing::internal::CaptureStderr();
+  // /dev/full: every write fails with ENOSPC, as on a full disk.
+  std::string what;
+  try {
+    write_vtp("/dev/full/x.vtp", a);
+  } catch (const UserError& e) {
+    what = e.what();
+  }
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(err, "");
+  // VTK did complain; its reason is in the one thaw line, on one line.
+  EXPECT_NE(what.find("; VTK: "), std::string::npos) << what;
+  EXPECT_EQ(what.find('\n'), std::string::npos) << what;
 }
 
 TEST(PvdWriter, UnwritableOutputIsUserError) {
