@@ -15,6 +15,7 @@
 #include <QTabWidget>
 #include <QTimer>
 #include <QVBoxLayout>
+#include <algorithm>
 
 #include "src/common/error.h"
 #include "src/gui/key_form.h"
@@ -163,6 +164,74 @@ QWidget* MainWindow::make_render_tab() {
   connect(render, &QPushButton::clicked, this, [this] { request_preview(true); });
   row->addWidget(render);
   v->addLayout(row);
+  // Render film: thaw run into a folder, then step through or play its frames here.
+  m_film = new FilmRunner(this);
+  auto* frow = new QHBoxLayout;
+  m_film_button = new QPushButton("Render film...");
+  m_film_button->setObjectName("film_button");
+  m_film_button->setToolTip(
+      "thaw run on this scenario into a folder (simulate, mesh, render, film)");
+  frow->addWidget(m_film_button);
+  m_film_progress = new QProgressBar;
+  m_film_progress->setObjectName("film_progress");
+  frow->addWidget(m_film_progress, 1);
+  v->addLayout(frow);
+  auto* prow = new QHBoxLayout;
+  m_play_button = new QPushButton("Play");
+  m_play_button->setEnabled(false);
+  m_frame_slider = new QSlider(Qt::Horizontal);
+  m_frame_slider->setObjectName("frame_slider");
+  m_frame_slider->setEnabled(false);
+  prow->addWidget(m_play_button);
+  prow->addWidget(m_frame_slider, 1);
+  v->addLayout(prow);
+  m_film_status = new QLabel;
+  m_film_status->setWordWrap(true);
+  v->addWidget(m_film_status);
+  m_film_poll = new QTimer(this);
+  m_film_poll->setInterval(300);
+  connect(m_film_poll, &QTimer::timeout, this,
+          [this] { m_film_progress->setValue(m_film->frames_done()); });
+  m_play_timer = new QTimer(this);
+  connect(m_play_timer, &QTimer::timeout, this, [this] {
+    const int next = m_frame_slider->value() + 1;
+    if (next > m_frame_slider->maximum()) return m_play_timer->stop();
+    m_frame_slider->setValue(next);
+  });
+  connect(m_play_button, &QPushButton::clicked, this, [this] {
+    if (m_frame_slider->value() == m_frame_slider->maximum()) m_frame_slider->setValue(0);
+    const double fps = m_check.ok() ? m_check.scenario->film.fps : 12.0;
+    m_play_timer->start(static_cast<int>(1000.0 / fps));
+  });
+  connect(m_frame_slider, &QSlider::valueChanged, this, [this](int k) { show_frame(k); });
+  connect(m_film_button, &QPushButton::clicked, this, [this] {
+    const QString dir =
+        QFileDialog::getExistingDirectory(this, "Folder for the film (thaw run --out)");
+    if (!dir.isEmpty()) start_film(dir.toStdString());
+  });
+  connect(m_film, &FilmRunner::finished, this, [this](const QString& film) {
+    m_film_poll->stop();
+    m_film_button->setEnabled(true);
+    m_frames.clear();
+    std::error_code ec;
+    const std::filesystem::path frames =
+        std::filesystem::path(film.toStdString()).parent_path() / "frames";
+    for (const auto& e : std::filesystem::directory_iterator(frames, ec))
+      if (e.path().extension() == ".png") m_frames.push_back(e.path());
+    std::sort(m_frames.begin(), m_frames.end());
+    m_film_progress->setValue(static_cast<int>(m_frames.size()));
+    m_film_status->setText("Film: " + film + ". Step through the frames or play them.");
+    m_frame_slider->setRange(0, std::max(0, static_cast<int>(m_frames.size()) - 1));
+    m_frame_slider->setEnabled(!m_frames.empty());
+    m_play_button->setEnabled(!m_frames.empty());
+    show_frame(0);
+    emit filmFinished();
+  });
+  connect(m_film, &FilmRunner::failed, this, [this](const QString& message) {
+    m_film_poll->stop();
+    m_film_button->setEnabled(true);
+    m_film_status->setText("Failed: " + message);
+  });
   auto* note = new QLabel(
       "The preview renders the first film frame as <tt>thaw run</tt> would: a quarter-size pass, "
       "then the full preview size, then with the frame's anti-aliasing and caustics. Every edit "
@@ -463,6 +532,30 @@ bool MainWindow::save_file(const std::filesystem::path& path) {
   m_status->setText("saved " + QString::fromStdString(path.string()));
   update_title();
   return true;
+}
+
+bool MainWindow::start_film(const std::filesystem::path& dir) {
+  if (!m_check.ok() || m_film->running()) return false;
+  if (!m_film->start(*m_check.scenario, m_document.text(), dir)) return false;
+  m_film_button->setEnabled(false);
+  m_film_progress->setRange(0, static_cast<int>(pipeline::frame_times(*m_check.scenario).size()));
+  m_film_progress->setValue(0);
+  m_film_status->setText("Running thaw run into " + QString::fromStdString(dir.string()) + "...");
+  m_film_poll->start();
+  return true;
+}
+
+bool MainWindow::film_running() const {
+  return m_film->running();
+}
+
+void MainWindow::show_frame(int index) {
+  if (index < 0 || index >= static_cast<int>(m_frames.size())) return;
+  const QImage frame(QString::fromStdString(m_frames[static_cast<std::size_t>(index)].string()));
+  if (frame.isNull()) return;
+  m_image = frame;
+  show_image();
+  m_status->setText(QString("film frame %1/%2").arg(index + 1).arg(m_frames.size()));
 }
 
 bool MainWindow::select_tab(const std::string& name) {

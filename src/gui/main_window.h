@@ -10,6 +10,7 @@
 #include <functional>
 #include <optional>
 
+#include "src/gui/film_runner.h"
 #include "src/gui/preview_renderer.h"
 #include "src/gui/scenario_document.h"
 #include "src/gui/simulation_runner.h"
@@ -70,6 +71,16 @@ class MainWindow : public QMainWindow {
   ShellView& shell_view() { return *m_view; }
   /// The inline message shown for `key` in whichever form has it ("" when none).
   QString field_problem(const std::string& key) const;
+  // Render film
+  /// Runs `thaw run` on the scenario into `dir` in the background; false if one is running or
+  /// the scenario has a problem.
+  bool start_film(const std::filesystem::path& dir);
+  bool film_running() const;
+  /// The frames of the last finished film (sorted), shown by the frame slider.
+  const std::vector<std::filesystem::path>& film_frames() const { return m_frames; }
+  /// Shows film frame `index` in the preview area (the frame slider does this).
+  void show_frame(int index);
+
   /// Shows the tab titled `name` (case-insensitive); false if there is none.
   bool select_tab(const std::string& name);
   /// Preview size (the Render tab's choice).
@@ -90,6 +101,7 @@ class MainWindow : public QMainWindow {
   void previewFinished();
   void simulationFinished();
   void simulationCancelled();
+  void filmFinished();
 
  private:
   QWidget* make_render_tab();
@@ -133,6 +145,15 @@ class MainWindow : public QMainWindow {
   /// at once): renders restarted at every tick would take the CPU from the GUI thread.
   QTimer* m_scrub_timer = nullptr;
   ScenePanel* m_scene = nullptr;
+  FilmRunner* m_film = nullptr;
+  std::vector<std::filesystem::path> m_frames;
+  QSlider* m_frame_slider = nullptr;
+  QPushButton* m_film_button = nullptr;
+  QPushButton* m_play_button = nullptr;
+  QProgressBar* m_film_progress = nullptr;
+  QTimer* m_film_poll = nullptr;
+  QTimer* m_play_timer = nullptr;
+  QLabel* m_film_status = nullptr;
 };
 
 }  // namespace thaw::gui

@@ -241,6 +241,27 @@ class TestMainWindow : public QObject {
     QVERIFY(!slider->isEnabled());
   }
 
+  void renderFilmThenStepThroughItsFrames() {
+    ScenarioDocument doc;
+    doc.set("film.frames", 3LL);
+    doc.set("render.image.width", 64LL);
+    doc.set("render.image.height", 48LL);
+    MainWindow w{doc};
+    w.show();
+    QSignalSpy finished(&w, &MainWindow::filmFinished);
+    const fs::path out = temp_dir() / "film";
+    fs::remove_all(out);
+    QVERIFY(w.start_film(out));
+    QVERIFY(w.film_running());
+    QTRY_VERIFY_WITH_TIMEOUT(finished.count() == 1, 300000);
+    QVERIFY(fs::exists(out / "melt.mp4"));
+    QCOMPARE(static_cast<int>(w.film_frames().size()), 3);
+    auto* slider = w.findChild<QSlider*>("frame_slider");
+    QVERIFY(slider && slider->isEnabled());
+    slider->setValue(2);
+    QCOMPARE(w.preview_image().size(), QSize(64, 48));  // the frame, not the 320x240 preview
+  }
+
   void screenshotOfTheDefaultHasThePanelsAndARender() {
     MainWindow w{ScenarioDocument()};
     w.show();
