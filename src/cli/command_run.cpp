@@ -104,7 +104,8 @@ void run_alone_or_as_rank(const RunArgs& a, pipeline::RunRanks* ranks) {
   for (const auto& [label, path] : {std::pair{"film:  ", report.film},
                                     {"gif:   ", report.gif},
                                     {"plot:  ", report.plot},
-                                    {"pvd:   ", report.pvd}})
+                                    {"pvd:   ", report.pvd},
+                                    {"obj:   ", report.handoff_obj}})
     if (!path.empty()) std::printf("%s%s\n", label, path.string().c_str());
 }
 

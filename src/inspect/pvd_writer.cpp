@@ -1,10 +1,13 @@
 #include "src/inspect/pvd_writer.h"
 
+#include <vtkDoubleArray.h>
 #include <vtkNew.h>
+#include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataWriter.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "src/common/atomic_file.h"
@@ -22,23 +25,77 @@ std::string xml_escape(const std::string& s) {
   std::string out;
   for (const char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
 }
 
-const char* part_name(int part) { return part == 0 ? "inner" : "outer"; }
+const char* part_name(int part) {
+  return part == 0 ? "inner" : "outer";
+}
 
 }  // namespace
 
+std::vector<std::array<double, 3>> vertex_normals(const TriangleMesh& mesh) {
+  std::vector<std::array<double, 3>> n(mesh.vertices.size(), {0.0, 0.0, 0.0});
+  const bool own = !mesh.normal_triangles.empty();
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const auto& t = mesh.triangles[f];
+    if (own) {
+      for (int c = 0; c < 3; ++c) {
+        const auto& fn = mesh.normals[static_cast<std::size_t>(mesh.normal_triangles[f][c])];
+        auto& vn = n[static_cast<std::size_t>(t[c])];
+        for (int k = 0; k < 3; ++k) vn[k] += fn[k];
+      }
+      continue;
+    }
+    const auto& a = mesh.vertices[static_cast<std::size_t>(t[0])];
+    const auto& b = mesh.vertices[static_cast<std::size_t>(t[1])];
+    const auto& c = mesh.vertices[static_cast<std::size_t>(t[2])];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double cross[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                             u[0] * v[1] - u[1] * v[0]};
+    for (int corner = 0; corner < 3; ++corner)
+      for (int k = 0; k < 3; ++k) n[static_cast<std::size_t>(t[corner])][k] += cross[k];
+  }
+  for (auto& v : n) {
+    const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (len > 0)
+      for (double& x : v) x /= len;
+  }
+  return n;
+}
+
 void write_vtp(const fs::path& path, const TriangleMesh& mesh) {
   vtkSmartPointer<vtkPolyData> poly = to_polydata(mesh);
+  if (!mesh.triangles.empty()) {
+    const auto normals = vertex_normals(mesh);
+    vtkNew<vtkDoubleArray> array;
+    array->SetName("Normals");
+    array->SetNumberOfComponents(3);
+    array->SetNumberOfTuples(static_cast<vtkIdType>(normals.size()));
+    for (std::size_t i = 0; i < normals.size(); ++i)
+      array->SetTuple(static_cast<vtkIdType>(i), normals[i].data());
+    poly->GetPointData()->SetNormals(array);
+  }
   const fs::path temp = temporary_sibling(path);
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputData(poly);
@@ -77,8 +134,10 @@ void PvdWriter::add(long step, double time_s, SurfacePart part, const TriangleMe
   // Replace an earlier entry for the same time and part (a re-meshed step), else append.
   auto same = [&](const Entry& e) { return e.part == p && e.file == rel; };
   auto it = std::find_if(m_entries.begin(), m_entries.end(), same);
-  if (it != m_entries.end()) it->time_s = time_s;
-  else m_entries.push_back({time_s, p, rel});
+  if (it != m_entries.end())
+    it->time_s = time_s;
+  else
+    m_entries.push_back({time_s, p, rel});
   std::stable_sort(m_entries.begin(), m_entries.end(), [](const Entry& a, const Entry& b) {
     return a.time_s != b.time_s ? a.time_s < b.time_s : a.part < b.part;
   });
@@ -103,7 +162,7 @@ void PvdWriter::commit() const {
 }
 
 void write_pvd_series(const fs::path& simdir, const fs::path& out_pvd,
-                      const ProgressCallback& progress) {
+                      const ProgressCallback& progress, const StepPlacement& placement) {
   const SimulationFolder folder = read_simulation_folder(simdir);
   if (!folder.meshed)
     throw UserError((simdir / "mesh" / "manifest.json").string(), "",
@@ -115,7 +174,12 @@ void write_pvd_series(const fs::path& simdir, const fs::path& out_pvd,
     for (const SurfacePart part : {SurfacePart::inner, SurfacePart::outer}) {
       const auto& file = part == SurfacePart::inner ? s.inner : s.outer;
       if (file) {
-        const TriangleMesh mesh = meshio::read_obj(*file);
+        TriangleMesh mesh = meshio::read_obj(*file);
+        if (placement) {
+          const auto offset = placement(s.step);
+          for (auto& v : mesh.vertices)
+            for (int k = 0; k < 3; ++k) v[k] += offset[k];
+        }
         writer.add(s.step, s.time_s, part, &mesh);
       } else {
         writer.add(s.step, s.time_s, part, nullptr);

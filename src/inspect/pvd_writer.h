@@ -5,7 +5,9 @@
 // rename) as it is added; the .pvd only by commit(), once every data set is on disk, so an
 // interrupted or failed export (disk full) leaves no .pvd at all rather than a partial
 // collection. Needs no display.
+#include <array>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,12 +49,23 @@ class PvdWriter {
   std::vector<Entry> m_entries;
 };
 
-/// Writes `mesh` as a VTK XML PolyData file atomically (appended raw binary, zlib).
+/// Unit normals at the vertices of `mesh`: the file's own (`vn`, by the corners that name them)
+/// when it has them, else the area-weighted mean of the adjacent faces' normals (Gouraud's
+/// vertex normal, each face weighted by its area through the unnormalised cross product).
+std::vector<std::array<double, 3>> vertex_normals(const TriangleMesh& mesh);
+
+/// Writes `mesh` as a VTK XML PolyData file atomically (appended raw binary, zlib), with the
+/// point data "Normals" (vertex_normals, set as the data set's normals so ParaView shades with
+/// them) when the mesh has triangles.
 void write_vtp(const std::filesystem::path& path, const TriangleMesh& mesh);
+
+/// Where step `step`'s surfaces are placed in the world [m] (added to every point); `thaw run`
+/// passes the offset it rendered them at, so ParaView shows them where the film does.
+using StepPlacement = std::function<std::array<double, 3>(long step)>;
 
 /// Writes the collection for every meshed step of a simulation folder (see simulation_folder.h);
 /// OBJs are validated as by inspect_obj. progress: (steps done, steps total).
 void write_pvd_series(const std::filesystem::path& simdir, const std::filesystem::path& out_pvd,
-                      const ProgressCallback& progress = {});
+                      const ProgressCallback& progress = {}, const StepPlacement& placement = {});
 
 }  // namespace thaw::inspect

@@ -6,15 +6,21 @@
 
 namespace thaw::pipeline {
 
+std::array<double, 3> shell_offset(const RunScenario& sc, std::optional<double> outer_min_y) {
+  std::array<double, 3> offset = sc.shell.center;
+  if (sc.shell.rest_on_floor && outer_min_y) offset[1] = sc.shell.floor_y - *outer_min_y;
+  return offset;
+}
+
 render::SceneDescription frame_scene(const RunScenario& sc, const sim::ShellGeometry& geometry,
                                      const FrameShell& shell, const WaterBudget& water) {
   render::SceneDescription desc = sc.scene;
-  std::array<double, 3> offset = sc.shell.center;
-  if (sc.shell.rest_on_floor && shell.outer) {
-    double min_y = shell.outer->positions.front().y;
-    for (const auto& p : shell.outer->positions) min_y = std::min<double>(min_y, p.y);
-    offset[1] = sc.shell.floor_y - min_y;
+  std::optional<double> min_y;
+  if (shell.outer) {
+    min_y = shell.outer->positions.front().y;
+    for (const auto& p : shell.outer->positions) min_y = std::min<double>(*min_y, p.y);
   }
+  const std::array<double, 3> offset = shell_offset(sc, min_y);
   // One surface per interface: ice|outside (outer) and water|ice (inner). Without ice there is
   // no mesh (src/mesh meshes neither surface): a drop before it freezes is not drawn; after a
   // break-through the water is in the puddle.

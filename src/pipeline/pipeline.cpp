@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "render/geometry/obj_loader.h"
@@ -30,6 +31,7 @@
 #include "src/pipeline/frame_label.h"
 #include "src/pipeline/frame_puddle.h"
 #include "src/pipeline/frame_scene.h"
+#include "src/pipeline/handoff_export.h"
 #include "src/pipeline/run_manifest.h"
 #include "src/pipeline/water_budget.h"
 #include "thaw_version.h"
@@ -436,20 +438,33 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
     }
   }
 
-  // 5. inspect: the radius plot and the ParaView series
+  // 5. inspect: the radius plot, the ParaView series and the Blender OBJ sequence, the surfaces
+  // placed where the film shows them
   if (wanted("inspect")) {
     report.plot = out / "plot.png";
     report.pvd = out / "meshes.pvd";
+    report.handoff_obj = out / "handoff" / "obj";
+    ContentHash inspect_hash;
+    inspect_hash.add("inspect/2").add(mesh_hash.hex()).add(sc.shell.rest_on_floor ? "floor" : "");
+    for (double v : sc.shell.center) inspect_hash.add(v);
+    inspect_hash.add(sc.shell.floor_y);
     StageClock clock(report, "inspect");
-    const bool up_to_date = manifest.begin_stage("inspect", mesh_hash.hex()) &&
-                            fs::exists(report.plot) && fs::exists(report.pvd);
+    const bool up_to_date = manifest.begin_stage("inspect", inspect_hash.hex()) &&
+                            fs::exists(report.plot) && fs::exists(report.pvd) &&
+                            fs::exists(report.handoff_obj);
     if (up_to_date) {
       clock.timing().skipped = true;
       say(o, stage_title(5, "inspect") + ": up to date");
     } else {
       ProgressReporter progress(stage_title(5, "inspect"), frame_count, o.quiet);
-      inspect::write_pvd_series(simdir, report.pvd, interruptible(progress.callback()));
+      const auto offsets = rendered_offsets(sc, mesh_dir, meshes);
+      std::map<long, std::array<double, 3>> offset_of_step;
+      for (std::size_t k = 0; k < offsets.size(); ++k)
+        offset_of_step[meshes.steps[k].step] = offsets[k];
+      inspect::write_pvd_series(simdir, report.pvd, interruptible(progress.callback()),
+                                [&](long step) { return offset_of_step.at(step); });
       inspect::write_radius_plot(simdir, report.plot);
+      write_world_obj_sequence(mesh_dir, meshes, offsets, report.handoff_obj);
       progress.finish();
       manifest.mark_stage_complete("inspect");
       clock.timing().items_done = 1;

@@ -12,7 +12,8 @@
 // DIR/sim/                 interfaces.csv, profiles/, summary.json (one row per film frame)
 // DIR/sim/mesh/            step_NNNNNN_inner.obj / _outer.obj, manifest.json
 // DIR/frames/frame_NNNNNN.png
-// DIR/melt.mp4 (+ melt.gif), DIR/plot.png, DIR/meshes.pvd (+ meshes_vtp/)
+// DIR/melt.mp4 (+ melt.gif), DIR/plot.png, DIR/meshes.pvd (+ meshes_vtp/, world space, normals)
+// DIR/handoff/obj/shell_outer_NNNNNN.obj, shell_inner_NNNNNN.obj (world space, for Blender)
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -58,6 +59,8 @@ struct StageTiming {
 
 struct RunReport {
   std::filesystem::path film, gif, plot, pvd;  ///< empty if not made in this run
+  /// the OBJ sequence in world space for Blender (handoff_export.h)
+  std::filesystem::path handoff_obj;
   /// the simulation's events, one line each as `thaw simulate` prints them
   /// ("event melt_onset at t = 20.6778 s, r = 0.03 m")
   std::vector<std::string> events;

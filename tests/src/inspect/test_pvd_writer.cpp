@@ -4,11 +4,15 @@
 #include "src/inspect/pvd_writer.h"
 
 #include <gtest/gtest.h>
+
+#include <vtkDataArray.h>
 #include <vtkNew.h>
+#include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkXMLDataElement.h>
 #include <vtkXMLDataParser.h>
 #include <vtkXMLPolyDataReader.h>
+#include <cmath>
 
 #include "src/common/error.h"
 #include "tests/src/inspect/test_meshes.h"
@@ -85,6 +89,48 @@ TEST(PvdWriter, SeriesRoundTripsThroughVtkReaders) {
   // No temporary files are left behind.
   for (const auto& f : fs::recursive_directory_iterator(dir.path() / "out"))
     EXPECT_EQ(f.path().string().find(".tmp-"), std::string::npos) << f.path();
+}
+
+TEST(PvdWriter, PointNormalsAndPlacementReadBackByVtk) {
+  testing::ScratchDir dir("pvd_normals");
+  const auto rows = testing::write_sphere_simulation(dir.path() / "sim", 2);
+  const fs::path pvd = dir.path() / "out" / "melt.pvd";
+  const std::array<double, 3> offset{0.25, -0.5, 1.0};
+  write_pvd_series(dir.path() / "sim", pvd, {}, [&](long) { return offset; });
+  const auto entries = parse_pvd(pvd);
+  ASSERT_EQ(entries.size(), 4u);
+  const auto poly = read_vtp(pvd.parent_path() / entries[1].file);  // step 0, outer sphere
+  const double r = rows[0].outer_radius_m;
+  ASSERT_GT(poly->GetNumberOfPoints(), 0);
+  vtkDataArray* normals = poly->GetPointData()->GetNormals();
+  ASSERT_NE(normals, nullptr);
+  EXPECT_STREQ(normals->GetName(), "Normals");
+  ASSERT_EQ(normals->GetNumberOfTuples(), poly->GetNumberOfPoints());
+  double h_max = 0;  // the longest edge [m]
+  const auto mesh = testing::icosphere(r, 3);
+  for (const auto& t : mesh.triangles)
+    for (int c = 0; c < 3; ++c) {
+      const auto& a = mesh.vertices[static_cast<std::size_t>(t[c])];
+      const auto& b = mesh.vertices[static_cast<std::size_t>(t[(c + 1) % 3])];
+      h_max = std::max(h_max, std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]));
+    }
+  for (vtkIdType i = 0; i < poly->GetNumberOfPoints(); ++i) {
+    double p[3], n[3];
+    poly->GetPoint(i, p);
+    normals->GetTuple(i, n);
+    // Placed: the icosphere's vertices are on the sphere of radius r about `offset`.
+    const double d[3] = {p[0] - offset[0], p[1] - offset[1], p[2] - offset[2]};
+    const double dist = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    EXPECT_NEAR(dist, r, 1e-12 * r);
+    // Unit normals. The exact sphere's normal is d / r. The area-weighted normal is a convex
+    // combination of the adjacent faces' normals, and the plane of a face with a corner on the
+    // sphere tilts from that corner's tangent plane by at most the angle its longest edge
+    // subtends, h / r: so the angle to d / r is at most h_max / r. A wrong orientation or
+    // index would be off by ~1 rad or more.
+    EXPECT_NEAR(std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]), 1.0, 1e-12);
+    const double cosine = (n[0] * d[0] + n[1] * d[1] + n[2] * d[2]) / dist;
+    EXPECT_GT(cosine, std::cos(h_max / r)) << "vertex " << i;
+  }
 }
 
 // Issue 12: an export that stops half-way (disk full, interrupt) leaves no partial .pvd: the

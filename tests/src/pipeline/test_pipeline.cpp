@@ -14,7 +14,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -23,6 +25,7 @@
 
 #include "src/common/subprocess.h"
 #include "src/pipeline/film_encoder.h"
+#include "src/pipeline/handoff_export.h"
 
 extern char** environ;
 
@@ -454,6 +457,65 @@ TEST_F(ThawRun, ASimulationThatRunsOutOfIceSaysWhyItStoppedShort) {
   EXPECT_TRUE(contains(r.output, "[1/5] simulate: 2/4 frame times: the ice is gone at t = "))
       << r.output;
   EXPECT_TRUE(contains(r.output, "render: 2/2 done")) << r.output;
+}
+
+}  // namespace
+}  // namespace thaw::pipeline
+
+namespace thaw::pipeline {
+namespace {
+
+/// The `v` lines of an OBJ file.
+std::vector<std::array<double, 3>> obj_vertices(const fs::path& p) {
+  std::vector<std::array<double, 3>> v;
+  std::ifstream in(p);
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("v ", 0) == 0) {
+      std::array<double, 3> x{};
+      std::istringstream(line.substr(2)) >> x[0] >> x[1] >> x[2];
+      v.push_back(x);
+    }
+  return v;
+}
+
+TEST_F(ThawRun, HandOffMeshesSitWhereTheFilmShowsThem) {
+  const fs::path out = m_dir / "out";
+  const auto r = thaw({"run", kTiny.string(), "--out", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(contains(r.output, (out / "handoff/obj").string())) << r.output;
+  int placed = 0;
+  for (long step = 0; step < 4; ++step) {
+    char name[64];
+    std::snprintf(name, sizeof name, "step_%06ld_outer.obj", step);
+    ASSERT_TRUE(fs::exists(out / "handoff/obj" / world_obj_name(step, false))) << step;
+    ASSERT_TRUE(fs::exists(out / "handoff/obj" / world_obj_name(step, true))) << step;
+    const auto world = obj_vertices(out / "handoff/obj" / world_obj_name(step, false));
+    if (!fs::exists(out / "sim/mesh" / name)) {  // vanished: a face-less OBJ keeps the sequence
+      EXPECT_TRUE(world.empty()) << step;
+      continue;
+    }
+    const auto local = obj_vertices(out / "sim/mesh" / name);
+    ASSERT_EQ(world.size(), local.size()) << step;
+    ASSERT_FALSE(world.empty());
+    ++placed;
+    // tiny.toml rests the shell on the floor y = 0 at x = z = 0: x and z unchanged, every point
+    // moved up by the same amount, the lowest one onto the floor. The renderer places the mesh
+    // from its float positions, so "on the floor" holds to float rounding: 2^-24 of |y|.
+    double lowest = world[0][1], largest = 0, shift = world[0][1] - local[0][1];
+    for (std::size_t i = 0; i < world.size(); ++i) {
+      EXPECT_EQ(world[i][0], local[i][0]);
+      EXPECT_EQ(world[i][2], local[i][2]);
+      EXPECT_NEAR(world[i][1] - local[i][1], shift, 1e-15);
+      lowest = std::min(lowest, world[i][1]);
+      largest = std::max(largest, std::abs(local[i][1]));
+    }
+    EXPECT_NEAR(lowest, 0.0, largest * std::ldexp(1.0, -24)) << step;
+  }
+  EXPECT_GE(placed, 3);
+  // The ParaView series has the same placement and the vertex normals as point data.
+  const std::string vtp = read_file(out / "meshes_vtp/step_000001_outer.vtp");
+  EXPECT_TRUE(contains(vtp, "Normals=\"Normals\"")) << vtp.substr(0, 600);
 }
 
 }  // namespace

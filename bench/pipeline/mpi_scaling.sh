@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# mpirun -np 2 against one process on the default film (issue 13): wall time of the render stage
+# (and of the whole run) in three fair pairings on a 2-core machine, and per-frame costs for the
+# scaling model in docs/benchmarks.md.
+#   A  1 process x 1 thread           vs  B  2 ranks x 1 thread   (1 core vs 2 cores: efficiency)
+#   C  1 process x 2 threads          vs  B                        (same 2 cores: MPI vs OpenMP)
+# Simulate and mesh are done once up front (rank 0 does them alone under MPI: timed separately);
+# every configuration then renders the same frames into a copy of that folder. The load of the
+# machine (other engineers compiling) is printed before and after: compare ratios of one run.
+# Usage: bench/pipeline/mpi_scaling.sh [BUILD_DIR] [extra thaw run args, e.g. --frames 0:51:2]
+set -euo pipefail
+build=${1:-build}
+shift || true
+thaw=$(realpath "$build/thaw")
+work=$(mktemp -d /tmp/thaw_mpi_bench.XXXXXX)
+trap 'rm -rf "$work"' EXIT
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_MCA_btl_vader_single_copy_mechanism=none
+now() { date +%s.%N; }
+echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
+echo "load before: $(cut -d' ' -f1-3 /proc/loadavg)"
+t0=$(now); "$thaw" run --out "$work/base" --stage simulate -q; t1=$(now)
+"$thaw" run --out "$work/base" --stage mesh -q -j 2; t2=$(now)
+echo "simulate (serial, rank 0): $(echo "$t1 - $t0" | bc) s; mesh (rank 0, 2 threads): $(echo "$t2 - $t1" | bc) s"
+frames=$(ls "$work/base/sim/mesh/"step_*_outer.obj | wc -l)
+render() {  # name, threads, launcher...: renders into a copy of base, prints the wall time
+  local name=$1 threads=$2; shift 2
+  rm -rf "$work/$name"; cp -r "$work/base" "$work/$name"
+  local s; s=$(now)
+  "$@" "$thaw" run --out "$work/$name" --stage render -q -j "$threads" ${extra[@]+"${extra[@]}"}
+  local e; e=$(now)
+  echo "$e - $s" | bc
+}
+extra=("$@")
+a=$(render A 1)
+b=$(render B 1 mpirun -np 2)
+c=$(render C 2)
+for f in "$work/A/frames/"*.png; do cmp -s "$f" "$work/B/frames/$(basename "$f")" || { echo "MISMATCH $f"; exit 1; }; done
+n=$(ls "$work/A/frames/" | wc -l)
+t3=$(now); "$thaw" run --out "$work/A" --stage film -q; t4=$(now)
+echo "frames rendered: $n of $frames (byte-identical between A and B)"
+echo "render A 1 process x 1 thread : $a s ($(echo "scale=3; $a / $n" | bc) s per frame)"
+echo "render B 2 ranks x 1 thread   : $b s"
+echo "render C 1 process x 2 threads: $c s"
+echo "film encode (rank 0): $(echo "$t4 - $t3" | bc) s"
+echo "parallel efficiency B vs A (2 cores vs 1): $(echo "scale=3; $a / (2 * $b)" | bc)"
+echo "B vs C on the same 2 cores (C/B, > 1: MPI faster): $(echo "scale=3; $c / $b" | bc)"
+echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"
