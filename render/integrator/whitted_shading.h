@@ -176,9 +176,9 @@ class WhittedShading {
     return l;
   }
 
-  /// Colour of the light leaving the scene in `direction` (miss path): the scene's constant
-  /// background. An environment map or a sky goes here (both variants call this one function).
-  Rgb background([[maybe_unused]] const Vec3& direction) const { return m_scene.background(); }
+  /// Colour of the light leaving the scene in `direction` (miss path): the scene's environment,
+  /// a constant background or a procedural sky (both variants call this one function).
+  Rgb background(const Vec3& direction) const { return m_scene.environment().radiance(direction); }
 
   /// Point light `light` seen from surface point p (error bound p_error, normals ng, ns facing
   /// the viewer): casts the shadow ray; l, cos_l, dist2 describe the direction to the light.

@@ -222,6 +222,17 @@ Scene build_scene(const SceneDescription& desc) {
   }
   s.m_ambient = to_rgb(desc.ambient.color) * static_cast<float>(desc.ambient.intensity);
   s.m_background = to_rgb(img.background);
+  s.m_environment.background = s.m_background;
+  if (desc.environment.kind == EnvironmentDescription::Kind::sky) {
+    const EnvironmentDescription& e = desc.environment;
+    const auto scale = static_cast<float>(e.intensity);
+    s.m_environment.kind = Environment::Kind::sky;
+    s.m_environment.zenith = to_rgb(e.zenith) * scale;
+    s.m_environment.horizon = to_rgb(e.horizon) * scale;
+    s.m_environment.ground = to_rgb(e.ground) * scale;
+    s.m_environment.up = normalize(to_vec3(e.up));
+    s.m_environment.exponent = static_cast<float>(e.exponent);
+  }
 
   std::map<std::string, std::uint32_t> media{{"vacuum", 0}};
   s.m_media.push_back(

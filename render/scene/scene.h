@@ -10,6 +10,7 @@
 
 #include "render/accel/bvh.h"
 #include "render/geometry/triangle4.h"
+#include "render/light/environment.h"
 #include "render/light/sphere_light.h"
 #include "render/material/material.h"
 #include "render/math/color.h"
@@ -109,6 +110,8 @@ class Scene {
   const Bvh& bvh() const { return m_bvh; }
   Rgb ambient() const { return m_ambient; }
   Rgb background() const { return m_background; }
+  /// what escaping rays see ([environment]; constant: background())
+  const Environment& environment() const { return m_environment; }
   /// medium the camera sits in (index into media())
   std::uint32_t camera_medium() const { return m_camera_medium; }
   const SceneStatistics& statistics() const { return m_stats; }
@@ -132,6 +135,7 @@ class Scene {
   std::vector<PointLight> m_lights;
   std::vector<SphereLight> m_sphere_lights;
   Rgb m_ambient, m_background;
+  Environment m_environment;
   std::vector<Medium> m_media;
   std::vector<Material> m_materials;
   std::vector<SceneObject> m_objects;

@@ -116,6 +116,20 @@ inline std::optional<CausticSettingsProblem> caustic_settings_problem(const Caus
   return std::nullopt;
 }
 
+/// [environment]: what rays that leave the scene see (render/light/environment.h).
+struct EnvironmentDescription {
+  enum class Kind { constant, sky };
+  /// constant: [image] background everywhere
+  Kind kind = Kind::constant;
+  RgbD zenith{0.15, 0.3, 0.65}, horizon{0.8, 0.85, 0.9}, ground{0.25, 0.22, 0.2};
+  /// unit vector to the zenith
+  Vec3d up{0.0, 1.0, 0.0};
+  /// gradient exponent, (0, 10]
+  double exponent = 0.5;
+  /// scales zenith, horizon and ground, >= 0
+  double intensity = 1.0;
+};
+
 struct CameraDescription {
   Vec3d position{0.0, 0.0, 5.0};
   Vec3d look_at{0.0, 0.0, 0.0};
@@ -212,6 +226,7 @@ struct ObjectDescription {
 struct SceneDescription {
   ImageSettings image;
   CausticSettings caustics;
+  EnvironmentDescription environment;
   CameraDescription camera;
   AmbientDescription ambient;
   std::vector<LightDescription> lights;

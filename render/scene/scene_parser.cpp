@@ -209,6 +209,28 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
     if (const auto problem = caustic_settings_problem(s.caustics))
       c->fail(problem->key, problem->problem);
   }
+  if (auto env = root.optional_table("environment")) {
+    const std::string kind = env->get_string("kind", "constant");
+    if (kind == "constant") {
+      s.environment.kind = EnvironmentDescription::Kind::constant;
+    } else if (kind == "sky") {
+      s.environment.kind = EnvironmentDescription::Kind::sky;
+      s.environment.zenith = color3(*env, "zenith", s.environment.zenith);
+      s.environment.horizon = color3(*env, "horizon", s.environment.horizon);
+      s.environment.ground = color3(*env, "ground", s.environment.ground);
+      if (env->has("up")) s.environment.up = unit_vec3(*env, "up");
+      s.environment.exponent = env->get_double("exponent", s.environment.exponent);
+      if (!(s.environment.exponent > 0.0 && s.environment.exponent <= 10.0))
+        env->fail("exponent",
+                  "must be in (0, 10] (got " + std::to_string(s.environment.exponent) + ")");
+      s.environment.intensity =
+          env->require_non_negative("intensity", env->get_double("intensity", 1.0));
+      if (!std::isfinite(s.environment.intensity) || s.environment.intensity > 1e6)
+        env->fail("intensity", "must be at most 1e6");
+    } else {
+      env->fail("kind", "unknown environment '" + kind + "' (expected constant or sky)");
+    }
+  }
   if (auto cam = root.optional_table("camera")) {
     s.camera.position = cam->get_vec3("position");
     s.camera.look_at = cam->get_vec3("look_at");

@@ -643,5 +643,21 @@ TEST(Whitted, FilteredCheckerHasNoMoireAtTheHorizon) {
   EXPECT_GT(worst_near_horizon(false), 0.1);  // the aliasing the filter removes
 }
 
+TEST(Whitted, EscapingRaysSeeTheSky) {
+  // A procedural sky through background(direction): a ray up sees the zenith, one down (no
+  // floor) the ground, in RGB and in the spectral variant (a grey-free colour uplifted:
+  // 1/255 display tolerance as the other RGB-vs-spectral comparisons).
+  SceneDescription d = base_scene(4, 4);
+  d.environment.kind = EnvironmentDescription::Kind::sky;
+  d.environment.zenith = {0.1, 0.2, 0.6};
+  d.environment.ground = {0.3, 0.2, 0.1};
+  d.environment.intensity = 2.0;
+  const Scene scene = build_scene(d);
+  const Rgb up = trace_ray(scene, Ray{{0, 0, 0}, {0, 1, 0}}, 0);
+  const Rgb down = trace_ray(scene, Ray{{0, 0, 0}, {0, -1, 0}}, 0);
+  EXPECT_NEAR(up.b, 1.2f, 1e-6f);
+  EXPECT_NEAR(down.r, 0.6f, 1e-6f);
+}
+
 }  // namespace
 }  // namespace thaw::render

@@ -308,6 +308,32 @@ TEST(SceneParser, MutatedScenesFailCleanly) {
   EXPECT_GT(errors, variants / 2);
 }
 
+TEST(SceneParser, EnvironmentSky) {
+  std::string text = kExample;
+  text.replace(text.find("[camera]"), 8,
+               "[environment]\nkind = \"sky\"\nzenith = [0.1, 0.2, 0.9]\nexponent = 2.0\n"
+               "intensity = 3.0\n[camera]");
+  const SceneDescription s = parse_scene_string(text, "sky.toml");
+  EXPECT_EQ(s.environment.kind, EnvironmentDescription::Kind::sky);
+  EXPECT_EQ(s.environment.zenith[2], 0.9);
+  EXPECT_EQ(s.environment.exponent, 2.0);
+  EXPECT_EQ(s.environment.intensity, 3.0);
+  EXPECT_EQ(parse_scene_string(kExample, "x.toml").environment.kind,
+            EnvironmentDescription::Kind::constant);
+}
+
+TEST(SceneParser, BadEnvironmentIsAnError) {
+  auto with = [](const std::string& body) { return "[environment]\n" + body + "\n[camera]"; };
+  expect_error("[camera]", with("kind = \"hdr\""), "environment.kind", "unknown environment");
+  expect_error("[camera]", with("kind = \"sky\"\nexponent = 0.0"), "environment.exponent",
+               "(0, 10]");
+  expect_error("[camera]", with("kind = \"sky\"\nzenith = [0.1, -0.2, 0.9]"), "environment.zenith",
+               "negative");
+  expect_error("[camera]", with("kind = \"sky\"\nintensity = -1.0"), "environment.intensity", "");
+  // Sky keys with the constant environment are not used: a mistake, not a silent default.
+  expect_error("[camera]", with("zenith = [0.1, 0.2, 0.9]"), "environment.zenith", "");
+}
+
 TEST(SceneParser, MissingCameraIsAnError) {
   EXPECT_THROW(parse_scene_string("[image]\nwidth = 4\n", "c.toml"), UserError);
 }

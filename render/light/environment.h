@@ -1,0 +1,44 @@
+#pragma once
+// The radiance of directions that leave the scene: a constant background colour, or a
+// procedural sky (a gradient from the horizon to the zenith above, a ground colour below, joined
+// smoothly across the horizon), so that ice and water refract and reflect a surround with light
+// and dark parts, which is what makes transparent bodies read as transparent. Seen only by
+// rays that escape (camera, reflected, refracted): it is not sampled as a light (Whitted
+// transport; the scene's lights and ambient term light diffuse surfaces). Knows nothing about
+// scenes or rays beyond a direction.
+#include <algorithm>
+#include <cmath>
+
+#include "render/math/color.h"
+#include "render/math/vec3.h"
+
+namespace thaw::render {
+
+struct Environment {
+  enum class Kind { constant, sky };
+  Kind kind = Kind::constant;
+  /// constant: the colour; sky: unused
+  Rgb background{0.0f, 0.0f, 0.0f};
+  /// sky: radiance at the zenith, at the horizon and of the ground (linear RGB)
+  Rgb zenith{0.15f, 0.3f, 0.65f}, horizon{0.8f, 0.85f, 0.9f}, ground{0.25f, 0.22f, 0.2f};
+  /// sky: unit vector to the zenith
+  Vec3 up{0.0f, 1.0f, 0.0f};
+  /// sky: how fast the gradient leaves the horizon colour: L = horizon + (zenith - horizon)
+  /// * sin(elevation)^exponent, exponent in (0, 10]
+  float exponent = 0.5f;
+
+  /// Radiance arriving from unit direction `d` (of light travelling along -d).
+  Rgb radiance(const Vec3& d) const {
+    if (kind == Kind::constant) return background;
+    const float s = dot(d, up);  // sin(elevation)
+    if (s >= 0.0f) {
+      const float t = std::pow(std::min(s, 1.0f), exponent);
+      return horizon * (1.0f - t) + zenith * t;
+    }
+    // Below: the ground, reached from the horizon colour within 2 degrees (no hard seam).
+    const float t = std::min(-s / 0.035f, 1.0f);
+    return horizon * (1.0f - t) + ground * t;
+  }
+};
+
+}  // namespace thaw::render
