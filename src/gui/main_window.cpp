@@ -16,6 +16,7 @@
 #include <QTimer>
 #include <QVBoxLayout>
 #include <algorithm>
+#include <cmath>
 
 #include "src/common/error.h"
 #include "src/gui/key_form.h"
@@ -112,6 +113,7 @@ MainWindow::MainWindow(ScenarioDocument document, QWidget* parent)
   });
   file->addAction("&Quit", this, &QWidget::close)->setShortcut(QKeySequence::Quit);
 
+  connect(m_view, &ShellView::cameraMoved, this, &MainWindow::camera_from_view);
   connect(m_renderer, &PreviewRenderer::imageReady, this, &MainWindow::on_image);
   connect(m_renderer, &PreviewRenderer::shellReady, this, &MainWindow::on_shell_ready);
   connect(m_renderer, &PreviewRenderer::failed, this, [this](const QString& message) {
@@ -623,6 +625,34 @@ void MainWindow::show_image() {
 void MainWindow::resizeEvent(QResizeEvent* event) {
   QMainWindow::resizeEvent(event);
   show_image();
+}
+
+void MainWindow::camera_from_view() {
+  if (!m_check.ok()) return;
+  const RunScenario& sc = *m_check.scenario;
+  // The view shows the meshes about the shell's core; the frames place them at [render.shell]
+  // center, lowered onto the floor when the shell rests on it (frame_scene.h): the same offset.
+  std::shared_ptr<const ShellStep> step = m_run && m_step >= 0
+                                              ? m_run->steps[static_cast<std::size_t>(m_step)]
+                                              : m_renderer->initial_shell();
+  std::array<double, 3> offset = sc.shell.center;
+  if (sc.shell.rest_on_floor && step && step->outer) {
+    double min_y = step->outer->positions.front().y;
+    for (const auto& p : step->outer->positions) min_y = std::min<double>(min_y, p.y);
+    offset[1] = sc.shell.floor_y - min_y;
+  }
+  const ShellView::ViewCamera v = m_view->camera();
+  auto moved = [&](const std::array<double, 3>& p) {
+    return std::array<double, 3>{p[0] + offset[0], p[1] + offset[1], p[2] + offset[2]};
+  };
+  const double n = std::hypot(v.view_up[0], v.view_up[1], v.view_up[2]);
+  modify([&](ScenarioDocument& d) {
+    d.set("render.camera.position", moved(v.position));
+    d.set("render.camera.look_at", moved(v.focal_point));
+    d.set("render.camera.up",
+          std::array<double, 3>{v.view_up[0] / n, v.view_up[1] / n, v.view_up[2] / n});
+    d.set("render.camera.vertical_fov_deg", v.vertical_fov_deg);
+  });
 }
 
 void MainWindow::on_shell_ready() {

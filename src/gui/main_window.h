@@ -112,6 +112,8 @@ class MainWindow : public QMainWindow {
   void on_image(const QImage& image, int pass, int passes, double seconds);
   void show_image();
   void on_shell_ready();
+  /// Writes the 3D view's camera (after an orbit) as the scenario's [render.camera].
+  void camera_from_view();
   void update_title();
   void resizeEvent(QResizeEvent* event) override;
 

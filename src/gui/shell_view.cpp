@@ -1,10 +1,12 @@
 #include "src/gui/shell_view.h"
 
 #include <vtkActor.h>
+#include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkLightKit.h>
 #include <vtkNew.h>
+#include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
@@ -37,6 +39,37 @@ ShellView::ShellView(QWidget* parent) : QVTKOpenGLNativeWidget(parent) {
   m_renderer->AddActor2D(m_label);
   window->AddRenderer(m_renderer);
   setMinimumSize(240, 180);
+  // An orbit, pan or zoom with the mouse ends with EndInteractionEvent on the interactor.
+  vtkNew<vtkCallbackCommand> on_end;
+  on_end->SetClientData(this);
+  on_end->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
+    static_cast<ShellView*>(self)->report_camera();
+  });
+  if (interactor()) interactor()->AddObserver(vtkCommand::EndInteractionEvent, on_end);
+}
+
+ShellView::ViewCamera ShellView::camera() const {
+  vtkCamera* c = m_renderer->GetActiveCamera();
+  ViewCamera v{};
+  c->GetPosition(v.position.data());
+  c->GetFocalPoint(v.focal_point.data());
+  c->GetViewUp(v.view_up.data());
+  v.vertical_fov_deg = c->GetViewAngle();  // vertical unless UseHorizontalViewAngle
+  return v;
+}
+
+void ShellView::set_camera(const ViewCamera& v) {
+  vtkCamera* c = m_renderer->GetActiveCamera();
+  c->SetPosition(v.position.data());
+  c->SetFocalPoint(v.focal_point.data());
+  c->SetViewUp(v.view_up.data());
+  c->SetViewAngle(v.vertical_fov_deg);
+  m_renderer->ResetCameraClippingRange();
+  renderWindow()->Render();
+}
+
+void ShellView::report_camera() {
+  emit cameraMoved();
 }
 
 void ShellView::show_step(const ShellStep& step, bool frame) {

@@ -6,6 +6,8 @@
 #include <QVTKOpenGLNativeWidget.h>
 #include <vtkSmartPointer.h>
 
+#include <array>
+
 #include "src/gui/shell_step.h"
 
 class vtkRenderer;
@@ -20,8 +22,22 @@ class ShellView : public QVTKOpenGLNativeWidget {
   explicit ShellView(QWidget* parent = nullptr);
   /// Shows `step`'s surfaces; the camera is framed on them when `frame` (a new scenario).
   void show_step(const ShellStep& step, bool frame);
+  /// The view's camera in the meshes' frame (the shell's core at the origin) [m, degrees].
+  struct ViewCamera {
+    std::array<double, 3> position, focal_point, view_up;
+    double vertical_fov_deg;
+  };
+  ViewCamera camera() const;
+  /// Sets the view's camera (tests; then call report_camera() as an orbit would).
+  void set_camera(const ViewCamera& camera);
+  /// Emits cameraMoved with the current camera (called when an orbit, pan or zoom ends).
+  void report_camera();
   /// Triangles drawn (both surfaces), for tests.
   long triangles() const { return m_triangles; }
+
+ signals:
+  /// The user orbited, panned or zoomed the view (the window writes it back as the scene camera).
+  void cameraMoved();
 
  private:
   vtkSmartPointer<vtkRenderer> m_renderer;

@@ -183,6 +183,27 @@ class TestMainWindow : public QObject {
     QVERIFY2(w.check().ok(), w.check().message.c_str());
   }
 
+  void orbitingTheViewWritesTheCameraBack() {
+    MainWindow w{ScenarioDocument()};
+    w.show();
+    QTRY_VERIFY_WITH_TIMEOUT(w.shell_view().triangles() > 0, 120000);
+    QVERIFY(!w.check().scenario->camera_set);
+    // As an orbit ends: the view looks from +x, slightly above, at the shell's core.
+    w.shell_view().set_camera({{0.2, 0.05, 0.0}, {0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, 30.0});
+    w.shell_view().report_camera();
+    QVERIFY2(w.check().ok(), w.check().message.c_str());
+    const auto& sc = *w.check().scenario;
+    QVERIFY(sc.camera_set);
+    // The default shell rests on the floor at y = 0 with its core 3 cm above it, centred at x = z =
+    // 0.
+    const auto& cam = sc.scene.camera;
+    QVERIFY(std::abs(cam.position[0] - 0.2) < 1e-9 && std::abs(cam.position[2]) < 1e-9);
+    QVERIFY2(std::abs(cam.look_at[1] - 0.03) < 1e-3,
+             qPrintable(QString::number(cam.look_at[1])));  // mesh within 0.1 %
+    QVERIFY(std::abs(cam.position[1] - cam.look_at[1] - 0.05) < 1e-9);
+    QCOMPARE(cam.vertical_fov_deg, 30.0);
+  }
+
   void startAndCancelASimulation() {
     ScenarioDocument doc;
     doc.set("film.frames", 400LL);  // long enough that the run is still going when cancelled
