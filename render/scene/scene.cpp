@@ -139,6 +139,35 @@ void check_lights_outside_objects(const SceneDescription& desc) {
   }
 }
 
+/// Largest |n_i - n_j| / |p_i - p_j| over the edges of the triangle (a, b, c) with vertex normals
+/// (na, nb, nc): SurfaceInteraction::curvature of a triangle with shading normals.
+float triangle_curvature(const Vec3& na, const Vec3& nb, const Vec3& nc, const Vec3& a,
+                         const Vec3& b, const Vec3& c) {
+  auto bend = [](const Vec3& n0, const Vec3& n1, const Vec3& p0, const Vec3& p1) {
+    const float l = length(p1 - p0);
+    return l > 0.0f ? length(n1 - n0) / l : 0.0f;
+  };
+  return std::max({bend(na, nb, a, b), bend(nb, nc, b, c), bend(nc, na, c, a)});
+}
+
+/// The ray's ShearedRay, made on first use: a ray that reaches no triangle needs none.
+class LazyShearedRay {
+ public:
+  explicit LazyShearedRay(const Ray& ray) : m_ray(ray) {}
+  const ShearedRay& get() {
+    if (!m_made) {
+      m_sheared = ShearedRay(m_ray);
+      m_made = true;
+    }
+    return m_sheared;
+  }
+
+ private:
+  const Ray& m_ray;
+  ShearedRay m_sheared;
+  bool m_made = false;
+};
+
 }  // namespace
 
 /// Sphere lights are visible: each is an opaque sphere of emissive material (radiance L) in the
@@ -370,7 +399,16 @@ Scene build_scene(const SceneDescription& desc) {
         }
         if (mesh.has_normals()) {
           obj.normal_set = static_cast<int>(s.m_normal_sets.size());
-          s.m_normal_sets.push_back({std::move(mesh.normals), std::move(mesh.normal_indices)});
+          std::vector<float> curvature(mesh.triangles.size());
+          for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+            const auto& tri = mesh.triangles[t];
+            const auto& ni = mesh.normal_indices[t];
+            curvature[t] = triangle_curvature(mesh.normals[ni[0]], mesh.normals[ni[1]],
+                                              mesh.normals[ni[2]], mesh.positions[tri[0]],
+                                              mesh.positions[tri[1]], mesh.positions[tri[2]]);
+          }
+          s.m_normal_sets.push_back(
+              {std::move(mesh.normals), std::move(mesh.normal_indices), std::move(curvature)});
         }
         for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
           const auto& tri = mesh.triangles[t];
@@ -454,15 +492,16 @@ bool Scene::intersect(const Ray& ray, Hit& hit) const {
   bool found = false;
   if (!m_bvh.empty()) {
     const Bvh::RayData rd(ray);
-    // The shear transform (3 divisions) serves triangles only: skipped in scenes without any.
-    const ShearedRay sr = m_stats.triangles > 0 ? ShearedRay(ray) : ShearedRay();
+    // The shear transform (3 divisions) serves triangles only: made at the first triangle leaf
+    // the ray reaches (many rays reach none, e.g. those leaving a floor upwards).
+    LazyShearedRay sr(ray);
     const Primitive* prims = m_primitives.data();
     found = m_bvh.intersect(rd, t_max, [&](std::uint32_t first, std::uint32_t count, float& tm) {
       const std::uint32_t block = m_leaf_block[first];
       if (block != kNoBlock) {
         TriangleHit th;
         int lane;
-        if (!intersect_triangle4(sr, m_leaf_triangles[block], tm, th, lane)) return false;
+        if (!intersect_triangle4(sr.get(), m_leaf_triangles[block], tm, th, lane)) return false;
         tm = th.t;
         hit.t = th.t;
         hit.b1 = th.b1;
@@ -475,7 +514,7 @@ bool Scene::intersect(const Ray& ray, Hit& hit) const {
         const Primitive& p = prims[i];
         if (p.kind == PrimitiveKind::triangle) [[likely]] {
           TriangleHit th;
-          if (intersect_triangle(sr, p.a, p.b, p.c, tm, th)) {
+          if (intersect_triangle(sr.get(), p.a, p.b, p.c, tm, th)) {
             tm = th.t;
             hit.t = th.t;
             hit.b1 = th.b1;
@@ -528,7 +567,7 @@ bool Scene::occluded(const Ray& ray) const {
   }
   if (m_bvh.empty()) return false;
   const Bvh::RayData rd(ray);
-  const ShearedRay sr = m_stats.triangles > 0 ? ShearedRay(ray) : ShearedRay();
+  LazyShearedRay sr(ray);
   const Primitive* prims = m_primitives.data();
   const bool skip_matched = m_any_index_matched;
   return m_bvh.occluded(rd, ray.t_max, [&](std::uint32_t first, std::uint32_t count, float tm) {
@@ -536,7 +575,7 @@ bool Scene::occluded(const Ray& ray) const {
     if (block != kNoBlock) {
       TriangleHit th;
       int lane;
-      return intersect_triangle4(sr, m_leaf_triangles[block], tm, th, lane, true);
+      return intersect_triangle4(sr.get(), m_leaf_triangles[block], tm, th, lane, true);
     }
     for (std::uint32_t i = first; i < first + count; ++i) {
       const Primitive& p = prims[i];
@@ -545,7 +584,7 @@ bool Scene::occluded(const Ray& ray) const {
       float t;
       if (p.kind == PrimitiveKind::triangle) [[likely]] {
         TriangleHit th;
-        if (intersect_triangle(sr, p.a, p.b, p.c, tm, th)) return true;
+        if (intersect_triangle(sr.get(), p.a, p.b, p.c, tm, th)) return true;
       } else if (p.kind == PrimitiveKind::sphere) {
         if (intersect_sphere(ray, p.a, p.b.x, tm, t)) return true;
       } else {
@@ -593,13 +632,7 @@ SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {
             ns.normals[idx[0]] * b0 + ns.normals[idx[1]] * hit.b1 + ns.normals[idx[2]] * hit.b2;
         const float sl = length(sn);
         if (sl > 0.0f) si.ns = face_forward(sn / sl, si.ng);
-        const Vec3 na = ns.normals[idx[0]], nb = ns.normals[idx[1]], nc = ns.normals[idx[2]];
-        auto bend = [](const Vec3& n0, const Vec3& n1, const Vec3& p0, const Vec3& p1) {
-          const float l = length(p1 - p0);
-          return l > 0.0f ? length(n1 - n0) / l : 0.0f;
-        };
-        si.curvature = std::max(
-            {bend(na, nb, pr.a, pr.b), bend(nb, nc, pr.b, pr.c), bend(nc, na, pr.c, pr.a)});
+        si.curvature = ns.curvature[pr.index];
       }
       break;
     }

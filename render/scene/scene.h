@@ -143,6 +143,9 @@ class Scene {
   struct NormalSet {
     std::vector<Vec3> normals;
     std::vector<std::array<std::uint32_t, 3>> indices;
+    /// SurfaceInteraction::curvature of each triangle, computed once at build (it depends on
+    /// the triangle alone; 6 square roots and 3 divisions per hit otherwise)
+    std::vector<float> curvature;
   };
   std::vector<NormalSet> m_normal_sets;
   std::vector<std::uint32_t> m_planes;  // object indices
