@@ -105,7 +105,8 @@ void run_alone_or_as_rank(const RunArgs& a, pipeline::RunRanks* ranks) {
                                     {"gif:   ", report.gif},
                                     {"plot:  ", report.plot},
                                     {"pvd:   ", report.pvd},
-                                    {"obj:   ", report.handoff_obj}})
+                                    {"obj:   ", report.handoff_obj},
+                                    {"fields:", report.fields_pvd}})
     if (!path.empty()) std::printf("%s%s\n", label, path.string().c_str());
 }
 

@@ -21,6 +21,7 @@
 #include "src/common/error.h"
 #include "src/common/interrupt.h"
 #include "src/common/progress.h"
+#include "src/inspect/field_export.h"
 #include "src/inspect/pvd_writer.h"
 #include "src/inspect/radius_plot.h"
 #include "src/mesh/mesh_series.h"
@@ -445,7 +446,7 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
     report.pvd = out / "meshes.pvd";
     report.handoff_obj = out / "handoff" / "obj";
     ContentHash inspect_hash;
-    inspect_hash.add("inspect/2").add(mesh_hash.hex()).add(sc.shell.rest_on_floor ? "floor" : "");
+    inspect_hash.add("inspect/3").add(mesh_hash.hex()).add(sc.shell.rest_on_floor ? "floor" : "");
     for (double v : sc.shell.center) inspect_hash.add(v);
     inspect_hash.add(sc.shell.floor_y);
     StageClock clock(report, "inspect");
@@ -465,6 +466,9 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
                                 [&](long step) { return offset_of_step.at(step); });
       inspect::write_radius_plot(simdir, report.plot);
       write_world_obj_sequence(mesh_dir, meshes, offsets, report.handoff_obj);
+      // Grid runs: the solver's fields as a ParaView image series beside the meshes.
+      if (inspect::write_field_series(simdir, out / "fields.pvd") > 0)
+        report.fields_pvd = out / "fields.pvd";
       progress.finish();
       manifest.mark_stage_complete("inspect");
       clock.timing().items_done = 1;

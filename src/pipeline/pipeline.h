@@ -61,6 +61,8 @@ struct RunReport {
   std::filesystem::path film, gif, plot, pvd;  ///< empty if not made in this run
   /// the OBJ sequence in world space for Blender (handoff_export.h)
   std::filesystem::path handoff_obj;
+  /// grid runs: the solver's fields as .vti series (src/inspect/field_export.h)
+  std::filesystem::path fields_pvd;
   /// the simulation's events, one line each as `thaw simulate` prints them
   /// ("event melt_onset at t = 20.6778 s, r = 0.03 m")
   std::vector<std::string> events;

@@ -4,7 +4,9 @@
 // (closed outward surfaces: the render stage refuses others), the cavity's surface until the
 // break-through and none after, and byte-identical frames on a rerun with --force.
 #include <gtest/gtest.h>
+
 #include <unistd.h>
+#include <cstdio>
 
 #include <filesystem>
 #include <fstream>
@@ -63,6 +65,13 @@ TEST(ThawRunGrid, HollowCubeMeltsBreaksThroughAndIsFilmed) {
   const auto summary = nlohmann::json::parse(read_file(out / "sim/summary.json"));
   EXPECT_NE(summary.dump().find("break_through"), std::string::npos);
   EXPECT_EQ(count_video_frames(out / "melt.mp4"), static_cast<int>(steps.size()));
+  // The solver's fields as a ParaView image series, one .vti per step (issue 13).
+  EXPECT_TRUE(std::filesystem::exists(out / "fields.pvd"));
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    char name[64];
+    std::snprintf(name, sizeof name, "fields_vti/step_%06zu.vti", k);
+    EXPECT_TRUE(std::filesystem::exists(out / name)) << name;
+  }
   const std::string frame0 = read_file(out / "frames/frame_000000.png");
   const auto again = run_process(
       {kThaw.string(), "run", kCube.string(), "--out", out.string(), "--force", "--jobs", "1"});

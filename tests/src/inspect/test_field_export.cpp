@@ -1,0 +1,95 @@
+// Tests of src/inspect/field_export: the grid solver's fields read back by VTK's own XML readers
+// (geometry of the image and every cell value exact: floats are stored as floats), and the .pvd
+// series lists the steps at their simulated times.
+#include "src/inspect/field_export.h"
+
+#include <gtest/gtest.h>
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkXMLImageDataReader.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "tests/src/inspect/test_meshes.h"
+
+namespace thaw::inspect {
+namespace {
+namespace fs = std::filesystem;
+
+sim::GridField field(double time_s) {
+  sim::GridField f;
+  f.geometry = sim::GridField::Geometry::cartesian3d;
+  f.cells = {3, 2, 2};
+  f.origin_m = {-0.015, 0.0, -0.01};
+  f.spacing_m = 0.01;
+  f.time_s = time_s;
+  for (std::size_t c = 0; c < f.cell_count(); ++c) {
+    f.temperature_c.push_back(-5.0f + 0.5f * static_cast<float>(c) + static_cast<float>(time_s));
+    f.ice_fraction.push_back(static_cast<float>(c % 3) / 2.0f);
+    f.water_fraction.push_back(1.0f - static_cast<float>(c % 3) / 2.0f);
+  }
+  return f;
+}
+
+TEST(FieldExport, FieldsReadBackByVtkWithTheSolversCells) {
+  testing::ScratchDir dir("fields");
+  fs::create_directories(dir.path() / "sim/fields");
+  const sim::GridField a = field(0.0), b = field(30.0);
+  sim::write_grid_field(dir.path() / "sim/fields/step_000000.grid", a);
+  sim::write_grid_field(dir.path() / "sim/fields/step_000001.grid", b);
+  const fs::path pvd = dir.path() / "out/fields.pvd";
+  fs::create_directories(pvd.parent_path());
+  EXPECT_EQ(write_field_series(dir.path() / "sim", pvd), 2);
+  std::stringstream text;
+  text << std::ifstream(pvd).rdbuf();
+  EXPECT_NE(text.str().find("timestep=\"30\" part=\"0\" file=\"fields_vti/step_000001.vti\""),
+            std::string::npos)
+      << text.str();
+
+  vtkNew<vtkXMLImageDataReader> reader;
+  const fs::path vti = pvd.parent_path() / "fields_vti/step_000001.vti";
+  reader->SetFileName(vti.c_str());
+  reader->Update();
+  ASSERT_EQ(reader->GetErrorCode(), 0u);
+  vtkImageData* image = reader->GetOutput();
+  int dims[3];
+  image->GetDimensions(dims);
+  EXPECT_EQ(dims[0], 4);
+  EXPECT_EQ(dims[1], 3);
+  EXPECT_EQ(dims[2], 3);
+  double origin[3], spacing[3];
+  image->GetOrigin(origin);
+  image->GetSpacing(spacing);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(origin[k], b.origin_m[k]);
+    EXPECT_EQ(spacing[k], b.spacing_m);
+  }
+  ASSERT_EQ(image->GetNumberOfCells(), static_cast<vtkIdType>(b.cell_count()));
+  for (const char* name : {"temperature_c", "ice_fraction", "water_fraction"}) {
+    vtkDataArray* array = image->GetCellData()->GetArray(name);
+    ASSERT_NE(array, nullptr) << name;
+    const auto& expect = std::string(name) == "temperature_c"  ? b.temperature_c
+                         : std::string(name) == "ice_fraction" ? b.ice_fraction
+                                                               : b.water_fraction;
+    for (int kk = 0; kk < 2; ++kk)
+      for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 3; ++i) {
+          // VTK's cell (i, j, k) is the solver's cell (i, j, k): same flat order.
+          int ijk[3] = {i, j, kk};
+          const vtkIdType cell = image->ComputeCellId(ijk);
+          EXPECT_EQ(array->GetTuple1(cell), expect[b.index(i, j, kk)]) << name;
+        }
+  }
+}
+
+TEST(FieldExport, NoFieldsWritesNothing) {
+  testing::ScratchDir dir("no_fields");
+  EXPECT_EQ(write_field_series(dir.path(), dir.path() / "fields.pvd"), 0);
+  EXPECT_FALSE(fs::exists(dir.path() / "fields.pvd"));
+}
+
+}  // namespace
+}  // namespace thaw::inspect
