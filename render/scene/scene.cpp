@@ -150,6 +150,13 @@ float triangle_curvature(const Vec3& na, const Vec3& nb, const Vec3& nc, const V
   return std::max({bend(na, nb, a, b), bend(nb, nc, b, c), bend(nc, na, c, a)});
 }
 
+/// Unit geometric normal of a triangle primitive (+z for a degenerate one).
+Vec3 triangle_normal(const Primitive& pr) {
+  const Vec3 n = cross(pr.b - pr.a, pr.c - pr.a);
+  const float len = length(n);
+  return len > 0.0f ? n / len : Vec3{0, 0, 1};
+}
+
 /// The ray's ShearedRay, made on first use: a ray that reaches no triangle needs none.
 class LazyShearedRay {
  public:
@@ -459,6 +466,11 @@ Scene build_scene(const SceneDescription& desc) {
   s.m_bvh = Bvh(bounds);
   s.m_primitives.resize(prims.size());
   for (std::size_t i = 0; i < prims.size(); ++i) s.m_primitives[i] = prims[s.m_bvh.order()[i]];
+  s.m_triangle_normals.assign(s.m_primitives.size(), Vec3{0, 0, 0});
+  for (std::size_t i = 0; i < s.m_primitives.size(); ++i) {
+    const Primitive& pr = s.m_primitives[i];
+    if (pr.kind == PrimitiveKind::triangle) s.m_triangle_normals[i] = triangle_normal(pr);
+  }
   s.m_leaf_block.assign(s.m_primitives.size(), Scene::kNoBlock);
   for (const Bvh4Node& n : s.m_bvh.wide_nodes()) {
     for (int i = 0; i < 4; ++i) {
@@ -620,10 +632,7 @@ SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {
       // Triangle::InteractionFromIntersection).
       si.p = pr.a * b0 + pr.b * hit.b1 + pr.c * hit.b2;
       si.p_error = (abs(pr.a * b0) + abs(pr.b * hit.b1) + abs(pr.c * hit.b2)) * gamma_bound(7);
-      Vec3 n = cross(pr.b - pr.a, pr.c - pr.a);
-      const float len = length(n);
-      si.ng = len > 0.0f ? n / len : Vec3{0, 0, 1};
-      si.ns = si.ng;
+      si.ng = si.ns = m_triangle_normals[hit.prim];
       const int set = m_objects[pr.object].normal_set;
       if (set >= 0) {
         const NormalSet& ns = m_normal_sets[static_cast<std::size_t>(set)];

@@ -149,6 +149,9 @@ class Scene {
   };
   std::vector<NormalSet> m_normal_sets;
   std::vector<std::uint32_t> m_planes;  // object indices
+  /// unit geometric normal of each triangle primitive (leaf order; zero for other shapes),
+  /// computed once at build: a cross product, a square root and a division fewer per hit
+  std::vector<Vec3> m_triangle_normals;
   Bvh m_bvh;
   // BVH leaves made only of triangles, packed four-wide; m_leaf_block[first primitive of a leaf]
   // is its index in m_leaf_triangles, or kNoBlock for leaves with other shapes.
