@@ -49,8 +49,9 @@ inline constexpr double kPhotonsPerDisc = 32.0;
 /// evenly lit areas (the floor under the puddle) are smooth. Measured on a 22 cm water slab
 /// (150k photons, photon noise = RMS residual against a 1 cm box mean): 5.8 % at 32, 3.4 % at
 /// 64, 2.2 % at 128, for 1.5, 2.4 and 4.9 us per query (1 thread, loaded machine); the focused
-/// caustic, denser, keeps the base radius.
-inline constexpr double kSmoothPhotons = 64.0;
+/// caustic, denser, keeps the base radius. 64 left the default film's puddle floor (lit by photons
+/// only) visibly cloudy; 256 halves the noise (1/sqrt K) for +10 % frame time (docs/render.md).
+inline constexpr double kSmoothPhotons = 256.0;
 
 /// Branches lighter than this fraction of their photon's power are decided by Russian roulette
 /// (photon_tracer.h): the entry reflection and internal reflections of ice (R ~ 2-4 %) go on
