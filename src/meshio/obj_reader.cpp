@@ -222,6 +222,9 @@ TriangleMesh read_obj(const std::filesystem::path& path) {
   if (!std::filesystem::exists(path, ec)) throw UserError(path.string(), "", "no such file");
   if (std::filesystem::is_directory(path, ec))
     throw UserError(path.string(), "", "is a directory, expected an OBJ file");
+  // A device or pipe (/dev/zero, a FIFO) could be read forever.
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw UserError(path.string(), "", "is not a regular file, expected an OBJ file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw UserError(path.string(), "", "cannot open for reading");
   std::ostringstream buffer;

@@ -99,6 +99,15 @@ TEST(ObjReader, MissingFileAndDirectoryAreUserErrors) {
   }
 }
 
+TEST(ObjReader, DeviceIsNotReadForever) {
+  try {
+    read_obj("/dev/zero");
+    ADD_FAILURE() << "no error";
+  } catch (const UserError& e) {
+    EXPECT_EQ(e.problem(), "is not a regular file, expected an OBJ file");
+  }
+}
+
 // The malformed files of issue 12 that the renderer used to accept.
 TEST(ObjReader, RejectsWhatTinyobjloaderAccepted) {
   const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";

@@ -1,0 +1,12 @@
+// libFuzzer target: the thaw-mesh/1 manifest reader (src/meshio/mesh_manifest.h).
+#include "src/common/error.h"
+#include "src/meshio/mesh_manifest.h"
+#include "tests/fuzz/fuzz_input.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  try {
+    thaw::meshio::parse_mesh_manifest(thaw::fuzz::as_text(data, size), "manifest.json");
+  } catch (const thaw::UserError&) {
+  }
+  return 0;
+}

@@ -1,0 +1,14 @@
+// libFuzzer target: the scene parser (render/scene/scene_parser.h) on arbitrary text. Mesh files
+// resolve against an empty folder, so only absolute paths reach the file system.
+#include "render/scene/scene_parser.h"
+#include "src/common/error.h"
+#include "tests/fuzz/fuzz_input.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  try {
+    thaw::render::parse_scene_string(thaw::fuzz::as_text(data, size), "fuzz.toml",
+                                     "/nonexistent-thaw-fuzz");
+  } catch (const thaw::UserError&) {
+  }
+  return 0;
+}
