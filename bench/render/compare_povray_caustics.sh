@@ -52,7 +52,7 @@ if [ ! -f "$out/thaw_ref.png" ] || [ "${REFRESH:-0}" = 1 ]; then
 fi
 
 # 2. + 3. the settings, timed in one hyperfine run, then their errors
-ladder=("pov_a:50000:3:0.3:2" "pov_b:200000:5:0.1:2" "pov_c:1000000:9:0.05:3")
+ladder=("pov_a:50000:3:0.3:2" "pov_b:200000:5:0.1:2" "pov_c:1000000:9:0.05:3" "pov_d:2000000:13:0.02:3")
 cmds=("$(thaw_cmd thaw "$scene")")
 for spec in "${ladder[@]}"; do
   IFS=: read -r name photons area aa depth <<<"$spec"
