@@ -7,8 +7,8 @@
 #include <vtkOBJReader.h>
 #include <vtkPolyData.h>
 
-#include <filesystem>
 #include <unistd.h>
+#include <filesystem>
 
 #include "src/inspect/mesh_report.h"
 #include "src/inspect/pvd_writer.h"
@@ -23,7 +23,8 @@ namespace fs = std::filesystem;
 /// A 81920-triangle sphere OBJ in a temporary folder (created once).
 const fs::path& sphere_obj() {
   static const fs::path path = [] {
-    const fs::path dir = fs::temp_directory_path() / ("thaw-bench-inspect-" + std::to_string(::getpid()));
+    const fs::path dir =
+        fs::temp_directory_path() / ("thaw-bench-inspect-" + std::to_string(::getpid()));
     fs::create_directories(dir);
     const fs::path p = dir / "sphere.obj";
     thaw::meshio::write_obj(p, thaw::inspect::testing::icosphere(0.015, 6));
@@ -39,8 +40,8 @@ void BM_ReadObjStrict(benchmark::State& state) {
     triangles = static_cast<std::int64_t>(m.triangles.size());
     benchmark::DoNotOptimize(m.vertices.data());
   }
-  state.counters["triangles_per_s"] =
-      benchmark::Counter(static_cast<double>(triangles), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["triangles_per_s"] = benchmark::Counter(
+      static_cast<double>(triangles), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_ReadObjStrict)->Unit(benchmark::kMillisecond);
 
@@ -52,8 +53,8 @@ void BM_ReadObjVtk(benchmark::State& state) {
     reader->Update();
     triangles = reader->GetOutput()->GetNumberOfPolys();
   }
-  state.counters["triangles_per_s"] =
-      benchmark::Counter(static_cast<double>(triangles), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["triangles_per_s"] = benchmark::Counter(
+      static_cast<double>(triangles), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_ReadObjVtk)->Unit(benchmark::kMillisecond);
 

@@ -29,8 +29,8 @@
 #include <string>
 
 #include "src/common/atomic_file.h"
-#include "src/mesh/mesh_series.h"
 #include "src/mesh/grid_mesher.h"
+#include "src/mesh/mesh_series.h"
 #include "src/mesh/surface_mesher.h"
 #include "tests/src/mesh/grid_field_samples.h"
 
@@ -110,7 +110,8 @@ void GridCube(benchmark::State& state) {
   using mesh::testing::rounded_box;
   const sim::GridField f = mesh::testing::sample_cartesian(
       [](double x, double y, double z) { return rounded_box(x, y, z, 0.02, 0.02, 0.02, 0.002); },
-      [](double x, double y, double z) { return rounded_box(x, y, z, 0.012, 0.012, 0.012, 0.0); }, 0.022, 0.001, 3);
+      [](double x, double y, double z) { return rounded_box(x, y, z, 0.012, 0.012, 0.012, 0.0); },
+      0.022, 0.001, 3);
   mesh::GridMeshOptions o;
   o.edge_length_m = 0.001;
   std::size_t triangles = 0;

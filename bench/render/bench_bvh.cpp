@@ -57,7 +57,8 @@ void thaw_intersect(benchmark::State& state, const std::vector<Ray>& rays) {
     }
   }
   benchmark::DoNotOptimize(hits);
-  state.counters["rays_per_s"] = benchmark::Counter(double(rays.size()), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["rays_per_s"] =
+      benchmark::Counter(double(rays.size()), benchmark::Counter::kIsIterationInvariantRate);
   state.counters["hit_fraction"] = double(hits) / double(state.iterations() * rays.size());
 }
 
@@ -70,15 +71,16 @@ struct EmbreeScene {
     // Default build quality (RTC_BUILD_QUALITY_MEDIUM), as an application would use it.
     for (const TriangleMesh* m : {&fixture().outer, &fixture().inner}) {
       RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                            3 * sizeof(float), m->positions.size()));
+      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+          g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), m->positions.size()));
       for (std::size_t i = 0; i < m->positions.size(); ++i) {
         v[3 * i] = m->positions[i].x;
         v[3 * i + 1] = m->positions[i].y;
         v[3 * i + 2] = m->positions[i].z;
       }
-      auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                 3 * sizeof(unsigned), m->triangles.size()));
+      auto* idx = static_cast<unsigned*>(
+          rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                  3 * sizeof(unsigned), m->triangles.size()));
       for (std::size_t t = 0; t < m->triangles.size(); ++t)
         for (int k = 0; k < 3; ++k) idx[3 * t + k] = m->triangles[t][k];
       rtcCommitGeometry(g);
@@ -118,14 +120,23 @@ void embree_intersect(benchmark::State& state, const std::vector<Ray>& rays) {
     }
   }
   benchmark::DoNotOptimize(hits);
-  state.counters["rays_per_s"] = benchmark::Counter(double(rays.size()), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["rays_per_s"] =
+      benchmark::Counter(double(rays.size()), benchmark::Counter::kIsIterationInvariantRate);
   state.counters["hit_fraction"] = double(hits) / double(state.iterations() * rays.size());
 }
 
-void BM_Thaw_Primary(benchmark::State& s) { thaw_intersect(s, fixture().primary); }
-void BM_Embree_Primary(benchmark::State& s) { embree_intersect(s, fixture().primary); }
-void BM_Thaw_Random(benchmark::State& s) { thaw_intersect(s, fixture().random); }
-void BM_Embree_Random(benchmark::State& s) { embree_intersect(s, fixture().random); }
+void BM_Thaw_Primary(benchmark::State& s) {
+  thaw_intersect(s, fixture().primary);
+}
+void BM_Embree_Primary(benchmark::State& s) {
+  embree_intersect(s, fixture().primary);
+}
+void BM_Thaw_Random(benchmark::State& s) {
+  thaw_intersect(s, fixture().random);
+}
+void BM_Embree_Random(benchmark::State& s) {
+  embree_intersect(s, fixture().random);
+}
 
 void BM_Thaw_BuildScene(benchmark::State& state) {
   const std::string dir = std::string(THAW_SOURCE_DIR) + "/data/scenes/";

@@ -27,7 +27,9 @@ void run_simulate(benchmark::State& state, const Scenario& sc) {
   state.counters["steps"] = static_cast<double>(steps);
 }
 
-void BM_DefaultScenario(benchmark::State& state) { run_simulate(state, thaw::sim::default_scenario()); }
+void BM_DefaultScenario(benchmark::State& state) {
+  run_simulate(state, thaw::sim::default_scenario());
+}
 BENCHMARK(BM_DefaultScenario)->Unit(benchmark::kMillisecond);
 
 void BM_DefaultSphereOneHour(benchmark::State& state) {

@@ -25,13 +25,15 @@ struct Stream {
 
 void BM_SampleWavelengthsVisible(benchmark::State& state) {
   Stream s;
-  for (auto _ : state) benchmark::DoNotOptimize(SampledWavelengths::sample(s.next(), HeroDensity::visible));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(SampledWavelengths::sample(s.next(), HeroDensity::visible));
 }
 BENCHMARK(BM_SampleWavelengthsVisible);
 
 void BM_SampleWavelengthsUniform(benchmark::State& state) {
   Stream s;
-  for (auto _ : state) benchmark::DoNotOptimize(SampledWavelengths::sample(s.next(), HeroDensity::uniform));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(SampledWavelengths::sample(s.next(), HeroDensity::uniform));
 }
 BENCHMARK(BM_SampleWavelengthsUniform);
 

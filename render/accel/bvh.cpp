@@ -86,7 +86,8 @@ struct Builder {
           acc.extend(bin_box[b]);
           cnt += bin_count[b];
           if (cnt == 0 || right_count[b + 1] == 0) continue;
-          const float cost = acc.area() * blocks(cnt) + right_area[b + 1] * blocks(right_count[b + 1]);
+          const float cost =
+              acc.area() * blocks(cnt) + right_area[b + 1] * blocks(right_count[b + 1]);
           if (cost < best_cost) {
             best_cost = cost;
             best_axis = axis;
@@ -96,7 +97,8 @@ struct Builder {
       }
       if (best_axis >= 0) {
         const float area = box.area();
-        const float split_cost = options.traversal_cost + (area > 0.0f ? best_cost / area : blocks(m));
+        const float split_cost =
+            options.traversal_cost + (area > 0.0f ? best_cost / area : blocks(m));
         if (m <= static_cast<std::uint32_t>(options.max_leaf_size) && blocks(m) <= split_cost) {
           node.leaf = true;
           return 1;
@@ -104,7 +106,8 @@ struct Builder {
         const float scale = kBins * (1.0f - 1e-6f) / cext[best_axis];
         const float lo = cbox.lo[best_axis];
         auto* it = std::partition(order.data() + begin, order.data() + end, [&](std::uint32_t p) {
-          const int b = std::clamp(static_cast<int>((centroids[p][best_axis] - lo) * scale), 0, kBins - 1);
+          const int b =
+              std::clamp(static_cast<int>((centroids[p][best_axis] - lo) * scale), 0, kBins - 1);
           return b <= best_bin;
         });
         mid = static_cast<std::uint32_t>(it - order.data());
@@ -121,7 +124,8 @@ struct Builder {
       mid = begin + m / 2;
       std::nth_element(order.data() + begin, order.data() + mid, order.data() + end,
                        [&](std::uint32_t a, std::uint32_t b) {
-                         if (centroids[a][axis] != centroids[b][axis]) return centroids[a][axis] < centroids[b][axis];
+                         if (centroids[a][axis] != centroids[b][axis])
+                           return centroids[a][axis] < centroids[b][axis];
                          return a < b;
                        });
     }
@@ -184,8 +188,8 @@ Bvh::Bvh(std::span<const Aabb> bounds, const BvhBuildOptions& options) {
     } else {
       node.count = 0;
       m_nodes.push_back(node);
-      todo.push_back({b.right, flat});       // right: visited after the whole left subtree
-      todo.push_back({item.slot + 1, -1});   // left: next in the array
+      todo.push_back({b.right, flat});      // right: visited after the whole left subtree
+      todo.push_back({item.slot + 1, -1});  // left: next in the array
     }
   }
   m_wide.reserve(m_nodes.size() / 2 + 1);

@@ -136,8 +136,8 @@ inline int Bvh::hit_children(const Bvh4Node& n, const RayData& r, float t_max, f
   const __m128 tfy = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.planes[r.near_plane[1] ^ 1]), oy), iy);
   const __m128 tfz = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.planes[r.near_plane[2] ^ 1]), oz), iz);
   const __m128 t_near = _mm_max_ps(_mm_max_ps(tnx, tny), _mm_max_ps(tnz, _mm_setzero_ps()));
-  const __m128 t_far = _mm_mul_ps(_mm_min_ps(_mm_min_ps(tfx, tfy), _mm_min_ps(tfz, _mm_set1_ps(t_max))),
-                                  _mm_set1_ps(scale));
+  const __m128 t_far = _mm_mul_ps(
+      _mm_min_ps(_mm_min_ps(tfx, tfy), _mm_min_ps(tfz, _mm_set1_ps(t_max))), _mm_set1_ps(scale));
   _mm_storeu_ps(t_enter, t_near);
   return _mm_movemask_ps(_mm_cmple_ps(t_near, t_far));
 #else

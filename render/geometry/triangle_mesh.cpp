@@ -9,7 +9,9 @@ namespace thaw::render {
 
 namespace {
 
-bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const Vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 /// Canonical vertex id per distinct position (so duplicated seam vertices count as one).
 std::vector<std::uint32_t> weld_by_position(const TriangleMesh& mesh) {
@@ -55,8 +57,9 @@ std::optional<std::string> validate_mesh(const TriangleMesh& mesh) {
     for (std::size_t t = 0; t < mesh.normal_indices.size(); ++t)
       for (auto i : mesh.normal_indices[t])
         if (i >= mesh.normals.size())
-          return "triangle " + std::to_string(t + 1) + " uses normal index " + std::to_string(i + 1) +
-                 " but there are " + std::to_string(mesh.normals.size()) + " normals";
+          return "triangle " + std::to_string(t + 1) + " uses normal index " +
+                 std::to_string(i + 1) + " but there are " + std::to_string(mesh.normals.size()) +
+                 " normals";
   }
   return std::nullopt;
 }
@@ -121,7 +124,8 @@ void compute_smooth_normals(TriangleMesh& mesh) {
 
 void transform_mesh(TriangleMesh& mesh, double scale, const std::array<double, 3>& translate) {
   for (auto& p : mesh.positions)
-    p = Vec3{static_cast<float>(scale * p.x + translate[0]), static_cast<float>(scale * p.y + translate[1]),
+    p = Vec3{static_cast<float>(scale * p.x + translate[0]),
+             static_cast<float>(scale * p.y + translate[1]),
              static_cast<float>(scale * p.z + translate[2])};
 }
 

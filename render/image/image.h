@@ -9,7 +9,8 @@ namespace thaw::render {
 class Image {
  public:
   Image() = default;
-  Image(int width, int height) : m_width(width), m_height(height), m_pixels(std::size_t(width) * height) {}
+  Image(int width, int height)
+      : m_width(width), m_height(height), m_pixels(std::size_t(width) * height) {}
 
   int width() const { return m_width; }
   int height() const { return m_height; }

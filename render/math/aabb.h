@@ -13,8 +13,14 @@ struct Aabb {
           -std::numeric_limits<float>::infinity()};
 
   bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
-  void extend(const Vec3& p) { lo = min(lo, p); hi = max(hi, p); }
-  void extend(const Aabb& b) { lo = min(lo, b.lo); hi = max(hi, b.hi); }
+  void extend(const Vec3& p) {
+    lo = min(lo, p);
+    hi = max(hi, p);
+  }
+  void extend(const Aabb& b) {
+    lo = min(lo, b.lo);
+    hi = max(hi, b.hi);
+  }
   Vec3 extent() const { return hi - lo; }
   Vec3 center() const { return (lo + hi) * 0.5f; }
   /// Surface area [scene units^2]; 0 for an empty box.

@@ -27,8 +27,10 @@ inline Vec3 offset_ray_origin(const Vec3& p, const Vec3& p_error, const Vec3& n,
   if (dot(w, n) < 0.0f) offset = -offset;
   Vec3 po = p + offset;
   for (int i = 0; i < 3; ++i) {
-    if (offset[i] > 0.0f) po[i] = next_float_up(po[i]);
-    else if (offset[i] < 0.0f) po[i] = next_float_down(po[i]);
+    if (offset[i] > 0.0f)
+      po[i] = next_float_up(po[i]);
+    else if (offset[i] < 0.0f)
+      po[i] = next_float_down(po[i]);
   }
   return po;
 }

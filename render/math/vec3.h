@@ -20,27 +20,64 @@ struct Vec3 {
   constexpr float& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
 
   constexpr Vec3 operator-() const { return {-x, -y, -z}; }
-  constexpr Vec3& operator+=(const Vec3& o) { x += o.x; y += o.y; z += o.z; return *this; }
-  constexpr Vec3& operator-=(const Vec3& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
-  constexpr Vec3& operator*=(float s) { x *= s; y *= s; z *= s; return *this; }
+  constexpr Vec3& operator+=(const Vec3& o) {
+    x += o.x;
+    y += o.y;
+    z += o.z;
+    return *this;
+  }
+  constexpr Vec3& operator-=(const Vec3& o) {
+    x -= o.x;
+    y -= o.y;
+    z -= o.z;
+    return *this;
+  }
+  constexpr Vec3& operator*=(float s) {
+    x *= s;
+    y *= s;
+    z *= s;
+    return *this;
+  }
 };
 
-constexpr Vec3 operator+(const Vec3& a, const Vec3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-constexpr Vec3 operator-(const Vec3& a, const Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-constexpr Vec3 operator*(const Vec3& a, float s) { return {a.x * s, a.y * s, a.z * s}; }
-constexpr Vec3 operator*(float s, const Vec3& a) { return {a.x * s, a.y * s, a.z * s}; }
-constexpr Vec3 operator/(const Vec3& a, float s) { return a * (1.0f / s); }
+constexpr Vec3 operator+(const Vec3& a, const Vec3& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+constexpr Vec3 operator-(const Vec3& a, const Vec3& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+constexpr Vec3 operator*(const Vec3& a, float s) {
+  return {a.x * s, a.y * s, a.z * s};
+}
+constexpr Vec3 operator*(float s, const Vec3& a) {
+  return {a.x * s, a.y * s, a.z * s};
+}
+constexpr Vec3 operator/(const Vec3& a, float s) {
+  return a * (1.0f / s);
+}
 /// Component-wise product.
-constexpr Vec3 mul(const Vec3& a, const Vec3& b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
-constexpr bool operator==(const Vec3& a, const Vec3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+constexpr Vec3 mul(const Vec3& a, const Vec3& b) {
+  return {a.x * b.x, a.y * b.y, a.z * b.z};
+}
+constexpr bool operator==(const Vec3& a, const Vec3& b) {
+  return a.x == b.x && a.y == b.y && a.z == b.z;
+}
 
-constexpr float dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr float dot(const Vec3& a, const Vec3& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 constexpr Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline float length(const Vec3& a) { return std::sqrt(dot(a, a)); }
-inline Vec3 normalize(const Vec3& a) { return a / length(a); }
-inline Vec3 abs(const Vec3& a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}; }
+inline float length(const Vec3& a) {
+  return std::sqrt(dot(a, a));
+}
+inline Vec3 normalize(const Vec3& a) {
+  return a / length(a);
+}
+inline Vec3 abs(const Vec3& a) {
+  return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)};
+}
 inline Vec3 min(const Vec3& a, const Vec3& b) {
   return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)};
 }
@@ -51,10 +88,14 @@ inline int max_dimension(const Vec3& a) {
   return (a.x > a.y) ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
 }
 /// Flips `n` so that it lies in the hemisphere of `v` (pbrt FaceForward).
-inline Vec3 face_forward(const Vec3& n, const Vec3& v) { return dot(n, v) < 0.0f ? -n : n; }
+inline Vec3 face_forward(const Vec3& n, const Vec3& v) {
+  return dot(n, v) < 0.0f ? -n : n;
+}
 
 /// Mirror reflection of the incident direction `d` about the unit normal `n`.
-inline Vec3 reflect(const Vec3& d, const Vec3& n) { return d - n * (2.0f * dot(d, n)); }
+inline Vec3 reflect(const Vec3& d, const Vec3& n) {
+  return d - n * (2.0f * dot(d, n));
+}
 
 /// gamma(n) = n u / (1 - n u), u = 2^-24: the bound on relative rounding error of n float
 /// operations (Higham; pbrt-v4 util/float.h `gamma`).

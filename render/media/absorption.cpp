@@ -51,7 +51,8 @@ double Absorption::per_m_at(double lambda_nm) const {
   const auto& y = m_table_per_m;
   if (lambda_nm <= x.front()) return m_scale * y.front();
   if (lambda_nm >= x.back()) return m_scale * y.back();
-  const auto i = static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), lambda_nm) - x.begin()) - 1;
+  const auto i =
+      static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), lambda_nm) - x.begin()) - 1;
   const double t = (lambda_nm - x[i]) / (x[i + 1] - x[i]);
   return m_scale * (y[i] * (1 - t) + y[i + 1] * t);
 }
@@ -92,10 +93,10 @@ void Absorption::validate(const std::string& file, const std::string& where) con
       fail("absorption_per_m.wavelength_nm",
            "must be strictly increasing (row " + std::to_string(i + 1) + ")");
   if (m_table_nm.front() > kLambdaMinNm || m_table_nm.back() < kLambdaMaxNm)
-    fail("absorption_per_m.wavelength_nm",
-         "covers " + num(m_table_nm.front()) + "-" + num(m_table_nm.back()) +
-             " nm but must cover the rendered range " + num(kLambdaMinNm) + "-" +
-             num(kLambdaMaxNm) + " nm");
+    fail("absorption_per_m.wavelength_nm", "covers " + num(m_table_nm.front()) + "-" +
+                                               num(m_table_nm.back()) +
+                                               " nm but must cover the rendered range " +
+                                               num(kLambdaMinNm) + "-" + num(kLambdaMaxNm) + " nm");
   for (std::size_t i = 0; i < m_table_per_m.size(); ++i)
     if (!std::isfinite(m_table_per_m[i]) || m_table_per_m[i] < 0)
       fail("absorption_per_m.per_m", "entry " + std::to_string(i) +

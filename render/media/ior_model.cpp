@@ -77,12 +77,18 @@ IorModel IorModel::iapws97(double temperature_c, double density_kg_m3) {
 
 std::string IorModel::kind_name() const {
   switch (m_kind) {
-    case Kind::constant: return "constant";
-    case Kind::sellmeier: return "sellmeier";
-    case Kind::sellmeier_gas: return "sellmeier (n-1)";
-    case Kind::cauchy: return "cauchy";
-    case Kind::table: return "table";
-    case Kind::iapws97: return "iapws-r9-97";
+    case Kind::constant:
+      return "constant";
+    case Kind::sellmeier:
+      return "sellmeier";
+    case Kind::sellmeier_gas:
+      return "sellmeier (n-1)";
+    case Kind::cauchy:
+      return "cauchy";
+    case Kind::table:
+      return "table";
+    case Kind::iapws97:
+      return "iapws-r9-97";
   }
   return "?";
 }
@@ -91,7 +97,8 @@ double IorModel::n_at(double lambda_nm) const {
   const double l_um = lambda_nm * 1e-3;
   const double l2 = l_um * l_um;
   switch (m_kind) {
-    case Kind::constant: return m_constant;
+    case Kind::constant:
+      return m_constant;
     case Kind::sellmeier:
     case Kind::sellmeier_gas: {
       double s = 0;
@@ -99,8 +106,10 @@ double IorModel::n_at(double lambda_nm) const {
       if (m_kind == Kind::sellmeier_gas) return 1 + s;
       return std::sqrt(1 + s);
     }
-    case Kind::cauchy: return m_b[0] + m_b[1] / l2 + m_b[2] / (l2 * l2);
-    case Kind::table: return interpolate(m_table_nm, m_table_n, lambda_nm);
+    case Kind::cauchy:
+      return m_b[0] + m_b[1] / l2 + m_b[2] / (l2 * l2);
+    case Kind::table:
+      return interpolate(m_table_nm, m_table_n, lambda_nm);
     case Kind::iapws97: {
       // IAPWS R9-97 eq. (1): (n^2 - 1)/(n^2 + 2) / rho_bar = a0 + a1 rho_bar + a2 T_bar
       //   + a3 l_bar^2 T_bar + a4 / l_bar^2 + a5 / (l_bar^2 - l_UV^2) + a6 / (l_bar^2 - l_IR^2)
@@ -137,11 +146,13 @@ void IorModel::validate(const std::string& file, const std::string& where) const
   auto fail = [&](const std::string& key, const std::string& problem) {
     throw UserError(file, "key '" + where + (key.empty() ? "" : "." + key) + "'", problem);
   };
-  const std::string range = "the rendered range " + num(kLambdaMinNm) + "-" + num(kLambdaMaxNm) + " nm";
+  const std::string range =
+      "the rendered range " + num(kLambdaMinNm) + "-" + num(kLambdaMaxNm) + " nm";
   switch (m_kind) {
     case Kind::constant:
       if (!std::isfinite(m_constant) || m_constant < 1)
-        fail("ior", "index of refraction must be a finite number >= 1 (got " + num(m_constant) + ")");
+        fail("ior",
+             "index of refraction must be a finite number >= 1 (got " + num(m_constant) + ")");
       return;
     case Kind::sellmeier:
     case Kind::sellmeier_gas: {
@@ -152,7 +163,9 @@ void IorModel::validate(const std::string& file, const std::string& where) const
       for (std::size_t i = 0; i < m_c.size(); ++i) {
         const std::string key = "sellmeier.C[" + std::to_string(i) + "]";
         if (!std::isfinite(m_b[i]) || !std::isfinite(m_c[i])) fail(key, "must be finite");
-        if (m_c[i] < 0) fail(key, "must not be negative (C is a squared wavelength, um^2; got " + num(m_c[i]) + ")");
+        if (m_c[i] < 0)
+          fail(key,
+               "must not be negative (C is a squared wavelength, um^2; got " + num(m_c[i]) + ")");
         const double pole_nm = std::sqrt(m_c[i]) * 1e3;
         if (pole_nm >= kLambdaMinNm && pole_nm <= kLambdaMaxNm)
           fail(key, "pole at sqrt(C) = " + num(pole_nm) + " nm lies inside " + range +
@@ -171,7 +184,8 @@ void IorModel::validate(const std::string& file, const std::string& where) const
       if (m_table_nm.size() < 2) fail("table", "needs at least two rows");
       for (std::size_t i = 0; i + 1 < m_table_nm.size(); ++i)
         if (!(m_table_nm[i + 1] > m_table_nm[i]))
-          fail("table.wavelength_nm", "must be strictly increasing (row " + std::to_string(i + 1) + ")");
+          fail("table.wavelength_nm",
+               "must be strictly increasing (row " + std::to_string(i + 1) + ")");
       if (m_table_nm.front() > kLambdaMinNm || m_table_nm.back() < kLambdaMaxNm)
         fail("table.wavelength_nm", "covers " + num(m_table_nm.front()) + "-" +
                                         num(m_table_nm.back()) + " nm but must cover " + range);
@@ -184,9 +198,11 @@ void IorModel::validate(const std::string& file, const std::string& where) const
     case Kind::iapws97:
       // Range of validity of R9-97: -12 to 500 deg C, 0 to 1060 kg/m^3, 0.2 to 1.1 um.
       if (!(m_temperature_c >= -12 && m_temperature_c <= 500))
-        fail("iapws.temperature_c", "must be within the formulation's -12..500 deg C (got " + num(m_temperature_c) + ")");
+        fail("iapws.temperature_c",
+             "must be within the formulation's -12..500 deg C (got " + num(m_temperature_c) + ")");
       if (!(m_density_kg_m3 > 0 && m_density_kg_m3 <= 1060))
-        fail("iapws.density_kg_m3", "must be within the formulation's 0..1060 kg/m^3 (got " + num(m_density_kg_m3) + ")");
+        fail("iapws.density_kg_m3",
+             "must be within the formulation's 0..1060 kg/m^3 (got " + num(m_density_kg_m3) + ")");
       break;
   }
   // Analytic models: n must be finite and >= 1 everywhere in the range (1 nm steps, plus the
@@ -194,8 +210,11 @@ void IorModel::validate(const std::string& file, const std::string& where) const
   for (double l = kLambdaMinNm; l <= kLambdaMaxNm; l += 1.0) {
     const double n = n_at(l);
     if (!std::isfinite(n) || n < 1)
-      fail(kind_name() == "cauchy" ? "cauchy" : m_kind == Kind::iapws97 ? "iapws" : "sellmeier",
-           "gives n = " + num(n) + " at " + num(l) + " nm; n must be finite and >= 1 over " + range);
+      fail(
+          kind_name() == "cauchy"   ? "cauchy"
+          : m_kind == Kind::iapws97 ? "iapws"
+                                    : "sellmeier",
+          "gives n = " + num(n) + " at " + num(l) + " nm; n must be finite and >= 1 over " + range);
   }
 }
 

@@ -66,7 +66,7 @@ class IorModel {
  private:
   Kind m_kind = Kind::constant;
   double m_constant = 1;
-  std::vector<double> m_b, m_c;           // Sellmeier B_i, C_i; Cauchy {A, B, C} in m_b
+  std::vector<double> m_b, m_c;  // Sellmeier B_i, C_i; Cauchy {A, B, C} in m_b
   std::vector<double> m_table_nm, m_table_n;
   double m_temperature_c = 0, m_density_kg_m3 = 0;
 };

@@ -37,13 +37,15 @@ MediumSpec parse_medium_spec(const TomlTable& t, const std::string& name, bool l
   spec.file = t.source_name();
   spec.key = t.path();
 
-  const std::vector<std::string> sources = {"preset", "ior", "sellmeier", "cauchy", "table", "iapws97"};
+  const std::vector<std::string> sources = {"preset", "ior",   "sellmeier",
+                                            "cauchy", "table", "iapws97"};
   std::vector<std::string> given;
   for (const auto& k : sources)
     if (t.has(k)) given.push_back(k);
   if (given.size() > 1)
-    t.fail(given[1], "give exactly one of preset, ior, sellmeier, cauchy, table, iapws97 (also found '" +
-                         given[0] + "')");
+    t.fail(given[1],
+           "give exactly one of preset, ior, sellmeier, cauchy, table, iapws97 (also found '" +
+               given[0] + "')");
   if (given.empty())
     t.fail("", "medium '" + name +
                    "' needs an index of refraction: preset = \"...\" (see `thaw materials`), ior, "
@@ -59,7 +61,8 @@ MediumSpec parse_medium_spec(const TomlTable& t, const std::string& name, bool l
     const TomlTable s = t.table("sellmeier");
     const std::string form = s.get_string("form", "n^2-1");
     if (form != "n^2-1" && form != "n-1")
-      s.fail("form", "must be \"n^2-1\" (glasses, liquids) or \"n-1\" (gases), got \"" + form + "\"");
+      s.fail("form",
+             "must be \"n^2-1\" (glasses, liquids) or \"n-1\" (gases), got \"" + form + "\"");
     auto b = s.get_doubles("B");
     auto c = s.get_doubles("C");
     spec.ior = form == "n-1" ? IorModel::sellmeier_gas(std::move(b), std::move(c))

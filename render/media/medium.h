@@ -27,9 +27,9 @@ namespace thaw::render::media {
 
 /// A medium as written in a scene or the library, before presets are resolved.
 struct MediumSpec {
-  std::string name;  ///< "ice"
-  std::string file;  ///< source file, for error messages
-  std::string key;   ///< key path, for error messages: "media.ice"
+  std::string name;    ///< "ice"
+  std::string file;    ///< source file, for error messages
+  std::string key;     ///< key path, for error messages: "media.ice"
   std::string preset;  ///< library entry name, or empty
   std::optional<IorModel> ior;
   std::optional<Absorption> absorption;  ///< unscaled

@@ -40,9 +40,13 @@ Xyz cie_xyz_bar(double lambda_nm) {
           lookup(cie::kZBar, lambda_nm)};
 }
 
-double cie_d65(double lambda_nm) { return lookup(cie::kD65, lambda_nm); }
+double cie_d65(double lambda_nm) {
+  return lookup(cie::kD65, lambda_nm);
+}
 
-double illuminant_d65(double lambda_nm) { return kD65Scale * cie_d65(lambda_nm); }
+double illuminant_d65(double lambda_nm) {
+  return kD65Scale * cie_d65(lambda_nm);
+}
 
 SampledSpectrum illuminant_d65(const SampledWavelengths& wavelengths) {
   SampledSpectrum s;
@@ -53,15 +57,13 @@ SampledSpectrum illuminant_d65(const SampledWavelengths& wavelengths) {
 
 // IEC 61966-2-1:1999 (sRGB), section 5.2, the matrix as published to 4 decimals.
 LinearSrgb xyz_to_linear_srgb(const Xyz& c) {
-  return {3.2406 * c.x - 1.5372 * c.y - 0.4986 * c.z,
-          -0.9689 * c.x + 1.8758 * c.y + 0.0415 * c.z,
+  return {3.2406 * c.x - 1.5372 * c.y - 0.4986 * c.z, -0.9689 * c.x + 1.8758 * c.y + 0.0415 * c.z,
           0.0557 * c.x - 0.2040 * c.y + 1.0570 * c.z};
 }
 
 // IEC 61966-2-1:1999 section 5.3 (inverse direction).
 Xyz linear_srgb_to_xyz(const LinearSrgb& c) {
-  return {0.4124 * c.r + 0.3576 * c.g + 0.1805 * c.b,
-          0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b,
+  return {0.4124 * c.r + 0.3576 * c.g + 0.1805 * c.b, 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b,
           0.0193 * c.r + 0.1192 * c.g + 0.9505 * c.b};
 }
 

@@ -10,7 +10,9 @@
 namespace thaw::render {
 namespace {
 
-double clamp01(double v) { return std::isnan(v) ? 0.0 : std::clamp(v, 0.0, 1.0); }
+double clamp01(double v) {
+  return std::isnan(v) ? 0.0 : std::clamp(v, 0.0, 1.0);
+}
 
 int bin_of(double lambda_nm) {
   const double x = (lambda_nm - smits::kBinStartNm) / smits::kBinWidthNm;

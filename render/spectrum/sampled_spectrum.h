@@ -80,12 +80,24 @@ class SampledSpectrum {
   std::array<float, kSpectrumSamples> m_values{};
 };
 
-constexpr SampledSpectrum operator+(SampledSpectrum a, const SampledSpectrum& b) { return a += b; }
-constexpr SampledSpectrum operator-(SampledSpectrum a, const SampledSpectrum& b) { return a -= b; }
-constexpr SampledSpectrum operator*(SampledSpectrum a, const SampledSpectrum& b) { return a *= b; }
-constexpr SampledSpectrum operator*(SampledSpectrum a, float s) { return a *= s; }
-constexpr SampledSpectrum operator*(float s, SampledSpectrum a) { return a *= s; }
-constexpr SampledSpectrum operator/(SampledSpectrum a, const SampledSpectrum& b) { return a /= b; }
+constexpr SampledSpectrum operator+(SampledSpectrum a, const SampledSpectrum& b) {
+  return a += b;
+}
+constexpr SampledSpectrum operator-(SampledSpectrum a, const SampledSpectrum& b) {
+  return a -= b;
+}
+constexpr SampledSpectrum operator*(SampledSpectrum a, const SampledSpectrum& b) {
+  return a *= b;
+}
+constexpr SampledSpectrum operator*(SampledSpectrum a, float s) {
+  return a *= s;
+}
+constexpr SampledSpectrum operator*(float s, SampledSpectrum a) {
+  return a *= s;
+}
+constexpr SampledSpectrum operator/(SampledSpectrum a, const SampledSpectrum& b) {
+  return a /= b;
+}
 constexpr bool operator==(const SampledSpectrum& a, const SampledSpectrum& b) {
   for (int i = 0; i < kSpectrumSamples; ++i)
     if (a[i] != b[i]) return false;

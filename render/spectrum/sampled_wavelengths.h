@@ -40,8 +40,8 @@ class SampledWavelengths {
   /// Hero-wavelength sample from one uniform number u in [0, 1).
   static SampledWavelengths sample(double u, HeroDensity density = HeroDensity::visible) {
     SampledWavelengths w;
-    const double hero = density == HeroDensity::uniform ? kLambdaMinNm + u * kRangeNm
-                                                        : sample_visible_nm(u);
+    const double hero =
+        density == HeroDensity::uniform ? kLambdaMinNm + u * kRangeNm : sample_visible_nm(u);
     double pdf_sum = 0;
     for (int i = 0; i < kSpectrumSamples; ++i) {
       double l = hero + i * (kRangeNm / kSpectrumSamples);
@@ -95,8 +95,8 @@ class SampledWavelengths {
   }
 
  private:
-  static constexpr double kVisibleA = 0.0072;          // [1/nm]
-  static constexpr double kVisibleCentreNm = 538.0;    // [nm]
+  static constexpr double kVisibleA = 0.0072;        // [1/nm]
+  static constexpr double kVisibleCentreNm = 538.0;  // [nm]
   static double visible_tanh_span() {
     static const double span = std::tanh(kVisibleA * (kLambdaMaxNm - kVisibleCentreNm)) -
                                std::tanh(kVisibleA * (kLambdaMinNm - kVisibleCentreNm));

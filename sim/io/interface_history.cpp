@@ -19,9 +19,12 @@ const char* const kInterfacesCsvHeader =
 
 const char* to_string(Geometry g) {
   switch (g) {
-    case Geometry::planar: return "planar";
-    case Geometry::cylinder: return "cylinder";
-    case Geometry::sphere: return "sphere";
+    case Geometry::planar:
+      return "planar";
+    case Geometry::cylinder:
+      return "cylinder";
+    case Geometry::sphere:
+      return "sphere";
   }
   return "?";
 }
@@ -67,17 +70,24 @@ std::vector<std::string> split_commas(const std::string& line) {
 std::vector<InterfaceRecord> read_interfaces_csv(const std::filesystem::path& file) {
   const std::string name = file.string();
   std::ifstream in(file);
-  if (!in) throw UserError(name, "", std::filesystem::exists(file) ? "cannot be read" : "file not found");
+  if (!in)
+    throw UserError(name, "", std::filesystem::exists(file) ? "cannot be read" : "file not found");
   std::string line;
   if (!std::getline(in, line)) throw UserError(name, "line 1", "empty file, expected a CSV header");
   if (!line.empty() && line.back() == '\r') line.pop_back();
   const auto header = split_commas(line);
   std::map<std::string, std::size_t> column;
   for (std::size_t i = 0; i < header.size(); ++i) column[header[i]] = i;
-  const char* required[] = {"step", "time_s", "inner_radius_m", "outer_radius_m",
-                            "liquid_volume_m3", "ice_volume_m3", "energy_balance_error"};
+  const char* required[] = {"step",
+                            "time_s",
+                            "inner_radius_m",
+                            "outer_radius_m",
+                            "liquid_volume_m3",
+                            "ice_volume_m3",
+                            "energy_balance_error"};
   for (const char* key : required)
-    if (!column.count(key)) throw UserError(name, "line 1", std::string("missing column '") + key + "'");
+    if (!column.count(key))
+      throw UserError(name, "line 1", std::string("missing column '") + key + "'");
 
   std::vector<InterfaceRecord> rows;
   long line_no = 1;
@@ -88,8 +98,9 @@ std::vector<InterfaceRecord> read_interfaces_csv(const std::filesystem::path& fi
     const auto cells = split_commas(line);
     const std::string where = "line " + std::to_string(line_no);
     if (cells.size() != header.size())
-      throw UserError(name, where, "expected " + std::to_string(header.size()) + " columns, got " +
-                                       std::to_string(cells.size()));
+      throw UserError(name, where,
+                      "expected " + std::to_string(header.size()) + " columns, got " +
+                          std::to_string(cells.size()));
     auto number = [&](const char* key) {
       const std::string& text = cells[column[key]];
       char* end = nullptr;
@@ -97,7 +108,8 @@ std::vector<InterfaceRecord> read_interfaces_csv(const std::filesystem::path& fi
       if (text.empty() || end != text.c_str() + text.size())
         throw UserError(name, where + ", column '" + key + "'", "not a number: '" + text + "'");
       if (!std::isfinite(v))
-        throw UserError(name, where + ", column '" + key + "'", "must be finite, got '" + text + "'");
+        throw UserError(name, where + ", column '" + key + "'",
+                        "must be finite, got '" + text + "'");
       return v;
     };
     InterfaceRecord r;
@@ -112,9 +124,12 @@ std::vector<InterfaceRecord> read_interfaces_csv(const std::filesystem::path& fi
     r.liquid_volume_m3 = number("liquid_volume_m3");
     r.ice_volume_m3 = number("ice_volume_m3");
     r.energy_balance_error = number("energy_balance_error");
-    for (auto [key, v] : {std::pair{"time_s", r.time_s}, {"inner_radius_m", r.inner_radius_m},
+    for (auto [key, v] : {std::pair{"time_s", r.time_s},
+                          {"inner_radius_m", r.inner_radius_m},
                           {"outer_radius_m", r.outer_radius_m}})
-      if (v < 0) throw UserError(name, where + ", column '" + std::string(key) + "'", "must not be negative");
+      if (v < 0)
+        throw UserError(name, where + ", column '" + std::string(key) + "'",
+                        "must not be negative");
     if (r.inner_radius_m > r.outer_radius_m)
       throw UserError(name, where, "inner_radius_m is larger than outer_radius_m");
     if (!rows.empty() && !(r.time_s > rows.back().time_s))
@@ -128,7 +143,9 @@ std::vector<InterfaceRecord> read_interfaces_csv(const std::filesystem::path& fi
 ShellGeometry read_shell_geometry(const std::filesystem::path& summary_json) {
   const std::string name = summary_json.string();
   std::ifstream in(summary_json);
-  if (!in) throw UserError(name, "", std::filesystem::exists(summary_json) ? "cannot be read" : "file not found");
+  if (!in)
+    throw UserError(name, "",
+                    std::filesystem::exists(summary_json) ? "cannot be read" : "file not found");
   nlohmann::json j;
   try {
     in >> j;
@@ -140,7 +157,8 @@ ShellGeometry read_shell_geometry(const std::filesystem::path& summary_json) {
     const auto& p = j.at("parameters");
     const std::string geometry = p.at("simulation").at("geometry").get<std::string>();
     if (!parse_geometry(geometry, g.geometry))
-      throw UserError(name, "parameters.simulation.geometry", "unknown geometry '" + geometry + "'");
+      throw UserError(name, "parameters.simulation.geometry",
+                      "unknown geometry '" + geometry + "'");
     const auto& shell = p.at("shell");
     if (g.geometry == Geometry::cylinder) g.length_m = shell.at("length_m").get<double>();
     if (g.geometry == Geometry::planar) {
@@ -151,7 +169,8 @@ ShellGeometry read_shell_geometry(const std::filesystem::path& summary_json) {
     throw UserError(name, "parameters", "missing or mistyped field: " + json_problem(e));
   }
   for (double v : {g.length_m, g.lateral_size_m})
-    if (!std::isfinite(v) || v < 0) throw UserError(name, "parameters.shell", "length/lateral size must be finite and >= 0");
+    if (!std::isfinite(v) || v < 0)
+      throw UserError(name, "parameters.shell", "length/lateral size must be finite and >= 0");
   return g;
 }
 

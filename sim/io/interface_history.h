@@ -18,13 +18,13 @@ bool parse_geometry(const std::string& text, Geometry& out);
 /// One row of interfaces.csv. Planar geometry: positions [m] measured from the inner end and
 /// volumes per unit area [m^3/m^2]; cylinder: volumes per unit length [m^3/m].
 struct InterfaceRecord {
-  long step = 0;                      ///< output index, 0-based, consecutive
-  double time_s = 0;                  ///< simulated time [s]
-  double inner_radius_m = 0;          ///< water|ice front s(t) [m]; 0 when no liquid is left
-  double outer_radius_m = 0;          ///< ice|air surface b(t) [m]; == inner when no ice is left
-  double liquid_volume_m3 = 0;        ///< volume of the liquid core
-  double ice_volume_m3 = 0;           ///< volume of the ice shell
-  double energy_balance_error = 0;    ///< |dH - heat in| / reference energy, relative
+  long step = 0;                    ///< output index, 0-based, consecutive
+  double time_s = 0;                ///< simulated time [s]
+  double inner_radius_m = 0;        ///< water|ice front s(t) [m]; 0 when no liquid is left
+  double outer_radius_m = 0;        ///< ice|air surface b(t) [m]; == inner when no ice is left
+  double liquid_volume_m3 = 0;      ///< volume of the liquid core
+  double ice_volume_m3 = 0;         ///< volume of the ice shell
+  double energy_balance_error = 0;  ///< |dH - heat in| / reference energy, relative
 };
 
 /// The exact header line (without newline) that interfaces.csv starts with.
@@ -33,7 +33,8 @@ extern const char* const kInterfacesCsvHeader;
 /// Formats rows at 17 significant digits with kInterfacesCsvHeader.
 std::string format_interfaces_csv(const std::vector<InterfaceRecord>& rows);
 /// Writes DIR/interfaces.csv atomically.
-void write_interfaces_csv(const std::filesystem::path& file, const std::vector<InterfaceRecord>& rows);
+void write_interfaces_csv(const std::filesystem::path& file,
+                          const std::vector<InterfaceRecord>& rows);
 /// Reads interfaces.csv; columns found by header name (extra columns ignored). Throws
 /// thaw::UserError naming file, line and column for a missing file, bad header, unparsable,
 /// NaN/infinite or negative value, inner > outer, or non-increasing time.

@@ -17,9 +17,13 @@ double exp_over_erfc(double x) {
 }
 }  // namespace
 
-double NeumannSolution::front(double t) const { return 2.0 * lambda * std::sqrt(alpha1() * t); }
+double NeumannSolution::front(double t) const {
+  return 2.0 * lambda * std::sqrt(alpha1() * t);
+}
 
-double NeumannSolution::front_speed(double t) const { return lambda * std::sqrt(alpha1() / t); }
+double NeumannSolution::front_speed(double t) const {
+  return lambda * std::sqrt(alpha1() / t);
+}
 
 double NeumannSolution::time_of_front(double s) const {
   const double q = s / (2.0 * lambda);
@@ -45,10 +49,12 @@ double NeumannSolution::face_heat_flux(double t) const {
          (std::erf(lambda) * std::sqrt(std::numbers::pi * alpha1() * t));
 }
 
-double NeumannSolution::face_heat(double t) const { return 2.0 * t * face_heat_flux(t); }
+double NeumannSolution::face_heat(double t) const {
+  return 2.0 * t * face_heat_flux(t);
+}
 
-NeumannSolution solve_neumann(double k1, double c1, double k2, double c2, double lv,
-                              double t_face, double t_m, double t_far) {
+NeumannSolution solve_neumann(double k1, double c1, double k2, double c2, double lv, double t_face,
+                              double t_m, double t_far) {
   THAW_CHECK(k1 > 0 && c1 > 0 && k2 > 0 && c2 > 0 && lv > 0, "positive properties");
   THAW_CHECK((t_face - t_m) * (t_far - t_m) <= 0, "face and far field on opposite sides of T_m");
   NeumannSolution n{k1, c1, k2, c2, lv, t_face, t_m, t_far, 0.0};

@@ -10,7 +10,8 @@
 namespace thaw::sim {
 
 struct NeumannSolution {
-  double k1 = 0, heat_capacity1 = 0;  ///< phase 1 (adjacent to the face): k [W/(m K)], rho c [J/(m^3 K)]
+  double k1 = 0,
+         heat_capacity1 = 0;  ///< phase 1 (adjacent to the face): k [W/(m K)], rho c [J/(m^3 K)]
   double k2 = 0, heat_capacity2 = 0;  ///< phase 2 (far field)
   double latent_heat_per_volume = 0;  ///< L_v [J/m^3]
   double face_temperature = 0;        ///< T_face [C]

@@ -22,10 +22,14 @@ const char* to_string(InnerBoundary kind) {
 
 const char* to_string(OuterBoundary kind) {
   switch (kind) {
-    case OuterBoundary::temperature: return "temperature";
-    case OuterBoundary::convective: return "convective";
-    case OuterBoundary::flux: return "flux";
-    case OuterBoundary::insulated: return "insulated";
+    case OuterBoundary::temperature:
+      return "temperature";
+    case OuterBoundary::convective:
+      return "convective";
+    case OuterBoundary::flux:
+      return "flux";
+    case OuterBoundary::insulated:
+      return "insulated";
   }
   return "?";
 }
@@ -203,41 +207,56 @@ std::optional<Problem> find_problem(const Scenario& s) {
     if (!std::isfinite(v)) return Problem{key, "must be a finite number (got " + num(v) + ")"};
   for (auto [key, v] : positive_materials)
     if (!(v > 0) || !std::isfinite(v)) return Problem{key, "must be positive (got " + num(v) + ")"};
-  if (!(s.duration_s > 0)) return Problem{"simulation.duration_s", "must be positive (got " + num(s.duration_s) + ")"};
+  if (!(s.duration_s > 0))
+    return Problem{"simulation.duration_s", "must be positive (got " + num(s.duration_s) + ")"};
   if (!(s.output_interval_s > 0))
-    return Problem{"simulation.output_interval_s", "must be positive (got " + num(s.output_interval_s) + ")"};
+    return Problem{"simulation.output_interval_s",
+                   "must be positive (got " + num(s.output_interval_s) + ")"};
   if (s.output_interval_s > s.duration_s)
-    return Problem{"simulation.output_interval_s", "(" + num(s.output_interval_s) +
-                                                       " s) is longer than the run (duration_s = " +
-                                                       num(s.duration_s) + " s)"};
+    return Problem{"simulation.output_interval_s",
+                   "(" + num(s.output_interval_s) +
+                       " s) is longer than the run (duration_s = " + num(s.duration_s) + " s)"};
   if (s.duration_s / s.output_interval_s > 1e6)
-    return Problem{"simulation.output_interval_s", "gives more than 10^6 output rows; use a longer interval"};
+    return Problem{"simulation.output_interval_s",
+                   "gives more than 10^6 output rows; use a longer interval"};
   if (s.cells_per_phase < 4 || s.cells_per_phase > 100000)
-    return Problem{"simulation.cells_per_phase", "must be between 4 and 100000 (got " + std::to_string(s.cells_per_phase) + ")"};
+    return Problem{"simulation.cells_per_phase",
+                   "must be between 4 and 100000 (got " + std::to_string(s.cells_per_phase) + ")"};
   if (!(s.time_tolerance > 0 && s.time_tolerance <= 1e-2))
-    return Problem{"simulation.time_tolerance", "must be in (0, 0.01] (got " + num(s.time_tolerance) + ")"};
-  if (!(s.inner_radius_m >= 0)) return Problem{"shell.inner_radius_m", "must not be negative (got " + num(s.inner_radius_m) + ")"};
-  if (!(s.outer_radius_m > 0)) return Problem{"shell.outer_radius_m", "must be positive (got " + num(s.outer_radius_m) + ")"};
+    return Problem{"simulation.time_tolerance",
+                   "must be in (0, 0.01] (got " + num(s.time_tolerance) + ")"};
+  if (!(s.inner_radius_m >= 0))
+    return Problem{"shell.inner_radius_m",
+                   "must not be negative (got " + num(s.inner_radius_m) + ")"};
+  if (!(s.outer_radius_m > 0))
+    return Problem{"shell.outer_radius_m", "must be positive (got " + num(s.outer_radius_m) + ")"};
   if (s.inner_radius_m > s.outer_radius_m)
-    return Problem{"shell.inner_radius_m", "(" + num(s.inner_radius_m) + " m) is larger than outer_radius_m (" +
+    return Problem{"shell.inner_radius_m", "(" + num(s.inner_radius_m) +
+                                               " m) is larger than outer_radius_m (" +
                                                num(s.outer_radius_m) + " m)"};
-  if (!(s.length_m > 0)) return Problem{"shell.length_m", "must be positive (got " + num(s.length_m) + ")"};
-  if (!(s.lateral_size_m > 0)) return Problem{"shell.lateral_size_m", "must be positive (got " + num(s.lateral_size_m) + ")"};
+  if (!(s.length_m > 0))
+    return Problem{"shell.length_m", "must be positive (got " + num(s.length_m) + ")"};
+  if (!(s.lateral_size_m > 0))
+    return Problem{"shell.lateral_size_m", "must be positive (got " + num(s.lateral_size_m) + ")"};
   if (s.inner_radius_m > 0 && s.water_initial_temperature_c < tm)
-    return Problem{"water.initial_temperature_c", "(" + num(s.water_initial_temperature_c) +
-                                                      " C) is below the melting point: supercooled water is not modelled"};
+    return Problem{"water.initial_temperature_c",
+                   "(" + num(s.water_initial_temperature_c) +
+                       " C) is below the melting point: supercooled water is not modelled"};
   if (s.outer_radius_m > s.inner_radius_m && s.ice_initial_temperature_c > tm)
-    return Problem{"ice.initial_temperature_c", "(" + num(s.ice_initial_temperature_c) +
-                                                    " C) is above the melting point"};
+    return Problem{"ice.initial_temperature_c",
+                   "(" + num(s.ice_initial_temperature_c) + " C) is above the melting point"};
   if (s.geometry != Geometry::planar && s.inner_kind != InnerBoundary::symmetry)
     return Problem{"inner_boundary.kind", "a held inner temperature needs geometry = \"planar\""};
   if (s.inner_kind == InnerBoundary::temperature && s.inner_temperature_c < tm)
-    return Problem{"inner_boundary.temperature_c", "(" + num(s.inner_temperature_c) +
-                                                       " C) is below the melting point: water would freeze onto the wall (not modelled)"};
+    return Problem{
+        "inner_boundary.temperature_c",
+        "(" + num(s.inner_temperature_c) +
+            " C) is below the melting point: water would freeze onto the wall (not modelled)"};
   if (s.outer_kind == OuterBoundary::temperature && s.outer_temperature_c > tm)
     return Problem{"outer_boundary.temperature_c",
                    "(" + num(s.outer_temperature_c) +
-                       " C) is above the melting point: a held temperature above melting on a draining surface is ill-posed (use kind = \"convective\" or \"flux\")"};
+                       " C) is above the melting point: a held temperature above melting on a "
+                       "draining surface is ill-posed (use kind = \"convective\" or \"flux\")"};
   if (s.outer_kind == OuterBoundary::convective && !(s.heat_transfer_coefficient_w_m2k > 0))
     return Problem{"outer_boundary.heat_transfer_coefficient_w_m2k",
                    "must be positive (got " + num(s.heat_transfer_coefficient_w_m2k) + ")"};
@@ -247,12 +266,15 @@ std::optional<Problem> find_problem(const Scenario& s) {
     const bool water_at_melting = s.water_initial_temperature_c == tm;
     const bool freezes =
         (s.outer_kind == OuterBoundary::temperature && s.outer_temperature_c < tm) ||
-        (s.outer_kind == OuterBoundary::convective && s.outer_temperature_c < tm && water_at_melting) ||
+        (s.outer_kind == OuterBoundary::convective && s.outer_temperature_c < tm &&
+         water_at_melting) ||
         (s.outer_kind == OuterBoundary::flux && s.flux_w_m2 < 0 && water_at_melting);
     if (!freezes)
       return Problem{"shell.outer_radius_m",
-                     "equals inner_radius_m (no ice at t = 0), so the outer boundary must freeze the water at once: "
-                     "a held temperature below melting, or convective/flux cooling of water at the melting point"};
+                     "equals inner_radius_m (no ice at t = 0), so the outer boundary must freeze "
+                     "the water at once: "
+                     "a held temperature below melting, or convective/flux cooling of water at the "
+                     "melting point"};
   }
   // Grid runs ([shape]); the [shell] rules above pass on its unused defaults.
   if (auto p = find_grid_problem(s)) return Problem{p->key, p->message};
@@ -268,7 +290,8 @@ std::optional<Problem> find_problem(const Scenario& s) {
   throw UserError(root.source_name(), "key '" + p.key + "'", p.message);
 }
 
-void reject_unless(const TomlTable& t, const std::string& key, bool allowed, const std::string& why) {
+void reject_unless(const TomlTable& t, const std::string& key, bool allowed,
+                   const std::string& why) {
   if (!allowed && t.has(key)) t.fail(key, why);
 }
 
@@ -291,11 +314,13 @@ void check_schema(const TomlTable& root, const std::set<std::string>& foreign_se
         "latent_heat_j_kg", "melting_point_c"}}};
   for (const std::string& name : root.keys()) {
     if (foreign_sections.count(name)) continue;
-    const auto it = std::find_if(schema.begin(), schema.end(), [&](const auto& e) { return e.first == name; });
+    const auto it =
+        std::find_if(schema.begin(), schema.end(), [&](const auto& e) { return e.first == name; });
     if (it == schema.end()) root.fail(name, "unknown key");
     const auto table = root.optional_table(name);  // throws "expected a table" for a plain key
     for (const std::string& key : table->keys())
-      if (std::find(it->second.begin(), it->second.end(), key) == it->second.end()) table->fail(key, "unknown key");
+      if (std::find(it->second.begin(), it->second.end(), key) == it->second.end())
+        table->fail(key, "unknown key");
   }
 }
 
@@ -360,7 +385,8 @@ Materials parse_materials(const TomlTable& t, Materials m) {
   m.ice_specific_heat_j_kgk = t.get_double("ice_specific_heat_j_kgk", m.ice_specific_heat_j_kgk);
   m.water_conductivity_w_mk = t.get_double("water_conductivity_w_mk", m.water_conductivity_w_mk);
   m.water_density_kg_m3 = t.get_double("water_density_kg_m3", m.water_density_kg_m3);
-  m.water_specific_heat_j_kgk = t.get_double("water_specific_heat_j_kgk", m.water_specific_heat_j_kgk);
+  m.water_specific_heat_j_kgk =
+      t.get_double("water_specific_heat_j_kgk", m.water_specific_heat_j_kgk);
   m.latent_heat_j_kg = t.get_double("latent_heat_j_kg", m.latent_heat_j_kg);
   m.melting_point_c = t.get_double("melting_point_c", m.melting_point_c);
   return m;
@@ -375,8 +401,8 @@ Materials default_materials() {
     Materials out = parse_materials(t, Materials{});
     // every key of the data file is required: a renamed key must not fall back silently
     for (const char* key : {"ice_conductivity_w_mk", "ice_density_kg_m3", "ice_specific_heat_j_kgk",
-                            "water_conductivity_w_mk", "water_density_kg_m3", "water_specific_heat_j_kgk",
-                            "latent_heat_j_kg", "melting_point_c"})
+                            "water_conductivity_w_mk", "water_density_kg_m3",
+                            "water_specific_heat_j_kgk", "latent_heat_j_kg", "melting_point_c"})
       if (!t.has(key)) t.fail(key, "missing from the built-in material table");
     t.check_no_unknown_keys();
     return out;
@@ -384,12 +410,15 @@ Materials default_materials() {
   return m;
 }
 
-std::string default_scenario_text() { return std::string(kDefaultScenarioToml); }
+std::string default_scenario_text() {
+  return std::string(kDefaultScenarioToml);
+}
 
 Scenario default_scenario() {
   // The built-in scenario also drives `thaw run`, whose sections src/pipeline checks.
-  return parse_scenario(TomlTable::parse_string(default_scenario_text(), "<built-in data/scenarios/default.toml>"),
-                        other_stage_tables());
+  return parse_scenario(
+      TomlTable::parse_string(default_scenario_text(), "<built-in data/scenarios/default.toml>"),
+      other_stage_tables());
 }
 
 /// Top-level tables of a scenario file that belong to later stages of `thaw run` (film,
@@ -400,7 +429,9 @@ const std::set<std::string>& other_stage_tables() {
   return tables;
 }
 
-Scenario parse_scenario(const TomlTable& root) { return parse_scenario(root, other_stage_tables()); }
+Scenario parse_scenario(const TomlTable& root) {
+  return parse_scenario(root, other_stage_tables());
+}
 
 Scenario parse_scenario(const TomlTable& root, const std::set<std::string>& foreign_sections) {
   Scenario s;
@@ -427,7 +458,8 @@ Scenario parse_scenario(const TomlTable& root, const std::set<std::string>& fore
   reject_unless(sim, "cell_size_m", grid, "only used with geometry = \"axisymmetric\" or \"3d\"");
   reject_unless(sim, "max_step_s", grid, "only used with geometry = \"axisymmetric\" or \"3d\"");
   const std::int64_t cells = sim.get_int("cells_per_phase", s.cells_per_phase);
-  if (cells < 4 || cells > 100000) sim.fail("cells_per_phase", "must be between 4 and 100000 (got " + std::to_string(cells) + ")");
+  if (cells < 4 || cells > 100000)
+    sim.fail("cells_per_phase", "must be between 4 and 100000 (got " + std::to_string(cells) + ")");
   s.cells_per_phase = static_cast<int>(cells);
   s.time_tolerance = sim.get_double("time_tolerance", s.time_tolerance);
   if (grid) {
@@ -461,7 +493,8 @@ Scenario parse_scenario(const TomlTable& root, const std::set<std::string>& fore
 
   if (auto inner = root.optional_table("inner_boundary")) {
     if (s.geometry != Geometry::planar)
-      root.fail("inner_boundary", "only for geometry = \"planar\" (curved shells have a symmetric centre)");
+      root.fail("inner_boundary",
+                "only for geometry = \"planar\" (curved shells have a symmetric centre)");
     const std::string kind = inner->get_string("kind");
     if (kind == "symmetry") {
       s.inner_kind = InnerBoundary::symmetry;
@@ -469,26 +502,37 @@ Scenario parse_scenario(const TomlTable& root, const std::set<std::string>& fore
       s.inner_kind = InnerBoundary::temperature;
       s.inner_temperature_c = inner->get_double("temperature_c");
     } else {
-      inner->fail("kind", "unknown inner boundary '" + kind + "' (expected symmetry or temperature)");
+      inner->fail("kind",
+                  "unknown inner boundary '" + kind + "' (expected symmetry or temperature)");
     }
-    reject_unless(*inner, "temperature_c", s.inner_kind == InnerBoundary::temperature, "only used with kind = \"temperature\"");
+    reject_unless(*inner, "temperature_c", s.inner_kind == InnerBoundary::temperature,
+                  "only used with kind = \"temperature\"");
   }
 
   const TomlTable outer = root.table("outer_boundary");
   const std::string kind = outer.get_string("kind");
-  if (kind == "temperature") s.outer_kind = OuterBoundary::temperature;
-  else if (kind == "convective") s.outer_kind = OuterBoundary::convective;
-  else if (kind == "flux") s.outer_kind = OuterBoundary::flux;
-  else if (kind == "insulated") s.outer_kind = OuterBoundary::insulated;
-  else outer.fail("kind", "unknown outer boundary '" + kind + "' (expected temperature, convective, flux or insulated)");
-  const bool uses_t = s.outer_kind == OuterBoundary::temperature || s.outer_kind == OuterBoundary::convective;
+  if (kind == "temperature")
+    s.outer_kind = OuterBoundary::temperature;
+  else if (kind == "convective")
+    s.outer_kind = OuterBoundary::convective;
+  else if (kind == "flux")
+    s.outer_kind = OuterBoundary::flux;
+  else if (kind == "insulated")
+    s.outer_kind = OuterBoundary::insulated;
+  else
+    outer.fail("kind", "unknown outer boundary '" + kind +
+                           "' (expected temperature, convective, flux or insulated)");
+  const bool uses_t =
+      s.outer_kind == OuterBoundary::temperature || s.outer_kind == OuterBoundary::convective;
   reject_unless(outer, "temperature_c", uses_t, "not used with kind = \"" + kind + "\"");
   reject_unless(outer, "heat_transfer_coefficient_w_m2k", s.outer_kind == OuterBoundary::convective,
                 "only used with kind = \"convective\"");
-  reject_unless(outer, "flux_w_m2", s.outer_kind == OuterBoundary::flux, "only used with kind = \"flux\"");
+  reject_unless(outer, "flux_w_m2", s.outer_kind == OuterBoundary::flux,
+                "only used with kind = \"flux\"");
   s.outer_temperature_c = uses_t ? outer.get_double("temperature_c") : s.materials.melting_point_c;
-  s.heat_transfer_coefficient_w_m2k =
-      s.outer_kind == OuterBoundary::convective ? outer.get_double("heat_transfer_coefficient_w_m2k") : 0.0;
+  s.heat_transfer_coefficient_w_m2k = s.outer_kind == OuterBoundary::convective
+                                          ? outer.get_double("heat_transfer_coefficient_w_m2k")
+                                          : 0.0;
   s.flux_w_m2 = s.outer_kind == OuterBoundary::flux ? outer.get_double("flux_w_m2") : 0.0;
 
   if (auto mat = root.optional_table("materials")) s.materials = parse_materials(*mat, s.materials);
@@ -578,7 +622,8 @@ nlohmann::json scenario_to_json(const Scenario& s) {
   j["water"] = {{"initial_temperature_c", s.water_initial_temperature_c}};
   j["ice"] = {{"initial_temperature_c", s.ice_initial_temperature_c}};
   j["inner_boundary"] = {{"kind", to_string(s.inner_kind)}};
-  if (s.inner_kind == InnerBoundary::temperature) j["inner_boundary"]["temperature_c"] = s.inner_temperature_c;
+  if (s.inner_kind == InnerBoundary::temperature)
+    j["inner_boundary"]["temperature_c"] = s.inner_temperature_c;
   nlohmann::json outer = {{"kind", to_string(s.outer_kind)}};
   if (s.outer_kind == OuterBoundary::temperature || s.outer_kind == OuterBoundary::convective)
     outer["temperature_c"] = s.outer_temperature_c;

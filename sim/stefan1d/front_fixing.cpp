@@ -77,7 +77,9 @@ struct Phase {
   int n = 0;
 };
 
-double face_r(double a, double e, int n, int f) { return a + (e - a) * f / n; }
+double face_r(double a, double e, int n, int f) {
+  return a + (e - a) * f / n;
+}
 
 // One-sided second-order gradient at a Dirichlet face from the face value and the two nearest
 // cell centres (distances h/2 and 3h/2): du/dn = (-8 u_b + 9 u_1 - u_2) / (3 h) (inward normal).
@@ -86,7 +88,8 @@ BoundaryForm boundary_form(const Bc& bc, double k, double area, double h) {
   BoundaryForm f;
   const double kappa = k / (3.0 * h);
   switch (bc.kind) {
-    case BcKind::zero_flux: break;
+    case BcKind::zero_flux:
+      break;
     case BcKind::dirichlet:
       f.q0 = area * 8.0 * kappa * bc.value;
       f.p1 = -area * 9.0 * kappa;
@@ -99,7 +102,9 @@ BoundaryForm boundary_form(const Bc& bc, double k, double area, double h) {
       f.p2 = area * bc.h * kappa / d;
       break;
     }
-    case BcKind::flux: f.q0 = area * bc.value; break;
+    case BcKind::flux:
+      f.q0 = area * bc.value;
+      break;
   }
   return f;
 }
@@ -108,17 +113,21 @@ BoundaryForm boundary_form(const Bc& bc, double k, double area, double h) {
 double boundary_value(const Bc& bc, double k, double h, double u1, double u2) {
   const double kappa = k / (3.0 * h);
   switch (bc.kind) {
-    case BcKind::dirichlet: return bc.value;
-    case BcKind::robin: return (bc.h * bc.value + kappa * (9.0 * u1 - u2)) / (bc.h + 8.0 * kappa);
-    case BcKind::flux: return (bc.value / kappa + 9.0 * u1 - u2) / 8.0;
-    case BcKind::zero_flux: return (9.0 * u1 - u2) / 8.0;
+    case BcKind::dirichlet:
+      return bc.value;
+    case BcKind::robin:
+      return (bc.h * bc.value + kappa * (9.0 * u1 - u2)) / (bc.h + 8.0 * kappa);
+    case BcKind::flux:
+      return (bc.value / kappa + 9.0 * u1 - u2) / 8.0;
+    case BcKind::zero_flux:
+      return (9.0 * u1 - u2) / 8.0;
   }
   return 0;
 }
 
 /// Conducted heat into each cell and through both ends of a phase at one state.
 struct OperatorValue {
-  std::vector<double> d;  ///< net conducted heat rate into cell j
+  std::vector<double> d;           ///< net conducted heat rate into cell j
   double q_left = 0, q_right = 0;  ///< heat rate into the phase through its ends
 };
 
@@ -158,10 +167,10 @@ void solve_tridiagonal(std::vector<double>& lower, std::vector<double>& diag,
 /// The complete discrete state.
 struct State {
   double t = 0;
-  double s = 0;          ///< water|ice front [m] (0 without liquid)
-  double b = 0;          ///< ice surface [m]
-  bool liquid = false;   ///< a liquid core exists
-  bool ablating = false; ///< the ice surface is at T_m and recedes (melt drains)
+  double s = 0;                ///< water|ice front [m] (0 without liquid)
+  double b = 0;                ///< ice surface [m]
+  bool liquid = false;         ///< a liquid core exists
+  bool ablating = false;       ///< the ice surface is at T_m and recedes (melt drains)
   std::vector<double> ul, ui;  ///< cell values of u = T - T_m [K]
 };
 
@@ -177,14 +186,14 @@ struct FrontFixingSolver::Impl {
   Scenario sc;
   Radial geo;
   Phase water, ice;
-  double latent = 0;         ///< rho_ice L [J/m^3]
-  double t_m = 0;            ///< melting point [C]
-  double length_scale = 0;   ///< b0 [m]
+  double latent = 0;             ///< rho_ice L [J/m^3]
+  double t_m = 0;                ///< melting point [C]
+  double length_scale = 0;       ///< b0 [m]
   double temperature_scale = 1;  ///< [K]
-  double remnant = 0;        ///< thickness below which a phase is removed [m]
+  double remnant = 0;            ///< thickness below which a phase is removed [m]
   double tol = 1e-6;
-  Bc inner_bc;               ///< at r = 0
-  Bc outer_bc;               ///< at r = b when not ablating
+  Bc inner_bc;                    ///< at r = 0
+  Bc outer_bc;                    ///< at r = b when not ablating
   double ablation_heat_flux = 0;  ///< heat flux arriving at a surface held at T_m [W/m^2]
 
   State st;
@@ -192,12 +201,14 @@ struct FrontFixingSolver::Impl {
   bool done = false;
   std::vector<Event> events;
   SolverStatistics stats;
-  double e0 = 0;             ///< total enthalpy at t = 0 [J per unit solid angle]
+  double e0 = 0;                    ///< total enthalpy at t = 0 [J per unit solid angle]
   double heat_in = 0, drained = 0;  ///< cumulative, per unit solid angle
 
   // --- per-state helpers -------------------------------------------------------------------
   double ice_left(const State& x) const { return x.liquid ? x.s : 0.0; }
-  Bc ice_left_bc(const State& x) const { return x.liquid ? Bc{BcKind::dirichlet, 0.0, 0.0} : inner_bc; }
+  Bc ice_left_bc(const State& x) const {
+    return x.liquid ? Bc{BcKind::dirichlet, 0.0, 0.0} : inner_bc;
+  }
   Bc ice_right_bc(const State& x) const {
     return x.ablating ? Bc{BcKind::dirichlet, 0.0, 0.0} : outer_bc;
   }
@@ -206,8 +217,8 @@ struct FrontFixingSolver::Impl {
   double phase_energy(const Phase& p, double a, double e, const std::vector<double>& u) const {
     double sum = 0;
     for (int j = 0; j < p.n; ++j)
-      sum += p.heat_capacity * u[j] *
-             (geo.w(face_r(a, e, p.n, j + 1)) - geo.w(face_r(a, e, p.n, j)));
+      sum +=
+          p.heat_capacity * u[j] * (geo.w(face_r(a, e, p.n, j + 1)) - geo.w(face_r(a, e, p.n, j)));
     return sum;
   }
   /// Total enthalpy relative to ice at T_m, per unit solid angle [J].
@@ -253,16 +264,16 @@ struct FrontFixingSolver::Impl {
   // where the swept volume of face f is dW_f = W_f(new) - Wref_f; rhs holds the old-time part.
   struct StageRef {
     bool trapezoid = true;
-    double beta = 0;               ///< weight of new-time rates [s]
-    const State* s0 = nullptr;     ///< state at t_n
-    const Rates* r0 = nullptr;     ///< rates at t_n (trapezoid)
-    const State* sg = nullptr;     ///< state at t_n + gamma dt (BDF2 stage)
+    double beta = 0;            ///< weight of new-time rates [s]
+    const State* s0 = nullptr;  ///< state at t_n
+    const Rates* r0 = nullptr;  ///< rates at t_n (trapezoid)
+    const State* sg = nullptr;  ///< state at t_n + gamma dt (BDF2 stage)
   };
 
   /// Solves one phase's cells for given end positions; returns heat through its two ends.
   void solve_phase(const Phase& p, double a, double e, const Bc& left, const Bc& right,
-                   const StageRef& ref, bool is_water, std::vector<double>& u_out,
-                   double& q_left, double& q_right) {
+                   const StageRef& ref, bool is_water, std::vector<double>& u_out, double& q_left,
+                   double& q_right) {
     const int n = p.n;
     const double h = (e - a) / n;
     const double cap = p.heat_capacity;
@@ -309,8 +320,9 @@ struct FrontFixingSolver::Impl {
       for (int f = 0; f <= n; ++f)
         wref[f] = kBdfA * geo.w(face_r(ag, eg, n, f)) + kBdfB * geo.w(face_r(a0, e0_, n, f));
       for (int j = 0; j < n; ++j)
-        rhs[j] = kBdfA * cap * ug[j] * (geo.w(face_r(ag, eg, n, j + 1)) - geo.w(face_r(ag, eg, n, j))) +
-                 kBdfB * cap * u0[j] * (geo.w(face_r(a0, e0_, n, j + 1)) - geo.w(face_r(a0, e0_, n, j)));
+        rhs[j] =
+            kBdfA * cap * ug[j] * (geo.w(face_r(ag, eg, n, j + 1)) - geo.w(face_r(ag, eg, n, j))) +
+            kBdfB * cap * u0[j] * (geo.w(face_r(a0, e0_, n, j + 1)) - geo.w(face_r(a0, e0_, n, j)));
       w_new_adv = 1.0;
     }
     for (int j = 0; j < n; ++j) diag[j] = cap * (wnew[j + 1] - wnew[j]);
@@ -348,7 +360,8 @@ struct FrontFixingSolver::Impl {
     if (!(x.b > ice_left(x))) return false;
     double ql_w = 0, qr_w = 0, ql_i = 0, qr_i = 0;
     if (x.liquid) solve_phase(water, 0.0, x.s, inner_bc, front_bc(), ref, true, x.ul, ql_w, qr_w);
-    solve_phase(ice, ice_left(x), x.b, ice_left_bc(x), ice_right_bc(x), ref, false, x.ui, ql_i, qr_i);
+    solve_phase(ice, ice_left(x), x.b, ice_left_bc(x), ice_right_bc(x), ref, false, x.ui, ql_i,
+                qr_i);
     auto wref = [&](double State::*member) {
       if (ref.trapezoid) return geo.w(x0.*member);
       return kBdfA * geo.w(ref.sg->*member) + kBdfB * geo.w(x0.*member);
@@ -368,7 +381,8 @@ struct FrontFixingSolver::Impl {
     if (x.ablating) {
       const double abl = q_ext - qr_i;
       const double melted = -(geo.w(x.b) - wref(&State::b));  // volume drained this stage
-      res[1] = -latent * melted + ref.beta * abl + (ref.trapezoid ? ref.beta * ref.r0->ablation : 0.0);
+      res[1] =
+          -latent * melted + ref.beta * abl + (ref.trapezoid ? ref.beta * ref.r0->ablation : 0.0);
       heat.drained = latent * melted;
     }
     return true;
@@ -412,7 +426,8 @@ struct FrontFixingSolver::Impl {
       } else {
         Eigen::Matrix2d j;
         j << jac[0][0], jac[0][1], jac[1][0], jac[1][1];
-        const Eigen::Vector2d d = j.partialPivLu().solve(Eigen::Vector2d(-res[idx[0]], -res[idx[1]]));
+        const Eigen::Vector2d d =
+            j.partialPivLu().solve(Eigen::Vector2d(-res[idx[0]], -res[idx[1]]));
         step[0] = d[0];
         step[1] = d[1];
       }
@@ -500,7 +515,9 @@ struct FrontFixingSolver::Impl {
         outer_bc = Bc{BcKind::flux, sc.flux_w_m2, 0};
         ablation_heat_flux = sc.flux_w_m2;
         break;
-      case OuterBoundary::insulated: outer_bc = Bc{BcKind::flux, 0.0, 0}; break;
+      case OuterBoundary::insulated:
+        outer_bc = Bc{BcKind::flux, 0.0, 0};
+        break;
     }
     initialise(u_water, u_ice, u_inner);
     if (opt.initial_temperature_c) {
@@ -528,9 +545,9 @@ struct FrontFixingSolver::Impl {
     if (!st.liquid && sc.inner_kind == InnerBoundary::temperature && u_inner > 0) {
       // Planar ice block heated on a face, no liquid yet: start from the Neumann melting
       // solution at the time t0 when its front is `delta` from the face.
-      const NeumannSolution n = solve_neumann(water.k, water.heat_capacity, ice.k, ice.heat_capacity,
-                                              latent, sc.inner_temperature_c, t_m,
-                                              sc.ice_initial_temperature_c);
+      const NeumannSolution n =
+          solve_neumann(water.k, water.heat_capacity, ice.k, ice.heat_capacity, latent,
+                        sc.inner_temperature_c, t_m, sc.ice_initial_temperature_c);
       const double t0 = similarity_start_time(n, delta, ice, b0);
       st.liquid = true;
       st.s = n.front(t0);
@@ -541,9 +558,9 @@ struct FrontFixingSolver::Impl {
       // O(delta / b0)). Convective / flux cooling of water at T_m: thin ice with a linear
       // profile carrying the surface heat loss (validation guarantees one of these).
       if (outer_bc.kind == BcKind::dirichlet) {
-        const NeumannSolution n = solve_neumann(ice.k, ice.heat_capacity, water.k, water.heat_capacity,
-                                                latent, sc.outer_temperature_c, t_m,
-                                                sc.water_initial_temperature_c);
+        const NeumannSolution n =
+            solve_neumann(ice.k, ice.heat_capacity, water.k, water.heat_capacity, latent,
+                          sc.outer_temperature_c, t_m, sc.water_initial_temperature_c);
         const double t0 = similarity_start_time(n, delta, water, b0);
         st.s = b0 - n.front(t0);
         fill_from_profile(st, [&](double r) { return n.temperature(b0 - r, t0) - t_m; });
@@ -556,11 +573,11 @@ struct FrontFixingSolver::Impl {
           u_surface = outer_bc.h * outer_bc.value / (outer_bc.h + ice.k / delta);
         else
           u_surface = outer_bc.value * delta / ice.k;
-        const double q = outer_bc.kind == BcKind::robin ? outer_bc.h * (u_surface - outer_bc.value) : q_out;
+        const double q =
+            outer_bc.kind == BcKind::robin ? outer_bc.h * (u_surface - outer_bc.value) : q_out;
         st.s = b0 - delta;
-        fill_from_profile(st, [&](double r) {
-          return r <= st.s ? 0.0 : u_surface * (r - st.s) / delta;
-        });
+        fill_from_profile(
+            st, [&](double r) { return r <= st.s ? 0.0 : u_surface * (r - st.s) / delta; });
         start_at(latent * delta / q);
       }
     }
@@ -580,7 +597,8 @@ struct FrontFixingSolver::Impl {
   /// curvature (O(delta/b0) relative, delta ~ one cell: an O(h^2) front error) and anything the
   /// other boundary does during [0, t0] (t0 ~ h^2 / alpha, again O(h^2)). Capped at 5 % of the
   /// output interval and of b0 so coarse grids never start late.
-  double similarity_start_time(const NeumannSolution& n, double delta_min, const Phase& far, double b0) const {
+  double similarity_start_time(const NeumannSolution& n, double delta_min, const Phase& far,
+                               double b0) const {
     const double h_far = b0 / far.n;
     const double alpha_far = far.k / far.heat_capacity;
     double t0 = std::max(n.time_of_front(delta_min), h_far * h_far / (4 * alpha_far));
@@ -641,8 +659,8 @@ struct FrontFixingSolver::Impl {
     st.liquid = false;
     st.s = 0;
     for (int i = 0; i < ice.n; ++i)
-      st.ui[i] = energy_new[i] /
-                 (ice.heat_capacity * (geo.w(face_r(0, st.b, ice.n, i + 1)) - geo.w(face_r(0, st.b, ice.n, i))));
+      st.ui[i] = energy_new[i] / (ice.heat_capacity * (geo.w(face_r(0, st.b, ice.n, i + 1)) -
+                                                       geo.w(face_r(0, st.b, ice.n, i))));
     stats.removed_energy_j += geo.omega * removed;
     heat_in -= removed;  // booked so that the balance stays exact
   }
@@ -740,8 +758,8 @@ struct FrontFixingSolver::Impl {
     THAW_CHECK(t_target >= st.t, "advance_to goes forward");
     const double t_floor = 1e-13 * std::max(sc.duration_s, t_target);
     const double tol_u = 1e-9 * temperature_scale;
-    const bool can_ablate = ablation_heat_flux > 0 &&
-                            (outer_bc.kind == BcKind::robin || outer_bc.kind == BcKind::flux);
+    const bool can_ablate =
+        ablation_heat_flux > 0 && (outer_bc.kind == BcKind::robin || outer_bc.kind == BcKind::flux);
     int event_retries = 0;
     while (!done && st.t < t_target) {
       guard_runaway();
@@ -769,7 +787,8 @@ struct FrontFixingSolver::Impl {
       // steps below that noise forever.
       double w_min = (st.b - ice_left(st)) / ice.n;
       if (st.liquid) w_min = std::min(w_min, st.s / water.n);
-      const double allowed = std::max(tol, 8 * std::numeric_limits<double>::epsilon() * st.b / w_min);
+      const double allowed =
+          std::max(tol, 8 * std::numeric_limits<double>::epsilon() * st.b / w_min);
       const double factor = tr.err > 0 ? 0.9 * std::cbrt(allowed / tr.err) : 3.0;
       if (tr.err > allowed && h > 64 * t_floor) {
         ++stats.rejected_steps;
@@ -789,14 +808,18 @@ struct FrontFixingSolver::Impl {
       };
       if (!st.ablating && can_ablate) {
         const double u0 = surface_temperature(st), u1 = surface_temperature(x1);
-        if (u1 > tol_u) consider(u0 >= 0 ? 0.0 : -u0 / (u1 - u0), Crossing::onset);
-        else if (u1 >= -tol_u) fire_after = Crossing::onset;
+        if (u1 > tol_u)
+          consider(u0 >= 0 ? 0.0 : -u0 / (u1 - u0), Crossing::onset);
+        else if (u1 >= -tol_u)
+          fire_after = Crossing::onset;
       }
       if (st.ablating) {
         const double g0 = rates(st).ablation, g1 = rates(x1).ablation;
         const double tol_g = 1e-9 * geo.area(st.b) * std::abs(ablation_heat_flux);
-        if (g1 < -tol_g) consider(g0 <= 0 ? 0.0 : g0 / (g0 - g1), Crossing::stop);
-        else if (g1 <= tol_g && g0 > tol_g) fire_after = Crossing::stop;
+        if (g1 < -tol_g)
+          consider(g0 <= 0 ? 0.0 : g0 / (g0 - g1), Crossing::stop);
+        else if (g1 <= tol_g && g0 > tol_g)
+          fire_after = Crossing::stop;
       }
       if (x1.liquid && x1.s < 0.5 * remnant && st.s > remnant)
         consider((st.s - 0.75 * remnant) / (st.s - x1.s), Crossing::liquid);
@@ -840,20 +863,26 @@ struct FrontFixingSolver::Impl {
     out.enthalpy_j = geo.omega * e;
     out.heat_in_j = geo.omega * heat_in;
     out.drained_j = geo.omega * drained;
-    out.energy_balance_error = std::abs(e - e0 - heat_in + drained) / (latent * geo.w(length_scale));
+    out.energy_balance_error =
+        std::abs(e - e0 - heat_in + drained) / (latent * geo.w(length_scale));
     out.ablating = st.ablating;
     if (!with_profile) return out;
     if (st.liquid) {
       const double h = st.s / water.n;
-      if (inner_bc.kind == BcKind::dirichlet) out.profile.push_back({0.0, inner_bc.value + t_m, "water"});
-      for (int j = 0; j < water.n; ++j) out.profile.push_back({(j + 0.5) * h, st.ul[j] + t_m, "water"});
+      if (inner_bc.kind == BcKind::dirichlet)
+        out.profile.push_back({0.0, inner_bc.value + t_m, "water"});
+      for (int j = 0; j < water.n; ++j)
+        out.profile.push_back({(j + 0.5) * h, st.ul[j] + t_m, "water"});
       out.profile.push_back({st.s, t_m, "water"});
     }
     if (!done) {
       const double a = ice_left(st), h = (st.b - a) / ice.n;
-      if (st.liquid) out.profile.push_back({st.s, t_m, "ice"});
-      else if (inner_bc.kind == BcKind::dirichlet) out.profile.push_back({0.0, inner_bc.value + t_m, "ice"});
-      for (int j = 0; j < ice.n; ++j) out.profile.push_back({a + (j + 0.5) * h, st.ui[j] + t_m, "ice"});
+      if (st.liquid)
+        out.profile.push_back({st.s, t_m, "ice"});
+      else if (inner_bc.kind == BcKind::dirichlet)
+        out.profile.push_back({0.0, inner_bc.value + t_m, "ice"});
+      for (int j = 0; j < ice.n; ++j)
+        out.profile.push_back({a + (j + 0.5) * h, st.ui[j] + t_m, "ice"});
       out.profile.push_back({st.b, surface_temperature(st) + t_m, "ice"});
     }
     return out;
@@ -871,14 +900,19 @@ struct FrontFixingSolver::Impl {
     if (!with_profile) return out;
     const double tw = sc.water_initial_temperature_c, ti = sc.ice_initial_temperature_c;
     if (s0 > 0) {
-      if (inner_bc.kind == BcKind::dirichlet) out.profile.push_back({0.0, inner_bc.value + t_m, "water"});
-      for (int j = 0; j < water.n; ++j) out.profile.push_back({(j + 0.5) * s0 / water.n, tw, "water"});
+      if (inner_bc.kind == BcKind::dirichlet)
+        out.profile.push_back({0.0, inner_bc.value + t_m, "water"});
+      for (int j = 0; j < water.n; ++j)
+        out.profile.push_back({(j + 0.5) * s0 / water.n, tw, "water"});
       out.profile.push_back({s0, tw, "water"});
     }
     if (b0 > s0) {
-      if (s0 == 0 && inner_bc.kind == BcKind::dirichlet) out.profile.push_back({0.0, inner_bc.value + t_m, "ice"});
-      for (int j = 0; j < ice.n; ++j) out.profile.push_back({s0 + (j + 0.5) * (b0 - s0) / ice.n, ti, "ice"});
-      out.profile.push_back({b0, outer_bc.kind == BcKind::dirichlet ? outer_bc.value + t_m : ti, "ice"});
+      if (s0 == 0 && inner_bc.kind == BcKind::dirichlet)
+        out.profile.push_back({0.0, inner_bc.value + t_m, "ice"});
+      for (int j = 0; j < ice.n; ++j)
+        out.profile.push_back({s0 + (j + 0.5) * (b0 - s0) / ice.n, ti, "ice"});
+      out.profile.push_back(
+          {b0, outer_bc.kind == BcKind::dirichlet ? outer_bc.value + t_m : ti, "ice"});
     }
     return out;
   }
@@ -904,14 +938,24 @@ double FrontFixingSolver::advance_to(double t) {
                     "the Stefan solver cannot continue: " + b.what + "; " + cause.hint);
   }
 }
-double FrontFixingSolver::time() const { return m_impl->st.t; }
-bool FrontFixingSolver::finished() const { return m_impl->done; }
-Snapshot FrontFixingSolver::snapshot(bool with_profile) const { return m_impl->snapshot(with_profile); }
+double FrontFixingSolver::time() const {
+  return m_impl->st.t;
+}
+bool FrontFixingSolver::finished() const {
+  return m_impl->done;
+}
+Snapshot FrontFixingSolver::snapshot(bool with_profile) const {
+  return m_impl->snapshot(with_profile);
+}
 Snapshot FrontFixingSolver::initial_snapshot(bool with_profile) const {
   return m_impl->initial_snapshot(with_profile);
 }
-const std::vector<Event>& FrontFixingSolver::events() const { return m_impl->events; }
-const SolverStatistics& FrontFixingSolver::statistics() const { return m_impl->stats; }
+const std::vector<Event>& FrontFixingSolver::events() const {
+  return m_impl->events;
+}
+const SolverStatistics& FrontFixingSolver::statistics() const {
+  return m_impl->stats;
+}
 double FrontFixingSolver::reference_energy() const {
   return m_impl->geo.omega * m_impl->latent * m_impl->geo.w(m_impl->length_scale);
 }

@@ -47,28 +47,28 @@ struct ProfilePoint {
 /// The solver's state at one instant, in the units of interfaces.csv.
 struct Snapshot {
   double time_s = 0;
-  double inner_radius_m = 0;   ///< s: water|ice front (0 without liquid) [m]
-  double outer_radius_m = 0;   ///< b: ice surface [m] (== s once the ice is gone)
-  double liquid_volume_m3 = 0; ///< per m^2 (planar), per m (cylinder), total (sphere)
+  double inner_radius_m = 0;    ///< s: water|ice front (0 without liquid) [m]
+  double outer_radius_m = 0;    ///< b: ice surface [m] (== s once the ice is gone)
+  double liquid_volume_m3 = 0;  ///< per m^2 (planar), per m (cylinder), total (sphere)
   double ice_volume_m3 = 0;
   /// |H(t) - H(0) - heat in + drained melt + removed remnants| / reference energy, cumulative.
   double energy_balance_error = 0;
-  double enthalpy_j = 0;       ///< discrete total enthalpy relative to ice at T_m [J (per m^2, per m)]
-  double heat_in_j = 0;        ///< heat entered through the boundaries since t = 0
-  double drained_j = 0;        ///< enthalpy carried away by drained melt since t = 0
-  bool ablating = false;       ///< outer surface held at T_m and receding
+  double enthalpy_j = 0;  ///< discrete total enthalpy relative to ice at T_m [J (per m^2, per m)]
+  double heat_in_j = 0;   ///< heat entered through the boundaries since t = 0
+  double drained_j = 0;   ///< enthalpy carried away by drained melt since t = 0
+  bool ablating = false;  ///< outer surface held at T_m and receding
   std::vector<ProfilePoint> profile;
 };
 
 struct SolverStatistics {
-  long steps = 0;               ///< accepted steps
-  long rejected_steps = 0;      ///< rejected by the error test, Newton failure or event location
+  long steps = 0;           ///< accepted steps
+  long rejected_steps = 0;  ///< rejected by the error test, Newton failure or event location
   long newton_iterations = 0;
-  long linear_solves = 0;       ///< tridiagonal solves (one per phase per residual evaluation)
+  long linear_solves = 0;            ///< tridiagonal solves (one per phase per residual evaluation)
   double max_step_energy_error = 0;  ///< max over steps of |dH - heat| / reference energy
-  double removed_energy_j = 0;  ///< enthalpy of vanishing remnants removed (booked, tiny)
-  double start_energy_j = 0;    ///< heat of the analytic small-time start (zero-thickness phase)
-  double start_time_s = 0;      ///< t0 of the analytic small-time start (0 if none)
+  double removed_energy_j = 0;       ///< enthalpy of vanishing remnants removed (booked, tiny)
+  double start_energy_j = 0;  ///< heat of the analytic small-time start (zero-thickness phase)
+  double start_time_s = 0;    ///< t0 of the analytic small-time start (0 if none)
   double min_step_s = 0, max_step_s = 0;
 };
 

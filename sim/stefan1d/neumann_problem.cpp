@@ -10,11 +10,13 @@ namespace thaw::sim {
 NeumannSolution neumann_solution(const NeumannProblem& p) {
   const Materials& m = p.materials;
   const double tm = m.melting_point_c;
-  return p.melting ? solve_neumann(m.water_conductivity_w_mk, m.water_heat_capacity(), m.ice_conductivity_w_mk,
-                                   m.ice_heat_capacity(), m.latent_heat_per_volume(), tm + p.face_excess_k, tm,
+  return p.melting ? solve_neumann(m.water_conductivity_w_mk, m.water_heat_capacity(),
+                                   m.ice_conductivity_w_mk, m.ice_heat_capacity(),
+                                   m.latent_heat_per_volume(), tm + p.face_excess_k, tm,
                                    tm - p.far_excess_k)
-                   : solve_neumann(m.ice_conductivity_w_mk, m.ice_heat_capacity(), m.water_conductivity_w_mk,
-                                   m.water_heat_capacity(), m.latent_heat_per_volume(), tm - p.face_excess_k, tm,
+                   : solve_neumann(m.ice_conductivity_w_mk, m.ice_heat_capacity(),
+                                   m.water_conductivity_w_mk, m.water_heat_capacity(),
+                                   m.latent_heat_per_volume(), tm - p.face_excess_k, tm,
                                    tm + p.far_excess_k);
 }
 
@@ -25,7 +27,8 @@ NeumannComparison run_neumann_problem(const NeumannProblem& p) {
   // distance d beyond the front: with d = 10 sqrt(alpha t1), erfc(5) = 1.5e-12, so holding T_far
   // (or a symmetry plane) there is exact to round-off (at 6 lengths it would be erfc(3) = 2e-5,
   // ~1e-4 K, visible in the profile errors at 320 cells).
-  const double far = ne.front(p.t1_s) + 10 * std::sqrt(ne.alpha2() * p.t1_s);  // alpha of the far phase
+  const double far =
+      ne.front(p.t1_s) + 10 * std::sqrt(ne.alpha2() * p.t1_s);  // alpha of the far phase
   Scenario sc;
   sc.geometry = Geometry::planar;
   sc.materials = p.materials;
@@ -63,7 +66,8 @@ NeumannComparison run_neumann_problem(const NeumannProblem& p) {
   c.exact_front_m = ne.front(p.t1_s);
   for (const ProfilePoint& pt : snap.profile)
     c.temperature_error_k =
-        std::max(c.temperature_error_k, std::abs(pt.temperature_c - ne.temperature(from_face(pt.r_m), p.t1_s)));
+        std::max(c.temperature_error_k,
+                 std::abs(pt.temperature_c - ne.temperature(from_face(pt.r_m), p.t1_s)));
   c.energy_balance_error = snap.energy_balance_error;
   c.steps = solver.statistics().steps;
   return c;

@@ -11,9 +11,9 @@
 namespace thaw::sim {
 
 struct NeumannProblem {
-  bool melting = true;      ///< melting from a heated inner face, else freezing from the outer face
-  double face_excess_k = 0; ///< |T_face - T_m| [K]
-  double far_excess_k = 0;  ///< |T_far - T_m| [K] (subcooling of the ice / superheat of the water)
+  bool melting = true;  ///< melting from a heated inner face, else freezing from the outer face
+  double face_excess_k = 0;  ///< |T_face - T_m| [K]
+  double far_excess_k = 0;   ///< |T_far - T_m| [K] (subcooling of the ice / superheat of the water)
   double t0_s = 100, t1_s = 1000;  ///< start from the exact profile at t0, compare at t1
   int cells_per_phase = 40;
   double time_tolerance = 1e-11;

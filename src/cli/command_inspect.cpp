@@ -37,7 +37,8 @@ void run_inspect(const InspectArgs& a) {
   if (!fs::exists(path, ec)) throw UserError(a.path, "", "no such file or folder");
   if (fs::is_directory(path, ec)) {
     if (!inspect::is_simulation_folder(path))
-      throw UserError(a.path, "", "not a simulation folder (no interfaces.csv) and not an OBJ file");
+      throw UserError(a.path, "",
+                      "not a simulation folder (no interfaces.csv) and not an OBJ file");
     const inspect::SimulationFolder folder = inspect::read_simulation_folder(path);
     std::vector<inspect::StepReport> reports;
     {
@@ -45,8 +46,10 @@ void run_inspect(const InspectArgs& a) {
                                 a.quiet || folder.steps.size() < 2);
       reports = inspect::inspect_simulation(folder, interruptible(progress.callback()));
     }
-    if (a.json) std::cout << inspect::to_json(reports).dump(2) << "\n";
-    else std::cout << inspect::format_table(folder, reports);
+    if (a.json)
+      std::cout << inspect::to_json(reports).dump(2) << "\n";
+    else
+      std::cout << inspect::format_table(folder, reports);
     std::cout.flush();
     if (!a.pvd.empty()) {
       ProgressReporter progress("pvd", static_cast<std::int64_t>(folder.steps.size()),
@@ -69,8 +72,10 @@ void run_inspect(const InspectArgs& a) {
     throw UserError(a.path, "--plot", "needs a simulation folder (interfaces.csv), not one OBJ");
   if (a.step) throw UserError(a.path, "--step", "only applies to a simulation folder");
   const inspect::MeshReport report = inspect::inspect_obj(path);
-  if (a.json) std::cout << inspect::to_json(report).dump(2) << "\n";
-  else std::cout << inspect::format_table(report);
+  if (a.json)
+    std::cout << inspect::to_json(report).dump(2) << "\n";
+  else
+    std::cout << inspect::format_table(report);
   std::cout.flush();
   if (!a.pvd.empty()) {
     inspect::PvdWriter writer(a.pvd);

@@ -23,8 +23,8 @@ fs::path temporary_sibling(const fs::path& final_path) {
 int remove_stale_temporaries(const fs::path& dir) {
   std::error_code ec;
   std::vector<fs::path> stale;
-  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
-       it.increment(ec)) {
+  for (auto it = fs::recursive_directory_iterator(dir, ec);
+       !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
     // temporary_sibling() names: <final>.tmp-<pid>-<counter>
     const std::string name = it->path().filename().string();
     const auto pos = name.rfind(".tmp-");
@@ -84,7 +84,8 @@ void AtomicOutputFile::commit() {
   m_committed = true;
   if (ec) {
     fs::remove(m_temp, ec);
-    throw UserError(m_path.string(), "", "cannot rename temporary file into place: " + ec.message());
+    throw UserError(m_path.string(), "",
+                    "cannot rename temporary file into place: " + ec.message());
   }
 }
 
@@ -111,7 +112,8 @@ void StagingDirectory::commit() {
   if (fs::exists(m_final, ec)) {
     old = temporary_sibling(m_final);
     fs::rename(m_final, old, ec);
-    if (ec) throw UserError(m_final.string(), "", "cannot replace existing output: " + ec.message());
+    if (ec)
+      throw UserError(m_final.string(), "", "cannot replace existing output: " + ec.message());
   }
   fs::rename(m_temp, m_final, ec);
   if (ec) throw UserError(m_final.string(), "", "cannot move output into place: " + ec.message());

@@ -4,11 +4,11 @@
 #include <cstdio>
 #include <cstdlib>
 
-#define THAW_CHECK(cond, msg)                                                            \
-  do {                                                                                   \
-    if (!(cond)) [[unlikely]] {                                                          \
-      std::fprintf(stderr, "thaw: internal check failed: %s at %s:%d: %s\n", #cond,     \
-                   __FILE__, __LINE__, msg);                                             \
-      std::abort();                                                                      \
-    }                                                                                    \
+#define THAW_CHECK(cond, msg)                                                                 \
+  do {                                                                                        \
+    if (!(cond)) [[unlikely]] {                                                               \
+      std::fprintf(stderr, "thaw: internal check failed: %s at %s:%d: %s\n", #cond, __FILE__, \
+                   __LINE__, msg);                                                            \
+      std::abort();                                                                           \
+    }                                                                                         \
   } while (0)

@@ -40,7 +40,8 @@ ProcessResult run_process(const std::vector<std::string>& argv) {
   if (!exe) throw UserError(argv[0], "", "program not found on PATH");
 
   int pipe_fds[2];
-  if (::pipe(pipe_fds) != 0) throw UserError(argv[0], "", std::string("pipe: ") + std::strerror(errno));
+  if (::pipe(pipe_fds) != 0)
+    throw UserError(argv[0], "", std::string("pipe: ") + std::strerror(errno));
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
@@ -80,8 +81,10 @@ ProcessResult run_process(const std::vector<std::string>& argv) {
   set_interruptible_child(0);
   // A child ended by our interrupt is not its failure: report the interrupt instead.
   throw_if_interrupted();
-  if (WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
-  else if (WIFSIGNALED(status)) result.exit_code = 128 + WTERMSIG(status);
+  if (WIFEXITED(status))
+    result.exit_code = WEXITSTATUS(status);
+  else if (WIFSIGNALED(status))
+    result.exit_code = 128 + WTERMSIG(status);
   return result;
 }
 

@@ -9,8 +9,8 @@
 namespace thaw {
 
 struct ProcessResult {
-  int exit_code = -1;          ///< exit status; 128 + signal number if killed by a signal
-  std::string output;          ///< captured stdout + stderr (last 64 KiB)
+  int exit_code = -1;  ///< exit status; 128 + signal number if killed by a signal
+  std::string output;  ///< captured stdout + stderr (last 64 KiB)
 };
 
 /// Full path of `name` found on PATH, or nullopt.

@@ -1,9 +1,9 @@
 #include "src/common/toml_table.h"
 
+#include <toml++/toml.h>
 #include <cmath>
 #include <fstream>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "src/common/error.h"
 
@@ -28,8 +28,8 @@ TomlTable TomlTable::parse_string(const std::string& text, const std::string& so
     shared->root = std::make_shared<toml::table>(toml::parse(text, source_name));
   } catch (const toml::parse_error& e) {
     const auto& b = e.source().begin;
-    throw UserError(source_name, "line " + std::to_string(b.line) + ", column " +
-                                     std::to_string(b.column),
+    throw UserError(source_name,
+                    "line " + std::to_string(b.line) + ", column " + std::to_string(b.column),
                     "malformed TOML: " + std::string(e.description()));
   }
   return TomlTable(shared, shared->root.get(), "");
@@ -37,8 +37,7 @@ TomlTable TomlTable::parse_string(const std::string& text, const std::string& so
 
 TomlTable TomlTable::parse_file(const std::filesystem::path& path) {
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec))
-    throw UserError(path.string(), "", "file not found");
+  if (!std::filesystem::exists(path, ec)) throw UserError(path.string(), "", "file not found");
   if (std::filesystem::is_directory(path, ec))
     throw UserError(path.string(), "", "is a directory, expected a TOML file");
   std::ifstream in(path, std::ios::binary);
@@ -52,7 +51,9 @@ std::string TomlTable::full_key(const std::string& key) const {
   return m_prefix.empty() ? key : m_prefix + "." + key;
 }
 
-const toml::node* TomlTable::find(const std::string& key) const { return m_table->get(key); }
+const toml::node* TomlTable::find(const std::string& key) const {
+  return m_table->get(key);
+}
 
 std::string TomlTable::where(const std::string& key) const {
   std::string w;
@@ -65,9 +66,13 @@ void TomlTable::fail(const std::string& key, const std::string& problem) const {
   throw UserError(m_shared->source, where(key), problem);
 }
 
-void TomlTable::mark(const std::string& key) const { m_shared->used.insert(full_key(key)); }
+void TomlTable::mark(const std::string& key) const {
+  m_shared->used.insert(full_key(key));
+}
 
-bool TomlTable::has(const std::string& key) const { return find(key) != nullptr; }
+bool TomlTable::has(const std::string& key) const {
+  return find(key) != nullptr;
+}
 
 std::vector<std::string> TomlTable::keys() const {
   std::vector<std::string> out;
@@ -149,8 +154,7 @@ std::vector<double> TomlTable::get_doubles(const std::string& key) const {
 
 std::array<double, 3> TomlTable::get_vec3(const std::string& key) const {
   const auto v = get_doubles(key);
-  if (v.size() != 3)
-    fail(key, "expected 3 numbers [x, y, z], got " + std::to_string(v.size()));
+  if (v.size() != 3) fail(key, "expected 3 numbers [x, y, z], got " + std::to_string(v.size()));
   return {v[0], v[1], v[2]};
 }
 
@@ -231,12 +235,14 @@ void TomlTable::check_no_unknown_keys() const {
     const Shared& shared;
     void walk(const toml::table& t, const std::string& prefix) const {
       for (const auto& [k, v] : t) {
-        const std::string key = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
+        const std::string key =
+            prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
         if (!shared.used.count(key)) {
           const auto line = v.source().begin.line;
-          throw UserError(shared.source,
-                          (line > 0 ? "line " + std::to_string(line) + ", " : "") + "key '" + key + "'",
-                          "unknown key");
+          throw UserError(
+              shared.source,
+              (line > 0 ? "line " + std::to_string(line) + ", " : "") + "key '" + key + "'",
+              "unknown key");
         }
         if (const toml::table* sub = v.as_table()) {
           walk(*sub, key);

@@ -45,7 +45,8 @@ class TomlTable {
   std::string get_string(const std::string& key) const;
   std::string get_string(const std::string& key, const std::string& fallback) const;
   std::array<double, 3> get_vec3(const std::string& key) const;
-  std::array<double, 3> get_vec3(const std::string& key, const std::array<double, 3>& fallback) const;
+  std::array<double, 3> get_vec3(const std::string& key,
+                                 const std::array<double, 3>& fallback) const;
   /// An array of finite numbers of any length (integers accepted).
   std::vector<double> get_doubles(const std::string& key) const;
   /// An array of 3-vectors, e.g. checker colours [[r,g,b],[r,g,b]].

@@ -10,8 +10,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <numeric>
 #include <nlohmann/json.hpp>
+#include <numeric>
 
 #include "src/common/check.h"
 #include "src/common/error.h"
@@ -24,12 +24,18 @@ namespace {
 
 using Vec3 = std::array<double, 3>;
 
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3 sub(const Vec3& a, const Vec3& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
 Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+double dot(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+double norm(const Vec3& a) {
+  return std::sqrt(dot(a, a));
+}
 
 struct QualityStats {
   double min = 0, mean = 0, max = 0;
@@ -71,9 +77,9 @@ MeshReport inspect_mesh(const TriangleMesh& mesh, const std::string& source) {
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
     for (const std::int64_t i : mesh.triangles[f])
       if (i < 0 || i >= nv)
-        throw UserError(source, "triangle " + std::to_string(f + 1),
-                        "vertex index " + std::to_string(i + 1) + " out of range 1.." +
-                            std::to_string(nv));
+        throw UserError(
+            source, "triangle " + std::to_string(f + 1),
+            "vertex index " + std::to_string(i + 1) + " out of range 1.." + std::to_string(nv));
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
     for (const double c : mesh.vertices[v])
       if (!std::isfinite(c))
@@ -84,9 +90,8 @@ MeshReport inspect_mesh(const TriangleMesh& mesh, const std::string& source) {
   {
     std::vector<std::int64_t> order(static_cast<std::size_t>(nv));
     std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](std::int64_t a, std::int64_t b) {
-      return mesh.vertices[a] < mesh.vertices[b];
-    });
+    std::sort(order.begin(), order.end(),
+              [&](std::int64_t a, std::int64_t b) { return mesh.vertices[a] < mesh.vertices[b]; });
     for (std::size_t k = 1; k < order.size(); ++k)
       if (mesh.vertices[order[k]] == mesh.vertices[order[k - 1]]) ++r.duplicate_vertices;
   }
@@ -148,8 +153,7 @@ MeshReport inspect_mesh(const TriangleMesh& mesh, const std::string& source) {
   }
   if (used_vertices == 0) r.bbox_min = r.bbox_max = {0, 0, 0};
   r.unused_vertices = nv - used_vertices;
-  r.euler_characteristic =
-      used_vertices - r.edges + static_cast<std::int64_t>(topo.size());
+  r.euler_characteristic = used_vertices - r.edges + static_cast<std::int64_t>(topo.size());
 
   // Signed volume by the divergence theorem, sum of tetrahedra (origin, a, b, c); independent of
   // the origin only for a closed surface. Positive when the normals (right-hand rule) point out.
@@ -257,10 +261,10 @@ std::string format_table(const MeshReport& r) {
   row("volume", num(r.volume_m3) + " m^3");
   row("signed volume", num(r.signed_volume_m3) + " m^3");
   row("area", num(r.area_m2) + " m^2");
-  row("bounding box min", num(r.bbox_min[0]) + " " + num(r.bbox_min[1]) + " " +
-                              num(r.bbox_min[2]) + " m");
-  row("bounding box max", num(r.bbox_max[0]) + " " + num(r.bbox_max[1]) + " " +
-                              num(r.bbox_max[2]) + " m");
+  row("bounding box min",
+      num(r.bbox_min[0]) + " " + num(r.bbox_min[1]) + " " + num(r.bbox_min[2]) + " m");
+  row("bounding box max",
+      num(r.bbox_max[0]) + " " + num(r.bbox_max[1]) + " " + num(r.bbox_max[2]) + " m");
   row("edge length min/mean/max",
       num(r.min_edge_m) + " / " + num(r.mean_edge_m) + " / " + num(r.max_edge_m) + " m");
   row("angle min/mean-min/max", num(r.min_angle_deg, "%.2f") + " / " +

@@ -17,12 +17,12 @@
 namespace thaw::inspect {
 
 struct MeshReport {
-  std::string source;                  ///< file name (or a label) the mesh came from
-  std::int64_t vertices = 0;           ///< vertex records in the file
-  std::int64_t triangles = 0;          ///< triangles (polygons counted after fan splitting)
-  std::int64_t edges = 0;              ///< distinct undirected edges (by vertex index)
-  std::int64_t boundary_edges = 0;     ///< edges used by exactly one triangle (holes)
-  std::int64_t non_manifold_edges = 0; ///< edges used by three or more triangles
+  std::string source;                   ///< file name (or a label) the mesh came from
+  std::int64_t vertices = 0;            ///< vertex records in the file
+  std::int64_t triangles = 0;           ///< triangles (polygons counted after fan splitting)
+  std::int64_t edges = 0;               ///< distinct undirected edges (by vertex index)
+  std::int64_t boundary_edges = 0;      ///< edges used by exactly one triangle (holes)
+  std::int64_t non_manifold_edges = 0;  ///< edges used by three or more triangles
   /// Manifold edges whose two triangles traverse it in the same direction (one of them flipped).
   std::int64_t inconsistent_edges = 0;
   std::int64_t duplicate_vertices = 0;    ///< vertex records whose position repeats an earlier one
@@ -30,12 +30,12 @@ struct MeshReport {
   std::int64_t degenerate_triangles = 0;  ///< repeated corner index or (numerically) zero area
   std::int64_t components = 0;            ///< edge-connected pieces of the surface
   std::int64_t euler_characteristic = 0;  ///< V - E + F over used vertices (2 for a sphere)
-  bool closed = false;                 ///< no boundary and no non-manifold edge
-  bool consistently_oriented = false;  ///< inconsistent_edges == 0
+  bool closed = false;                    ///< no boundary and no non-manifold edge
+  bool consistently_oriented = false;     ///< inconsistent_edges == 0
   /// Closed and consistently oriented with positive signed volume (normals point outward);
   /// nullopt when orientation is not defined (open or inconsistent surface).
   std::optional<bool> outward;
-  double volume_m3 = 0;         ///< enclosed volume from vtkMassProperties [m^3] (closed only meaningful)
+  double volume_m3 = 0;  ///< enclosed volume from vtkMassProperties [m^3] (closed only meaningful)
   double signed_volume_m3 = 0;  ///< (1/6) sum a.(b x c) over triangles [m^3]; > 0 when outward
   double area_m2 = 0;           ///< total surface area [m^2]
   std::array<double, 3> bbox_min{}, bbox_max{};  ///< axis-aligned bounding box of used vertices [m]

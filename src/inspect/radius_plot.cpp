@@ -51,12 +51,14 @@ Unit length_unit(double max_m) {
 /// a cross-section area) or m^3 per m^2 of face (planar: a thickness).
 Unit volume_unit(sim::Geometry g, double max_value) {
   switch (g) {
-    case sim::Geometry::planar: return max_value < 0.1 ? Unit{1e3, "mm (volume per unit area)"}
-                                                       : Unit{1.0, "m (volume per unit area)"};
+    case sim::Geometry::planar:
+      return max_value < 0.1 ? Unit{1e3, "mm (volume per unit area)"}
+                             : Unit{1.0, "m (volume per unit area)"};
     case sim::Geometry::cylinder:
       return max_value < 1e-2 ? Unit{1e4, "cm\u00b2 (volume per unit length)"}
                               : Unit{1.0, "m\u00b2 (volume per unit length)"};
-    case sim::Geometry::sphere: break;
+    case sim::Geometry::sphere:
+      break;
   }
   if (max_value < 1e-3) return {1e6, "cm\u00b3"};
   if (max_value < 1.0) return {1e3, "L"};
@@ -153,14 +155,14 @@ void write_radius_plot(const std::vector<sim::InterfaceRecord>& rows, const fs::
 
   auto* top = vtkChartXY::SafeDownCast(matrix->GetChart(vtkVector2i(0, 1)));
   auto* bottom = vtkChartXY::SafeDownCast(matrix->GetChart(vtkVector2i(0, 0)));
-  if (top == nullptr || bottom == nullptr) throw std::logic_error("vtkChartMatrix gave no vtkChartXY");
+  if (top == nullptr || bottom == nullptr)
+    throw std::logic_error("vtkChartMatrix gave no vtkChartXY");
 
   style_chart(top, options.title + (planar ? ": front positions" : ": interface radii"));
-  add_line(top, radii, 2, 90, 160, 200, markers);   // outer: ice blue
-  add_line(top, radii, 1, 20, 70, 170, markers);    // inner: water blue
+  add_line(top, radii, 2, 90, 160, 200, markers);  // outer: ice blue
+  add_line(top, radii, 1, 20, 70, 170, markers);   // inner: water blue
   style_axis(top->GetAxis(vtkAxis::BOTTOM), "time [" + tu.name + "]");
-  style_axis(top->GetAxis(vtkAxis::LEFT),
-             (planar ? "position [" : "radius [") + lu.name + "]");
+  style_axis(top->GetAxis(vtkAxis::LEFT), (planar ? "position [" : "radius [") + lu.name + "]");
 
   style_chart(bottom, "Volumes");
   add_line(bottom, volumes, 3, 140, 140, 140, markers);  // total: grey
@@ -174,13 +176,11 @@ void write_radius_plot(const std::vector<sim::InterfaceRecord>& rows, const fs::
     vtkAxis* y = chart->GetAxis(vtkAxis::LEFT);
     chart->RecalculateBounds();
     y->SetBehavior(vtkAxis::FIXED);
-    const double ymax = chart == top ? max_r * lu.scale
-                                     : [&] {
-                                         double m = 0;
-                                         for (const auto& r : rows)
-                                           m = std::max(m, (r.liquid_volume_m3 + r.ice_volume_m3));
-                                         return m * vu.scale;
-                                       }();
+    const double ymax = chart == top ? max_r * lu.scale : [&] {
+      double m = 0;
+      for (const auto& r : rows) m = std::max(m, (r.liquid_volume_m3 + r.ice_volume_m3));
+      return m * vu.scale;
+    }();
     y->SetRange(0.0, ymax > 0 ? 1.08 * ymax : 1.0);
     vtkAxis* x = chart->GetAxis(vtkAxis::BOTTOM);
     x->SetBehavior(vtkAxis::FIXED);
@@ -191,7 +191,8 @@ void write_radius_plot(const std::vector<sim::InterfaceRecord>& rows, const fs::
 }
 
 void write_radius_plot(const fs::path& simdir, const fs::path& out_png) {
-  const std::vector<sim::InterfaceRecord> rows = sim::read_interfaces_csv(simdir / "interfaces.csv");
+  const std::vector<sim::InterfaceRecord> rows =
+      sim::read_interfaces_csv(simdir / "interfaces.csv");
   PlotOptions options;
   std::error_code ec;
   // A grid run (fields/) has volume-equivalent radii: plotted as spheres (the default).

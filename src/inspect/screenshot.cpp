@@ -94,9 +94,10 @@ void write_screenshot(const std::vector<ScreenshotPanel>& panels, const fs::path
   window->SetWindowName("thaw inspect");
 
   // One camera for every panel, framed on the union of all surfaces, so sizes compare directly.
-  double bounds[6] = {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
-                      std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
-                      std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  double bounds[6] = {
+      std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+      std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+      std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
   bool any = false;
   for (const ScreenshotPanel& p : panels)
     for (const SceneSurface& s : p.surfaces)
@@ -211,7 +212,8 @@ void write_simulation_screenshot(const fs::path& simdir, const fs::path& out_png
     for (std::size_t k = 0; k < folder.steps.size(); ++k)
       if (folder.steps[k].step == *step) picks.push_back(k);
     if (picks.empty())
-      throw UserError(simdir.string(), "--step", "step " + std::to_string(*step) + " is not meshed");
+      throw UserError(simdir.string(), "--step",
+                      "step " + std::to_string(*step) + " is not meshed");
   } else {
     // Spread over the steps that still have a surface: a last step where everything has melted
     // would only show an empty panel.

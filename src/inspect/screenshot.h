@@ -19,27 +19,27 @@ struct SceneSurface {
 };
 
 struct ScreenshotPanel {
-  std::string label;                  ///< printed at the panel's top left (may hold newlines)
-  std::vector<SceneSurface> surfaces; ///< may be empty (everything vanished)
+  std::string label;                   ///< printed at the panel's top left (may hold newlines)
+  std::vector<SceneSurface> surfaces;  ///< may be empty (everything vanished)
 };
 
 struct ScreenshotOptions {
-  std::string title;         ///< printed above the panels
-  int panel_size_px = 640;   ///< each panel is panel_size_px square
-  bool edges = true;         ///< draw triangle edges
+  std::string title;        ///< printed above the panels
+  int panel_size_px = 640;  ///< each panel is panel_size_px square
+  bool edges = true;        ///< draw triangle edges
 };
 
 /// Renders `panels` side by side into `out_png`. Throws thaw::UserError if no X display can be
 /// had (see DisplayLease) or the PNG cannot be written.
-void write_screenshot(const std::vector<ScreenshotPanel>& panels, const std::filesystem::path& out_png,
-                      const ScreenshotOptions& options = {});
+void write_screenshot(const std::vector<ScreenshotPanel>& panels,
+                      const std::filesystem::path& out_png, const ScreenshotOptions& options = {});
 
 /// One OBJ file, one panel (the OBJ is validated first).
 void write_obj_screenshot(const std::filesystem::path& obj, const std::filesystem::path& out_png);
 
 /// A simulation folder: `step` alone if given, else up to four steps evenly spread over the
-/// meshed steps that still have a surface (first and last of those included). Throws UserError when the folder is not meshed or
-/// `step` is not one of its meshed steps.
+/// meshed steps that still have a surface (first and last of those included). Throws UserError when
+/// the folder is not meshed or `step` is not one of its meshed steps.
 void write_simulation_screenshot(const std::filesystem::path& simdir,
                                  const std::filesystem::path& out_png,
                                  std::optional<long> step = std::nullopt);

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <numbers>
 #include <nlohmann/json.hpp>
+#include <numbers>
 
 #include "src/common/error.h"
 #include "src/meshio/mesh_manifest.h"
@@ -61,7 +61,8 @@ SimulationFolder read_simulation_folder(const fs::path& dir) {
   // A grid run (axisymmetric / 3D: a fields/ folder) has no 1D shell; its radii are
   // volume-equivalent spheres and its exact volumes unknown here.
   const bool grid_run = fs::is_directory(dir / "fields", ec);
-  if (!grid_run && fs::exists(dir / "summary.json", ec)) f.geometry = sim::read_shell_geometry(dir / "summary.json");
+  if (!grid_run && fs::exists(dir / "summary.json", ec))
+    f.geometry = sim::read_shell_geometry(dir / "summary.json");
   const fs::path manifest = dir / "mesh" / "manifest.json";
   if (fs::exists(manifest, ec)) {
     f.meshed = true;
@@ -70,14 +71,16 @@ SimulationFolder read_simulation_folder(const fs::path& dir) {
   return f;
 }
 
-std::optional<double> exact_volume_m3(const std::optional<sim::ShellGeometry>& geometry,
-                                      double r) {
+std::optional<double> exact_volume_m3(const std::optional<sim::ShellGeometry>& geometry, double r) {
   if (!geometry) return std::nullopt;
   const double ball = 4.0 / 3.0 * std::numbers::pi * r * r * r;
   switch (geometry->geometry) {
-    case sim::Geometry::sphere: return ball;
-    case sim::Geometry::cylinder: return std::numbers::pi * r * r * geometry->length_m + ball;
-    case sim::Geometry::planar: return std::nullopt;
+    case sim::Geometry::sphere:
+      return ball;
+    case sim::Geometry::cylinder:
+      return std::numbers::pi * r * r * geometry->length_m + ball;
+    case sim::Geometry::planar:
+      return std::nullopt;
   }
   return std::nullopt;
 }
@@ -109,12 +112,13 @@ std::vector<StepReport> inspect_simulation(const SimulationFolder& folder,
 
 namespace {
 nlohmann::ordered_json surface_json(const std::optional<MeshReport>& report,
-                            const std::optional<double>& exact) {
+                                    const std::optional<double>& exact) {
   if (!report) return nullptr;
   nlohmann::ordered_json j = to_json(*report);
   j["exact_volume_m3"] = exact ? nlohmann::ordered_json(*exact) : nlohmann::ordered_json(nullptr);
-  j["volume_error_rel"] =
-      exact && *exact > 0 ? nlohmann::ordered_json((report->volume_m3 - *exact) / *exact) : nlohmann::ordered_json(nullptr);
+  j["volume_error_rel"] = exact && *exact > 0
+                              ? nlohmann::ordered_json((report->volume_m3 - *exact) / *exact)
+                              : nlohmann::ordered_json(nullptr);
   return j;
 }
 }  // namespace
@@ -169,9 +173,8 @@ std::string format_table(const SimulationFolder& folder, const std::vector<StepR
                     "%7ld %12.6g %-7s %10.4g %10lld %-6s %-7s %11.5g %9s %10.4g %7.2f %6.3f %5lld "
                     "%4lld %5lld\n",
                     r.step.step, r.step.time_s, name, radius, static_cast<long long>(m->triangles),
-                    m->closed ? "yes" : "NO",
-                    m->outward ? (*m->outward ? "yes" : "NO") : "n/a", m->volume_m3, err,
-                    m->area_m2, m->min_angle_deg, m->max_aspect_ratio,
+                    m->closed ? "yes" : "NO", m->outward ? (*m->outward ? "yes" : "NO") : "n/a",
+                    m->volume_m3, err, m->area_m2, m->min_angle_deg, m->max_aspect_ratio,
                     static_cast<long long>(m->boundary_edges),
                     static_cast<long long>(m->non_manifold_edges),
                     static_cast<long long>(m->duplicate_vertices));

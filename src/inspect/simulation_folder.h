@@ -19,10 +19,10 @@ namespace thaw::inspect {
 
 /// One meshed step from mesh/manifest.json.
 struct MeshedStep {
-  long step = 0;                      ///< index into interfaces.csv rows
-  double time_s = 0;                  ///< simulated time [s]
-  double inner_radius_m = 0;          ///< water|ice front [m]
-  double outer_radius_m = 0;          ///< ice|air surface [m]
+  long step = 0;                               ///< index into interfaces.csv rows
+  double time_s = 0;                           ///< simulated time [s]
+  double inner_radius_m = 0;                   ///< water|ice front [m]
+  double outer_radius_m = 0;                   ///< ice|air surface [m]
   std::optional<std::filesystem::path> inner;  ///< absolute OBJ path; nullopt when vanished
   std::optional<std::filesystem::path> outer;  ///< absolute OBJ path; nullopt when vanished
   /// The mesher's exact solid volumes ("inner_exact_volume_m3" ...) when the manifest has them.
@@ -31,10 +31,10 @@ struct MeshedStep {
 
 struct SimulationFolder {
   std::filesystem::path dir;
-  std::vector<sim::InterfaceRecord> rows;   ///< interfaces.csv, one per output time
+  std::vector<sim::InterfaceRecord> rows;      ///< interfaces.csv, one per output time
   std::optional<sim::ShellGeometry> geometry;  ///< from summary.json when present
-  bool meshed = false;                      ///< mesh/manifest.json exists
-  std::vector<MeshedStep> steps;            ///< manifest steps in file order (empty if !meshed)
+  bool meshed = false;                         ///< mesh/manifest.json exists
+  std::vector<MeshedStep> steps;               ///< manifest steps in file order (empty if !meshed)
 };
 
 /// True when `path` is a directory holding interfaces.csv.
@@ -56,7 +56,7 @@ std::optional<double> exact_volume_m3(const std::optional<sim::ShellGeometry>& g
 
 struct StepReport {
   MeshedStep step;
-  std::optional<MeshReport> inner, outer;            ///< nullopt when the surface vanished
+  std::optional<MeshReport> inner, outer;  ///< nullopt when the surface vanished
   /// From the manifest when present, else exact_volume_m3() [m^3].
   std::optional<double> inner_exact_volume_m3, outer_exact_volume_m3;
 };

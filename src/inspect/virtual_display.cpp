@@ -39,8 +39,7 @@ VirtualServer& server() {
 /// Starts `Xvfb -displayfd FD` and returns ":N" once the server has announced it is ready.
 std::string start_xvfb(const std::string& exe, const std::string& purpose, pid_t& pid_out) {
   int fds[2];
-  if (::pipe(fds) != 0)
-    throw UserError("", "", purpose + ": pipe: " + std::strerror(errno));
+  if (::pipe(fds) != 0) throw UserError("", "", purpose + ": pipe: " + std::strerror(errno));
   ::fcntl(fds[0], F_SETFD, FD_CLOEXEC);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
@@ -48,8 +47,8 @@ std::string start_xvfb(const std::string& exe, const std::string& purpose, pid_t
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
   posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
   const std::string fd_arg = std::to_string(fds[1]);
-  std::vector<std::string> argv = {exe, "-displayfd", fd_arg, "-screen", "0", "1920x1080x24",
-                                   "-nolisten", "tcp", "-noreset"};
+  std::vector<std::string> argv = {
+      exe, "-displayfd", fd_arg, "-screen", "0", "1920x1080x24", "-nolisten", "tcp", "-noreset"};
   std::vector<char*> args;
   for (auto& a : argv) args.push_back(a.data());
   args.push_back(nullptr);
@@ -59,8 +58,8 @@ std::string start_xvfb(const std::string& exe, const std::string& purpose, pid_t
   ::close(fds[1]);
   if (rc != 0) {
     ::close(fds[0]);
-    throw UserError(exe, "", purpose + " needs an X display; cannot start Xvfb: " +
-                                 std::strerror(rc));
+    throw UserError(exe, "",
+                    purpose + " needs an X display; cannot start Xvfb: " + std::strerror(rc));
   }
   // Xvfb writes the display number and a newline once it accepts connections.
   std::string number;
@@ -125,13 +124,16 @@ DisplayLease::DisplayLease(const std::string& purpose) {
   const auto xvfb = find_executable("Xvfb");
   if (!xvfb)
     throw UserError("", "",
-                    purpose + " needs an X display (Debian's VTK renders through X only): $DISPLAY "
-                              "is not usable and Xvfb is not installed (apt-get install xvfb, or "
-                              "run under xvfb-run -a, or set DISPLAY)");
+                    purpose +
+                        " needs an X display (Debian's VTK renders through X only): $DISPLAY "
+                        "is not usable and Xvfb is not installed (apt-get install xvfb, or "
+                        "run under xvfb-run -a, or set DISPLAY)");
   pid_t pid = -1;
   const std::string display = start_xvfb(xvfb->string(), purpose, pid);
-  if (const char* old = std::getenv("DISPLAY")) s.saved_display = old;
-  else s.saved_display.reset();
+  if (const char* old = std::getenv("DISPLAY"))
+    s.saved_display = old;
+  else
+    s.saved_display.reset();
   ::setenv("DISPLAY", display.c_str(), 1);
   s.pid = pid;
   s.display = display;
@@ -145,8 +147,10 @@ DisplayLease::~DisplayLease() {
   VirtualServer& s = server();
   std::lock_guard<std::mutex> lock(s.mutex);
   if (--s.leases > 0) return;
-  if (s.saved_display) ::setenv("DISPLAY", s.saved_display->c_str(), 1);
-  else ::unsetenv("DISPLAY");
+  if (s.saved_display)
+    ::setenv("DISPLAY", s.saved_display->c_str(), 1);
+  else
+    ::unsetenv("DISPLAY");
   ::kill(s.pid, SIGTERM);
   int status = 0;
   while (::waitpid(s.pid, &status, 0) < 0 && errno == EINTR) {

@@ -11,8 +11,9 @@ vtkSmartPointer<vtkPolyData> to_polydata(const TriangleMesh& mesh) {
   return to_polydata(mesh.vertices, mesh.triangles);
 }
 
-vtkSmartPointer<vtkPolyData> to_polydata(const std::vector<std::array<double, 3>>& vertices,
-                                         const std::vector<std::array<std::int64_t, 3>>& triangles) {
+vtkSmartPointer<vtkPolyData> to_polydata(
+    const std::vector<std::array<double, 3>>& vertices,
+    const std::vector<std::array<std::int64_t, 3>>& triangles) {
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(static_cast<vtkIdType>(vertices.size()));

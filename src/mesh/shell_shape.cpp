@@ -7,7 +7,9 @@
 namespace thaw::mesh {
 
 namespace {
-double norm(const Vec3& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+double norm(const Vec3& v) {
+  return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
 }  // namespace
 
 ShellShape ShellShape::from_geometry(const sim::ShellGeometry& g, double radius_m) {
@@ -15,9 +17,15 @@ ShellShape ShellShape::from_geometry(const sim::ShellGeometry& g, double radius_
   s.geometry = g.geometry;
   s.radius_m = radius_m;
   switch (g.geometry) {
-    case sim::Geometry::sphere: s.core_half_size_m = 0; break;
-    case sim::Geometry::cylinder: s.core_half_size_m = 0.5 * g.length_m; break;
-    case sim::Geometry::planar: s.core_half_size_m = 0.5 * g.lateral_size_m; break;
+    case sim::Geometry::sphere:
+      s.core_half_size_m = 0;
+      break;
+    case sim::Geometry::cylinder:
+      s.core_half_size_m = 0.5 * g.length_m;
+      break;
+    case sim::Geometry::planar:
+      s.core_half_size_m = 0.5 * g.lateral_size_m;
+      break;
   }
   return s;
 }
@@ -25,9 +33,12 @@ ShellShape ShellShape::from_geometry(const sim::ShellGeometry& g, double radius_
 Vec3 ShellShape::closest_core_point(const Vec3& p) const {
   const double h = core_half_size_m;
   switch (geometry) {
-    case sim::Geometry::sphere: return {0, 0, 0};
-    case sim::Geometry::cylinder: return {0, 0, std::clamp(p[2], -h, h)};
-    case sim::Geometry::planar: return {0, std::clamp(p[1], -h, h), std::clamp(p[2], -h, h)};
+    case sim::Geometry::sphere:
+      return {0, 0, 0};
+    case sim::Geometry::cylinder:
+      return {0, 0, std::clamp(p[2], -h, h)};
+    case sim::Geometry::planar:
+      return {0, std::clamp(p[1], -h, h), std::clamp(p[2], -h, h)};
   }
   return {0, 0, 0};
 }
@@ -48,9 +59,12 @@ Vec3 ShellShape::outward_normal(const Vec3& p) const {
 double ShellShape::core_support(const Vec3& n) const {
   const double h = core_half_size_m;
   switch (geometry) {
-    case sim::Geometry::sphere: return 0;
-    case sim::Geometry::cylinder: return h * std::abs(n[2]);
-    case sim::Geometry::planar: return h * (std::abs(n[1]) + std::abs(n[2]));
+    case sim::Geometry::sphere:
+      return 0;
+    case sim::Geometry::cylinder:
+      return h * std::abs(n[2]);
+    case sim::Geometry::planar:
+      return h * (std::abs(n[1]) + std::abs(n[2]));
   }
   return 0;
 }
@@ -61,9 +75,12 @@ double ShellShape::volume() const {
   const double r = radius_m, pi = std::numbers::pi, a = 2 * core_half_size_m;
   const double ball = 4.0 / 3.0 * pi * r * r * r;
   switch (geometry) {
-    case sim::Geometry::sphere: return ball;
-    case sim::Geometry::cylinder: return pi * r * r * a + ball;
-    case sim::Geometry::planar: return 2 * a * a * r + 2 * pi * a * r * r + ball;
+    case sim::Geometry::sphere:
+      return ball;
+    case sim::Geometry::cylinder:
+      return pi * r * r * a + ball;
+    case sim::Geometry::planar:
+      return 2 * a * a * r + 2 * pi * a * r * r + ball;
   }
   return 0;
 }
@@ -72,9 +89,12 @@ double ShellShape::area() const {
   const double r = radius_m, pi = std::numbers::pi, a = 2 * core_half_size_m;
   const double ball = 4 * pi * r * r;
   switch (geometry) {
-    case sim::Geometry::sphere: return ball;
-    case sim::Geometry::cylinder: return 2 * pi * r * a + ball;
-    case sim::Geometry::planar: return 2 * a * a + 4 * pi * a * r + ball;
+    case sim::Geometry::sphere:
+      return ball;
+    case sim::Geometry::cylinder:
+      return 2 * pi * r * a + ball;
+    case sim::Geometry::planar:
+      return 2 * a * a + 4 * pi * a * r + ball;
   }
   return 0;
 }
@@ -82,9 +102,12 @@ double ShellShape::area() const {
 double ShellShape::bounding_radius() const {
   const double h = core_half_size_m;
   switch (geometry) {
-    case sim::Geometry::sphere: return radius_m;
-    case sim::Geometry::cylinder: return h + radius_m;
-    case sim::Geometry::planar: return std::sqrt(2.0) * h + radius_m;
+    case sim::Geometry::sphere:
+      return radius_m;
+    case sim::Geometry::cylinder:
+      return h + radius_m;
+    case sim::Geometry::planar:
+      return std::sqrt(2.0) * h + radius_m;
   }
   return radius_m;
 }

@@ -53,9 +53,11 @@ std::string check(const SurfaceMesh& sm) {
   PMP::non_manifold_vertices(sm, std::back_inserter(pinched));
   if (!pinched.empty()) return std::to_string(pinched.size()) + " non-manifold vertices";
   const long euler = static_cast<long>(sm.number_of_vertices()) -
-                     static_cast<long>(sm.number_of_edges()) + static_cast<long>(sm.number_of_faces());
+                     static_cast<long>(sm.number_of_edges()) +
+                     static_cast<long>(sm.number_of_faces());
   if (euler != 2)
-    return "Euler characteristic " + std::to_string(euler) + " (expected 2: one sphere-like surface)";
+    return "Euler characteristic " + std::to_string(euler) +
+           " (expected 2: one sphere-like surface)";
   if (PMP::does_self_intersect(sm)) return "self-intersecting";
   if (!PMP::is_outward_oriented(sm)) return "not outward oriented";
   return "";
@@ -131,7 +133,8 @@ TriangleMesh mesh_surface(const ShellShape& shape, const SurfaceCriteria& c,
                           const MeshOptions& options) {
   if (!(shape.radius_m > 0) || !std::isfinite(shape.radius_m) || !(shape.core_half_size_m >= 0))
     throw MeshError("surface radius must be finite and > 0");
-  if (!(c.facet_size_m > 0) || !(c.facet_distance_m > 0)) throw MeshError("facet criteria must be > 0");
+  if (!(c.facet_size_m > 0) || !(c.facet_distance_m > 0))
+    throw MeshError("facet criteria must be > 0");
 
   namespace params = CGAL::parameters;
   // The bounding sphere (given by its squared radius) must contain the surface; its centre, the
@@ -143,14 +146,15 @@ TriangleMesh mesh_surface(const ShellShape& shape, const SurfaceCriteria& c,
   // does not terminate (seen with CGAL's default 1e-3: 12 GB and counting), so keep the
   // placement error at most 1 % of the distance bound.
   const double box = 2 * std::sqrt(3.0) * bound;
-  const double error_bound = std::min(options.relative_error_bound, 0.01 * c.facet_distance_m / box);
+  const double error_bound =
+      std::min(options.relative_error_bound, 0.01 * c.facet_distance_m / box);
   Domain domain = Domain::create_implicit_mesh_domain(
       ImplicitShape{shape}, K::Sphere_3(CGAL::ORIGIN, bound * bound),
       params::relative_error_bound = error_bound, params::p_rng = &rng);
   Criteria criteria(params::facet_angle = c.facet_angle_deg, params::facet_size = c.facet_size_m,
                     params::facet_distance = c.facet_distance_m);
   C3t3 c3t3 = CGAL::make_mesh_3<C3t3>(domain, criteria, params::no_perturb(), params::no_exude(),
-                                       params::manifold());
+                                      params::manifold());
 
   SurfaceMesh sm;
   if (!boundary_to_surface_mesh(c3t3, sm)) {

@@ -38,7 +38,8 @@ void require_ffmpeg(const fs::path& out, const FilmRequest& r) {
   if (!find_executable("ffmpeg"))
     throw UserError(out.string(), "",
                     "ffmpeg not found on PATH (install it with scripts/setup); the frames are kept "
-                    "in " + r.frame_pattern.parent_path().string());
+                    "in " +
+                        r.frame_pattern.parent_path().string());
 }
 
 void run_encoder(std::vector<std::string> args, const fs::path& out) {
@@ -50,8 +51,8 @@ void run_encoder(std::vector<std::string> args, const fs::path& out) {
   if (result.exit_code != 0 || size == 0) {
     fs::remove(temp, ec);
     throw UserError(out.string(), "",
-                    "ffmpeg failed (exit " + std::to_string(result.exit_code) + "): " +
-                        last_lines(result.output, 3));
+                    "ffmpeg failed (exit " + std::to_string(result.exit_code) +
+                        "): " + last_lines(result.output, 3));
   }
   fs::rename(temp, out, ec);
   if (ec) {
@@ -61,9 +62,19 @@ void run_encoder(std::vector<std::string> args, const fs::path& out) {
 }
 
 std::vector<std::string> input_args(const FilmRequest& r) {
-  return {"ffmpeg", "-nostdin", "-y", "-v", "error", "-framerate", number(r.fps),
-          "-start_number", std::to_string(r.first_frame), "-i", r.frame_pattern.string(),
-          "-frames:v", std::to_string(r.frame_count)};
+  return {"ffmpeg",
+          "-nostdin",
+          "-y",
+          "-v",
+          "error",
+          "-framerate",
+          number(r.fps),
+          "-start_number",
+          std::to_string(r.first_frame),
+          "-i",
+          r.frame_pattern.string(),
+          "-frames:v",
+          std::to_string(r.frame_count)};
 }
 
 }  // namespace
@@ -84,17 +95,19 @@ void encode_gif(const FilmRequest& r, const fs::path& out_gif) {
   require_ffmpeg(out_gif, r);
   auto args = input_args(r);
   // One palette for the whole film (palettegen/paletteuse) avoids GIF's banding on smooth ice.
-  for (const char* a : {"-vf", "split[a][b];[a]palettegen[p];[b][p]paletteuse", "-loop", "0", "-f", "gif"})
+  for (const char* a :
+       {"-vf", "split[a][b];[a]palettegen[p];[b][p]paletteuse", "-loop", "0", "-f", "gif"})
     args.emplace_back(a);
   run_encoder(std::move(args), out_gif);
 }
 
 int count_video_frames(const fs::path& video) {
   if (!find_executable("ffprobe")) throw UserError(video.string(), "", "ffprobe not found on PATH");
-  const ProcessResult r = run_process({"ffprobe", "-v", "error", "-count_frames", "-select_streams",
-                                       "v:0", "-show_entries", "stream=nb_read_frames", "-of",
-                                       "csv=p=0", video.string()});
-  if (r.exit_code != 0) throw UserError(video.string(), "", "ffprobe failed: " + last_lines(r.output, 2));
+  const ProcessResult r =
+      run_process({"ffprobe", "-v", "error", "-count_frames", "-select_streams", "v:0",
+                   "-show_entries", "stream=nb_read_frames", "-of", "csv=p=0", video.string()});
+  if (r.exit_code != 0)
+    throw UserError(video.string(), "", "ffprobe failed: " + last_lines(r.output, 2));
   try {
     return std::stoi(r.output);
   } catch (const std::exception&) {

@@ -63,7 +63,8 @@ TEST(Simulate, RunEndsAtBreakThroughWithOneLastRow) {
 TEST(Simulate, FirstRowIsTheInitialStateEvenWithAnAnalyticStart) {
   // A water drop with no ice yet: the ice is started from the Neumann solution at t0 > 0, but
   // the row at t = 0 must show no ice (inner == outer), the next rows a growing shell.
-  const Scenario sc = read_scenario_file(std::string(THAW_SOURCE_DIR) + "/data/scenarios/water_drop_freezing.toml");
+  const Scenario sc =
+      read_scenario_file(std::string(THAW_SOURCE_DIR) + "/data/scenarios/water_drop_freezing.toml");
   const SimulationResult r = simulate(sc);
   ASSERT_GT(r.statistics.start_time_s, 0.0);
   EXPECT_EQ(r.snapshots[0].time_s, 0.0);
@@ -71,7 +72,8 @@ TEST(Simulate, FirstRowIsTheInitialStateEvenWithAnAnalyticStart) {
   EXPECT_EQ(r.snapshots[0].outer_radius_m, sc.outer_radius_m);
   EXPECT_EQ(r.snapshots[0].ice_volume_m3, 0.0);
   EXPECT_LT(r.snapshots[1].inner_radius_m, sc.inner_radius_m);
-  for (const ProfilePoint& p : r.snapshots[0].profile) EXPECT_EQ(p.temperature_c, sc.water_initial_temperature_c);
+  for (const ProfilePoint& p : r.snapshots[0].profile)
+    EXPECT_EQ(p.temperature_c, sc.water_initial_temperature_c);
 }
 
 TEST(Simulate, WrittenFolderReadsBackThroughTheSharedContract) {
@@ -89,7 +91,10 @@ TEST(Simulate, WrittenFolderReadsBackThroughTheSharedContract) {
     std::ifstream csv(dir / "interfaces.csv");
     std::string header;
     std::getline(csv, header);
-    EXPECT_EQ(header.rfind("step,time_s,inner_radius_m,outer_radius_m,liquid_volume_m3,ice_volume_m3,energy_balance_error", 0), 0u);
+    EXPECT_EQ(header.rfind("step,time_s,inner_radius_m,outer_radius_m,liquid_volume_m3,ice_volume_"
+                           "m3,energy_balance_error",
+                           0),
+              0u);
     const ShellGeometry shell = read_shell_geometry(dir / "summary.json");
     EXPECT_EQ(shell.geometry, g);
     if (g == Geometry::cylinder) {

@@ -35,29 +35,32 @@ struct Accel {
   bool closest(const Ray& r, float& t_out) const {
     float t_max = r.t_max;
     const ShearedRay sr(r);
-    const bool hit = bvh.intersect(Bvh::RayData(r), t_max, [&](std::uint32_t first, std::uint32_t n, float& tm) {
-      bool any = false;
-      for (std::uint32_t i = first; i < first + n; ++i) {
-        TriangleHit h;
-        if (intersect_triangle(sr, tris[i].a, tris[i].b, tris[i].c, tm, h)) {
-          tm = h.t;
-          any = true;
-        }
-      }
-      return any;
-    });
+    const bool hit =
+        bvh.intersect(Bvh::RayData(r), t_max, [&](std::uint32_t first, std::uint32_t n, float& tm) {
+          bool any = false;
+          for (std::uint32_t i = first; i < first + n; ++i) {
+            TriangleHit h;
+            if (intersect_triangle(sr, tris[i].a, tris[i].b, tris[i].c, tm, h)) {
+              tm = h.t;
+              any = true;
+            }
+          }
+          return any;
+        });
     t_out = t_max;
     return hit;
   }
   bool occluded(const Ray& r) const {
     const ShearedRay sr(r);
-    return bvh.occluded(Bvh::RayData(r), r.t_max, [&](std::uint32_t first, std::uint32_t n, float tm) {
-      for (std::uint32_t i = first; i < first + n; ++i) {
-        TriangleHit h;
-        if (intersect_triangle(sr, tris[i].a, tris[i].b, tris[i].c, tm, h)) return true;
-      }
-      return false;
-    });
+    return bvh.occluded(Bvh::RayData(r), r.t_max,
+                        [&](std::uint32_t first, std::uint32_t n, float tm) {
+                          for (std::uint32_t i = first; i < first + n; ++i) {
+                            TriangleHit h;
+                            if (intersect_triangle(sr, tris[i].a, tris[i].b, tris[i].c, tm, h))
+                              return true;
+                          }
+                          return false;
+                        });
   }
 };
 
@@ -76,7 +79,8 @@ bool brute_force(const std::vector<Tri>& tris, const Ray& r, float& t_out) {
   return hit;
 }
 
-void compare_with_brute_force(const std::vector<Tri>& tris, std::uint32_t seed, int n_rays = 100000) {
+void compare_with_brute_force(const std::vector<Tri>& tris, std::uint32_t seed,
+                              int n_rays = 100000) {
   const Accel accel(tris);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(-1.5f, 1.5f);
@@ -103,7 +107,8 @@ TEST(Bvh, RandomTriangleSoupMatchesBruteForce) {
   std::vector<Tri> tris;
   for (int i = 0; i < 1000; ++i) {
     const Vec3 c{u(rng), u(rng), u(rng)};
-    tris.push_back({c + Vec3{s(rng), s(rng), s(rng)}, c + Vec3{s(rng), s(rng), s(rng)}, c + Vec3{s(rng), s(rng), s(rng)}});
+    tris.push_back({c + Vec3{s(rng), s(rng), s(rng)}, c + Vec3{s(rng), s(rng), s(rng)},
+                    c + Vec3{s(rng), s(rng), s(rng)}});
   }
   compare_with_brute_force(tris, 2);
 }
@@ -140,7 +145,8 @@ TEST(Bvh, ZeroAreaAndCoplanarTrianglesMatchBruteForce) {
 TEST(Bvh, EmptyAndSinglePrimitive) {
   const Bvh empty(std::vector<Aabb>{});
   float t = 1;
-  EXPECT_FALSE(empty.intersect(Bvh::RayData(Ray{{0, 0, 0}, {1, 0, 0}}), t, [](auto, auto, float&) { return true; }));
+  EXPECT_FALSE(empty.intersect(Bvh::RayData(Ray{{0, 0, 0}, {1, 0, 0}}), t,
+                               [](auto, auto, float&) { return true; }));
   compare_with_brute_force({Tri{{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}}}, 6, 10000);
 }
 
@@ -149,11 +155,13 @@ TEST(Bvh, ClosedMeshIsWatertightAtEdgesAndVertices) {
   // two or more triangles meet), and from outside through them towards the centre: all must hit.
   const TriangleMesh mesh = test::icosphere(4, 1.0f, {0.1f, -0.2f, 0.3f});
   std::vector<Tri> tris;
-  for (const auto& t : mesh.triangles) tris.push_back({mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]});
+  for (const auto& t : mesh.triangles)
+    tris.push_back({mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]});
   const Accel accel(tris);
   std::vector<Vec3> targets = mesh.positions;
   for (const auto& t : mesh.triangles)
-    for (int e = 0; e < 3; ++e) targets.push_back((mesh.positions[t[e]] + mesh.positions[t[(e + 1) % 3]]) * 0.5f);
+    for (int e = 0; e < 3; ++e)
+      targets.push_back((mesh.positions[t[e]] + mesh.positions[t[(e + 1) % 3]]) * 0.5f);
   const Vec3 inside_points[] = {{0.1f, -0.2f, 0.3f}, {0.35f, 0.1f, 0.2f}, {-0.4f, -0.3f, 0.5f}};
   int misses = 0;
   for (const Vec3& o : inside_points)

@@ -40,8 +40,10 @@ TEST(Box, EdgeAndCornerAreHit) {
   float t;
   int axis;
   bool high;
-  EXPECT_TRUE(intersect_box(Ray{{1, 1, 5}, {0, 0, -1}}, lo, hi, 1e30f, t, axis, high));  // along an edge
-  EXPECT_TRUE(intersect_box(Ray{{3, 3, 3}, {-1, -1, -1}}, lo, hi, 1e30f, t, axis, high));  // at a corner
+  EXPECT_TRUE(
+      intersect_box(Ray{{1, 1, 5}, {0, 0, -1}}, lo, hi, 1e30f, t, axis, high));  // along an edge
+  EXPECT_TRUE(
+      intersect_box(Ray{{3, 3, 3}, {-1, -1, -1}}, lo, hi, 1e30f, t, axis, high));  // at a corner
   EXPECT_NEAR(t, 2.0f, 1e-6f);
 }
 

@@ -21,7 +21,8 @@ TEST(Fresnel, NormalIncidenceMatchesClosedForm) {
   // ice|water (1.31 | 1.33) -> 5.8e-5.
   EXPECT_NEAR(fresnel_dielectric(1.0f, 1.5f), 0.04f, kTol);
   EXPECT_NEAR(fresnel_dielectric(1.0f, 1.33f), 0.0200593f, kTol);
-  EXPECT_NEAR(fresnel_dielectric(1.0f, 1.33f / 1.31f), std::pow((1.33 - 1.31) / (1.33 + 1.31), 2), kTol);
+  EXPECT_NEAR(fresnel_dielectric(1.0f, 1.33f / 1.31f), std::pow((1.33 - 1.31) / (1.33 + 1.31), 2),
+              kTol);
   // Reciprocity at normal incidence.
   EXPECT_NEAR(fresnel_dielectric(1.0f, 1.0f / 1.5f), 0.04f, kTol);
 }
@@ -49,7 +50,8 @@ TEST(Fresnel, ReflectancePlusTransmittanceIsOne) {
       const double ct = std::sqrt(1 - st * st);
       const double ts = 2 * ci / (ci + eta * ct), tp = 2 * ci / (eta * ci + ct);
       const double t = eta * ct / ci * 0.5 * (ts * ts + tp * tp);
-      EXPECT_NEAR(fresnel_dielectric(static_cast<float>(ci), static_cast<float>(eta)) + t, 1.0, 1e-5)
+      EXPECT_NEAR(fresnel_dielectric(static_cast<float>(ci), static_cast<float>(eta)) + t, 1.0,
+                  1e-5)
           << "eta " << eta << " angle " << k;
     }
   }
@@ -60,8 +62,12 @@ TEST(Fresnel, TotalInternalReflectionBeyondCriticalAngle) {
   const double eta = 1.31 / 1.33;
   const double critical = std::asin(eta);
   EXPECT_NEAR(critical * 180 / kPi, 80.05, 0.01);
-  EXPECT_EQ(fresnel_dielectric(static_cast<float>(std::cos(critical + 1e-3)), static_cast<float>(eta)), 1.0f);
-  EXPECT_LT(fresnel_dielectric(static_cast<float>(std::cos(critical - 1e-2)), static_cast<float>(eta)), 1.0f);
+  EXPECT_EQ(
+      fresnel_dielectric(static_cast<float>(std::cos(critical + 1e-3)), static_cast<float>(eta)),
+      1.0f);
+  EXPECT_LT(
+      fresnel_dielectric(static_cast<float>(std::cos(critical - 1e-2)), static_cast<float>(eta)),
+      1.0f);
 }
 
 TEST(Snell, RefractedDirectionObeysSnellAndStaysInPlane) {

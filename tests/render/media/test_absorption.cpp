@@ -33,7 +33,8 @@ TEST(Absorption, TablePerWavelengthAndScale) {
   const SampledSpectrum t = a.transmittance(d, w);
   for (int i = 0; i < kSpectrumSamples; ++i) EXPECT_NEAR(t[i], std::exp(-alpha[i] * d), 1e-7);
   const SampledSpectrum t10 = a.scaled(10).transmittance(d, w);
-  for (int i = 0; i < kSpectrumSamples; ++i) EXPECT_NEAR(t10[i], std::exp(-10 * alpha[i] * d), 1e-7);
+  for (int i = 0; i < kSpectrumSamples; ++i)
+    EXPECT_NEAR(t10[i], std::exp(-10 * alpha[i] * d), 1e-7);
   EXPECT_TRUE(a.scaled(0).is_zero());
   EXPECT_TRUE(Absorption().is_zero());
   EXPECT_FALSE(a.is_zero());

@@ -124,7 +124,7 @@ TEST(IorModel, BadModelsAreErrors) {
   EXPECT_THROW(IorModel::constant(NAN).validate("f", "media.x"), UserError);
   EXPECT_THROW(IorModel::sellmeier({1.0}, {0.01, 0.02}).validate("f", "media.x"), UserError);
   EXPECT_THROW(IorModel::sellmeier({-0.9}, {0.01}).validate("f", "media.x"), UserError);  // n^2 < 1
-  EXPECT_THROW(IorModel::cauchy(0.5, 0.0, 0.0).validate("f", "media.x"), UserError);       // n < 1
+  EXPECT_THROW(IorModel::cauchy(0.5, 0.0, 0.0).validate("f", "media.x"), UserError);      // n < 1
   // Tables must cover 380-780 nm and increase.
   EXPECT_THROW(IorModel::table({400, 780}, {1.3, 1.29}).validate("f", "media.x"), UserError);
   EXPECT_THROW(IorModel::table({380, 500, 450, 780}, {1.3, 1.3, 1.3, 1.3}).validate("f", "media.x"),

@@ -42,13 +42,16 @@ TEST(Medium, ExplicitModels) {
                     "C = [0.00600069867, 0.0200179144, 103.560653] }\n")
                   .n_at(587.56),
               1.5168, 5e-5);
-  EXPECT_NEAR(build("[media.m]\ncauchy = { A = 1.3, B = 0.004 }\n").n_at(400.0), 1.3 + 0.004 / 0.16, 1e-12);
-  EXPECT_NEAR(build("[media.m]\ntable = { wavelength_nm = [380, 780], n = [1.4, 1.3] }\n").n_at(580.0),
-              1.35, 1e-12);
+  EXPECT_NEAR(build("[media.m]\ncauchy = { A = 1.3, B = 0.004 }\n").n_at(400.0), 1.3 + 0.004 / 0.16,
+              1e-12);
+  EXPECT_NEAR(
+      build("[media.m]\ntable = { wavelength_nm = [380, 780], n = [1.4, 1.3] }\n").n_at(580.0),
+      1.35, 1e-12);
   const Medium a = build("[media.m]\nior = 1.5\nabsorption_per_m = 2.0\n");
   EXPECT_DOUBLE_EQ(a.absorption_per_m_at(500.0), 2.0);
   const Medium t = build(
-      "[media.m]\nior = 1.5\nabsorption_per_m = { wavelength_nm = [300, 800], per_m = [0.0, 5.0] }\n");
+      "[media.m]\nior = 1.5\nabsorption_per_m = { wavelength_nm = [300, 800], per_m = [0.0, 5.0] "
+      "}\n");
   EXPECT_DOUBLE_EQ(t.absorption_per_m_at(550.0), 2.5);
   EXPECT_FALSE(build("[media.m]\npreset = \"n-bk7\"\n").absorbs());
 }
@@ -62,7 +65,8 @@ TEST(Medium, UnknownPresetIsAnErrorListingTheKnownOnes) {
 }
 
 TEST(Medium, TableOutOfRangeIsAnError) {
-  const std::string e = error_of("[media.m]\ntable = { wavelength_nm = [400, 700], n = [1.4, 1.3] }\n");
+  const std::string e =
+      error_of("[media.m]\ntable = { wavelength_nm = [400, 700], n = [1.4, 1.3] }\n");
   EXPECT_NE(e.find("media.m.table.wavelength_nm"), std::string::npos) << e;
   EXPECT_NE(e.find("380-780"), std::string::npos) << e;
 }
@@ -82,17 +86,21 @@ TEST(Medium, NegativeAbsorptionIsAnError) {
 }
 
 TEST(Medium, AmbiguousOrMissingIndexIsAnError) {
-  EXPECT_NE(error_of("[media.m]\nior = 1.3\npreset = \"vacuum\"\n").find("exactly one"), std::string::npos);
-  EXPECT_NE(error_of("[media.m]\nabsorption_per_m = 1.0\n").find("index of refraction"), std::string::npos);
-  EXPECT_NE(error_of("[media.m]\nsellmeier = { B = [1.0], C = [0.01], form = \"n\" }\n").find("form"),
+  EXPECT_NE(error_of("[media.m]\nior = 1.3\npreset = \"vacuum\"\n").find("exactly one"),
             std::string::npos);
+  EXPECT_NE(error_of("[media.m]\nabsorption_per_m = 1.0\n").find("index of refraction"),
+            std::string::npos);
+  EXPECT_NE(
+      error_of("[media.m]\nsellmeier = { B = [1.0], C = [0.01], form = \"n\" }\n").find("form"),
+      std::string::npos);
 }
 
 TEST(Medium, UnknownKeysAreErrors) {
   EXPECT_NE(error_of("[media.m]\nior = 1.3\nabsorbtion_scale = 2.0\n").find("absorbtion_scale"),
             std::string::npos);
-  EXPECT_NE(error_of("[media.m]\nsellmeier = { B = [1.0], C = [0.01], D = [1.0] }\n").find("sellmeier.D"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of("[media.m]\nsellmeier = { B = [1.0], C = [0.01], D = [1.0] }\n").find("sellmeier.D"),
+      std::string::npos);
 }
 
 TEST(MediumLibrary, HasTheIssuePresetsWithSources) {

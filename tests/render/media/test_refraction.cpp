@@ -19,7 +19,10 @@ double traced_minimum_deviation(double n, double apex) {
   auto f = [&](double i) { return prism_deviation_rad(n, apex, i).value_or(10.0); };
   double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
   for (int k = 0; k < 200; ++k) {
-    if (f(a) < f(b)) hi = b; else lo = a;
+    if (f(a) < f(b))
+      hi = b;
+    else
+      lo = a;
     a = hi - g * (hi - lo);
     b = lo + g * (hi - lo);
   }

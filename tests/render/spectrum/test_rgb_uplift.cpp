@@ -75,7 +75,8 @@ TEST(RgbUplift, WhiteIsExactlyOne) {
 
 TEST(RgbUplift, WhiteLightIsExactlyD65WithUnitLuminance) {
   const RgbIlluminantSpectrum white({1, 1, 1});
-  for (double l = kLambdaMinNm; l <= kLambdaMaxNm; l += 1) EXPECT_DOUBLE_EQ(white(l), illuminant_d65(l));
+  for (double l = kLambdaMinNm; l <= kLambdaMaxNm; l += 1)
+    EXPECT_DOUBLE_EQ(white(l), illuminant_d65(l));
   const RgbIlluminantSpectrum bright({4, 4, 4});
   EXPECT_DOUBLE_EQ(bright(550.0), 4 * illuminant_d65(550.0));
   const RgbIlluminantSpectrum black({0, 0, 0});
@@ -84,7 +85,8 @@ TEST(RgbUplift, WhiteLightIsExactlyD65WithUnitLuminance) {
 
 TEST(RgbUplift, ColouredLightRoundTrips) {
   // A light colour renders as itself on a white surface: scale * uplift * D65.
-  for (const LinearSrgb c : {LinearSrgb{1.0, 0.9, 0.2}, LinearSrgb{0.2, 0.3, 1.0}, LinearSrgb{3.0, 1.5, 0.0}}) {
+  for (const LinearSrgb c :
+       {LinearSrgb{1.0, 0.9, 0.2}, LinearSrgb{0.2, 0.3, 1.0}, LinearSrgb{3.0, 1.5, 0.0}}) {
     const RgbIlluminantSpectrum light(c);
     const LinearSrgb out = render_white_lit([&](double l) { return light(l); });
     const double tol = std::max({c.r, c.g, c.b}) / 255.0;  // 1/255 relative to the light's scale
@@ -98,7 +100,8 @@ TEST(RgbUplift, SampledMatchesPointwise) {
   const RgbReflectanceSpectrum s({0.3, 0.6, 0.1});
   const auto w = SampledWavelengths::sample(0.37);
   const SampledSpectrum v = s.sample(w);
-  for (int i = 0; i < kSpectrumSamples; ++i) EXPECT_FLOAT_EQ(v[i], static_cast<float>(s(w.lambda_nm(i))));
+  for (int i = 0; i < kSpectrumSamples; ++i)
+    EXPECT_FLOAT_EQ(v[i], static_cast<float>(s(w.lambda_nm(i))));
 }
 
 }  // namespace

@@ -87,7 +87,8 @@ void check_unbiased(HeroDensity density, bool terminate) {
     auto w = SampledWavelengths::sample(uni(rng), density);
     if (terminate) w.terminate_secondary();
     SampledSpectrum L;
-    for (int i = 0; i < kSpectrumSamples; ++i) L[i] = static_cast<float>(test_spectrum(w.lambda_nm(i)));
+    for (int i = 0; i < kSpectrumSamples; ++i)
+      L[i] = static_cast<float>(test_spectrum(w.lambda_nm(i)));
     const Xyz e = spectrum_to_xyz(L, w);
     const double v[3] = {e.x, e.y, e.z};
     for (int c = 0; c < 3; ++c) {
@@ -107,9 +108,15 @@ void check_unbiased(HeroDensity density, bool terminate) {
   }
 }
 
-TEST(SpectralEstimator, UnbiasedUniformHero) { check_unbiased(HeroDensity::uniform, false); }
-TEST(SpectralEstimator, UnbiasedVisibleHeroWithMis) { check_unbiased(HeroDensity::visible, false); }
-TEST(SpectralEstimator, UnbiasedAfterTerminateSecondary) { check_unbiased(HeroDensity::visible, true); }
+TEST(SpectralEstimator, UnbiasedUniformHero) {
+  check_unbiased(HeroDensity::uniform, false);
+}
+TEST(SpectralEstimator, UnbiasedVisibleHeroWithMis) {
+  check_unbiased(HeroDensity::visible, false);
+}
+TEST(SpectralEstimator, UnbiasedAfterTerminateSecondary) {
+  check_unbiased(HeroDensity::visible, true);
+}
 
 }  // namespace
 }  // namespace thaw::render

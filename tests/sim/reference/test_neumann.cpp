@@ -78,8 +78,8 @@ TEST(Neumann, HeatThroughFaceEqualsLatentPlusSensibleHeat) {
     }
     return sum * h / 3;
   };
-  const double q = kLatent * s + cIce * 10.0 * s + sensible(0, s, cWater, 0.0) +
-                   sensible(s, far, cIce, -10.0);
+  const double q =
+      kLatent * s + cIce * 10.0 * s + sensible(0, s, cWater, 0.0) + sensible(s, far, cIce, -10.0);
   EXPECT_NEAR(n.face_heat(t), q, 1e-9 * q);
 }
 

@@ -30,7 +30,8 @@ struct NeumannCase {
   double dt_face, dt_far;
 };
 
-NeumannProblem problem_of(const NeumannCase& c, int cells, double tolerance, double fixed_step = 0) {
+NeumannProblem problem_of(const NeumannCase& c, int cells, double tolerance,
+                          double fixed_step = 0) {
   NeumannProblem p;
   p.melting = c.melting;
   p.face_excess_k = c.dt_face;
@@ -42,13 +43,16 @@ NeumannProblem problem_of(const NeumannCase& c, int cells, double tolerance, dou
   return p;
 }
 
-NeumannSolution neumann_of(const NeumannCase& c) { return neumann_solution(problem_of(c, 4, 1e-6)); }
+NeumannSolution neumann_of(const NeumannCase& c) {
+  return neumann_solution(problem_of(c, 4, 1e-6));
+}
 
 constexpr double kT0 = 100.0, kT1 = 1000.0;
 
 // Melting and freezing, liquid Stefan numbers C dT / L_v from 0.14 to 0.55 and subcooling from
 // none to 0.06: the fronts move from ~5 to ~20 mm.
-const NeumannCase kCases[] = {{true, 10.0, 5.0}, {true, 40.0, 10.0}, {false, 10.0, 3.0}, {false, 30.0, 0.0}};
+const NeumannCase kCases[] = {
+    {true, 10.0, 5.0}, {true, 40.0, 10.0}, {false, 10.0, 3.0}, {false, 30.0, 0.0}};
 
 // Time error made negligible in the space study: tolerance 1e-11 per step gives front errors
 // ~1e-9 relative, < 1 % of the smallest spatial error measured at 160 cells (~1e-7).
@@ -60,8 +64,8 @@ TEST(FrontFixing, NeumannFrontAndProfileConvergeAtSecondOrderInSpace) {
     for (int n : {40, 80, 160}) {
       const NeumannComparison r = run_neumann_problem(problem_of(c, n, kTightTolerance));
       const double e = r.relative_front_error();
-      std::printf("  %s dT=(%g,%g) N=%3d front error %.3e, T error %.3e K\n", c.melting ? "melt" : "freeze",
-                  c.dt_face, c.dt_far, n, e, r.temperature_error_k);
+      std::printf("  %s dT=(%g,%g) N=%3d front error %.3e, T error %.3e K\n",
+                  c.melting ? "melt" : "freeze", c.dt_face, c.dt_far, n, e, r.temperature_error_k);
       if (prev_front > 0) {
         // the bar: observed order >= 1.8 for the front position
         EXPECT_GE(std::log2(prev_front / e), 1.8) << "front, N = " << n;
@@ -89,8 +93,8 @@ TEST(FrontFixing, NeumannFrontConvergesAtSecondOrderInTime) {
     for (int steps : {16, 32, 64}) {
       const NeumannComparison r = run_neumann_problem(problem_of(c, 40, 1e-6, span / steps));
       const double e = std::abs(r.front_m - reference) / r.exact_front_m;
-      std::printf("  %s dT=(%g,%g) %3d steps: front error %.3e\n", c.melting ? "melt" : "freeze", c.dt_face,
-                  c.dt_far, steps, e);
+      std::printf("  %s dT=(%g,%g) %3d steps: front error %.3e\n", c.melting ? "melt" : "freeze",
+                  c.dt_face, c.dt_far, steps, e);
       if (prev > 0) {
         EXPECT_GE(std::log2(prev / e), 1.8) << steps << " steps";
       }
@@ -171,7 +175,8 @@ TEST(FrontFixing, WarmWaterInAMeltingPointCavityStopsAtEnergyBalanceRadius) {
     FrontFixingSolver solver(sc);
     solver.advance_to(3000);
     const double st = kMat.water_heat_capacity() * dt / kMat.latent_heat_per_volume();
-    EXPECT_NEAR(solver.snapshot(false).inner_radius_m, 0.005 * std::cbrt(1 + st), 1e-10 * 0.005) << dt;
+    EXPECT_NEAR(solver.snapshot(false).inner_radius_m, 0.005 * std::cbrt(1 + st), 1e-10 * 0.005)
+        << dt;
   }
 }
 
@@ -229,8 +234,8 @@ TEST(FrontFixing, InwardFreezingTimeTendsToQuasiSteadyLimit) {
 /// order p >= 1 the finer error is at most |v(n) - v(2n)| / (2^p - 1) <= |v(n) - v(2n)|.
 void expect_converges_to(double coarse, double fine, double exact, const char* what) {
   const double diff = std::abs(coarse - fine);
-  EXPECT_LE(std::abs(fine - exact), diff + 1e-12 * std::abs(exact)) << what << ": coarse " << coarse
-                                                                     << " fine " << fine << " exact " << exact;
+  EXPECT_LE(std::abs(fine - exact), diff + 1e-12 * std::abs(exact))
+      << what << ": coarse " << coarse << " fine " << fine << " exact " << exact;
   EXPECT_LT(std::abs(fine - exact), std::abs(coarse - exact)) << what;
 }
 

@@ -17,7 +17,8 @@ std::string error_of(const std::function<void()>& f) {
 }
 
 TEST(TomlTable, ReadsTypedValuesAndDefaults) {
-  auto t = TomlTable::parse_string("a = 1.5\nb = 2\n[s]\nname = \"x\"\nv = [1, 2.5, 3]\n", "in.toml");
+  auto t =
+      TomlTable::parse_string("a = 1.5\nb = 2\n[s]\nname = \"x\"\nv = [1, 2.5, 3]\n", "in.toml");
   EXPECT_DOUBLE_EQ(t.get_double("a"), 1.5);
   EXPECT_DOUBLE_EQ(t.get_double("b"), 2.0);  // integers are accepted as numbers
   EXPECT_DOUBLE_EQ(t.get_double("missing", 7.0), 7.0);

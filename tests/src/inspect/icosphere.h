@@ -20,13 +20,13 @@ namespace thaw::inspect::testing {
 /// the new vertices out to the sphere. 20 * 4^levels triangles.
 inline TriangleMesh icosphere(double radius, int levels, std::array<double, 3> center = {0, 0, 0}) {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<std::array<double, 3>> v = {{-1, t, 0}, {1, t, 0},  {-1, -t, 0}, {1, -t, 0},
-                                          {0, -1, t}, {0, 1, t},  {0, -1, -t}, {0, 1, -t},
-                                          {t, 0, -1}, {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<std::array<double, 3>> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+                                          {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+                                          {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
   std::vector<std::array<std::int64_t, 3>> f = {
-      {0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+      {0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
       {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-      {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+      {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   auto unit = [](std::array<double, 3> p) {
     const double n = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
     return std::array<double, 3>{p[0] / n, p[1] / n, p[2] / n};
@@ -56,8 +56,8 @@ inline TriangleMesh icosphere(double radius, int levels, std::array<double, 3> c
   }
   TriangleMesh mesh;
   for (const auto& p : v)
-    mesh.vertices.push_back({center[0] + radius * p[0], center[1] + radius * p[1],
-                             center[2] + radius * p[2]});
+    mesh.vertices.push_back(
+        {center[0] + radius * p[0], center[1] + radius * p[1], center[2] + radius * p[2]});
   mesh.triangles = f;
   return mesh;
 }

@@ -2,4 +2,6 @@
 // leaks a few hundred bytes per context and is dlclose'd before LeakSanitizer runs, so its
 // frames cannot be matched by a suppression. Leak checking is therefore off in the rendering
 // test executable only; thaw_inspect's non-rendering code is leak-checked by test_inspect.
-extern "C" const char* __asan_default_options() { return "detect_leaks=0"; }
+extern "C" const char* __asan_default_options() {
+  return "detect_leaks=0";
+}

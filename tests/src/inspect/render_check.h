@@ -11,10 +11,10 @@
 #include "src/common/subprocess.h"
 #include "src/inspect/virtual_display.h"
 
-#define THAW_SKIP_WITHOUT_X()                                                   \
-  do {                                                                          \
-    if (!thaw::inspect::display_available() && !thaw::find_executable("Xvfb"))  \
-      GTEST_SKIP() << "no X display and no Xvfb (apt-get install xvfb)";        \
+#define THAW_SKIP_WITHOUT_X()                                                  \
+  do {                                                                         \
+    if (!thaw::inspect::display_available() && !thaw::find_executable("Xvfb")) \
+      GTEST_SKIP() << "no X display and no Xvfb (apt-get install xvfb)";       \
   } while (0)
 
 namespace thaw::inspect::testing {

@@ -13,7 +13,8 @@
 namespace thaw::inspect {
 namespace {
 
-const std::filesystem::path kData = std::filesystem::path(THAW_SOURCE_DIR) / "tests/src/inspect/data";
+const std::filesystem::path kData =
+    std::filesystem::path(THAW_SOURCE_DIR) / "tests/src/inspect/data";
 
 // Sums of a few dozen to a few thousand double products: relative rounding error below
 // n * eps ~ 1e-12 for the sizes used here.
@@ -41,7 +42,8 @@ TEST(MeshReport, CubeIsExact) {
   EXPECT_EQ(r.bbox_min, (std::array<double, 3>{0, 0, 0}));
   EXPECT_EQ(r.bbox_max, (std::array<double, 3>{2, 2, 2}));
   // Every triangle is a right isosceles triangle: angles 45, 45, 90 degrees; Verdict's aspect
-  // ratio L_max (a+b+c) / (4 sqrt(3) A) = sqrt(2) (2 + sqrt(2)) / (2 sqrt(3)) = (1+sqrt(2))/sqrt(3).
+  // ratio L_max (a+b+c) / (4 sqrt(3) A) = sqrt(2) (2 + sqrt(2)) / (2 sqrt(3)) =
+  // (1+sqrt(2))/sqrt(3).
   EXPECT_NEAR(r.min_angle_deg, 45.0, 1e-9);
   EXPECT_NEAR(r.mean_min_angle_deg, 45.0, 1e-9);
   EXPECT_NEAR(r.max_angle_deg, 90.0, 1e-9);
@@ -115,7 +117,7 @@ TEST(MeshReport, HoleIsReported) {
   EXPECT_EQ(r.non_manifold_edges, 0);
   EXPECT_FALSE(r.closed);
   EXPECT_TRUE(r.consistently_oriented);
-  EXPECT_FALSE(r.outward.has_value());  // orientation has no inside for an open surface
+  EXPECT_FALSE(r.outward.has_value());   // orientation has no inside for an open surface
   EXPECT_EQ(r.euler_characteristic, 1);  // a disc
 }
 
@@ -159,13 +161,13 @@ TEST(MeshReport, InsideOutIsNotOutward) {
 
 TEST(MeshReport, DegenerateAndUnusedAreCountedAndKeptOutOfQuality) {
   TriangleMesh m = testing::icosphere(1.0, 0);
-  m.vertices.push_back({5, 5, 5});                     // unused vertex
+  m.vertices.push_back({5, 5, 5});  // unused vertex
   m.vertices.push_back({0.5 * (m.vertices[0][0] + m.vertices[1][0]),
                         0.5 * (m.vertices[0][1] + m.vertices[1][1]),
                         0.5 * (m.vertices[0][2] + m.vertices[1][2])});  // midpoint of 0-1
   const auto mid = static_cast<std::int64_t>(m.vertices.size() - 1);
-  m.triangles.push_back({0, 0, 3});      // repeated corner
-  m.triangles.push_back({0, 1, mid});    // zero area, distinct corners
+  m.triangles.push_back({0, 0, 3});    // repeated corner
+  m.triangles.push_back({0, 1, mid});  // zero area, distinct corners
   const MeshReport r = inspect_mesh(m, "degenerate");
   EXPECT_EQ(r.degenerate_triangles, 2);
   EXPECT_EQ(r.unused_vertices, 1);
@@ -207,10 +209,10 @@ TEST(MeshReport, InMemoryBadInputIsUserError) {
 
 TEST(MeshReport, JsonHasTheDocumentedKeys) {
   const nlohmann::ordered_json j = to_json(inspect_obj(kData / "cube_hole.obj"));
-  for (const char* key : {"vertices", "triangles", "boundary_edges", "non_manifold_edges",
-                          "volume_m3", "area_m2", "min_angle_deg", "max_aspect_ratio",
-                          "mean_min_angle_deg", "max_angle_deg", "consistently_oriented",
-                          "outward", "duplicate_vertices", "bounding_box", "closed"})
+  for (const char* key :
+       {"vertices", "triangles", "boundary_edges", "non_manifold_edges", "volume_m3", "area_m2",
+        "min_angle_deg", "max_aspect_ratio", "mean_min_angle_deg", "max_angle_deg",
+        "consistently_oriented", "outward", "duplicate_vertices", "bounding_box", "closed"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_EQ(j["boundary_edges"], 3);
   EXPECT_TRUE(j["outward"].is_null());

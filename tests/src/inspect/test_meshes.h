@@ -3,13 +3,13 @@
 // simulation-folder fixture (interfaces.csv + summary.json + mesh/manifest.json + OBJs).
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
 #include <string>
-#include <unistd.h>
 #include <utility>
 
 #include "sim/io/interface_history.h"
@@ -69,10 +69,11 @@ inline std::vector<sim::InterfaceRecord> write_sphere_simulation(const std::file
     meshio::write_obj(dir / "mesh" / name, icosphere(r.outer_radius_m, 3));
     outer = std::string("\"") + name + "\"";
     char entry[512];
-    std::snprintf(entry, sizeof entry,
-                  R"(%s{"step":%d,"time_s":%.17g,"inner_radius_m":%.17g,"outer_radius_m":%.17g,"inner":%s,"outer":%s,"triangles":1280})",
-                  k == 0 ? "" : ",", k, r.time_s, r.inner_radius_m, r.outer_radius_m, inner.c_str(),
-                  outer.c_str());
+    std::snprintf(
+        entry, sizeof entry,
+        R"(%s{"step":%d,"time_s":%.17g,"inner_radius_m":%.17g,"outer_radius_m":%.17g,"inner":%s,"outer":%s,"triangles":1280})",
+        k == 0 ? "" : ",", k, r.time_s, r.inner_radius_m, r.outer_radius_m, inner.c_str(),
+        outer.c_str());
     manifest += entry;
   }
   manifest += "]}\n";

@@ -41,7 +41,8 @@ TEST(MeshOptions, DefaultCriteriaOfA3cmSphere) {
   EXPECT_DOUBLE_EQ(c.facet_size_m, 2.5e-3 / std::sqrt(3.0));
   EXPECT_DOUBLE_EQ(c.facet_angle_deg, 30);
   // The relative bound takes over for a small core.
-  EXPECT_DOUBLE_EQ(criteria_for(make(sim::Geometry::sphere, 0.002, 0), MeshOptions{}).facet_distance_m, 2e-6);
+  EXPECT_DOUBLE_EQ(
+      criteria_for(make(sim::Geometry::sphere, 0.002, 0), MeshOptions{}).facet_distance_m, 2e-6);
 }
 
 TEST(MeshOptions, BudgetRelaxesTheDistanceOfAThinCapsule) {

@@ -26,9 +26,12 @@ double integrate_volume(const ShellShape& s) {
   auto section = [&](double x) {
     const double w = std::sqrt(std::max(0.0, r * r - x * x));
     switch (s.geometry) {
-      case sim::Geometry::sphere: return pi * w * w;
-      case sim::Geometry::cylinder: return pi * w * w;  // slices across the axis: handled below
-      case sim::Geometry::planar: return a * a + 4 * a * w + pi * w * w;
+      case sim::Geometry::sphere:
+        return pi * w * w;
+      case sim::Geometry::cylinder:
+        return pi * w * w;  // slices across the axis: handled below
+      case sim::Geometry::planar:
+        return a * a + 4 * a * w + pi * w * w;
     }
     return 0.0;
   };
@@ -55,14 +58,15 @@ TEST(ShellShape, AreaIsTheDerivativeOfVolume) {
     ShellShape lo = s, hi = s;
     lo.radius_m -= dr;
     hi.radius_m += dr;
-    EXPECT_NEAR((hi.volume() - lo.volume()) / (2 * dr) / s.area(), 1.0, 1e-6) << sim::to_string(s.geometry);
+    EXPECT_NEAR((hi.volume() - lo.volume()) / (2 * dr) / s.area(), 1.0, 1e-6)
+        << sim::to_string(s.geometry);
   }
 }
 
 TEST(ShellShape, SignedDistanceNormalAndSupport) {
   const auto capsule = make(sim::Geometry::cylinder, 0.02, 0.03);
-  EXPECT_DOUBLE_EQ(capsule.signed_distance({0.05, 0, 0.01}), 0.03);   // beside the tube
-  EXPECT_DOUBLE_EQ(capsule.signed_distance({0, 0, 0.06}), 0.01);      // beyond the cap
+  EXPECT_DOUBLE_EQ(capsule.signed_distance({0.05, 0, 0.01}), 0.03);  // beside the tube
+  EXPECT_DOUBLE_EQ(capsule.signed_distance({0, 0, 0.06}), 0.01);     // beyond the cap
   EXPECT_DOUBLE_EQ(capsule.signed_distance({0, 0, 0}), -0.02);
   const Vec3 n = capsule.outward_normal({0, 0.03, 0.06});
   EXPECT_NEAR(n[1], std::sqrt(0.5), 1e-15);

@@ -49,7 +49,8 @@ void expect_accurate(const ShellShape& shape) {
     const auto &a = m.vertices[f[0]], &b = m.vertices[f[1]], &c = m.vertices[f[2]];
     const Vec3 u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
     const Vec3 g{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-    for (int i : f) disagreeing += g[0] * m.normals[i][0] + g[1] * m.normals[i][1] + g[2] * m.normals[i][2] <= 0;
+    for (int i : f)
+      disagreeing += g[0] * m.normals[i][0] + g[1] * m.normals[i][1] + g[2] * m.normals[i][2] <= 0;
   }
   EXPECT_EQ(disagreeing, 0);
 }
@@ -66,9 +67,13 @@ TEST(SurfaceMesher, SphereAtDefaults) {
   for (const auto& f : m.faces) ASSERT_LE(std::abs(sphere.signed_distance(centroid(m, f))), bound);
 }
 
-TEST(SurfaceMesher, CapsuleAtDefaults) { expect_accurate(make(sim::Geometry::cylinder, 0.02, 0.02)); }
+TEST(SurfaceMesher, CapsuleAtDefaults) {
+  expect_accurate(make(sim::Geometry::cylinder, 0.02, 0.02));
+}
 
-TEST(SurfaceMesher, SlabAtDefaults) { expect_accurate(make(sim::Geometry::planar, 0.006, 0.02)); }
+TEST(SurfaceMesher, SlabAtDefaults) {
+  expect_accurate(make(sim::Geometry::planar, 0.006, 0.02));
+}
 
 TEST(SurfaceMesher, SmallSphereKeepsRelativeAccuracy) {
   // The relative distance bound keeps a 2 mm core as accurate (relatively) as a 3 cm shell.
@@ -139,7 +144,8 @@ TEST(SurfaceMesher, ChecksRejectBrokenMeshes) {
   EXPECT_NE(check_closed_manifold_outward(two).find("Euler"), std::string::npos);
 
   TriangleMesh dented = good;  // pull one vertex through the opposite side
-  dented.vertices[0] = {-dented.vertices[0][0] * 1.5, -dented.vertices[0][1] * 1.5, -dented.vertices[0][2] * 1.5};
+  dented.vertices[0] = {-dented.vertices[0][0] * 1.5, -dented.vertices[0][1] * 1.5,
+                        -dented.vertices[0][2] * 1.5};
   EXPECT_EQ(check_closed_manifold_outward(dented), "self-intersecting");
 }
 

@@ -18,9 +18,9 @@ class FilmEncoder : public ::testing::Test {
     fs::remove_all(m_dir);
     fs::create_directories(m_dir);
     // Real PNG frames of an odd size (63x47), which libx264 would reject without padding.
-    const auto r = run_process({"ffmpeg", "-v", "error", "-f", "lavfi", "-i",
-                                "testsrc=size=63x47:rate=4", "-frames:v", "5", "-start_number", "0",
-                                (m_dir / "frame_%06d.png").string()});
+    const auto r =
+        run_process({"ffmpeg", "-v", "error", "-f", "lavfi", "-i", "testsrc=size=63x47:rate=4",
+                     "-frames:v", "5", "-start_number", "0", (m_dir / "frame_%06d.png").string()});
     ASSERT_EQ(r.exit_code, 0) << r.output;
   }
   void TearDown() override { fs::remove_all(m_dir); }
