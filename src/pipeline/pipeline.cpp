@@ -164,6 +164,24 @@ void require_up_to_date(const RunManifest& manifest, const std::string& stage,
                       "` (or thaw run without --stage) first");
 }
 
+/// Runs `step` on the leader (rank 0) and tells every rank how it ended: a failure there (a user
+/// error, or any other error when other ranks wait for the leader's word) is thrown on all ranks
+/// as one UserError; with one rank, other errors propagate unchanged.
+template <class Step>
+void on_leader(RunRanks& ranks, Step&& step) {
+  std::string error;
+  if (ranks.leader()) try {
+      step();
+    } catch (const UserError& e) {
+      error = e.what();
+    } catch (const std::exception& e) {
+      if (ranks.size() == 1) throw;
+      error = std::string("internal error: ") + e.what();
+    }
+  error = ranks.broadcast(error);
+  if (!error.empty()) throw UserError("", "", error);
+}
+
 }  // namespace
 
 RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
@@ -237,78 +255,60 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
   if (o.jobs > 0) omp_set_num_threads(o.jobs);
 
   // 1. simulate, sampled at exactly the frame times (the leader; the others wait)
-  std::string error;
-  if (leader) try {
-      if (wanted("simulate")) {
-        StageClock clock(report, "simulate");
-        const bool up_to_date = manifest.begin_stage("simulate", sim_hash.hex()) &&
-                                fs::exists(simdir / "interfaces.csv") &&
-                                fs::exists(simdir / "summary.json");
-        if (up_to_date) {
-          clock.timing().skipped = true;
-          say(o, stage_title(1, "simulate") + ": up to date");
-        } else {
-          ProgressReporter progress(stage_title(1, "simulate"), static_cast<long>(times.size()),
-                                    o.quiet);
-          const sim::SimulationResult result =
-              sim::simulate(sc.simulation, times, interruptible(progress.callback()));
-          StagingDirectory stage(simdir);
-          sim::write_simulation_outputs(stage.path(), result);
-          stage.commit();
-          progress.set_done(static_cast<long>(result.snapshots.size()));
-          if (result.ended_early)
-            progress.finish_early(
-                "frame times: the ice is gone at t = " +
-                ProgressReporter::format_duration(result.snapshots.back().time_s));
-          else
-            progress.finish();
-          manifest.mark_stage_complete("simulate");
-          clock.timing().items_done = static_cast<int>(result.snapshots.size());
-        }
+  on_leader(ranks, [&] {
+    if (wanted("simulate")) {
+      StageClock clock(report, "simulate");
+      const bool up_to_date = manifest.begin_stage("simulate", sim_hash.hex()) &&
+                              fs::exists(simdir / "interfaces.csv") &&
+                              fs::exists(simdir / "summary.json");
+      if (up_to_date) {
+        clock.timing().skipped = true;
+        say(o, stage_title(1, "simulate") + ": up to date");
+      } else {
+        ProgressReporter progress(stage_title(1, "simulate"), static_cast<long>(times.size()),
+                                  o.quiet);
+        const sim::SimulationResult result =
+            sim::simulate(sc.simulation, times, interruptible(progress.callback()));
+        StagingDirectory stage(simdir);
+        sim::write_simulation_outputs(stage.path(), result);
+        stage.commit();
+        progress.set_done(static_cast<long>(result.snapshots.size()));
+        if (result.ended_early)
+          progress.finish_early("frame times: the ice is gone at t = " +
+                                ProgressReporter::format_duration(result.snapshots.back().time_s));
+        else
+          progress.finish();
+        manifest.mark_stage_complete("simulate");
+        clock.timing().items_done = static_cast<int>(result.snapshots.size());
       }
-    } catch (const UserError& e) {
-      error = e.what();
-    } catch (const std::exception& e) {
-      // Other ranks wait for the leader's word: they must hear of any failure.
-      if (ranks.size() == 1) throw;
-      error = std::string("internal error: ") + e.what();
     }
-  error = ranks.broadcast(error);
-  if (!error.empty()) throw UserError("", "", error);
+  });
   report.events = event_lines(simdir / "summary.json");
   const std::vector<sim::InterfaceRecord> rows =
       sim::read_interfaces_csv(simdir / "interfaces.csv");
 
   // 2. mesh the inner and outer surface of every frame (the leader, with its threads)
-  if (leader) try {
-      if (wanted("mesh")) {
-        StageClock clock(report, "mesh");
-        mesh::MeshOptions options = sc.mesh;
-        options.jobs = o.jobs;
-        const bool up_to_date =
-            manifest.begin_stage("mesh", mesh_hash.hex()) && fs::exists(mesh_dir / "manifest.json");
-        if (up_to_date) {
-          clock.timing().skipped = true;
-          say(o, stage_title(2, "mesh") + ": up to date");
-        } else {
-          ProgressReporter progress(stage_title(2, "mesh"), static_cast<long>(2 * rows.size()),
-                                    o.quiet);
-          const mesh::MeshManifest meshes =
-              mesh::mesh_simulation_folder(simdir, options, progress.callback());
-          progress.finish();
-          manifest.mark_stage_complete("mesh");
-          clock.timing().items_done = static_cast<int>(meshes.steps.size());
-        }
+  on_leader(ranks, [&] {
+    if (wanted("mesh")) {
+      StageClock clock(report, "mesh");
+      mesh::MeshOptions options = sc.mesh;
+      options.jobs = o.jobs;
+      const bool up_to_date =
+          manifest.begin_stage("mesh", mesh_hash.hex()) && fs::exists(mesh_dir / "manifest.json");
+      if (up_to_date) {
+        clock.timing().skipped = true;
+        say(o, stage_title(2, "mesh") + ": up to date");
+      } else {
+        ProgressReporter progress(stage_title(2, "mesh"), static_cast<long>(2 * rows.size()),
+                                  o.quiet);
+        const mesh::MeshManifest meshes =
+            mesh::mesh_simulation_folder(simdir, options, progress.callback());
+        progress.finish();
+        manifest.mark_stage_complete("mesh");
+        clock.timing().items_done = static_cast<int>(meshes.steps.size());
       }
-    } catch (const UserError& e) {
-      error = e.what();
-    } catch (const std::exception& e) {
-      // Other ranks wait for the leader's word: they must hear of any failure.
-      if (ranks.size() == 1) throw;
-      error = std::string("internal error: ") + e.what();
     }
-  error = ranks.broadcast(error);
-  if (!error.empty()) throw UserError("", "", error);
+  });
   if (o.stage == "simulate") return finish_report(report, start);
   const mesh::MeshManifest meshes = mesh::read_mesh_manifest(mesh_dir / "manifest.json");
 
