@@ -1,47 +1,57 @@
-// thaw: the one executable. Sub-commands register themselves on the CLI11 app; user errors
-// (thaw::UserError) are caught here, once, and printed as one line with exit code 2; SIGINT and
-// SIGTERM end the command at its next safe point with one line and exit code 130.
+// thaw: the one command users run. `simulate`, `render` and `materials` need only the plain
+// sim/ and render/ libraries and run here; every other command (mesh, inspect, run, gui, and
+// --help / --version) is handed, arguments unchanged, to libexec/thaw-full next to this
+// executable, which links VTK, CGAL, Qt and MPI. Why: loading those ~115 shared libraries costs
+// every process ~0.07 s of CPU before main (docs/benchmarks.md), a fifth of a small render.
+// The user sees one program: same help, same messages, same exit codes (app.h).
+#include <unistd.h>
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <cstdio>
-#include <exception>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <system_error>
 
+#include "src/cli/app.h"
 #include "src/cli/commands.h"
-#include "src/common/error.h"
-#include "src/common/interrupt.h"
-#include "thaw_version.h"
 
-int main(int argc, char** argv) {
-  CLI::App app{
-      "thaw: simulate a hollow ice shell full of water as it melts (Stefan problem) and render "
-      "every step with refraction through air | ice | water."};
-  app.set_version_flag("--version", std::string("thaw ") + THAW_VERSION_STRING);
-  app.require_subcommand(1);
-  thaw::cli::register_simulate(app);
-  thaw::cli::register_mesh(app);
-  thaw::cli::register_render(app);
-  thaw::cli::register_inspect(app);
-  thaw::cli::register_materials(app);
-  thaw::cli::register_run(app);
-  thaw::cli::register_gui(app);
-  thaw::install_interrupt_handlers();
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
-  } catch (const thaw::Interrupted& e) {
-    std::fprintf(stderr, "\nthaw: %s\n", e.what());
-    return thaw::kInterruptedExitCode;
-  } catch (const thaw::UserError& e) {
-    std::fprintf(stderr, "thaw: error: %s\n", e.what());
-    return 2;
-  } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "thaw: error: out of memory\n");
-    return 3;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "thaw: internal error: %s\n",
-                 thaw::escape_control_characters(e.what()).c_str());
+namespace {
+
+using Register = void (*)(CLI::App&);
+
+// The commands this executable runs itself; their libraries load no VTK, CGAL, Qt or MPI.
+Register light_command(std::string_view name) {
+  if (name == "simulate") return thaw::cli::register_simulate;
+  if (name == "render") return thaw::cli::register_render;
+  if (name == "materials") return thaw::cli::register_materials;
+  return nullptr;
+}
+
+// Replaces this process by thaw-full with the same arguments; returns only on failure.
+int exec_full(char** argv) {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) {
+    std::fprintf(stderr, "thaw: internal error: cannot locate this executable: %s\n",
+                 ec.message().c_str());
     return 3;
   }
-  return 0;
+  const std::string full = (self.parent_path() / "libexec" / "thaw-full").string();
+  ::execv(full.c_str(), argv);
+  std::fprintf(stderr, "thaw: internal error: cannot start %s: %s\n", full.c_str(),
+               std::strerror(errno));
+  return 3;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Register light = argc > 1 ? light_command(argv[1]) : nullptr;
+  if (light == nullptr) return exec_full(argv);
+  CLI::App app;
+  thaw::cli::describe_app(app);
+  light(app);
+  return thaw::cli::run_app(app, argc, argv);
 }
