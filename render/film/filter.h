@@ -54,6 +54,8 @@ class Filter {
   /// and integral of f1 / integral of the tabulated |f1|: weight = sign * ... / this.
   std::vector<float> m_abs, m_cdf;
   float m_abs_integral = 0, m_signed_integral = 0;
+  /// gaussian: exp(-r^2 / (2 s^2)), the value subtracted so that f1(r) = 0
+  double m_gaussian_floor = 0;
 };
 
 }  // namespace thaw::render

@@ -16,11 +16,16 @@
 // kernels. The price: a caustic's edges, where cells are partly empty, get a wider kernel.
 // Photons of other surfaces are rejected: a photon counts only if its stored normal is within
 // ~25 degrees of n (cos > 0.9) and it lies within r_p / 4 of the tangent plane (a corner, the far
-// side of a thin wall, a ball resting on the floor). Photons whose r_p is at most r, 1.41r, 2r,
-// ..., 8r sit in seven hashed uniform grids of cells 2 r_class wide (Teschner et al. 2003,
-// "Optimized spatial hashing for collision detection of deformable objects"), so a query visits at
-// most 2 x 2 x 2 cells per class. Built once, immutable, thread-safe to query. Knows nothing about
-// lights or tracing.
+// side of a thin wall, a ball resting on the floor).
+// Lookup: a bounding volume hierarchy over the photons' kernel balls (each photon's box is its
+// position +- r_p; nodes bound their photons' boxes; leaves of up to kLeafPhotons photons),
+// descended only into nodes whose box contains the query point, so a query examines about the
+// photons whose kernels reach it, whatever their radii (the "scatter" form of the estimate as a
+// point-in-box query, the reverse of a k-nearest-neighbour search). It replaced seven hashed
+// grids, one per radius class, whose 2 x 2 x 2 cells of 2 r_class gave 8.6 candidates per
+// contributing photon on the default film (docs/benchmarks.md). The sum is taken in a fixed
+// order (the tree's, built from the input order), so results do not depend on threads. Built
+// once, immutable, thread-safe to query. Knows nothing about lights or tracing.
 #include <cstdint>
 #include <vector>
 
@@ -41,49 +46,39 @@ struct Photon {
 
 class PhotonMap {
  public:
-  /// Grids for kernel radii up to r 2^(c/2), c = 0..6 (r .. 8r in steps of sqrt 2).
-  static constexpr int kClasses = 7;
+  /// The largest kernel radius over the base radius r (photons sparser than K per disc of r).
+  static constexpr float kMaxRadiusScale = 8.0f;
+  /// Photons per leaf of the lookup tree: small, since every leaf photon is tested.
+  static constexpr std::uint32_t kLeafPhotons = 4;
 
   PhotonMap() = default;
   /// `radius` > 0 [scene units]; photons among at least `photons_per_disc` (>= 1) keep it,
   /// sparser ones get wider kernels (see above).
   PhotonMap(const std::vector<Photon>& photons, float radius, double photons_per_disc);
 
-  bool empty() const { return size() == 0; }
-  std::size_t size() const;
+  bool empty() const { return m_photons.empty(); }
+  std::size_t size() const { return m_photons.size(); }
   /// the base radius r
   float radius() const { return m_radius; }
-  /// Photons whose kernel radius is in (r 2^((c-1)/2), r 2^(c/2)] (c = 0: exactly r), in a
-  /// fixed order.
-  const std::vector<Photon>& photons(int radius_class) const {
-    return m_grids[std::size_t(radius_class)].photons;
-  }
+  /// The photons with their kernels (inv_radius2 set), in the tree's fixed order.
+  const std::vector<Photon>& photons() const { return m_photons; }
 
   /// Irradiance [power per area] at `p` on a surface with unit normal `n` (facing the side the
   /// light is wanted on).
   Rgb irradiance(const Vec3& p, const Vec3& n) const;
 
  private:
-  /// One radius class: photons in a hashed grid.
-  struct Grid {
-    std::vector<Photon> photons;
-    /// photons of bucket k: photons[start[k] .. start[k + 1])
-    std::vector<std::uint32_t> start;
-    std::uint32_t mask = 0;
-    float radius = 0, cell = 1;
-    Vec3 lo, hi;  // photons' bounds grown by the radius
-
-    Grid() = default;
-    Grid(std::vector<Photon> photons, float radius);
-    std::uint32_t bucket(int ix, int iy, int iz) const;
-    /// Photons in the 2 x 2 x 2 cells a query at p visits.
-    std::uint32_t count_near(const Vec3& p) const;
-    /// Calls f(photon, offset from p, squared distance) for the photons within `radius` of p
-    /// until f returns false.
-    template <class F>
-    void for_each_near(const Vec3& p, F&& f) const;
+  /// A tree node: the box of its photons' kernel balls; a leaf (count > 0) holds photons
+  /// [first, first + count), an inner node (count = 0) has children first and first + 1.
+  struct Node {
+    Vec3 lo, hi;
+    std::uint32_t first = 0, count = 0;
   };
-  std::vector<Grid> m_grids;
+  /// Builds the subtree of m_photons[begin, end) into m_nodes[node].
+  void build(std::uint32_t node, std::uint32_t begin, std::uint32_t end);
+
+  std::vector<Photon> m_photons;
+  std::vector<Node> m_nodes;
   float m_radius = 0;
 };
 

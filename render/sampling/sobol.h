@@ -22,6 +22,20 @@ constexpr std::array<std::uint32_t, 32> sobol_dimension1_matrix() {
   return columns;
 }
 inline constexpr std::array<std::uint32_t, 32> kSobolDimension1 = sobol_dimension1_matrix();
+
+/// The matrix-vector product over GF(2) byte by byte: entry [b][v] is the xor of the columns
+/// 8b .. 8b + 7 selected by the bits of v. The scrambled indices of the pixel sampler have all
+/// 32 bits random, so a bit loop took 32 unpredictable branches; this takes 4 lookups (4 KiB).
+constexpr std::array<std::array<std::uint32_t, 256>, 4> sobol_dimension1_byte_tables() {
+  std::array<std::array<std::uint32_t, 256>, 4> t{};
+  for (std::size_t b = 0; b < 4; ++b)
+    for (std::size_t v = 0; v < 256; ++v)
+      for (std::size_t k = 0; k < 8; ++k)
+        if (v & (std::size_t(1) << k)) t[b][v] ^= kSobolDimension1[8 * b + k];
+  return t;
+}
+inline constexpr std::array<std::array<std::uint32_t, 256>, 4> kSobolDimension1Bytes =
+    sobol_dimension1_byte_tables();
 }  // namespace detail
 
 /// Point `index` of Sobol dimension 0 (van der Corput), as a fraction * 2^32.
@@ -31,10 +45,9 @@ inline std::uint32_t sobol_dimension0(std::uint32_t index) {
 
 /// Point `index` of Sobol dimension 1, as a fraction * 2^32.
 inline std::uint32_t sobol_dimension1(std::uint32_t index) {
-  std::uint32_t v = 0;
-  for (std::size_t k = 0; index != 0; index >>= 1, ++k)
-    if (index & 1u) v ^= detail::kSobolDimension1[k];
-  return v;
+  const auto& t = detail::kSobolDimension1Bytes;
+  return t[0][index & 0xffu] ^ t[1][(index >> 8) & 0xffu] ^ t[2][(index >> 16) & 0xffu] ^
+         t[3][index >> 24];
 }
 
 /// A 32-bit fraction as a float in [0, 1): the top 24 bits, exact in a float's mantissa.

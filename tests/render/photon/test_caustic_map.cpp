@@ -271,15 +271,14 @@ TEST(CausticMap, CentroidOnTheLineFromTheLightThroughTheCentre) {
     const Scene scene = ball_over_floor("ior = 1.31", -1.0, light, "", "photons = 50000");
     const CausticMap map = CausticMap::build(scene, 2);
     double w = 0, cx = 0, cz = 0, cxx = 0, czz = 0;
-    for (int c = 0; c < PhotonMap::kClasses; ++c)
-      for (const Photon& p : map.maps()[0].photons(c)) {
-        const double pw = p.power.g;
-        w += pw;
-        cx += pw * p.position.x;
-        cz += pw * p.position.z;
-        cxx += pw * p.position.x * p.position.x;
-        czz += pw * p.position.z * p.position.z;
-      }
+    for (const Photon& p : map.maps()[0].photons()) {
+      const double pw = p.power.g;
+      w += pw;
+      cx += pw * p.position.x;
+      cz += pw * p.position.z;
+      cxx += pw * p.position.x * p.position.x;
+      czz += pw * p.position.z * p.position.z;
+    }
     cx /= w;
     cz /= w;
     const double sigma = std::sqrt(cxx / w - cx * cx + czz / w - cz * cz);
@@ -352,15 +351,14 @@ TEST(CausticMap, IndependentOfThreadCount) {
   const Scene scene =
       ball_over_floor("preset = \"ice-ih\"", -1.0, "[-4.0, 6.0, 4.0]", "", "photons = 30000");
   const CausticMap one = CausticMap::build(scene, 1), two = CausticMap::build(scene, 2);
-  for (int c = 0; c < PhotonMap::kClasses; ++c) {
-    ASSERT_EQ(one.maps()[0].photons(c).size(), two.maps()[0].photons(c).size());
-    for (std::size_t i = 0; i < one.maps()[0].photons(c).size(); ++i) {
-      const Photon &a = one.maps()[0].photons(c)[i], &b = two.maps()[0].photons(c)[i];
-      ASSERT_EQ(a.position.x, b.position.x);
-      ASSERT_EQ(a.position.z, b.position.z);
-      ASSERT_EQ(a.power.r, b.power.r);
-      ASSERT_EQ(a.power.b, b.power.b);
-    }
+  ASSERT_EQ(one.maps()[0].photons().size(), two.maps()[0].photons().size());
+  for (std::size_t i = 0; i < one.maps()[0].photons().size(); ++i) {
+    const Photon &a = one.maps()[0].photons()[i], &b = two.maps()[0].photons()[i];
+    ASSERT_EQ(a.position.x, b.position.x);
+    ASSERT_EQ(a.position.z, b.position.z);
+    ASSERT_EQ(a.power.r, b.power.r);
+    ASSERT_EQ(a.power.b, b.power.b);
+    ASSERT_EQ(a.inv_radius2, b.inv_radius2);
   }
   EXPECT_EQ(one.statistics().stored.g, two.statistics().stored.g);
   EXPECT_EQ(one.statistics().escaped.r, two.statistics().escaped.r);

@@ -61,12 +61,18 @@ TEST(PhotonMap, RejectsPhotonsOfOtherSurfaces) {
 // grid of r / 8 cells over kernels 8 r wide: 1e-3).
 TEST(PhotonMap, SparsePhotonsAreSpreadAndKeepTheirPower) {
   const float r = 0.1f;
-  // A lone photon (n = 1) and a pair in one cell (n = 2): both reach 8 r, the last grid.
+  // A lone photon (n = 1) and a pair in one cell (n = 2): both reach 8 r.
   std::vector<Photon> photons{{Vec3{0, 0, 0}, Vec3{0, 1, 0}, Rgb{1, 1, 1}},
                               {Vec3{5, 0, 0}, Vec3{0, 1, 0}, Rgb{1, 1, 1}},
                               {Vec3{5.05f, 0, 0}, Vec3{0, 1, 0}, Rgb{1, 1, 1}}};
   const PhotonMap map(photons, r, 32.0);
-  EXPECT_EQ(map.photons(PhotonMap::kClasses - 1).size(), 3u);
+  // (The pilot count is hashed: a cell may share its bucket with another's photon, n = 3, which
+  // still gives a radius above 2^(5/2) r.)
+  ASSERT_EQ(map.photons().size(), 3u);
+  for (const Photon& p : map.photons()) {
+    EXPECT_LE(p.inv_radius2, 1.0001f / (32 * r * r));
+    EXPECT_GE(p.inv_radius2, 0.9999f / (64 * r * r));
+  }
   const double lone = 8 * r;
   EXPECT_NEAR(map.irradiance({0, 0, 0}, {0, 1, 0}).g, 2 / (M_PI * lone * lone), 1e-4);
   double total = 0;
@@ -82,7 +88,47 @@ TEST(PhotonMap, SparsePhotonsAreSpreadAndKeepTheirPower) {
 // photon keeps r.
 TEST(PhotonMap, DenseRegionsKeepTheBaseRadius) {
   const PhotonMap map(lattice(0.01f, 1.0f, 1.0f), 0.2f, 32.0);
-  EXPECT_EQ(map.photons(0).size(), map.size());
+  for (const Photon& p : map.photons()) ASSERT_FLOAT_EQ(p.inv_radius2, 1.0f / (0.2f * 0.2f));
+}
+
+// The tree lookup finds every photon whose kernel reaches the query: the same sum as a brute-force
+// loop over all photons with the documented rules (kernel, normal within acos 0.9, tangent plane
+// within r_p / 4), on clustered and sparse photons of many radii on a floor and a tilted wall.
+// Only the order of the float sums differs: relative 1e-5 (a few hundred terms of float
+// rounding, 6e-8 each).
+TEST(PhotonMap, TreeLookupEqualsBruteForce) {
+  std::vector<Photon> photons;
+  std::uint32_t s = 12345;
+  const auto next = [&s] {
+    s = s * 1664525u + 1013904223u;
+    return float(s >> 8) / float(1u << 24);
+  };
+  const Vec3 wall_normal = normalize(Vec3{1, 0.3f, 0});
+  for (int i = 0; i < 6000; ++i) {
+    // Half in a dense spot, half spread out: radii from r to 8r.
+    const float spread = i % 2 ? 0.05f : 1.0f;
+    const Vec3 q{(next() - 0.5f) * spread, 0, (next() - 0.5f) * spread};
+    if (i % 5 == 0)
+      photons.push_back({Vec3{q.x, std::abs(q.z), q.z} + wall_normal * 0.001f, wall_normal,
+                         Rgb{next(), next(), 1}});
+    else
+      photons.push_back({q, Vec3{0, 1, 0}, Rgb{next(), next(), 1}});
+  }
+  const PhotonMap map(photons, 0.01f, 32.0);
+  ASSERT_EQ(map.size(), photons.size());
+  for (int k = 0; k < 300; ++k) {
+    const Vec3 p{(next() - 0.5f) * (k % 2 ? 0.07f : 1.2f), (next() - 0.5f) * 0.004f,
+                 (next() - 0.5f) * (k % 2 ? 0.07f : 1.2f)};
+    const Vec3 n = k % 3 ? Vec3{0, 1, 0} : wall_normal;
+    double want = 0;
+    for (const Photon& ph : map.photons()) {
+      const Vec3 v = ph.position - p;
+      const double u = double(dot(v, v)) * ph.inv_radius2, h = dot(v, n);
+      if (u < 1 && dot(ph.normal, n) >= 0.9f && h * h * ph.inv_radius2 <= 0.0625)
+        want += ph.power.r * (1 - u) * ph.inv_radius2 * 2 / M_PI;
+    }
+    EXPECT_NEAR(map.irradiance(p, n).r, want, 1e-5 * want + 1e-9) << k;
+  }
 }
 
 TEST(PhotonMap, EmptyMapIsDark) {

@@ -21,6 +21,24 @@ TEST(Sobol, FirstPointsAreTheKnownSequence) {
   EXPECT_EQ(detail::kSobolDimension1[4], 0x88000000u);
 }
 
+// The byte tables compute the same product as the definition, xor of column k over the set bits
+// k, for indices with any of the 32 bits set (the pixel sampler's scrambled indices).
+TEST(Sobol, ByteTablesEqualTheBitwiseProduct) {
+  std::uint32_t index = 0x9e3779b9u;
+  for (int i = 0; i < 100000; ++i) {
+    index = index * 1664525u + 1013904223u;
+    std::uint32_t want = 0;
+    for (std::size_t k = 0; k < 32; ++k)
+      if (index & (1u << k)) want ^= detail::kSobolDimension1[k];
+    ASSERT_EQ(sobol_dimension1(index), want) << index;
+  }
+  EXPECT_EQ(sobol_dimension1(0xffffffffu), [] {
+    std::uint32_t v = 0;
+    for (std::uint32_t c : detail::kSobolDimension1) v ^= c;
+    return v;
+  }());
+}
+
 TEST(Sobol, EveryAlignedBlockIsA02Net) {
   // The (0,2)-sequence property: points [k 2^m, (k+1) 2^m) form a (0,m,2)-net, for all m, k.
   for (int m = 0; m <= 10; ++m) {
