@@ -129,8 +129,11 @@ MainWindow::MainWindow(ScenarioDocument document, QWidget* parent)
   recheck();
 }
 
-// The worker thread is stopped (and joined) before the widgets its signals reach go away.
+// The worker thread is stopped (and joined) before the widgets its signals reach go away. The
+// forms are silenced first: the children are deleted after the members (the document among
+// them), and a field losing the focus then would apply its edit to a destroyed document.
 MainWindow::~MainWindow() {
+  for (KeyForm* form : findChildren<KeyForm*>()) form->blockSignals(true);
   delete m_renderer;
 }
 
@@ -531,7 +534,11 @@ bool MainWindow::save_file(const std::filesystem::path& path) {
   }
   m_path = path;
   m_document.set_source_name(path.string());
-  m_status->setText("saved " + QString::fromStdString(path.string()));
+  m_status->setText("saved " + QString::fromStdString(path.string()) +
+                    (m_document.layout_kept()
+                         ? QString()
+                         : QString(" (an edit could not be made in place: the file was written "
+                                   "anew, without its comments)")));
   update_title();
   return true;
 }

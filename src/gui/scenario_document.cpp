@@ -1,6 +1,7 @@
 #include "src/gui/scenario_document.h"
 
 #include <toml++/toml.h>
+#include <fstream>
 #include <regex>
 #include <sstream>
 
@@ -8,30 +9,13 @@
 #include "src/common/check.h"
 #include "src/common/error.h"
 #include "src/common/toml_table.h"
+#include "src/gui/toml_text.h"
 
 namespace thaw::gui {
 namespace {
 
-/// One step of a dotted key: a table key, optionally indexing an array of tables ("objects[2]").
-struct KeyPart {
-  std::string name;
-  std::optional<std::size_t> index;
-};
-
-std::vector<KeyPart> split_key(const std::string& dotted) {
-  std::vector<KeyPart> parts;
-  std::stringstream in(dotted);
-  std::string item;
-  while (std::getline(in, item, '.')) {
-    KeyPart p;
-    const auto bracket = item.find('[');
-    p.name = item.substr(0, bracket);
-    if (bracket != std::string::npos) p.index = std::stoul(item.substr(bracket + 1));
-    parts.push_back(std::move(p));
-  }
-  THAW_CHECK(!parts.empty(), "empty key");
-  return parts;
-}
+using toml_text::KeyPart;
+using toml_text::split_key;
 
 /// The table holding the last part of `parts`, created on the way when `create`; nullptr if absent.
 toml::table* parent_table(toml::table& root, const std::vector<KeyPart>& parts, bool create) {
@@ -55,6 +39,10 @@ toml::table* parent_table(toml::table& root, const std::vector<KeyPart>& parts, 
   return t;
 }
 
+toml::table parse_toml(const std::string& text, const std::string& source_name) {
+  return toml::parse(std::string_view(text), std::string_view(source_name));
+}
+
 toml::array* table_array(toml::table& root, const std::string& dotted, bool create) {
   const auto parts = split_key(dotted);
   toml::table* parent = parent_table(root, parts, create);
@@ -73,12 +61,17 @@ ScenarioDocument::ScenarioDocument()
 ScenarioDocument::ScenarioDocument(std::nullptr_t) {}
 
 ScenarioDocument::ScenarioDocument(const ScenarioDocument& o)
-    : m_root(std::make_unique<toml::table>(*o.m_root)), m_source_name(o.m_source_name) {}
+    : m_root(std::make_unique<toml::table>(*o.m_root)),
+      m_text(o.m_text),
+      m_source_name(o.m_source_name),
+      m_layout_kept(o.m_layout_kept) {}
 
 ScenarioDocument& ScenarioDocument::operator=(const ScenarioDocument& o) {
   if (this != &o) {
     m_root = std::make_unique<toml::table>(*o.m_root);
+    m_text = o.m_text;
     m_source_name = o.m_source_name;
+    m_layout_kept = o.m_layout_kept;
   }
   return *this;
 }
@@ -90,7 +83,8 @@ ScenarioDocument ScenarioDocument::from_text(const std::string& text,
   // TomlTable::parse_string reports malformed TOML as thaw's one-line UserError.
   (void)TomlTable::parse_string(text, source_name);
   ScenarioDocument d(std::nullptr_t{});
-  d.m_root = std::make_unique<toml::table>(toml::parse(text, source_name));
+  d.m_root = std::make_unique<toml::table>(parse_toml(text, source_name));
+  d.m_text = text;
   d.m_source_name = source_name;
   return d;
 }
@@ -98,15 +92,40 @@ ScenarioDocument ScenarioDocument::from_text(const std::string& text,
 ScenarioDocument ScenarioDocument::load(const std::filesystem::path& path) {
   const TomlTable checked = TomlTable::parse_file(path);  // missing or malformed: UserError
   (void)checked;
-  ScenarioDocument d(std::nullptr_t{});
-  d.m_root = std::make_unique<toml::table>(toml::parse_file(path.string()));
-  d.m_source_name = path.string();
-  return d;
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in && !in.eof()) throw UserError(path.string(), "", "cannot be read");
+  return from_text(text.str(), path.string());
 }
 
-void ScenarioDocument::set(const std::string& dotted_key, const TomlValue& value) {
-  const auto parts = split_key(dotted_key);
-  toml::table* parent = parent_table(*m_root, parts, true);
+void ScenarioDocument::edit(const std::function<void(toml::table&)>& change,
+                            const TextEdit& in_text) {
+  toml::table expected = *m_root;
+  change(expected);
+  if (const std::optional<std::string> text = in_text(expected)) {
+    try {
+      toml::table back = parse_toml(*text, m_source_name);
+      if (back == expected) {  // the in-place edit made exactly the intended document
+        m_text = *text;
+        *m_root = std::move(back);
+        return;
+      }
+    } catch (const toml::parse_error&) {
+    }
+  }
+  // A layout the in-place edits do not handle: toml++ writes the document anew.
+  std::ostringstream out;
+  out << expected << "\n";
+  m_text = out.str();
+  *m_root = parse_toml(m_text, m_source_name);
+  m_layout_kept = false;
+}
+
+namespace {
+
+void set_in(toml::table& root, const std::vector<KeyPart>& parts, const TomlValue& value) {
+  toml::table* parent = parent_table(root, parts, true);
   THAW_CHECK(parent != nullptr, "no table holds the key");
   const std::string& name = parts.back().name;
   toml::array* array = nullptr;
@@ -135,9 +154,25 @@ void ScenarioDocument::set(const std::string& dotted_key, const TomlValue& value
       value);
 }
 
+}  // namespace
+
+void ScenarioDocument::set(const std::string& dotted_key, const TomlValue& value) {
+  const auto parts = split_key(dotted_key);
+  edit([&](toml::table& t) { set_in(t, parts, value); },
+       [&](const toml::table& expected) {
+         return toml_text::with_value(m_text, *m_root, parts, expected);
+       });
+}
+
 void ScenarioDocument::remove(const std::string& dotted_key) {
   const auto parts = split_key(dotted_key);
-  if (toml::table* parent = parent_table(*m_root, parts, false)) parent->erase(parts.back().name);
+  edit(
+      [&](toml::table& t) {
+        if (toml::table* parent = parent_table(t, parts, false)) parent->erase(parts.back().name);
+      },
+      [&](const toml::table& expected) {
+        return toml_text::without(m_text, *m_root, parts, expected);
+      });
 }
 
 bool ScenarioDocument::has(const std::string& dotted_key) const {
@@ -152,16 +187,33 @@ std::size_t ScenarioDocument::array_size(const std::string& dotted_key) const {
 }
 
 std::size_t ScenarioDocument::append_table(const std::string& dotted_key) {
-  toml::array* a = table_array(*m_root, dotted_key, true);
-  THAW_CHECK(a != nullptr, "not an array of tables");
-  a->push_back(toml::table{});
-  return a->size() - 1;
+  std::size_t index = 0;
+  edit(
+      [&](toml::table& t) {
+        toml::array* a = table_array(t, dotted_key, true);
+        THAW_CHECK(a != nullptr, "not an array of tables");
+        a->push_back(toml::table{});
+        index = a->size() - 1;
+      },
+      [&](const toml::table&) {
+        return toml_text::with_table_appended(m_text, *m_root, split_key(dotted_key));
+      });
+  return index;
 }
 
 void ScenarioDocument::erase_table(const std::string& dotted_key, std::size_t index) {
-  toml::array* a = table_array(*m_root, dotted_key, false);
-  if (a && index < a->size()) a->erase(a->begin() + static_cast<std::ptrdiff_t>(index));
-  if (a && a->empty()) remove(dotted_key);
+  edit(
+      [&](toml::table& t) {
+        toml::array* a = table_array(t, dotted_key, false);
+        if (a && index < a->size()) a->erase(a->begin() + static_cast<std::ptrdiff_t>(index));
+        if (a && a->empty()) {
+          const auto parts = split_key(dotted_key);
+          if (toml::table* parent = parent_table(t, parts, false)) parent->erase(parts.back().name);
+        }
+      },
+      [&](const toml::table&) {
+        return toml_text::without_table(m_text, *m_root, split_key(dotted_key), index);
+      });
 }
 
 std::optional<TomlValue> ScenarioDocument::value(const std::string& dotted_key) const {
@@ -210,9 +262,7 @@ std::vector<std::string> ScenarioDocument::table_keys(const std::string& dotted_
 }
 
 std::string ScenarioDocument::text() const {
-  std::ostringstream out;
-  out << *m_root << "\n";
-  return out.str();
+  return m_text;
 }
 
 ScenarioCheck ScenarioDocument::check() const {

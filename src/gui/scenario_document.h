@@ -1,11 +1,14 @@
 #pragma once
-// The scenario being edited in `thaw gui`: the parsed TOML document itself (toml++), so that Save
-// writes back every key, including those the GUI has no widget for, and what is saved loads back
-// identically. Every edit sets one dotted key in the document; check() then runs the scenario
-// parser of `thaw run` (src/pipeline/run_scenario.h, which calls sim/ and render/ parsers) on the
-// re-serialised text: the GUI's messages are the files' messages, no rule is written twice.
-// Qt-free.
+// The scenario being edited in `thaw gui`: the file's text and the TOML document parsed from it
+// (toml++), so that Save writes back every key, including those the GUI has no widget for, with
+// the file's comments and layout, and what is saved loads back identically. Every edit sets one
+// dotted key: the text is edited in place (toml_text.h: only that value's span or line changes)
+// and kept if it parses to exactly the edited document, else the document is re-serialised.
+// check() then runs the scenario parser of `thaw run` (src/pipeline/run_scenario.h, which calls
+// sim/ and render/ parsers) on the text: the GUI's messages are the files' messages (their line
+// numbers those of the saved file), no rule is written twice. Qt-free.
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -66,8 +69,11 @@ class ScenarioDocument {
   /// Names of the sub-tables of table `dotted_key` (e.g. the materials), in document order.
   std::vector<std::string> table_keys(const std::string& dotted_key) const;
 
-  /// The document as TOML (toml++'s serialisation: comments are not kept).
+  /// The document as TOML: the loaded text with the edits made in place (comments kept).
   std::string text() const;
+  /// False once an edit could not be made in place (a layout toml_text.h does not edit): the
+  /// text was then re-serialised by toml++, without the comments.
+  bool layout_kept() const { return m_layout_kept; }
   /// Runs the scenario parser on text().
   ScenarioCheck check() const;
   /// Writes text() to `path` atomically after check(); throws thaw::UserError (the check's
@@ -80,8 +86,17 @@ class ScenarioDocument {
 
  private:
   explicit ScenarioDocument(std::nullptr_t);
+  /// The text for the table `expected` made from the current one, or nullopt.
+  using TextEdit = std::function<std::optional<std::string>(const toml::table& expected)>;
+  /// Applies `change` to the document and `in_text` to the text, keeping the edited text only
+  /// if it parses to the changed document.
+  void edit(const std::function<void(toml::table&)>& change, const TextEdit& in_text);
+
+  /// parsed from m_text (toml++ keeps each node's source position for the in-place edits)
   std::unique_ptr<toml::table> m_root;
+  std::string m_text;
   std::string m_source_name;
+  bool m_layout_kept = true;
 };
 
 /// The dotted key named in a parser message ("line 3, key 'shell.inner_radius_m'" -> the key),
