@@ -1,7 +1,5 @@
 #include "src/mesh/grid_series.h"
 
-#include <omp.h>
-
 #include <cstdio>
 #include <optional>
 
@@ -44,6 +42,53 @@ struct StepResult {
   std::string remesh_problem;
   double iso_level = 0.5;
 };
+
+// A step's result as text, to pass between processes (JSON; doubles read back exactly).
+nlohmann::json to_json(const SurfaceRecord& s) {
+  return {{"file", s.file ? *s.file : ""},
+          {"reason", s.reason},
+          {"triangles", s.triangles},
+          {"volume_m3", s.volume_m3},
+          {"exact_volume_m3", s.exact_volume_m3}};
+}
+
+SurfaceRecord surface_from_json(const nlohmann::json& j) {
+  SurfaceRecord s;
+  if (!j.at("file").get<std::string>().empty()) s.file = j.at("file").get<std::string>();
+  s.reason = j.at("reason").get<std::string>();
+  s.triangles = j.at("triangles").get<long>();
+  s.volume_m3 = j.at("volume_m3").get<double>();
+  s.exact_volume_m3 = j.at("exact_volume_m3").get<double>();
+  return s;
+}
+
+std::string encode(const StepResult& r) {
+  nlohmann::json j = {{"error", r.error},
+                      {"outer", to_json(r.outer)},
+                      {"inner", to_json(r.inner)},
+                      {"cavities", r.cavities},
+                      {"cavity_water_fraction", r.cavity_water_fraction},
+                      {"remesh_problem", r.remesh_problem},
+                      {"iso_level", r.iso_level}};
+  if (r.user_error)
+    j["user_error"] = {r.user_error->file(), r.user_error->where(), r.user_error->problem()};
+  return j.dump();
+}
+
+StepResult decode(const std::string& text) {
+  const nlohmann::json j = nlohmann::json::parse(text);
+  StepResult r;
+  if (j.contains("user_error"))
+    r.user_error = UserError(j["user_error"][0], j["user_error"][1], j["user_error"][2]);
+  r.error = j.at("error").get<std::string>();
+  r.outer = surface_from_json(j.at("outer"));
+  r.inner = surface_from_json(j.at("inner"));
+  r.cavities = j.at("cavities").get<int>();
+  r.cavity_water_fraction = j.at("cavity_water_fraction").get<double>();
+  r.remesh_problem = j.at("remesh_problem").get<std::string>();
+  r.iso_level = j.at("iso_level").get<double>();
+  return r;
+}
 
 void mesh_step(const fs::path& field_file, const fs::path& out_dir, long step,
                const MeshOptions& options, StepResult& r) {
@@ -89,7 +134,7 @@ void mesh_step(const fs::path& field_file, const fs::path& out_dir, long step,
 }  // namespace
 
 MeshManifest mesh_grid_simulation_folder(const fs::path& simdir, const MeshOptions& requested,
-                                         const ProgressCallback& progress) {
+                                         const ProgressCallback& progress, MeshFarm& farm) {
   validate(requested);
   const auto rows = sim::read_interfaces_csv(simdir / "interfaces.csv");
   for (const auto& row : rows)
@@ -101,34 +146,38 @@ MeshManifest mesh_grid_simulation_folder(const fs::path& simdir, const MeshOptio
   manifest.grid = true;
 
   const fs::path final_dir = simdir / "mesh";
-  StagingDirectory staging(final_dir);
-  std::vector<StepResult> results(rows.size());
+  // The leader stages the folder; the other processes of a farm write their files into it.
+  std::optional<StagingDirectory> staging;
+  if (farm.leader()) staging.emplace(final_dir);
+  const fs::path out_dir = farm.share(staging ? staging->path().string() : "");
   const std::int64_t total = static_cast<std::int64_t>(rows.size());
   std::int64_t done = 0;
   if (progress) progress(0, total);
-  const int jobs = requested.jobs > 0 ? requested.jobs : omp_get_max_threads();
-  const long n = static_cast<long>(rows.size());
-  // Nothing may throw out of this loop: every exception is caught and stored per step.
-#pragma omp parallel for schedule(dynamic, 1) num_threads(jobs)
-  for (long k = 0; k < n; ++k) {
-    if (interrupt_requested()) continue;  // SIGINT/SIGTERM: skip the rest, throw after the loop
-    StepResult& r = results[static_cast<std::size_t>(k)];
-    const long step = rows[static_cast<std::size_t>(k)].step;
-    try {
-      mesh_step(grid_field_file(simdir, step), staging.path(), step, requested, r);
-    } catch (const UserError& e) {
-      r.user_error = e;
-    } catch (const std::exception& e) {
-      r.error = std::string("meshing failed: ") + e.what();
-    } catch (...) {
-      r.error = "meshing failed";
-    }
-    if (progress) {
-#pragma omp critical(thaw_mesh_progress)
-      progress(++done, total);
-    }
-  }
+  // Nothing may throw out of the farmed work: every exception is caught and returned per step.
+  const std::vector<std::string> texts = farm.run(
+      static_cast<long>(rows.size()), requested.jobs,
+      [&](long k) -> std::string {
+        StepResult r;
+        if (interrupt_requested()) return encode(r);  // skip the rest, throw after the loop
+        const long step = rows[static_cast<std::size_t>(k)].step;
+        try {
+          mesh_step(grid_field_file(simdir, step), out_dir, step, requested, r);
+        } catch (const UserError& e) {
+          r.user_error = e;
+        } catch (const std::exception& e) {
+          r.error = std::string("meshing failed: ") + e.what();
+        } catch (...) {
+          r.error = "meshing failed";
+        }
+        return encode(r);
+      },
+      [&] {
+        if (progress) progress(++done, total);
+      });
   throw_if_interrupted();
+  if (!farm.leader()) return manifest;  // the leader gathers and commits
+  std::vector<StepResult> results;
+  for (const std::string& text : texts) results.push_back(decode(text));
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const StepResult& r = results[k];
     if (r.user_error) throw *r.user_error;
@@ -148,8 +197,8 @@ MeshManifest mesh_grid_simulation_folder(const fs::path& simdir, const MeshOptio
     manifest.steps.push_back(rec);
   }
   manifest.distinct_meshes = static_cast<long>(rows.size());
-  write_file_atomic(staging.path() / "manifest.json", to_json(manifest).dump(1) + "\n");
-  staging.commit();
+  write_file_atomic(staging->path() / "manifest.json", to_json(manifest).dump(1) + "\n");
+  staging->commit();
   return manifest;
 }
 

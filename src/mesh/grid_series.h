@@ -25,8 +25,10 @@ bool is_grid_simulation_folder(const std::filesystem::path& simdir);
 /// edge), normals and jobs apply; the CGAL facet criteria of the 1D shapes do not. Throws
 /// thaw::UserError naming the file on a missing or damaged field, or a surface that failed its
 /// checks; nothing is left half-written.
+/// `farm` as for mesh_simulation_folder (mesh_series.h): one item per step.
 MeshManifest mesh_grid_simulation_folder(const std::filesystem::path& simdir,
                                          const MeshOptions& options,
-                                         const ProgressCallback& progress = {});
+                                         const ProgressCallback& progress = {},
+                                         MeshFarm& farm = this_process_farm());
 
 }  // namespace thaw::mesh

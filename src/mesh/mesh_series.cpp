@@ -1,10 +1,9 @@
 #include "src/mesh/mesh_series.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -77,6 +76,29 @@ void measure(const ShellShape& shape, const TriangleMesh& m, TaskResult& r) {
           lowest, g[0] * ((*v)[0] - p[0]) + g[1] * ((*v)[1] - p[1]) + g[2] * ((*v)[2] - p[2]));
     r.min_face_core_distance = std::min(r.min_face_core_distance, fp > 0 ? fp + lowest : 0.0);
   }
+}
+
+// A task's result as text, to pass between processes (17 digits: doubles read back exactly).
+std::string encode(const TaskResult& r) {
+  if (!r.error.empty()) return "E" + r.error;
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "%ld %.17g %.17g %.17g", r.triangles, r.volume_m3,
+                r.max_core_distance, r.min_face_core_distance);
+  return buf;
+}
+
+TaskResult decode(const std::string& text) {
+  TaskResult r;
+  if (text.empty() || text[0] == 'E') {
+    r.error = text.empty() ? "no result" : text.substr(1);
+    return r;
+  }
+  char* end = nullptr;
+  r.triangles = std::strtol(text.c_str(), &end, 10);
+  r.volume_m3 = std::strtod(end, &end);
+  r.max_core_distance = std::strtod(end, &end);
+  r.min_face_core_distance = std::strtod(end, &end);
+  return r;
 }
 
 // The unit mesh multiplied by `scale_m` (the radius of `shape`, or 1 without reuse), with the
@@ -168,9 +190,9 @@ void store_cached_form(const fs::path& file, const std::string& description,
 }  // namespace
 
 MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& requested,
-                                    const ProgressCallback& progress) {
+                                    const ProgressCallback& progress, MeshFarm& farm) {
   if (is_grid_simulation_folder(simdir))
-    return mesh_grid_simulation_folder(simdir, requested, progress);
+    return mesh_grid_simulation_folder(simdir, requested, progress, farm);
   validate(requested);
   const fs::path summary = simdir / "summary.json";
   const auto rows = sim::read_interfaces_csv(simdir / "interfaces.csv");
@@ -240,8 +262,10 @@ MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& r
   }
 
   const fs::path final_dir = simdir / "mesh";
-  StagingDirectory staging(final_dir);
-  const fs::path out_dir = staging.path();
+  // The leader stages the folder; the other processes of a farm write their files into it.
+  std::optional<StagingDirectory> staging;
+  if (farm.leader()) staging.emplace(final_dir);
+  const fs::path out_dir = farm.share(staging ? staging->path().string() : "");
 
   // Similar surfaces (equal canonical forms, similar_surface.h) share one mesh made at unit
   // scale; in a sphere series with the default relative distance bound that is nearly every
@@ -274,76 +298,97 @@ MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& r
   std::vector<TaskResult> results(tasks.size());
   const std::int64_t total = static_cast<std::int64_t>(forms.size() + tasks.size());
   std::int64_t done = 0;
-  const int jobs = options.jobs > 0 ? options.jobs : omp_get_max_threads();
-  const long n_forms = static_cast<long>(forms.size());
+  const auto one_done = [&] {
+    if (progress) progress(++done, total);
+  };
   MeshOptions unit_options = options;
   unit_options.normals = false;  // each task takes the normals of its own shape
+  std::vector<std::string> descriptions;
+  for (const SimilarSurface& f : forms) descriptions.push_back(form_description(f, unit_options));
   // Meshes kept by an earlier, interrupted run (read before the loop: a mesh made in this run
   // is never taken for one of them).
   long resumed = 0;
-  std::vector<char> from_cache(forms.size(), 0);
-  for (std::size_t k = 0; k < forms.size(); ++k) {
-    const std::string description = form_description(forms[k], unit_options);
-    if (auto cached = load_cached_form(form_cache_file(partial_dir, description), description)) {
+  std::vector<char> have(forms.size(), 0);
+  for (std::size_t k = 0; k < forms.size(); ++k)
+    if (auto cached =
+            load_cached_form(form_cache_file(partial_dir, descriptions[k]), descriptions[k])) {
       unit_meshes[k] = std::move(*cached);
-      from_cache[k] = 1;
+      have[k] = 1;
       ++resumed;
     }
-  }
   done = resumed;
   if (progress) progress(done, total);
-    // Nothing may throw out of these loops: every exception is caught and stored.
-#pragma omp parallel for schedule(dynamic, 1) num_threads(jobs)
-  for (long k = 0; k < n_forms; ++k) {
-    if (interrupt_requested()) continue;  // SIGINT/SIGTERM: skip the rest, throw after the loop
-    const SimilarSurface& f = forms[static_cast<std::size_t>(k)];
-    if (from_cache[static_cast<std::size_t>(k)]) continue;
+  const auto mesh_form = [&](std::size_t k) {
     try {
-      const std::string description = form_description(f, unit_options);
-      TriangleMesh& unit = unit_meshes[static_cast<std::size_t>(k)];
-      unit = mesh_surface(f.unit_shape, f.unit_criteria, unit_options);
-      store_cached_form(form_cache_file(partial_dir, description), description, unit);
+      unit_meshes[k] = mesh_surface(forms[k].unit_shape, forms[k].unit_criteria, unit_options);
+      store_cached_form(form_cache_file(partial_dir, descriptions[k]), descriptions[k],
+                        unit_meshes[k]);
+      have[k] = 1;
     } catch (const std::exception& e) {
-      form_errors[static_cast<std::size_t>(k)] = e.what();
+      form_errors[k] = e.what();
     } catch (...) {
-      form_errors[static_cast<std::size_t>(k)] = "unknown failure";
+      form_errors[k] = "unknown failure";
     }
-    if (progress) {
-#pragma omp critical(thaw_mesh_progress)
-      progress(++done, total);
+  };
+  // Nothing may throw out of the farmed work: every failure is stored or returned as text.
+  std::vector<long> to_mesh;
+  for (std::size_t k = 0; k < forms.size(); ++k)
+    if (!have[k]) to_mesh.push_back(static_cast<long>(k));
+  const std::vector<std::string> form_results = farm.run(
+      static_cast<long>(to_mesh.size()), options.jobs,
+      [&](long i) -> std::string {
+        const std::size_t k = static_cast<std::size_t>(to_mesh[static_cast<std::size_t>(i)]);
+        if (interrupt_requested()) return "interrupted";  // thrown after the loop
+        mesh_form(k);
+        return form_errors[k];
+      },
+      one_done);
+  for (std::size_t i = 0; i < to_mesh.size(); ++i)
+    if (!form_results[i].empty())
+      form_errors[static_cast<std::size_t>(to_mesh[i])] = form_results[i];
+  // A form another process meshed reaches this one through the resume cache (kept since the
+  // farm returned); one that cannot be read back (a failed cache write) is meshed again here.
+  for (std::size_t k = 0; k < forms.size(); ++k)
+    if (!have[k] && form_errors[k].empty() && !interrupt_requested()) {
+      if (auto cached =
+              load_cached_form(form_cache_file(partial_dir, descriptions[k]), descriptions[k])) {
+        unit_meshes[k] = std::move(*cached);
+        have[k] = 1;
+      } else {
+        mesh_form(k);
+      }
     }
-  }
-  const long n_tasks = static_cast<long>(tasks.size());
-#pragma omp parallel for schedule(dynamic, 4) num_threads(jobs)
-  for (long k = 0; k < n_tasks; ++k) {
-    if (interrupt_requested()) continue;
-    const Task& t = tasks[static_cast<std::size_t>(k)];
-    TaskResult& r = results[static_cast<std::size_t>(k)];
-    const std::size_t form = form_of[static_cast<std::size_t>(k)];
-    try {
-      if (!form_errors[form].empty()) throw MeshError(form_errors[form]);
-      const TriangleMesh m = scaled_copy(unit_meshes[form], scale_of[static_cast<std::size_t>(k)],
-                                         t.shape, options.normals);
-      measure(t.shape, m, r);
-      const StepRecord& rec = manifest.steps[t.step_index];
-      char comment[256];
-      std::snprintf(comment, sizeof comment,
-                    "thaw mesh: step %ld, %s surface of a %s, radius %.17g m", rec.step,
-                    t.inner ? "inner (water|ice)" : "outer (ice|air)",
-                    sim::to_string(t.shape.geometry), t.shape.radius_m);
-      write_obj(out_dir / surface_file_name(rec.step, t.inner), m, comment);
-    } catch (const std::exception& e) {
-      r.error = e.what();
-    } catch (...) {
-      r.error = "unknown failure";
-    }
-    if (progress) {
-#pragma omp critical(thaw_mesh_progress)
-      progress(++done, total);
-    }
-  }
-
+  const std::vector<std::string> task_results = farm.run(
+      static_cast<long>(tasks.size()), options.jobs,
+      [&](long k) -> std::string {
+        if (interrupt_requested()) return encode(TaskResult{"interrupted"});
+        const Task& t = tasks[static_cast<std::size_t>(k)];
+        TaskResult r;
+        const std::size_t form = form_of[static_cast<std::size_t>(k)];
+        try {
+          if (!form_errors[form].empty()) throw MeshError(form_errors[form]);
+          const TriangleMesh m = scaled_copy(
+              unit_meshes[form], scale_of[static_cast<std::size_t>(k)], t.shape, options.normals);
+          measure(t.shape, m, r);
+          const StepRecord& rec = manifest.steps[t.step_index];
+          char comment[256];
+          std::snprintf(comment, sizeof comment,
+                        "thaw mesh: step %ld, %s surface of a %s, radius %.17g m", rec.step,
+                        t.inner ? "inner (water|ice)" : "outer (ice|air)",
+                        sim::to_string(t.shape.geometry), t.shape.radius_m);
+          write_obj(out_dir / surface_file_name(rec.step, t.inner), m, comment);
+        } catch (const std::exception& e) {
+          r.error = e.what();
+        } catch (...) {
+          r.error = "unknown failure";
+        }
+        return encode(r);
+      },
+      one_done);
   throw_if_interrupted();
+  if (!farm.leader()) return manifest;  // the leader gathers, checks and commits
+  for (std::size_t k = 0; k < tasks.size(); ++k) results[k] = decode(task_results[k]);
+
   // Gather in step order, so the first error reported does not depend on scheduling.
   std::vector<const TaskResult*> inner_of(manifest.steps.size(), nullptr),
       outer_of(manifest.steps.size(), nullptr);
@@ -381,7 +426,7 @@ MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& r
   }
 
   write_file_atomic(out_dir / "manifest.json", to_json(manifest).dump(1) + "\n");
-  staging.commit();
+  staging->commit();
   std::error_code ec;
   fs::remove_all(partial_dir, ec);  // complete: nothing left to resume
   manifest.resumed_meshes = resumed;

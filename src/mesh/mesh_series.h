@@ -15,6 +15,7 @@
 
 #include "sim/io/interface_history.h"
 #include "src/common/progress.h"
+#include "src/mesh/mesh_farm.h"
 #include "src/mesh/mesh_options.h"
 
 namespace thaw::mesh {
@@ -72,8 +73,13 @@ std::string surface_file_name(long step, bool inner);
 /// `progress` is called with (surfaces done, surfaces total). Throws thaw::UserError (one line
 /// naming the file) on a missing or malformed input, an unwritable SIMDIR/mesh, or a surface that
 /// failed its checks; nothing is left half-written then (an existing SIMDIR/mesh is kept).
+/// `farm` computes the distinct meshes and the surfaces (this process's threads by default); with
+/// a farm of several processes every process calls this with the same arguments, `progress` is
+/// called on the leader, and only the leader's return value is the manifest (the others return
+/// before the checks, which only the leader makes and throws from).
 MeshManifest mesh_simulation_folder(const std::filesystem::path& simdir, const MeshOptions& options,
-                                    const ProgressCallback& progress = {});
+                                    const ProgressCallback& progress = {},
+                                    MeshFarm& farm = this_process_farm());
 
 /// The manifest as written to manifest.json.
 nlohmann::ordered_json to_json(const MeshManifest& manifest);

@@ -33,6 +33,7 @@
 #include "src/pipeline/frame_puddle.h"
 #include "src/pipeline/frame_scene.h"
 #include "src/pipeline/handoff_export.h"
+#include "src/pipeline/ranks_mesh_farm.h"
 #include "src/pipeline/run_manifest.h"
 #include "src/pipeline/water_budget.h"
 #include "thaw_version.h"
@@ -182,6 +183,24 @@ void on_leader(RunRanks& ranks, Step&& step) {
   if (!error.empty()) throw UserError("", "", error);
 }
 
+/// Runs `step` on every rank (each doing its share) and makes them agree how it ended: the first
+/// rank's failure is thrown on all ranks as one UserError. With one rank, errors propagate
+/// unchanged.
+template <class Step>
+void on_every_rank(RunRanks& ranks, Step&& step) {
+  if (ranks.size() == 1) return step();
+  std::string error;
+  try {
+    step();
+  } catch (const UserError& e) {
+    error = e.what();
+  } catch (const std::exception& e) {
+    error = std::string("internal error: ") + e.what();
+  }
+  error = ranks.first_error(error);
+  if (!error.empty()) throw UserError("", "", error);
+}
+
 }  // namespace
 
 RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
@@ -287,28 +306,36 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
   const std::vector<sim::InterfaceRecord> rows =
       sim::read_interfaces_csv(simdir / "interfaces.csv");
 
-  // 2. mesh the inner and outer surface of every frame (the leader, with its threads)
-  on_leader(ranks, [&] {
-    if (wanted("mesh")) {
-      StageClock clock(report, "mesh");
-      mesh::MeshOptions options = sc.mesh;
-      options.jobs = o.jobs;
-      const bool up_to_date =
+  // 2. mesh the inner and outer surface of every frame: every rank meshes (distinct surfaces,
+  // then the steps' files, handed out like frames); the leader checks, writes the manifest and
+  // commits the folder
+  if (wanted("mesh")) {
+    StageClock clock(report, "mesh");
+    mesh::MeshOptions options = sc.mesh;
+    options.jobs = o.jobs;
+    bool up_to_date = false;
+    on_leader(ranks, [&] {
+      up_to_date =
           manifest.begin_stage("mesh", mesh_hash.hex()) && fs::exists(mesh_dir / "manifest.json");
-      if (up_to_date) {
-        clock.timing().skipped = true;
-        say(o, stage_title(2, "mesh") + ": up to date");
-      } else {
+    });
+    up_to_date = ranks.broadcast(up_to_date ? "up to date" : "") == "up to date";
+    if (up_to_date) {
+      clock.timing().skipped = true;
+      say(o, stage_title(2, "mesh") + ": up to date");
+    } else {
+      on_every_rank(ranks, [&] {
         ProgressReporter progress(stage_title(2, "mesh"), static_cast<long>(2 * rows.size()),
                                   o.quiet);
+        RanksMeshFarm farm(ranks);
         const mesh::MeshManifest meshes =
-            mesh::mesh_simulation_folder(simdir, options, progress.callback());
+            mesh::mesh_simulation_folder(simdir, options, progress.callback(), farm);
+        if (!leader) return;
         progress.finish();
         manifest.mark_stage_complete("mesh");
         clock.timing().items_done = static_cast<int>(meshes.steps.size());
-      }
+      });
     }
-  });
+  }
   if (o.stage == "simulate") return finish_report(report, start);
   const mesh::MeshManifest meshes = mesh::read_mesh_manifest(mesh_dir / "manifest.json");
 
@@ -391,6 +418,7 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
                             sc.scene.image.exposure);
           manifest.mark_item_done("render", frame_name(k));
           ++rendered_here;
+          return std::string();
         },
         [&](long n) { progress.set_done(done_before + n); });
     progress.finish();

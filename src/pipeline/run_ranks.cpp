@@ -2,13 +2,15 @@
 
 namespace thaw::pipeline {
 
-void RunRanks::farm(const std::vector<long>& items, const std::function<void(long)>& work,
-                    const std::function<void(long)>& done) {
-  long n = 0;
+std::vector<std::string> RunRanks::farm(const std::vector<long>& items,
+                                        const std::function<std::string(long)>& work,
+                                        const std::function<void(long)>& done) {
+  std::vector<std::string> results;
   for (long item : items) {
-    work(item);
-    if (done) done(++n);
+    results.push_back(work(item));
+    if (done) done(static_cast<long>(results.size()));
   }
+  return results;
 }
 
 std::unique_ptr<RunRanks> single_process() {

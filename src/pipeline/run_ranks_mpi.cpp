@@ -10,6 +10,8 @@
 #include <cstdlib>
 #include <mutex>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "src/common/error.h"
 #include "src/pipeline/run_ranks.h"
@@ -62,28 +64,54 @@ class MpiRanks final : public RunRanks {
     return out;
   }
 
-  void farm(const std::vector<long>& items, const std::function<void(long)>& work,
-            const std::function<void(long)>& done) override {
+  std::vector<std::string> farm(const std::vector<long>& items,
+                                const std::function<std::string(long)>& work,
+                                const std::function<void(long)>& done) override {
     if (m_size == 1) return RunRanks::farm(items, work, done);
-    std::string error = leader() ? lead(items, work, done) : follow(work);
+    std::vector<std::string> results(items.size());
+    std::string error = leader() ? lead(items, work, done, results) : follow(work);
     error = broadcast(error);
     if (!error.empty()) throw UserError("", "", error);
+    return results;
+  }
+
+  std::string first_error(const std::string& error) override {
+    // Every rank's length, then the texts of the ranks that failed (rank order).
+    std::vector<int> lengths(static_cast<std::size_t>(m_size));
+    int mine = static_cast<int>(error.size());
+    MPI_Request r;
+    MPI_Iallgather(&mine, 1, MPI_INT, lengths.data(), 1, MPI_INT, MPI_COMM_WORLD, &r);
+    sleepy_wait(r);
+    std::vector<int> offsets(lengths.size(), 0);
+    for (std::size_t i = 1; i < lengths.size(); ++i) offsets[i] = offsets[i - 1] + lengths[i - 1];
+    std::string all(static_cast<std::size_t>(offsets.back() + lengths.back()), '\0');
+    if (all.empty()) return "";
+    std::string sent = error;  // MPI wants a non-const buffer
+    MPI_Iallgatherv(sent.data(), mine, MPI_CHAR, all.data(), lengths.data(), offsets.data(),
+                    MPI_CHAR, MPI_COMM_WORLD, &r);
+    sleepy_wait(r);
+    for (std::size_t i = 0; i < lengths.size(); ++i)
+      if (lengths[i] > 0)
+        return all.substr(static_cast<std::size_t>(offsets[i]),
+                          static_cast<std::size_t>(lengths[i]));
+    return "";
   }
 
  private:
-  static std::string failure(const std::function<void(long)>& work, long item) {
+  /// "" and the work's text, or the failure's message and "".
+  static std::pair<std::string, std::string> attempt(const std::function<std::string(long)>& work,
+                                                     long item) {
     try {
-      work(item);
-      return "";
+      return {"", work(item)};
     } catch (const UserError& e) {
-      return e.what();
+      return {e.what(), ""};
     } catch (const std::exception& e) {
-      return std::string("internal error: ") + e.what();
+      return {std::string("internal error: ") + e.what(), ""};
     }
   }
 
-  std::string lead(const std::vector<long>& items, const std::function<void(long)>& work,
-                   const std::function<void(long)>& done) {
+  std::string lead(const std::vector<long>& items, const std::function<std::string(long)>& work,
+                   const std::function<void(long)>& done, std::vector<std::string>& results) {
     std::atomic<std::size_t> next{0};
     std::atomic<long> finished{0};
     std::atomic<bool> failed{false};
@@ -94,16 +122,18 @@ class MpiRanks final : public RunRanks {
       if (first_error.empty()) first_error = e;
       failed = true;
     };
-    const auto take = [&]() -> long {
+    const auto take = [&]() -> long {  // an index into items, or -1
       if (failed) return -1;
       const std::size_t i = next++;
-      return i < items.size() ? items[i] : -1;
+      return i < items.size() ? static_cast<long>(i) : -1;
     };
     const auto finish = [&] {
       const long n = ++finished;
       if (done) done(n);
     };
     const auto dispatch = [&] {
+      // The index each worker is busy with: its "done" message carries that item's text.
+      std::vector<long> busy(static_cast<std::size_t>(m_size), -1);
       for (int active = m_size - 1; active > 0;) {
         int flag = 0;
         MPI_Status status;
@@ -117,21 +147,28 @@ class MpiRanks final : public RunRanks {
         std::string message(static_cast<std::size_t>(length), '\0');
         MPI_Recv(message.data(), length, MPI_CHAR, status.MPI_SOURCE, kTagAsk, MPI_COMM_WORLD,
                  MPI_STATUS_IGNORE);
-        if (message[0] == 'D') finish();
+        long& index = busy[static_cast<std::size_t>(status.MPI_SOURCE)];
+        if (message[0] == 'D') {
+          results[static_cast<std::size_t>(index)] = message.substr(1);
+          finish();
+        }
         if (message[0] == 'E') fail(message.substr(1));
-        long item = take();
+        index = take();
+        const long item = index < 0 ? -1 : items[static_cast<std::size_t>(index)];
         MPI_Send(&item, 1, MPI_LONG, status.MPI_SOURCE, kTagItem, MPI_COMM_WORLD);
         if (item < 0) --active;
       }
     };
     if (m_threads) {
       std::thread dispatcher(dispatch);
-      for (long item = take(); item >= 0; item = take()) {
-        const std::string e = failure(work, item);
-        if (e.empty())
+      for (long index = take(); index >= 0; index = take()) {
+        auto [e, text] = attempt(work, items[static_cast<std::size_t>(index)]);
+        if (e.empty()) {
+          results[static_cast<std::size_t>(index)] = std::move(text);
           finish();
-        else
+        } else {
           fail(e);
+        }
       }
       dispatcher.join();
     } else {
@@ -140,7 +177,7 @@ class MpiRanks final : public RunRanks {
     return first_error;
   }
 
-  std::string follow(const std::function<void(long)>& work) {
+  std::string follow(const std::function<std::string(long)>& work) {
     std::string message = "R";
     for (;;) {
       MPI_Send(message.data(), static_cast<int>(message.size()), MPI_CHAR, 0, kTagAsk,
@@ -150,8 +187,8 @@ class MpiRanks final : public RunRanks {
       MPI_Irecv(&item, 1, MPI_LONG, 0, kTagItem, MPI_COMM_WORLD, &r);
       sleepy_wait(r);
       if (item < 0) return "";
-      const std::string e = failure(work, item);
-      message = e.empty() ? "D" : "E" + e;
+      auto [e, text] = attempt(work, item);
+      message = e.empty() ? "D" + text : "E" + e;
     }
   }
 

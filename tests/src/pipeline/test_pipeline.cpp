@@ -6,12 +6,9 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -26,56 +23,24 @@
 #include "src/common/subprocess.h"
 #include "src/pipeline/film_encoder.h"
 #include "src/pipeline/handoff_export.h"
-
-extern char** environ;
+#include "tests/src/pipeline/run_test_support.h"
 
 namespace thaw::pipeline {
 namespace {
-namespace fs = std::filesystem;
+using namespace test;
 
-const fs::path kThaw = fs::path(THAW_BINARY_DIR) / "thaw";
-const fs::path kTiny = fs::path(THAW_SOURCE_DIR) / "tests/src/pipeline/data/tiny.toml";
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::map<std::string, std::string> frames_of(const fs::path& out) {
-  std::map<std::string, std::string> frames;
-  for (const auto& e : fs::directory_iterator(out / "frames"))
-    frames[e.path().filename()] = read_file(e.path());
-  return frames;
-}
-
-/// A variant of tiny.toml with `from` replaced by `to`, written to `dir`.
+/// tiny.toml with `from` replaced by `to`, written to `dir`.
 fs::path variant(const fs::path& dir, const std::string& from, const std::string& to) {
-  std::string text = read_file(kTiny);
-  const auto pos = text.find(from);
-  EXPECT_NE(pos, std::string::npos) << from;
-  text.replace(pos, from.size(), to);
-  const fs::path p = dir / "scenario.toml";
-  std::ofstream(p) << text;
-  return p;
+  return tiny_variant(dir, {{from, to}});
 }
 
-class ThawRun : public ::testing::Test {
+class ThawRun : public TempDirTest {
  protected:
-  void SetUp() override {
-    m_dir = fs::temp_directory_path() /
-            ("thaw_test_run_" + std::to_string(::getpid()) + "_" +
-             ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(m_dir);
-    fs::create_directories(m_dir);
-  }
-  void TearDown() override { fs::remove_all(m_dir); }
+  ThawRun() : TempDirTest("thaw_test_run") {}
   ProcessResult thaw(std::vector<std::string> args) {
     args.insert(args.begin(), kThaw.string());
     return run_process(args);
   }
-  fs::path m_dir;
 };
 
 TEST_F(ThawRun, TinyScenarioEndToEndThenNothingToDo) {
@@ -179,33 +144,13 @@ TEST_F(ThawRun, SizeAndSppOverridesReRenderOnlyAndBadValuesAreOneLine) {
 
 TEST_F(ThawRun, KilledDuringRenderAndRestartedGivesByteIdenticalFrames) {
   // Heavier frames so the render stage lasts long enough to be interrupted.
-  const fs::path heavy = variant(m_dir, "frames = 4", "frames = 6");
-  std::string text = read_file(heavy);
-  text.replace(text.find("width = 64"), 10, "width = 200");
-  text.replace(text.find("height = 64"), 11, "height = 200");
-  text.replace(text.find("samples_per_pixel = 1"), 21, "samples_per_pixel = 9");
-  std::ofstream(heavy) << text;
-
+  const fs::path heavy = heavy_scenario(m_dir);
   const fs::path reference = m_dir / "reference", killed = m_dir / "killed";
   ASSERT_EQ(thaw({"run", heavy.string(), "--out", reference.string(), "-q"}).exit_code, 0);
 
-  const std::string out_arg = killed.string(), scenario_arg = heavy.string(), exe = kThaw.string();
-  std::vector<char*> argv = {const_cast<char*>(exe.c_str()),
-                             const_cast<char*>("run"),
-                             const_cast<char*>(scenario_arg.c_str()),
-                             const_cast<char*>("--out"),
-                             const_cast<char*>(out_arg.c_str()),
-                             const_cast<char*>("-q"),
-                             nullptr};
-  pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, exe.c_str(), nullptr, nullptr, argv.data(), environ), 0);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (!fs::exists(killed / "frames/frame_000001.png") &&
-         std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  ::kill(pid, SIGKILL);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
+  const int status = signal_once_a_frame_is_written(
+      {kThaw.string(), "run", heavy.string(), "--out", killed.string(), "-q"}, killed, SIGKILL,
+      false);
   ASSERT_TRUE(WIFSIGNALED(status)) << "the run finished before it could be killed";
   EXPECT_FALSE(fs::exists(killed / "melt.mp4"));
 
@@ -214,55 +159,23 @@ TEST_F(ThawRun, KilledDuringRenderAndRestartedGivesByteIdenticalFrames) {
   EXPECT_NE(resumed.output.find("simulate: up to date"), std::string::npos) << resumed.output;
   EXPECT_EQ(frames_of(killed), frames_of(reference));
   EXPECT_EQ(count_video_frames(killed / "melt.mp4"), 6);
-  for (const auto& e : fs::recursive_directory_iterator(killed))
-    EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos) << e.path();
-}
-
-/// `thaw run SCENARIO --out OUT -q` started in the background with stderr to `err_file`.
-pid_t spawn_run(const fs::path& scenario, const fs::path& out, const fs::path& err_file) {
-  const std::string exe = kThaw.string(), scenario_arg = scenario.string(), out_arg = out.string();
-  std::vector<char*> argv = {const_cast<char*>(exe.c_str()),
-                             const_cast<char*>("run"),
-                             const_cast<char*>(scenario_arg.c_str()),
-                             const_cast<char*>("--out"),
-                             const_cast<char*>(out_arg.c_str()),
-                             const_cast<char*>("-q"),
-                             nullptr};
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_file.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  return rc == 0 ? pid : -1;
+  expect_no_temporaries(killed);
 }
 
 // Ctrl-C (SIGINT) and SIGTERM end a run at its next safe point: exit code 130, one line saying
 // how to resume, no temporary or half-written file; the rerun resumes and its frames are
 // byte-identical to those of an uninterrupted run (issue 12).
 TEST_F(ThawRun, InterruptedBySignalEndsCleanlyAndResumesByteIdentical) {
-  const fs::path heavy = variant(m_dir, "frames = 4", "frames = 6");
-  std::string text = read_file(heavy);
-  text.replace(text.find("width = 64"), 10, "width = 200");
-  text.replace(text.find("height = 64"), 11, "height = 200");
-  text.replace(text.find("samples_per_pixel = 1"), 21, "samples_per_pixel = 9");
-  std::ofstream(heavy) << text;
+  const fs::path heavy = heavy_scenario(m_dir);
   const fs::path reference = m_dir / "reference";
   ASSERT_EQ(thaw({"run", heavy.string(), "--out", reference.string(), "-q"}).exit_code, 0);
 
   for (const int signal_number : {SIGINT, SIGTERM}) {
     const fs::path out = m_dir / ("interrupted_" + std::to_string(signal_number));
     const fs::path err = m_dir / "stderr.txt";
-    const pid_t pid = spawn_run(heavy, out, err);
-    ASSERT_GT(pid, 0);
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-    while (!fs::exists(out / "frames/frame_000001.png") &&
-           std::chrono::steady_clock::now() < deadline)
-      std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    ::kill(pid, signal_number);
-    int status = 0;
-    ::waitpid(pid, &status, 0);
+    const int status = signal_once_a_frame_is_written(
+        {kThaw.string(), "run", heavy.string(), "--out", out.string(), "-q"}, out, signal_number,
+        false, err);
     ASSERT_TRUE(WIFEXITED(status)) << "ended by the signal instead of handling it";
     EXPECT_EQ(WEXITSTATUS(status), 130);
     const std::string message = read_file(err);
@@ -271,8 +184,7 @@ TEST_F(ThawRun, InterruptedBySignalEndsCleanlyAndResumesByteIdentical) {
         << message;
     EXPECT_FALSE(fs::exists(out / "melt.mp4"));
     EXPECT_LT(frames_of(out).size(), 6u) << "the run finished before the signal";
-    for (const auto& e : fs::recursive_directory_iterator(out))
-      EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos) << e.path();
+    expect_no_temporaries(out);
 
     const auto resumed = thaw({"run", heavy.string(), "--out", out.string()});
     ASSERT_EQ(resumed.exit_code, 0) << resumed.output;

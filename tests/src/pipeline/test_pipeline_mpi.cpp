@@ -4,80 +4,36 @@
 // More ranks than this machine's cores (--oversubscribe), so the dynamic hand-out is exercised.
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
-#include <chrono>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <map>
-#include <sstream>
-#include <thread>
+#include <string>
+#include <vector>
 
 #include "src/common/subprocess.h"
 #include "src/pipeline/film_encoder.h"
-
-extern char** environ;
+#include "tests/src/pipeline/run_test_support.h"
 
 namespace thaw::pipeline {
 namespace {
-namespace fs = std::filesystem;
+using namespace test;
 
-const fs::path kThaw = fs::path(THAW_BINARY_DIR) / "thaw";
-const fs::path kTiny = fs::path(THAW_SOURCE_DIR) / "tests/src/pipeline/data/tiny.toml";
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::map<std::string, std::string> frames_of(const fs::path& out) {
-  std::map<std::string, std::string> frames;
-  for (const auto& e : fs::directory_iterator(out / "frames"))
-    frames[e.path().filename()] = read_file(e.path());
-  return frames;
-}
-
-class ThawRunMpi : public ::testing::Test {
+class ThawRunMpi : public TempDirTest {
  protected:
-  void SetUp() override {
+  ThawRunMpi() : TempDirTest("thaw_test_mpi") {
     // mpirun refuses to run as root without these (CI and developers run as root here); the
     // shared-memory transport's single-copy mode fails in containers.
     ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
     ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
     ::setenv("OMPI_MCA_btl_vader_single_copy_mechanism", "none", 1);
-    m_dir = fs::temp_directory_path() /
-            ("thaw_test_mpi_" + std::to_string(::getpid()) + "_" +
-             ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(m_dir);
-    fs::create_directories(m_dir);
   }
-  void TearDown() override { fs::remove_all(m_dir); }
   static std::vector<std::string> mpirun(int ranks, std::vector<std::string> thaw_args) {
     std::vector<std::string> args{THAW_MPIEXEC, "--oversubscribe", "-np", std::to_string(ranks),
                                   kThaw.string()};
     args.insert(args.end(), thaw_args.begin(), thaw_args.end());
     return args;
   }
-  /// A heavier tiny scenario (6 frames of 200x200 at 9 samples) so a kill lands mid-render.
-  fs::path heavy_scenario() const {
-    std::string text = read_file(kTiny);
-    const auto swap = [&](const std::string& from, const std::string& to) {
-      text.replace(text.find(from), from.size(), to);
-    };
-    swap("frames = 4", "frames = 6");
-    swap("width = 64", "width = 200");
-    swap("height = 64", "height = 200");
-    swap("samples_per_pixel = 1", "samples_per_pixel = 9");
-    const fs::path p = m_dir / "heavy.toml";
-    std::ofstream(p) << text;
-    return p;
-  }
-  fs::path m_dir;
 };
 
 TEST_F(ThawRunMpi, ThreeRanksGiveTheSingleProcessRunByteForByte) {
@@ -98,12 +54,37 @@ TEST_F(ThawRunMpi, ThreeRanksGiveTheSingleProcessRunByteForByte) {
   EXPECT_EQ(frames_of(farmed), frames_of(single));
   EXPECT_EQ(read_file(farmed / "melt.mp4"), read_file(single / "melt.mp4"));
   EXPECT_EQ(count_video_frames(farmed / "melt.mp4"), 4);
-  for (const auto& e : fs::recursive_directory_iterator(farmed))
-    EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos) << e.path();
+  // The meshes too: every rank meshed its share of the surfaces into the one folder.
+  EXPECT_EQ(files_under(farmed / "sim/mesh"), files_under(single / "sim/mesh"));
+  expect_no_temporaries(farmed);
+}
+
+TEST_F(ThawRunMpi, GridMeshStageOverThreeRanksGivesTheSingleProcessMeshes) {
+  // A grid run meshes one step per item: the steps are spread over the ranks (issue 13).
+  const fs::path cube = fs::path(THAW_SOURCE_DIR) / "tests/src/pipeline/data/tiny_cube.toml";
+  const fs::path single = m_dir / "single", farmed = m_dir / "farmed";
+  ASSERT_EQ(run_process({kThaw.string(), "run", cube.string(), "--out", single.string(), "--stage",
+                         "simulate", "-q"})
+                .exit_code,
+            0);
+  fs::copy(single, farmed, fs::copy_options::recursive);
+  ASSERT_EQ(run_process({kThaw.string(), "run", cube.string(), "--out", single.string(), "--stage",
+                         "mesh", "-q"})
+                .exit_code,
+            0);
+  const auto r = run_process(
+      mpirun(3, {"run", cube.string(), "--out", farmed.string(), "--stage", "mesh", "-j", "1"}));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto meshes = files_under(farmed / "sim/mesh");
+  EXPECT_GT(meshes.size(), 2u);
+  EXPECT_EQ(meshes, files_under(single / "sim/mesh"));
+  EXPECT_NE(r.output.find("mesh: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(" done in "), std::string::npos) << r.output;
+  expect_no_temporaries(farmed);
 }
 
 TEST_F(ThawRunMpi, KilledUnderMpiResumesWithAnotherNumberOfRanks) {
-  const fs::path scenario = heavy_scenario();
+  const fs::path scenario = heavy_scenario(m_dir);
   const fs::path reference = m_dir / "reference", killed = m_dir / "killed";
   ASSERT_EQ(
       run_process({kThaw.string(), "run", scenario.string(), "--out", reference.string(), "-q"})
@@ -111,25 +92,9 @@ TEST_F(ThawRunMpi, KilledUnderMpiResumesWithAnotherNumberOfRanks) {
       0);
 
   // mpirun and its ranks in a process group of their own, killed together as a crash would.
-  const auto args =
-      mpirun(3, {"run", scenario.string(), "--out", killed.string(), "-q", "-j", "1"});
-  std::vector<char*> argv;
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  posix_spawnattr_t attr;
-  posix_spawnattr_init(&attr);
-  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
-  posix_spawnattr_setpgroup(&attr, 0);
-  pid_t pid = 0;
-  ASSERT_EQ(posix_spawnp(&pid, argv[0], nullptr, &attr, argv.data(), environ), 0);
-  posix_spawnattr_destroy(&attr);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (!fs::exists(killed / "frames/frame_000001.png") &&
-         std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  ::kill(-pid, SIGKILL);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
+  const int status = signal_once_a_frame_is_written(
+      mpirun(3, {"run", scenario.string(), "--out", killed.string(), "-q", "-j", "1"}), killed,
+      SIGKILL, true);
   ASSERT_TRUE(WIFSIGNALED(status)) << "the run finished before it could be killed";
   EXPECT_FALSE(fs::exists(killed / "melt.mp4"));
 
@@ -138,8 +103,7 @@ TEST_F(ThawRunMpi, KilledUnderMpiResumesWithAnotherNumberOfRanks) {
   EXPECT_NE(resumed.output.find("simulate: up to date"), std::string::npos) << resumed.output;
   EXPECT_EQ(frames_of(killed), frames_of(reference));
   EXPECT_EQ(count_video_frames(killed / "melt.mp4"), 6);
-  for (const auto& e : fs::recursive_directory_iterator(killed))
-    EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos) << e.path();
+  expect_no_temporaries(killed);
 }
 
 TEST_F(ThawRunMpi, BadOptionUnderMpiIsOneErrorLine) {

@@ -1,0 +1,23 @@
+#pragma once
+// The mesh stage's farm (src/mesh/mesh_farm.h) over the ranks of a run (run_ranks.h): with one
+// rank, that process's threads; with several, items handed out dynamically to the ranks, each
+// rank taking `threads` items at a time and meshing them on its threads. The ranks share the
+// simulation folder, so the meshers exchange only short result texts through it.
+#include "src/mesh/mesh_farm.h"
+#include "src/pipeline/run_ranks.h"
+
+namespace thaw::pipeline {
+
+class RanksMeshFarm final : public mesh::MeshFarm {
+ public:
+  explicit RanksMeshFarm(RunRanks& ranks) : m_ranks(ranks) {}
+  bool leader() const override { return m_ranks.leader(); }
+  std::string share(const std::string& text) override { return m_ranks.broadcast(text); }
+  std::vector<std::string> run(long n, int threads, const std::function<std::string(long)>& work,
+                               const std::function<void()>& done) override;
+
+ private:
+  RunRanks& m_ranks;
+};
+
+}  // namespace thaw::pipeline
