@@ -80,6 +80,15 @@ class BlockTeam {
     if (leader()) next.store(0, std::memory_order_relaxed);
     ++m_phase;
   }
+  /// Every thread waits here until all have arrived: what one thread wrote before is visible to
+  /// all after (e.g. the leader's serial bookkeeping between phases).
+  void sync() { m_shared.barrier.wait(); }
+  /// f() on the leader only, then sync(): a serial part of the step, the others asleep meanwhile.
+  template <class F>
+  void serial(F&& f) {
+    if (leader()) f();
+    sync();
+  }
   /// The one thread that updates shared bookkeeping (statistics).
   bool leader() const { return m_thread == 0; }
 

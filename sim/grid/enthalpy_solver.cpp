@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <limits>
 #include <numbers>
 
@@ -39,13 +38,6 @@ double sum_cells(long n, F&& f) {
     total += s;
   }
   return total;
-}
-
-template <class F>
-double max_cells(long n, F&& f) {
-  double m = 0;
-  for (long c = 0; c < n; ++c) m = std::max(m, f(c));
-  return m;
 }
 
 enum CellType : unsigned char { kAir = 0, kIce = 1, kWater = 2, kMushy = 3 };
@@ -88,7 +80,11 @@ struct EnthalpySolver::Impl {
   std::vector<unsigned char> type;
   std::vector<double> cg_r, cg_z, cg_p, cg_p2, cg_q, dtemp, diag, rhs;
   std::vector<double> partial_rz, partial_res, partial_pq, partial_newton;  ///< per-block partials
-  std::vector<char> open_prev, enclosed_prev, exposed;
+  std::vector<double> partial_step, partial_most, partial_removed;          ///< per-step reductions
+  std::vector<long> partial_index;
+  std::vector<double> area_g, area_w, area_share;  ///< update_surface_area's work arrays
+  std::vector<char> open_prev, enclosed_prev, exposed, open_now, outside_now;
+  std::vector<long> queue;  ///< the flood fill's breadth-first queue
 
   double time = 0, dt = 0;
   bool done = false, broke_through = false, melt_started = false, core_frozen = false;
@@ -123,20 +119,29 @@ struct EnthalpySolver::Impl {
       THAW_CHECK(m[c] >= 0 && m[c] <= 1 && std::isfinite(h[c]), "material fraction outside [0, 1]");
       if (m[c] == 0) h[c] = 0;
     }
-    for (auto* v : {&hn, &t, &t_start, &f_start, &kx, &ky, &kz, &bq0, &bq1, &surface_area, &cg_r,
-                    &cg_z, &cg_p, &cg_p2, &cg_q, &dtemp, &diag, &rhs})
+    // every work array once, here: a step allocates nothing
+    for (auto* v : {&hn,   &t,     &t_start,      &f_start, &kx,     &ky,     &kz,
+                    &bq0,  &bq1,   &surface_area, &cg_r,    &cg_z,   &cg_p,   &cg_p2,
+                    &cg_q, &dtemp, &diag,         &rhs,     &area_g, &area_w, &area_share})
       v->assign(static_cast<std::size_t>(n), 0.0);
+    const auto blocks = static_cast<std::size_t>(block_count());
+    for (auto* v : {&partial_rz, &partial_res, &partial_pq, &partial_newton, &partial_step,
+                    &partial_most, &partial_removed})
+      v->assign(blocks, 0.0);
+    partial_index.assign(blocks, -1);
     type.assign(static_cast<std::size_t>(n), kAir);
-    open_prev.assign(static_cast<std::size_t>(n), 0);
-    enclosed_prev.assign(static_cast<std::size_t>(n), 0);
-    exposed.assign(static_cast<std::size_t>(n), 0);
+    for (auto* v : {&open_prev, &enclosed_prev, &exposed, &open_now, &outside_now})
+      v->assign(static_cast<std::size_t>(n), 0);
+    queue.reserve(static_cast<std::size_t>(n));
     initial_material = sum_cells(n, [&](long c) { return m[c] * vol[c]; });
     reference = latent * initial_material;
     THAW_CHECK(reference > 0, "a grid problem needs some material");
     // The initial state drains nothing by definition: only classify which liquid is enclosed.
-    classify_openness();
+    TeamShared alone;  // the constructor's phases on this thread only
+    BlockTeam team(alone, 0, block_count());
+    classify_openness(team);
     had_enclosed_liquid = enclosed_liquid_volume() > 0;
-    update_surface_area();
+    update_surface_area(team);
     e0 = energy();
     dt = p.fixed_step_s > 0 ? p.fixed_step_s : std::min(p.max_step_s, 0.05);
   }
@@ -480,87 +485,140 @@ struct EnthalpySolver::Impl {
     return false;
   }
 
-  /// One step of size dt from the current state in one parallel region (the team's barriers
-  /// inside, see block_team.h): coefficients, Newton, and the conservative final update;
-  /// false (state restored) if Newton failed.
-  bool step(double& heat_step) {
-    const auto blocks = static_cast<std::size_t>(block_count());
-    for (auto* v : {&partial_rz, &partial_res, &partial_pq, &partial_newton})
-      v->assign(blocks, 0.0);
-    bool converged = false;
-    TeamShared shared;
-#pragma omp parallel if (n > kParallelCells)
-    {
-#pragma omp single
-      shared.barrier.reset(omp_get_num_threads());
-      BlockTeam team(shared, omp_get_thread_num(), block_count());
-      // build_coefficients reads the neighbours' h, which nothing writes in this phase
-      team.for_blocks([&](long bl) {
-        for (long c = bl * kBlock; c < block_end(bl); ++c) {
-          hn[c] = h[c];
-          build_coefficients(c);
+  // --- deterministic reductions inside a team -------------------------------------------------
+  /// Sum of f(c) over the cells, run by every thread of the team (f may also write cell c):
+  /// per-block partials added in block order by every thread, so every thread gets the same
+  /// bits, the same as sum_cells, for any thread count.
+  template <class F>
+  double team_sum(BlockTeam& team, F&& f) {
+    team.for_blocks([&](long bl) {
+      double sum = 0;
+      for (long c = bl * kBlock; c < block_end(bl); ++c) sum += f(c);
+      partial_step[static_cast<std::size_t>(bl)] = sum;
+    });
+    const double total = ordered_sum(partial_step);
+    team.sync();  // every thread has read the partials before the next reduction writes them
+    return total;
+  }
+  /// Largest f(c) (at least 0) over the cells, as team_sum.
+  template <class F>
+  double team_max(BlockTeam& team, F&& f) {
+    team.for_blocks([&](long bl) {
+      double most = 0;
+      for (long c = bl * kBlock; c < block_end(bl); ++c) most = std::max(most, f(c));
+      partial_step[static_cast<std::size_t>(bl)] = most;
+    });
+    const double total = largest(partial_step);
+    team.sync();
+    return total;
+  }
+  /// The lowest-index cell with the largest f(c) above `floor` (-1 if none), as team_sum.
+  template <class F>
+  long team_argmax(BlockTeam& team, F&& f, double floor) {
+    team.for_blocks([&](long bl) {
+      double most = floor;
+      long arg = -1;
+      for (long c = bl * kBlock; c < block_end(bl); ++c) {
+        const double v = f(c);
+        if (v > most) {
+          most = v;
+          arg = c;
         }
+      }
+      partial_step[static_cast<std::size_t>(bl)] = most;
+      partial_index[static_cast<std::size_t>(bl)] = arg;
+    });
+    double most = floor;
+    long arg = -1;
+    for (std::size_t bl = 0; bl < partial_index.size(); ++bl)
+      if (partial_index[bl] >= 0 && partial_step[bl] > most) {
+        most = partial_step[bl];
+        arg = partial_index[bl];
+      }
+    team.sync();
+    return arg;
+  }
+
+  /// One step of size dt from the current state, run by every thread of the team (the same
+  /// decisions everywhere): coefficients, Newton, and the conservative final update; false
+  /// (state restored) if Newton failed. heat_step: the boundary heat of the step [J].
+  bool step(BlockTeam& team, double& heat_step) {
+    // build_coefficients reads the neighbours' h, which nothing writes in this phase
+    team.for_blocks([&](long bl) {
+      for (long c = bl * kBlock; c < block_end(bl); ++c) {
+        hn[c] = h[c];
+        build_coefficients(c);
+      }
+    });
+    const bool ok = newton(team);
+    if (!ok && dt > kMinStep_s) {
+      team.for_blocks([&](long bl) {
+        for (long c = bl * kBlock; c < block_end(bl); ++c) h[c] = hn[c];
       });
-      const bool ok = newton(team);
-      if (ok || dt <= kMinStep_s) {
-        // Conservative final update: each cell's enthalpy from its balance at the final
-        // temperatures, so that the interior fluxes cancel exactly in the total. heat_rate
-        // reads the temperatures only, so each cell may overwrite its own h.
-        team.for_blocks([&](long bl) {
-          for (long c = bl * kBlock; c < block_end(bl); ++c)
-            t[c] = m[c] > 0 ? temperature(h[c]) : 0.0;
-        });
-        team.for_blocks([&](long bl) {
-          for (long c = bl * kBlock; c < block_end(bl); ++c)
-            if (m[c] > 0) h[c] = hn[c] + dt * heat_rate(c) / (m[c] * vol[c]);
-        });
-      }
-      if (team.leader()) converged = ok;
+      return false;
     }
-    if (!converged) {
-      if (dt > kMinStep_s) {
-        h = hn;
-        return false;
-      }
-      ++stats.unconverged_steps;
-    }
-    heat_step = dt * sum_cells(n, [&](long c) { return m[c] > 0 ? bq0[c] - bq1[c] * t[c] : 0.0; });
+    if (!ok && team.leader()) ++stats.unconverged_steps;
+    // Conservative final update: each cell's enthalpy from its balance at the final
+    // temperatures, so that the interior fluxes cancel exactly in the total. heat_rate reads
+    // the temperatures only, so each cell may overwrite its own h.
+    team.for_blocks([&](long bl) {
+      for (long c = bl * kBlock; c < block_end(bl); ++c) t[c] = m[c] > 0 ? temperature(h[c]) : 0.0;
+    });
+    heat_step = dt * team_sum(team, [&](long c) {
+                  if (m[c] == 0) return 0.0;
+                  h[c] = hn[c] + dt * heat_rate(c) / (m[c] * vol[c]);
+                  return bq0[c] - bq1[c] * t[c];
+                });
     return true;
   }
 
   // --- openness, draining, events -------------------------------------------------------------
-  /// Flood fill from the air at the grid's border through cells less than half ice: `open`
-  /// (cell less than half ice), `outside` (connected), exposed = outside or next to it.
-  void flood(std::vector<char>& open, std::vector<char>& outside) {
+  /// Flood fill from the air at the grid's border through cells less than half ice: `open_now`
+  /// (cell less than half ice), `outside_now` (connected), `exposed` = outside or next to it.
+  /// The fill itself is serial (on the leader; a breadth-first search over the open cells).
+  void flood(BlockTeam& team) {
+    team.for_blocks([&](long bl) {
+      for (long c = bl * kBlock; c < block_end(bl); ++c) {
+        open_now[c] = ice_fraction(c) < 0.5;
+        outside_now[c] = 0;
+      }
+    });
+    team.serial([&] { fill_outside(); });
+    team.for_blocks([&](long bl) {
+      for (long c = bl * kBlock; c < block_end(bl); ++c) {
+        exposed[c] = outside_now[c];
+        if (!outside_now[c]) for_neighbours(c, [&](long nb) { exposed[c] |= outside_now[nb]; });
+      }
+    });
+  }
+  void fill_outside() {
     const long nxy = static_cast<long>(nx) * ny;
-    open.assign(static_cast<std::size_t>(n), 0);
-    outside.assign(static_cast<std::size_t>(n), 0);
-    for (long c = 0; c < n; ++c) open[c] = ice_fraction(c) < 0.5;
-    std::deque<long> queue;
-    for (long c = 0; c < n; ++c) {
-      const int i = static_cast<int>(c % nx), j = static_cast<int>((c / nx) % ny),
-                k = static_cast<int>(c / nxy);
-      const bool border = (!axisymmetric && (i == 0 || k == 0 || k == nz - 1)) || i == nx - 1 ||
-                          j == 0 || j == ny - 1;
-      if (border && m[c] == 0 && !outside[c]) {
-        outside[c] = 1;
+    queue.clear();
+    auto seed = [&](long c) {
+      if (m[c] == 0 && !outside_now[c]) {
+        outside_now[c] = 1;
         queue.push_back(c);
       }
-    }
-    while (!queue.empty()) {
-      const long c = queue.front();
-      queue.pop_front();
-      for_neighbours(c, [&](long nb) {
-        if (open[nb] && !outside[nb]) {
-          outside[nb] = 1;
+    };
+    // the border cells: the faces j = 0, ny - 1 and i = nx - 1, and (3D) i = 0, k = 0, nz - 1
+    for (int k = 0; k < nz; ++k)
+      for (int j = 0; j < ny; ++j) {
+        const long row = j * static_cast<long>(nx) + k * nxy;
+        const bool face = j == 0 || j == ny - 1 || (!axisymmetric && (k == 0 || k == nz - 1));
+        if (face) {
+          for (int i = 0; i < nx; ++i) seed(row + i);
+        } else {
+          if (!axisymmetric) seed(row);
+          seed(row + nx - 1);
+        }
+      }
+    for (std::size_t head = 0; head < queue.size(); ++head)
+      for_neighbours(queue[head], [&](long nb) {
+        if (open_now[nb] && !outside_now[nb]) {
+          outside_now[nb] = 1;
           queue.push_back(nb);
         }
       });
-    }
-    for (long c = 0; c < n; ++c) {
-      exposed[c] = outside[c];
-      if (!outside[c]) for_neighbours(c, [&](long nb) { exposed[c] |= outside[nb]; });
-    }
   }
   template <class F>
   void for_neighbours(long c, F&& f) const {
@@ -574,65 +632,87 @@ struct EnthalpySolver::Impl {
     if (k > 0) f(c - nxy);
     if (k + 1 < nz) f(c + nxy);
   }
-  void classify_openness() {
-    std::vector<char> open, outside;
-    flood(open, outside);
-    for (long c = 0; c < n; ++c) enclosed_prev[c] = open[c] && !outside[c];
-    open_prev = open;
+  void remember_openness(long c) {
+    enclosed_prev[c] = open_now[c] && !outside_now[c];
+    open_prev[c] = open_now[c];
+  }
+  void classify_openness(BlockTeam& team) {
+    flood(team);
+    team.for_blocks([&](long bl) {
+      for (long c = bl * kBlock; c < block_end(bl); ++c) remember_openness(c);
+    });
+  }
+
+  /// A former cavity cell now outside: the break-through event, at the first wall cell that
+  /// opened this step next to the former cavity (serial, until the first break-through).
+  void detect_break_through() {
+    if (broke_through) return;
+    long first = -1, fallback = -1;
+    for (long c = 0; c < n && fallback < 0; ++c)
+      if (outside_now[c] && enclosed_prev[c]) fallback = c;
+    if (fallback < 0) return;
+    for (long c = 0; c < n && first < 0; ++c) {
+      if (!outside_now[c] || open_prev[c]) continue;
+      bool next_to_cavity = false;
+      for_neighbours(c, [&](long nb) { next_to_cavity |= enclosed_prev[nb] != 0; });
+      if (next_to_cavity) first = c;
+    }
+    broke_through = true;
+    events.push_back({"break_through", time, centre(first >= 0 ? first : fallback)});
   }
 
   /// Drains the liquid of exposed cells, books its enthalpy, records events.
-  void drain_and_detect() {
-    std::vector<char> open, outside;
-    flood(open, outside);
-    if (!broke_through) {
-      long first = -1, fallback = -1;
-      for (long c = 0; c < n && first < 0; ++c) {
-        if (!outside[c] || !enclosed_prev[c]) continue;
-        if (fallback < 0) fallback = c;
-      }
-      if (fallback >= 0) {
-        // the wall cells that opened this step next to the former cavity
-        for (long c = 0; c < n && first < 0; ++c) {
-          if (!outside[c] || open_prev[c]) continue;
-          bool next_to_cavity = false;
-          for_neighbours(c, [&](long nb) { next_to_cavity |= enclosed_prev[nb] != 0; });
-          if (next_to_cavity) first = c;
+  void drain_and_detect(BlockTeam& team) {
+    flood(team);
+    team.serial([&] { detect_break_through(); });
+    // per block: drained enthalpy, the cell that drained most (first among equals) and the
+    // removed ice remnants
+    team.for_blocks([&](long bl) {
+      double drained_b = 0, most = 0, removed = 0;
+      long most_cell = -1;
+      for (long c = bl * kBlock; c < block_end(bl); ++c) {
+        if (p.drain && exposed[c] && m[c] > 0 && h[c] > 0) {
+          const double e = m[c] * vol[c] * h[c];
+          drained_b += e;
+          if (e > most) {
+            most = e;
+            most_cell = c;
+          }
+          const double f = liquid(h[c]);
+          m[c] = f >= 1 ? 0.0 : m[c] * (1 - f);
+          if (m[c] < kRemnantFraction) {
+            removed += m[c] * vol[c];
+            m[c] = 0;
+          }
+          h[c] = 0;
         }
-        broke_through = true;
-        events.push_back({"break_through", time, centre(first >= 0 ? first : fallback)});
+        remember_openness(c);
       }
-    }
-    double drained_step = 0, most = 0;
-    long most_cell = -1;
-    if (p.drain) {
-      for (long c = 0; c < n; ++c) {
-        if (!exposed[c] || m[c] == 0 || h[c] <= 0) continue;
-        const double e = m[c] * vol[c] * h[c];
-        drained_step += e;
-        if (e > most) {
-          most = e;
-          most_cell = c;
+      const auto b = static_cast<std::size_t>(bl);
+      partial_step[b] = drained_b;
+      partial_most[b] = most;
+      partial_removed[b] = removed;
+      partial_index[b] = most_cell;
+    });
+    const double drained_step = ordered_sum(partial_step);
+    team.serial([&] {
+      drained += drained_step;
+      stats.removed_ice_m3 += ordered_sum(partial_removed);
+      double most = 0;
+      long most_cell = -1;
+      for (std::size_t b = 0; b < partial_index.size(); ++b)
+        if (partial_index[b] >= 0 && partial_most[b] > most) {
+          most = partial_most[b];
+          most_cell = partial_index[b];
         }
-        const double f = liquid(h[c]);
-        m[c] = f >= 1 ? 0.0 : m[c] * (1 - f);
-        if (m[c] < kRemnantFraction) {
-          stats.removed_ice_m3 += m[c] * vol[c];
-          m[c] = 0;
-        }
-        h[c] = 0;
+      if (!melt_started && most_cell >= 0) {
+        melt_started = true;
+        events.push_back({"melt_onset", time, centre(most_cell)});
       }
-    }
-    drained += drained_step;
-    if (!melt_started && most_cell >= 0) {
-      melt_started = true;
-      events.push_back({"melt_onset", time, centre(most_cell)});
-    }
-    for (long c = 0; c < n; ++c) enclosed_prev[c] = open[c] && !outside[c];
-    open_prev = open;
+    });
     if (drained_step > 0) {
-      flood(open, outside);  // the drained cells opened: exposure as the next step sees it
-      update_surface_area();
+      flood(team);  // the drained cells opened: exposure as the next step sees it
+      update_surface_area(team);
     }
   }
 
@@ -647,88 +727,99 @@ struct EnthalpySolver::Impl {
   /// 0.5 mm cells (axisymmetric); their mean is within 0.07 % in both. Both are exact on a face
   /// parallel to the grid. The heated area sets the melt rate directly: Youngs' alone made the 3D
   /// sphere melt about 1 % too slowly against the 1D solver (docs/simulate.md).
-  void update_surface_area() {
-    const long nxy = static_cast<long>(nx) * ny;
-    std::vector<double> g(static_cast<std::size_t>(n)), w(static_cast<std::size_t>(n));
-    for (long c = 0; c < n; ++c) {
-      const int i = static_cast<int>(c % nx), j = static_cast<int>((c / nx) % ny),
-                k = static_cast<int>(c / nxy);
-      auto at = [&](int ii, int jj, int kk) {
-        ii = std::clamp(ii, 0, nx - 1);
-        jj = std::clamp(jj, 0, ny - 1);
-        kk = std::clamp(kk, 0, nz - 1);
-        return m[ii + static_cast<long>(nx) * (jj + static_cast<long>(ny) * kk)];
-      };
-      const bool three = nz > 1;
-      const int kw = three ? 1 : 0;
-      // Youngs' gradient ...
-      double gx = 0, gy = 0, gz = 0;
-      for (int a = -1; a <= 1; ++a)
-        for (int b = -kw; b <= kw; ++b) {
-          const double w = (2 - std::abs(a)) * (three ? 2 - std::abs(b) : 2);
-          gx += w * (at(i + 1, j + a, k + b) - at(i - 1, j + a, k + b));
-          gy += w * (at(i + a, j + 1, k + b) - at(i + a, j - 1, k + b));
-          if (three) gz += w * (at(i + a, j + b, k + 1) - at(i + a, j + b, k - 1));
+  ///
+  /// Three phases of the team (each writes only its own cells): the gradient areas; the
+  /// material cells' shares (with the air neighbours' areas and the remnant rule below); the
+  /// areas of the exposed cells (with the shares of their unexposed neighbours).
+  void update_surface_area(BlockTeam& team) {
+    team.for_blocks([&](long bl) {
+      for (long c = bl * kBlock; c < block_end(bl); ++c) {
+        area_g[c] = gradient_area(c);
+        double sum = 0;
+        if (m[c] == 0) for_neighbours(c, [&](long nb) { sum += m[nb]; });
+        area_w[c] = sum;
+      }
+    });
+    // reads area_g of air cells only, writes it for material cells only
+    team.for_blocks([&](long bl) {
+      for (long c = bl * kBlock; c < block_end(bl); ++c) {
+        area_share[c] = 0;
+        if (m[c] == 0) {
+          surface_area[c] = 0;
+          continue;
         }
-      const double norm = three ? 16 * 2 * s : 8 * 2 * s;
-      const double youngs = std::sqrt(gx * gx + gy * gy + gz * gz) / norm;
-      // ... and the plain central differences
-      const double cx = at(i + 1, j, k) - at(i - 1, j, k), cy = at(i, j + 1, k) - at(i, j - 1, k),
-                   cz = three ? at(i, j, k + 1) - at(i, j, k - 1) : 0.0;
-      const double central = std::sqrt(cx * cx + cy * cy + cz * cz) / (2 * s);
-      g[c] = 0.5 * (youngs + central) * vol[c];
-      double sum = 0;
-      if (m[c] == 0) for_neighbours(c, [&](long nb) { sum += m[nb]; });
-      w[c] = sum;
-    }
-    for (long c = 0; c < n; ++c) {
-      if (m[c] == 0) {
-        surface_area[c] = 0;
-        continue;
+        double a = area_g[c];
+        for_neighbours(c, [&](long nb) {
+          if (m[nb] == 0 && area_w[nb] > 0) a += area_g[nb] * m[c] / area_w[nb];
+        });
+        area_g[c] = remnant_area(c, a);  // now the material cell's own share
+        // Only cells open to the outside air take surface heat (their melt drains): a share
+        // that the smoothed gradient put one cell deeper goes to its exposed neighbours, evenly.
+        if (exposed[c] || area_g[c] == 0) continue;
+        int count = 0;
+        for_neighbours(c, [&](long nb) { count += m[nb] > 0 && exposed[nb]; });
+        if (count > 0) area_share[c] = area_g[c] / count;
       }
-      double a = g[c];
-      for_neighbours(c, [&](long nb) {
-        if (m[nb] == 0 && w[nb] > 0) a += g[nb] * m[c] / w[nb];
-      });
-      g[c] = a;  // now the material cell's own share
-    }
-    // Remnants thinner than a cell (rods and plates left of a shell's edges, fragments): their
-    // cells are less than half full with no bulk behind them, and |grad m| V, which sees a
-    // smeared surface, gives them a fraction of their true area (a rod of cross-section 0.3 dx^2
-    // has 1.9 dx^2 of surface per cell length, the gradient ~0.6 dx^2), so they lingered for
-    // minutes as sub-cell dust. Such a cell gets at least the area of the most compact body of
-    // its volume: a sphere in 3D, (36 pi)^(1/3) m^(2/3) dx^2, a torus of round cross-section in
-    // (r, y), 2 sqrt(pi m) V / dx; at most 2 V / dx (a plate's two faces).
-    for (long c = 0; c < n; ++c) {
-      if (m[c] == 0 || m[c] >= 0.5 || backed_by_bulk(c)) continue;
-      const double compact = nz > 1 ? std::cbrt(36 * std::numbers::pi) * std::pow(m[c], 2.0 / 3)
-                                    : 2 * std::sqrt(std::numbers::pi * m[c]);
-      g[c] = std::max(g[c], std::min(compact, 2.0) * vol[c] / s);
-    }
-    // Only cells open to the outside air take surface heat (their melt drains): a share that
-    // the smoothed gradient put one cell deeper goes to its exposed neighbours, evenly.
-    std::vector<double> share(static_cast<std::size_t>(n), 0.0);
-    for (long c = 0; c < n; ++c) {
-      if (m[c] == 0 || exposed[c] || g[c] == 0) continue;
-      int count = 0;
-      for_neighbours(c, [&](long nb) { count += m[nb] > 0 && exposed[nb]; });
-      if (count > 0) share[c] = g[c] / count;
-    }
-    for (long c = 0; c < n; ++c) {
-      if (m[c] == 0) {
-        surface_area[c] = 0;
-        continue;
+    });
+    team.for_blocks([&](long bl) {
+      for (long c = bl * kBlock; c < block_end(bl); ++c) {
+        if (m[c] == 0) continue;
+        if (!exposed[c]) {
+          surface_area[c] = area_share[c] > 0 ? 0.0 : area_g[c];  // no exposed neighbour: keep it
+          continue;
+        }
+        double a = area_g[c];
+        for_neighbours(c, [&](long nb) {
+          if (!exposed[nb]) a += area_share[nb];
+        });
+        surface_area[c] = a;
       }
-      if (!exposed[c]) {
-        surface_area[c] = share[c] > 0 ? 0.0 : g[c];  // no exposed neighbour: keep it
-        continue;
+    });
+  }
+
+  /// |grad m| V of cell c: the mean of Youngs' and the central-difference gradient (above).
+  double gradient_area(long c) const {
+    const long nxy = static_cast<long>(nx) * ny;
+    const int i = static_cast<int>(c % nx), j = static_cast<int>((c / nx) % ny),
+              k = static_cast<int>(c / nxy);
+    auto at = [&](int ii, int jj, int kk) {
+      ii = std::clamp(ii, 0, nx - 1);
+      jj = std::clamp(jj, 0, ny - 1);
+      kk = std::clamp(kk, 0, nz - 1);
+      return m[ii + static_cast<long>(nx) * (jj + static_cast<long>(ny) * kk)];
+    };
+    const bool three = nz > 1;
+    const int kw = three ? 1 : 0;
+    // Youngs' gradient ...
+    double gx = 0, gy = 0, gz = 0;
+    for (int a = -1; a <= 1; ++a)
+      for (int b = -kw; b <= kw; ++b) {
+        const double w = (2 - std::abs(a)) * (three ? 2 - std::abs(b) : 2);
+        gx += w * (at(i + 1, j + a, k + b) - at(i - 1, j + a, k + b));
+        gy += w * (at(i + a, j + 1, k + b) - at(i + a, j - 1, k + b));
+        if (three) gz += w * (at(i + a, j + b, k + 1) - at(i + a, j + b, k - 1));
       }
-      double a = g[c];
-      for_neighbours(c, [&](long nb) {
-        if (!exposed[nb]) a += share[nb];
-      });
-      surface_area[c] = a;
-    }
+    const double norm = three ? 16 * 2 * s : 8 * 2 * s;
+    const double youngs = std::sqrt(gx * gx + gy * gy + gz * gz) / norm;
+    // ... and the plain central differences
+    const double cx = at(i + 1, j, k) - at(i - 1, j, k), cy = at(i, j + 1, k) - at(i, j - 1, k),
+                 cz = three ? at(i, j, k + 1) - at(i, j, k - 1) : 0.0;
+    const double central = std::sqrt(cx * cx + cy * cy + cz * cz) / (2 * s);
+    return 0.5 * (youngs + central) * vol[c];
+  }
+
+  /// Remnants thinner than a cell (rods and plates left of a shell's edges, fragments): their
+  /// cells are less than half full with no bulk behind them, and |grad m| V, which sees a
+  /// smeared surface, gives them a fraction of their true area (a rod of cross-section 0.3 dx^2
+  /// has 1.9 dx^2 of surface per cell length, the gradient ~0.6 dx^2), so they lingered for
+  /// minutes as sub-cell dust. Such a cell gets at least the area of the most compact body of
+  /// its volume: a sphere in 3D, (36 pi)^(1/3) m^(2/3) dx^2, a torus of round cross-section in
+  /// (r, y), 2 sqrt(pi m) V / dx; at most 2 V / dx (a plate's two faces).
+  double remnant_area(long c, double a) const {
+    if (m[c] >= 0.5 || backed_by_bulk(c)) return a;
+    const double compact = nz > 1 ? std::cbrt(36 * std::numbers::pi) * std::pow(m[c], 2.0 / 3)
+                                  : 2 * std::sqrt(std::numbers::pi * m[c]);
+    return std::max(a, std::min(compact, 2.0) * vol[c] / s);
   }
 
   /// A cell at least half full within two cells along any axis: cell c is part of a resolved
@@ -750,72 +841,95 @@ struct EnthalpySolver::Impl {
     return sum_cells(n, [&](long c) { return ice_fraction(c) * vol[c]; });
   }
 
-  void check_end_events() {
-    const double enclosed = enclosed_liquid_volume();
-    if (had_enclosed_liquid && !broke_through && !core_frozen && enclosed == 0) {
-      core_frozen = true;
-      events.push_back({"core_frozen", time, centre(last_liquid_cell)});
-    }
-    if (enclosed > 0) {
-      long best = -1;
-      double most = -1;
-      for (long c = 0; c < n; ++c) {
-        const double l = exposed[c] ? 0.0 : m[c] * liquid(h[c]);
-        if (l > most) {
-          most = l;
-          best = c;
-        }
+  void check_end_events(BlockTeam& team) {
+    const double enclosed =
+        team_sum(team, [&](long c) { return exposed[c] ? 0.0 : m[c] * vol[c] * liquid(h[c]); });
+    const long wettest =
+        enclosed > 0 ? team_argmax(
+                           team, [&](long c) { return exposed[c] ? 0.0 : m[c] * liquid(h[c]); }, -1)
+                     : -1;
+    const double ice = team_sum(team, [&](long c) { return ice_fraction(c) * vol[c]; });
+    team.serial([&] {
+      if (had_enclosed_liquid && !broke_through && !core_frozen && enclosed == 0) {
+        core_frozen = true;
+        events.push_back({"core_frozen", time, centre(last_liquid_cell)});
       }
-      last_liquid_cell = best;
-    }
-    if (ice_volume() <= kGoneFraction * initial_material) {
-      done = true;
-      long last = 0;
-      for (long c = 0; c < n; ++c)
-        if (m[c] > 0) last = c;
-      events.push_back({"fully_melted", time, centre(last)});
-    }
+      if (wettest >= 0) last_liquid_cell = wettest;
+      if (ice <= kGoneFraction * initial_material) {
+        done = true;
+        long last = n - 1;
+        while (last > 0 && m[last] == 0) --last;
+        events.push_back({"fully_melted", time, centre(last)});
+      }
+    });
   }
   long last_liquid_cell = 0;
 
+  /// The steps to t_target in one OpenMP parallel region: the threads sleep at the team's
+  /// barriers while the leader does the serial bookkeeping (events, the flood fill), instead of
+  /// spinning in OpenMP's barriers between regions.
   double advance_to(double target) {
+    TeamShared shared;
+#pragma omp parallel if (n > kParallelCells)
+    {
+#pragma omp single
+      shared.barrier.reset(omp_get_num_threads());
+      BlockTeam team(shared, omp_get_thread_num(), block_count());
+      advance_team(team, target);
+    }
+    return time;
+  }
+
+  /// Run by every thread of the team: the shared state (time, dt, done) is written by the
+  /// leader only and read by all after a barrier, so every thread takes the same decisions.
+  void advance_team(BlockTeam& team, double target) {
     while (!done && time < target) {
       const double remaining = target - time;
       double step_dt = std::min(dt, remaining);
       // avoid a sliver step before the target
       if (remaining - step_dt < 1e-3 * step_dt) step_dt = remaining;
       const double saved = dt;
-      dt = step_dt;
-      for (long c = 0; c < n; ++c) {
+      team.sync();  // everyone has read time and dt
+      if (team.leader()) dt = step_dt;
+      // (dt is read only after the next phase's barrier)
+      const double e_before = team_sum(team, [&](long c) {
         t_start[c] = m[c] > 0 ? temperature(h[c]) : 0.0;
         f_start[c] = liquid(h[c]);
-      }
-      const double e_before = energy();
+        return m[c] * vol[c] * h[c];
+      });
       double heat_step = 0;
-      if (!step(heat_step)) {
-        ++stats.rejected_steps;
-        dt = std::max(0.5 * step_dt, 0.99 * kMinStep_s);
+      if (!step(team, heat_step)) {
+        team.serial([&] {
+          ++stats.rejected_steps;
+          dt = std::max(0.5 * step_dt, 0.99 * kMinStep_s);
+        });
         continue;
       }
-      time = step_dt == remaining ? target : time + step_dt;
-      heat_in += heat_step;
       const double drained_before = drained;
-      drain_and_detect();
-      const double e_drained = energy();
-      const double err =
-          std::abs(e_drained - e_before - heat_step + (drained - drained_before)) / reference;
-      stats.max_step_energy_error = std::max(stats.max_step_energy_error, err);
-      stats.steps++;
-      stats.min_step_s = stats.steps == 1 ? step_dt : std::min(stats.min_step_s, step_dt);
-      stats.max_step_s = std::max(stats.max_step_s, step_dt);
-      check_end_events();
+      team.serial([&] {
+        time = step_dt == remaining ? target : time + step_dt;
+        heat_in += heat_step;
+      });
+      drain_and_detect(team);
+      const double e_drained = team_sum(team, [&](long c) { return m[c] * vol[c] * h[c]; });
+      if (team.leader()) {
+        const double err =
+            std::abs(e_drained - e_before - heat_step + (drained - drained_before)) / reference;
+        stats.max_step_energy_error = std::max(stats.max_step_energy_error, err);
+        stats.steps++;
+        stats.min_step_s = stats.steps == 1 ? step_dt : std::min(stats.min_step_s, step_dt);
+        stats.max_step_s = std::max(stats.max_step_s, step_dt);
+      }
+      check_end_events(team);
       if (p.fixed_step_s > 0) {
-        dt = p.fixed_step_s;
-      } else {
-        const double dtemp_max = max_cells(
-            n, [&](long c) { return m[c] > 0 ? std::abs(temperature(h[c]) - t_start[c]) : 0.0; });
-        const double dmelt_max = max_cells(
-            n, [&](long c) { return m[c] > 0 ? std::abs(liquid(h[c]) - f_start[c]) : 0.0; });
+        team.serial([&] { dt = p.fixed_step_s; });
+        continue;
+      }
+      const double dtemp_max = team_max(
+          team, [&](long c) { return m[c] > 0 ? std::abs(temperature(h[c]) - t_start[c]) : 0.0; });
+      const double dmelt_max = team_max(
+          team, [&](long c) { return m[c] > 0 ? std::abs(liquid(h[c]) - f_start[c]) : 0.0; });
+      team.serial([&] {
         double factor = 2.0;
         if (dtemp_max > 0) factor = std::min(factor, 0.9 * p.step_temperature_change_k / dtemp_max);
         if (dmelt_max > 0) factor = std::min(factor, 0.9 * p.step_melt_fraction / dmelt_max);
@@ -824,9 +938,8 @@ struct EnthalpySolver::Impl {
         dt = step_dt < saved ? std::min(saved, step_dt * factor)
                              : std::min(p.max_step_s, step_dt * factor);
         if (step_dt < saved && factor >= 1) dt = saved;
-      }
+      });
     }
-    return time;
   }
 
   GridSnapshot snapshot() const {
