@@ -9,9 +9,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "src/common/atomic_file.h"
+#include "src/common/check.h"
 #include "src/common/error.h"
+#include "src/inspect/field_probe.h"
 #include "src/inspect/simulation_folder.h"
 #include "src/inspect/vtk_messages.h"
 #include "src/inspect/vtk_polydata.h"
@@ -84,8 +87,21 @@ std::vector<std::array<double, 3>> vertex_normals(const TriangleMesh& mesh) {
   return n;
 }
 
-void write_vtp(const fs::path& path, const TriangleMesh& mesh) {
+void write_vtp(const fs::path& path, const TriangleMesh& mesh,
+               const std::vector<PointScalars>& scalars) {
   vtkSmartPointer<vtkPolyData> poly = to_polydata(mesh);
+  for (const PointScalars& s : scalars) {
+    THAW_CHECK(s.values.size() == mesh.vertices.size(), "one point data value per vertex");
+    vtkNew<vtkDoubleArray> array;
+    array->SetName(s.name.c_str());
+    array->SetNumberOfTuples(static_cast<vtkIdType>(s.values.size()));
+    for (std::size_t i = 0; i < s.values.size(); ++i)
+      array->SetValue(static_cast<vtkIdType>(i), s.values[i]);
+    if (&s == &scalars.front())
+      poly->GetPointData()->SetScalars(array);
+    else
+      poly->GetPointData()->AddArray(array);
+  }
   if (!mesh.triangles.empty()) {
     const auto normals = vertex_normals(mesh);
     vtkNew<vtkDoubleArray> array;
@@ -125,11 +141,13 @@ PvdWriter::PvdWriter(fs::path pvd_path) : m_pvd(std::move(pvd_path)) {
   ensure_directory(m_data_dir);
 }
 
-void PvdWriter::add(long step, double time_s, SurfacePart part, const TriangleMesh* mesh) {
+void PvdWriter::add(long step, double time_s, SurfacePart part, const TriangleMesh* mesh,
+                    const std::vector<PointScalars>& scalars) {
   const int p = static_cast<int>(part);
   char name[64];
   std::snprintf(name, sizeof name, "step_%06ld_%s.vtp", step, part_name(p));
-  write_vtp(m_data_dir / name, mesh ? *mesh : TriangleMesh{});
+  write_vtp(m_data_dir / name, mesh ? *mesh : TriangleMesh{},
+            mesh ? scalars : std::vector<PointScalars>{});
   const std::string rel = m_data_dir.filename().string() + "/" + name;
   // Replace an earlier entry for the same time and part (a re-meshed step), else append.
   auto same = [&](const Entry& e) { return e.part == p && e.file == rel; };
@@ -171,16 +189,28 @@ void write_pvd_series(const fs::path& simdir, const fs::path& out_pvd,
   const auto total = static_cast<std::int64_t>(folder.steps.size());
   std::int64_t done = 0;
   for (const MeshedStep& s : folder.steps) {
+    char field_name[64];
+    std::snprintf(field_name, sizeof field_name, "step_%06ld.grid", s.step);
+    std::optional<sim::GridField> field;
+    if (fs::exists(simdir / "fields" / field_name))
+      field = sim::read_grid_field(simdir / "fields" / field_name);
     for (const SurfacePart part : {SurfacePart::inner, SurfacePart::outer}) {
       const auto& file = part == SurfacePart::inner ? s.inner : s.outer;
       if (file) {
         TriangleMesh mesh = meshio::read_obj(*file);
+        std::vector<PointScalars> scalars;
+        if (field) {  // in the field's frame: before the placement
+          PointScalars t{"temperature_c", {}};
+          t.values.reserve(mesh.vertices.size());
+          for (const auto& v : mesh.vertices) t.values.push_back(material_temperature_c(*field, v));
+          scalars.push_back(std::move(t));
+        }
         if (placement) {
           const auto offset = placement(s.step);
           for (auto& v : mesh.vertices)
             for (int k = 0; k < 3; ++k) v[k] += offset[k];
         }
-        writer.add(s.step, s.time_s, part, &mesh);
+        writer.add(s.step, s.time_s, part, &mesh, scalars);
       } else {
         writer.add(s.step, s.time_s, part, nullptr);
       }

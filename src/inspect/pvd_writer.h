@@ -17,6 +17,12 @@
 
 namespace thaw::inspect {
 
+/// A named value per vertex, written as point data beside the normals (e.g. "temperature_c").
+struct PointScalars {
+  std::string name;
+  std::vector<double> values;  ///< one per vertex of the mesh it goes with
+};
+
 /// The part numbers used in thaw's collections.
 enum class SurfacePart { inner = 0, outer = 1 };
 
@@ -28,8 +34,10 @@ class PvdWriter {
 
   /// Writes step `step`'s `part` surface (nullptr: vanished, written as an empty data set so the
   /// part disappears at that time instead of ParaView holding the last surface). time_s: simulated
-  /// time [s]. Re-adding a step's part replaces its entry.
-  void add(long step, double time_s, SurfacePart part, const TriangleMesh* mesh);
+  /// time [s]. `scalars`: point data of `mesh` (see write_vtp). Re-adding a step's part replaces
+  /// its entry.
+  void add(long step, double time_s, SurfacePart part, const TriangleMesh* mesh,
+           const std::vector<PointScalars>& scalars = {});
 
   /// Writes the .pvd (atomically) referencing every data set added; throws thaw::UserError.
   void commit() const;
@@ -56,15 +64,19 @@ std::vector<std::array<double, 3>> vertex_normals(const TriangleMesh& mesh);
 
 /// Writes `mesh` as a VTK XML PolyData file atomically (appended raw binary, zlib), with the
 /// point data "Normals" (vertex_normals, set as the data set's normals so ParaView shades with
-/// them) when the mesh has triangles.
-void write_vtp(const std::filesystem::path& path, const TriangleMesh& mesh);
+/// them) when the mesh has triangles, and each of `scalars` as a point data array (the first set
+/// as the active scalars, so ParaView colours by it). THAW_CHECK: one value per vertex.
+void write_vtp(const std::filesystem::path& path, const TriangleMesh& mesh,
+               const std::vector<PointScalars>& scalars = {});
 
 /// Where step `step`'s surfaces are placed in the world [m] (added to every point); `thaw run`
 /// passes the offset it rendered them at, so ParaView shows them where the film does.
 using StepPlacement = std::function<std::array<double, 3>(long step)>;
 
 /// Writes the collection for every meshed step of a simulation folder (see simulation_folder.h);
-/// OBJs are validated as by inspect_obj. progress: (steps done, steps total).
+/// OBJs are validated as by inspect_obj. progress: (steps done, steps total). A grid run's step
+/// with a field (SIMDIR/fields/step_NNNNNN.grid) gets the point data "temperature_c": the
+/// material's temperature at each vertex (field_probe.h), sampled before the placement.
 void write_pvd_series(const std::filesystem::path& simdir, const std::filesystem::path& out_pvd,
                       const ProgressCallback& progress = {}, const StepPlacement& placement = {});
 

@@ -474,7 +474,7 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
     report.pvd = out / "meshes.pvd";
     report.handoff_obj = out / "handoff" / "obj";
     ContentHash inspect_hash;
-    inspect_hash.add("inspect/3").add(mesh_hash.hex()).add(sc.shell.rest_on_floor ? "floor" : "");
+    inspect_hash.add("inspect/4").add(mesh_hash.hex()).add(sc.shell.rest_on_floor ? "floor" : "");
     for (double v : sc.shell.center) inspect_hash.add(v);
     inspect_hash.add(sc.shell.floor_y);
     StageClock clock(report, "inspect");

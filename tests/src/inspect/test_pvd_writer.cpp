@@ -14,6 +14,7 @@
 #include <vtkXMLPolyDataReader.h>
 #include <cmath>
 
+#include "sim/io/grid_field.h"
 #include "src/common/error.h"
 #include "tests/src/inspect/test_meshes.h"
 
@@ -131,6 +132,52 @@ TEST(PvdWriter, PointNormalsAndPlacementReadBackByVtk) {
     const double cosine = (n[0] * d[0] + n[1] * d[1] + n[2] * d[2]) / dist;
     EXPECT_GT(cosine, std::cos(h_max / r)) << "vertex " << i;
   }
+}
+
+// Issue 13: a grid run's surfaces carry the material temperature at their vertices. A field
+// linear in space is interpolated exactly (field_probe.h), so each vertex's value is that linear
+// function at the vertex in the field's frame, i.e. before the placement offset; the tolerance is
+// the float storage of the field (max|T| * 2^-24 < 1e-6 here). A step without a field has none.
+TEST(PvdWriter, GridStepsCarryTheSurfaceTemperatureReadBackByVtk) {
+  testing::ScratchDir dir("pvd_temperature");
+  testing::write_sphere_simulation(dir.path() / "sim", 2);
+  const auto linear = [](double x, double y, double z) { return -3 + 40 * x + 60 * y - 80 * z; };
+  sim::GridField field;
+  field.cells = {8, 8, 8};
+  field.origin_m = {-0.02, -0.02, -0.02};
+  field.spacing_m = 0.005;
+  for (int k = 0; k < 8; ++k)
+    for (int j = 0; j < 8; ++j)
+      for (int i = 0; i < 8; ++i) {
+        const auto c = [&](int n, int a) { return field.origin_m[a] + (n + 0.5) * 0.005; };
+        field.temperature_c.push_back(static_cast<float>(linear(c(i, 0), c(j, 1), c(k, 2))));
+        field.ice_fraction.push_back(1.0f);
+        field.water_fraction.push_back(0.0f);
+      }
+  fs::create_directories(dir.path() / "sim" / "fields");
+  sim::write_grid_field(dir.path() / "sim" / "fields" / "step_000000.grid", field);
+  const fs::path pvd = dir.path() / "out" / "melt.pvd";
+  const std::array<double, 3> offset{0.1, 0.2, -0.3};
+  write_pvd_series(dir.path() / "sim", pvd, {}, [&](long) { return offset; });
+  const auto entries = parse_pvd(pvd);
+  ASSERT_EQ(entries.size(), 4u);
+  for (std::size_t e = 0; e < 2; ++e) {  // step 0: inner and outer
+    const auto poly = read_vtp(pvd.parent_path() / entries[e].file);
+    vtkDataArray* t = poly->GetPointData()->GetArray("temperature_c");
+    ASSERT_NE(t, nullptr) << entries[e].file;
+    EXPECT_EQ(poly->GetPointData()->GetScalars(), t);  // ParaView colours by it
+    ASSERT_EQ(t->GetNumberOfTuples(), poly->GetNumberOfPoints());
+    ASSERT_GT(poly->GetNumberOfPoints(), 0);
+    for (vtkIdType i = 0; i < poly->GetNumberOfPoints(); ++i) {
+      double p[3];
+      poly->GetPoint(i, p);
+      EXPECT_NEAR(t->GetTuple1(i), linear(p[0] - offset[0], p[1] - offset[1], p[2] - offset[2]),
+                  1e-6)
+          << i;
+    }
+  }
+  const auto later = read_vtp(pvd.parent_path() / entries[3].file);  // step 1: no field
+  EXPECT_EQ(later->GetPointData()->GetArray("temperature_c"), nullptr);
 }
 
 // Issue 12: an export that stops half-way (disk full, interrupt) leaves no partial .pvd: the
