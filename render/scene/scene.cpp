@@ -10,6 +10,7 @@
 #include "render/geometry/obj_loader.h"
 #include "render/geometry/plane.h"
 #include "render/geometry/sphere.h"
+#include "render/scene/scene_rules.h"
 #include "src/common/error.h"
 
 namespace thaw::render {
@@ -81,8 +82,26 @@ bool index_matched(const media::Medium& a, const media::Medium& b, bool spectral
 bool finite3f(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
-bool finite3(const Vec3d& v) {
-  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+/// placement_problem for a mesh once scaled and translated: its detail is its mean edge length,
+/// its reach the largest coordinate [scene units]; the key is the transform that moved it there
+/// ("translate", "scale"), or "file" for a mesh whose own coordinates are the problem.
+std::optional<SceneProblem> mesh_placement_problem(const TriangleMesh& mesh, double scale,
+                                                   const Vec3d& translate) {
+  if (mesh.triangles.empty()) return std::nullopt;
+  double edges = 0.0, reach = 0.0, own_reach = 0.0;
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k)
+      edges += double(length(mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]]));
+  for (const Vec3& p : mesh.positions)
+    for (int k = 0; k < 3; ++k) {
+      own_reach = std::max(own_reach, std::abs(double(p[k])));
+      reach = std::max(reach, std::abs(scale * p[k] + translate[k]));
+    }
+  const double detail = edges / (3.0 * double(mesh.triangles.size()));
+  if (auto p = placement_problem(own_reach, detail)) return SceneProblem{"file", *p};
+  if (auto p = placement_problem(reach, scale * detail))
+    return SceneProblem{translate == Vec3d{0.0, 0.0, 0.0} ? "scale" : "translate", *p};
+  return std::nullopt;
 }
 
 /// Signed distance [scene units] from `c` to the surface of a sphere, box or plane object
@@ -208,34 +227,20 @@ Scene build_scene(const SceneDescription& desc) {
   const auto start = std::chrono::steady_clock::now();
   const std::string& src = desc.source_name;
   Scene s;
+  if (const auto problem = find_scene_problem(desc))
+    throw UserError(src, problem->key, problem->problem);
   const ImageSettings& img = desc.image;
-  if (img.width < 1 || img.height < 1 || img.width > 16384 || img.height > 16384 ||
-      static_cast<long long>(img.width) * img.height > (1LL << 26))
-    throw UserError(src, "image",
-                    "image size " + std::to_string(img.width) + "x" + std::to_string(img.height) +
-                        " is out of range (1..16384 per side, at most 2^26 pixels)");
-  if (img.samples_per_pixel < 1)
-    throw UserError(src, "image.samples_per_pixel", "must be at least 1");
-  if (img.max_depth < 1) throw UserError(src, "image.max_depth", "must be at least 1");
-  if (!(img.min_weight >= 0.0)) throw UserError(src, "image.min_weight", "must not be negative");
   s.m_settings = img;
-  if (const auto problem = caustic_settings_problem(desc.caustics))
-    throw UserError(src, "caustics." + problem->key, problem->problem);
   s.m_caustics = desc.caustics;
 
   const CameraDescription& cam = desc.camera;
-  if (!finite3(cam.position) || !finite3(cam.look_at) || !finite3(cam.up))
-    throw UserError(src, "camera", "camera vectors must be finite");
   const Vec3 pos = to_vec3(cam.position), at = to_vec3(cam.look_at), up = to_vec3(cam.up);
   if (!finite3f(pos) || !finite3f(at))
     throw UserError(src, "camera", "camera coordinates are beyond single precision");
   if (!(length(at - pos) > 0.0f))
     throw UserError(src, "camera.look_at", "must differ from the camera position");
-  if (!(length(up) > 0.0f)) throw UserError(src, "camera.up", "must not be the zero vector");
   if (!(length(cross(normalize(at - pos), normalize(up))) > 1e-6f))
     throw UserError(src, "camera.up", "must not be parallel to the viewing direction");
-  if (!(cam.vertical_fov_deg > 0.0 && cam.vertical_fov_deg < 180.0))
-    throw UserError(src, "camera.vertical_fov_deg", "must be in (0, 180) degrees");
   s.m_camera = Camera(pos, at, up, cam.vertical_fov_deg, img.width, img.height);
 
   for (const auto& l : desc.lights) {
@@ -247,10 +252,6 @@ Scene build_scene(const SceneDescription& desc) {
       s.m_lights.push_back({to_vec3(l.position), intensity, inverse_square});
       continue;
     }
-    const std::string key = "lights[" + std::to_string(&l - desc.lights.data()) + "]";
-    if (!(l.radius > 0.0) || !std::isfinite(float(l.radius)))
-      throw UserError(src, key + ".radius", "a sphere light needs a positive radius");
-    if (l.samples < 1) throw UserError(src, key + ".samples", "must be at least 1");
     const auto radius = static_cast<float>(l.radius);
     s.m_sphere_lights.push_back({to_vec3(l.position), radius,
                                  sphere_light_radiance(intensity, radius), inverse_square,
@@ -277,8 +278,6 @@ Scene build_scene(const SceneDescription& desc) {
   for (const auto& m : desc.media) {
     if (media.count(m.name))
       throw UserError(src, "media." + m.name, "medium defined twice (or redefines vacuum)");
-    if (!(m.ior >= 1.0 && m.ior < 10.0))
-      throw UserError(src, "media." + m.name + ".ior", "must be in [1, 10)");
     media[m.name] = static_cast<std::uint32_t>(s.m_media.size());
     // A full spec (preset, Sellmeier, absorption, ...) is resolved and validated over 380-780 nm
     // by render/media; a bare constant index stays exactly the RGB path's number.
@@ -334,8 +333,6 @@ Scene build_scene(const SceneDescription& desc) {
     const std::size_t first_bound = bounds.size();
     switch (od.shape) {
       case ObjectDescription::Shape::sphere: {
-        if (!finite3(od.center) || !(od.radius > 0.0) || !std::isfinite(od.radius))
-          throw UserError(src, label, "sphere needs a finite centre and a positive radius");
         const Vec3 c = to_vec3(od.center);
         const float r = static_cast<float>(od.radius);
         Aabb b;
@@ -347,11 +344,6 @@ Scene build_scene(const SceneDescription& desc) {
         break;
       }
       case ObjectDescription::Shape::box: {
-        if (!finite3(od.box_min) || !finite3(od.box_max))
-          throw UserError(src, label, "box corners must be finite");
-        for (int k = 0; k < 3; ++k)
-          if (!(od.box_min[k] < od.box_max[k]))
-            throw UserError(src, label + ".max", "must exceed min in every coordinate");
         Aabb b;
         b.extend(to_vec3(od.box_min));
         b.extend(to_vec3(od.box_max));
@@ -363,10 +355,6 @@ Scene build_scene(const SceneDescription& desc) {
       case ObjectDescription::Shape::plane: {
         if (obj.dielectric)
           throw UserError(src, label, "a plane is not closed and cannot be a dielectric interface");
-        const double len = std::sqrt(od.normal[0] * od.normal[0] + od.normal[1] * od.normal[1] +
-                                     od.normal[2] * od.normal[2]);
-        if (!finite3(od.point) || !finite3(od.normal) || !(std::abs(len - 1.0) <= 1e-6))
-          throw UserError(src, label + ".normal", "plane needs a finite point and a unit normal");
         obj.plane_point = to_vec3(od.point);
         obj.plane_normal = normalize(to_vec3(od.normal));
         s.m_planes.push_back(object_id);
@@ -390,8 +378,8 @@ Scene build_scene(const SceneDescription& desc) {
           if (it == obj_cache.end()) it = obj_cache.emplace(path, load_obj(path)).first;
           mesh = it->second;
         }
-        if (!(od.scale > 0.0) || !std::isfinite(od.scale) || !finite3(od.translate))
-          throw UserError(src, label, "mesh scale must be positive and translate finite");
+        if (const auto problem = mesh_placement_problem(mesh, od.scale, od.translate))
+          throw UserError(mesh_name, label + "." + problem->key, problem->problem);
         if (od.scale != 1.0 || od.translate != Vec3d{0.0, 0.0, 0.0})
           transform_mesh(mesh, od.scale, od.translate);
         if (od.smooth_normals) compute_smooth_normals(mesh);

@@ -4,7 +4,6 @@
 // build_scene() (render/scene/scene.h), which validates names and geometry. Double precision,
 // scene units (metres for thaw's own scenes), linear RGB. Knows nothing about TOML.
 #include <array>
-#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -93,28 +92,6 @@ struct CausticSettings {
   /// radius of the density estimate [scene units]; empty = automatic
   std::optional<double> radius;
 };
-
-/// Accepted [caustics] photons (a count outside is a mistake, not a quality setting).
-inline constexpr long long kMinCausticPhotons = 1, kMaxCausticPhotons = 1000000000LL;
-
-/// The one rule for [caustics] values, called by the parser (with the file's line) and by
-/// build_scene (scenes built in code): the problem with `settings` and the key it concerns
-/// ("photons" or "radius"), or nullopt when they are acceptable.
-struct CausticSettingsProblem {
-  std::string key, problem;
-};
-inline std::optional<CausticSettingsProblem> caustic_settings_problem(const CausticSettings& c) {
-  if (c.photons && (*c.photons < kMinCausticPhotons || *c.photons > kMaxCausticPhotons))
-    return CausticSettingsProblem{
-        "photons", "must be between 1 and 1e9 (got " + std::to_string(*c.photons) + ")"};
-  if (c.radius && !(*c.radius > 0.0 && *c.radius < 1e30)) {
-    char value[32];
-    std::snprintf(value, sizeof value, "%g", *c.radius);
-    return CausticSettingsProblem{"radius",
-                                  std::string("must be positive and finite (got ") + value + ")"};
-  }
-  return std::nullopt;
-}
 
 /// [environment]: what rays that leave the scene see (render/light/environment.h).
 struct EnvironmentDescription {

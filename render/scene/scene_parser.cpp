@@ -33,12 +33,17 @@ RgbD color3(const TomlTable& t, const std::string& key, const RgbD& fallback) {
   return c;
 }
 
-int int_in(const TomlTable& t, const std::string& key, int fallback, int lo, int hi) {
-  const auto v = t.get_int(key, fallback);
-  if (v < lo || v > hi)
-    t.fail(key, "must be between " + std::to_string(lo) + " and " + std::to_string(hi) + " (got " +
-                    std::to_string(v) + ")");
-  return static_cast<int>(v);
+/// `value` unless `rule` finds a problem with it, which is then the file's error at `key`.
+template <typename T, typename Rule>
+T checked(const TomlTable& t, const std::string& key, T value, Rule rule) {
+  if (const std::optional<std::string> problem = rule(value)) t.fail(key, *problem);
+  return value;
+}
+
+/// An integer key checked by `rule` on its full 64-bit value, before it is narrowed to int.
+template <typename Rule>
+int int_key(const TomlTable& t, const std::string& key, int fallback, Rule rule) {
+  return static_cast<int>(checked<long long>(t, key, t.get_int(key, fallback), rule));
 }
 
 /// [image] spectral = "auto" | true | false.
@@ -56,6 +61,56 @@ ImageSettings::Spectral parse_spectral(const TomlTable& img) {
   }
   if (text != "auto") img.fail("spectral", "must be \"auto\", true or false");
   return ImageSettings::Spectral::automatic;
+}
+
+/// [image]; every limit is a rule of render/scene/scene_rules.h.
+ImageSettings parse_image(const TomlTable& img, ImageSettings image) {
+  image.width = int_key(img, "width", image.width, image_side_problem);
+  image.height = int_key(img, "height", image.height, image_side_problem);
+  if (const auto problem = image_pixels_problem(image.width, image.height))
+    img.fail("height", *problem);
+  image.samples_per_pixel =
+      int_key(img, "samples_per_pixel", image.samples_per_pixel, samples_per_pixel_problem);
+  image.adaptive = img.get_bool("adaptive", image.adaptive);
+  image.min_samples = int_key(img, "min_samples", image.min_samples, min_samples_problem);
+  image.adaptive_threshold = checked(img, "adaptive_threshold",
+                                     img.get_double("adaptive_threshold", image.adaptive_threshold),
+                                     adaptive_threshold_problem);
+  const std::string filter = img.get_string("filter", filter_name(image.filter));
+  if (const auto kind = filter_kind_from_name(filter))
+    image.filter = *kind;
+  else
+    img.fail("filter",
+             "unknown filter \"" + filter + "\" (expected \"box\", \"gaussian\" or \"mitchell\")");
+  image.filter_radius = checked(
+      img, "filter_radius", img.get_double("filter_radius", default_filter_radius(image.filter)),
+      filter_radius_problem);
+  image.texture_filter = img.get_bool("texture_filter", image.texture_filter);
+  image.max_depth = int_key(img, "max_depth", image.max_depth, max_depth_problem);
+  image.background = color3(img, "background", image.background);
+  image.min_weight = checked(img, "min_weight", img.get_double("min_weight", image.min_weight),
+                             min_weight_problem);
+  image.exposure = img.get_double("exposure", image.exposure);
+  if (img.has("spectral")) image.spectral = parse_spectral(img);
+  image.dispersion = *dispersion_from_name(checked(
+      img, "dispersion", img.get_string("dispersion", "adaptive"), dispersion_name_problem));
+  image.dispersion_resolution_nm =
+      checked(img, "dispersion_resolution_nm",
+              img.get_double("dispersion_resolution_nm", image.dispersion_resolution_nm),
+              dispersion_resolution_problem);
+  image.dispersion_wavelengths = int_key(
+      img, "dispersion_wavelengths", image.dispersion_wavelengths, dispersion_wavelengths_problem);
+  image.wavelength_pattern = *wavelength_pattern_from_name(
+      checked(img, "wavelength_pattern", img.get_string("wavelength_pattern", "shared"),
+              wavelength_pattern_name_problem));
+  const std::string film = img.get_string("spectral_film", "ratio");
+  if (film == "ratio")
+    image.spectral_film = ImageSettings::SpectralFilm::ratio;
+  else if (film == "unbiased")
+    image.spectral_film = ImageSettings::SpectralFilm::unbiased;
+  else
+    img.fail("spectral_film", "must be \"ratio\" or \"unbiased\" (got \"" + film + "\")");
+  return image;
 }
 
 TextureDescription parse_texture(const TomlTable& m) {
@@ -112,20 +167,6 @@ MaterialDescription parse_material(const std::string& name, const TomlTable& m) 
 
 }  // namespace
 
-std::optional<ImageSettings::Dispersion> dispersion_from_name(std::string_view name) {
-  if (name == "adaptive") return ImageSettings::Dispersion::adaptive;
-  if (name == "split") return ImageSettings::Dispersion::split;
-  if (name == "hero") return ImageSettings::Dispersion::hero;
-  return std::nullopt;
-}
-
-std::optional<ImageSettings::WavelengthPattern> wavelength_pattern_from_name(
-    std::string_view name) {
-  if (name == "shared") return ImageSettings::WavelengthPattern::shared;
-  if (name == "per_pixel") return ImageSettings::WavelengthPattern::per_pixel;
-  return std::nullopt;
-}
-
 SceneDescription parse_scene_string(const std::string& text, const std::string& source_name,
                                     const std::filesystem::path& base_dir) {
   const TomlTable root = TomlTable::parse_string(text, source_name);
@@ -140,74 +181,14 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
   s.source_name = root.source_name();
   s.base_dir = base_dir;
 
-  if (auto img = root.optional_table("image")) {
-    s.image.width = int_in(*img, "width", s.image.width, 1, kMaxImageSide);
-    s.image.height = int_in(*img, "height", s.image.height, 1, kMaxImageSide);
-    if (static_cast<long long>(s.image.width) * s.image.height > kMaxImagePixels)
-      img->fail("height",
-                "image has too many pixels (limit " + std::to_string(kMaxImagePixels) + ")");
-    s.image.samples_per_pixel = int_in(*img, "samples_per_pixel", 1, 1, kMaxSamplesPerPixel);
-    s.image.adaptive = img->get_bool("adaptive", s.image.adaptive);
-    // At least two samples, for a standard error; more than the cap is the cap.
-    s.image.min_samples = int_in(*img, "min_samples", s.image.min_samples, 2, kMaxSamplesPerPixel);
-    const double threshold = img->get_double("adaptive_threshold", s.image.adaptive_threshold);
-    if (!(threshold >= kMinAdaptiveThreshold && threshold <= kMaxAdaptiveThreshold))
-      img->fail("adaptive_threshold", "must be between 0.0001 and 1 (display units; got " +
-                                          std::to_string(threshold) + ")");
-    s.image.adaptive_threshold = threshold;
-    const std::string filter = img->get_string("filter", filter_name(s.image.filter));
-    if (const auto kind = filter_kind_from_name(filter))
-      s.image.filter = *kind;
-    else
-      img->fail("filter", "unknown filter \"" + filter +
-                              "\" (expected \"box\", \"gaussian\" or \"mitchell\")");
-    const double radius = img->get_double("filter_radius", default_filter_radius(s.image.filter));
-    if (!(radius >= kMinFilterRadius && radius <= kMaxFilterRadius))
-      img->fail("filter_radius",
-                "must be between 0.5 and 4 pixels (got " + std::to_string(radius) + ")");
-    s.image.filter_radius = radius;
-    s.image.texture_filter = img->get_bool("texture_filter", s.image.texture_filter);
-    s.image.max_depth = int_in(*img, "max_depth", 10, 1, 64);
-    s.image.background = color3(*img, "background", s.image.background);
-    s.image.min_weight =
-        img->require_non_negative("min_weight", img->get_double("min_weight", 1.0 / 255.0));
-    s.image.exposure = img->get_double("exposure", 0.0);
-    if (img->has("spectral")) s.image.spectral = parse_spectral(*img);
-    const std::string dispersion = img->get_string("dispersion", "adaptive");
-    if (const auto mode = dispersion_from_name(dispersion))
-      s.image.dispersion = *mode;
-    else
-      img->fail("dispersion",
-                "must be \"adaptive\", \"split\" or \"hero\" (got \"" + dispersion + "\")");
-    const double resolution =
-        img->get_double("dispersion_resolution_nm", s.image.dispersion_resolution_nm);
-    if (!(resolution >= kMinDispersionResolutionNm && resolution <= kMaxDispersionResolutionNm))
-      img->fail("dispersion_resolution_nm",
-                "must be between 0.05 and 100 nm (got " + std::to_string(resolution) + ")");
-    s.image.dispersion_resolution_nm = resolution;
-    s.image.dispersion_wavelengths =
-        int_in(*img, "dispersion_wavelengths", s.image.dispersion_wavelengths,
-               kMinDispersionWavelengths, kMaxDispersionWavelengths);
-    const std::string pattern = img->get_string("wavelength_pattern", "shared");
-    if (const auto p = wavelength_pattern_from_name(pattern))
-      s.image.wavelength_pattern = *p;
-    else
-      img->fail("wavelength_pattern",
-                "must be \"shared\" or \"per_pixel\" (got \"" + pattern + "\")");
-    const std::string film = img->get_string("spectral_film", "ratio");
-    if (film == "ratio")
-      s.image.spectral_film = ImageSettings::SpectralFilm::ratio;
-    else if (film == "unbiased")
-      s.image.spectral_film = ImageSettings::SpectralFilm::unbiased;
-    else
-      img->fail("spectral_film", "must be \"ratio\" or \"unbiased\" (got \"" + film + "\")");
-  }
+  if (auto img = root.optional_table("image")) s.image = parse_image(*img, s.image);
   if (auto c = root.optional_table("caustics")) {
     s.caustics.enabled = c->get_bool("enabled", true);
-    if (c->has("photons")) s.caustics.photons = c->get_int("photons");
-    if (c->has("radius")) s.caustics.radius = c->get_double("radius");
-    if (const auto problem = caustic_settings_problem(s.caustics))
-      c->fail(problem->key, problem->problem);
+    if (c->has("photons"))
+      s.caustics.photons =
+          checked<long long>(*c, "photons", c->get_int("photons"), caustic_photons_problem);
+    if (c->has("radius"))
+      s.caustics.radius = checked(*c, "radius", c->get_double("radius"), caustic_radius_problem);
   }
   if (auto env = root.optional_table("environment")) {
     const std::string kind = env->get_string("kind", "constant");
@@ -235,19 +216,10 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
     s.camera.position = cam->get_vec3("position");
     s.camera.look_at = cam->get_vec3("look_at");
     s.camera.up = cam->has("up") ? unit_vec3(*cam, "up") : Vec3d{0.0, 1.0, 0.0};
-    s.camera.vertical_fov_deg = cam->get_double("vertical_fov_deg");
-    if (!(s.camera.vertical_fov_deg > 0.0 && s.camera.vertical_fov_deg < 180.0))
-      cam->fail("vertical_fov_deg", "must be in (0, 180) degrees");
+    s.camera.vertical_fov_deg = checked(*cam, "vertical_fov_deg",
+                                        cam->get_double("vertical_fov_deg"), vertical_fov_problem);
     s.camera.medium = cam->get_string("medium", "");
-    const Vec3d d{s.camera.look_at[0] - s.camera.position[0],
-                  s.camera.look_at[1] - s.camera.position[1],
-                  s.camera.look_at[2] - s.camera.position[2]};
-    if (length3(d) == 0.0) cam->fail("look_at", "must differ from the camera position");
-    const Vec3d c{d[1] * s.camera.up[2] - d[2] * s.camera.up[1],
-                  d[2] * s.camera.up[0] - d[0] * s.camera.up[2],
-                  d[0] * s.camera.up[1] - d[1] * s.camera.up[0]};
-    if (length3(c) <= 1e-9 * length3(d))
-      cam->fail("up", "must not be parallel to the viewing direction");
+    if (const auto problem = camera_problem(s.camera)) cam->fail(problem->key, problem->problem);
   } else if (!camera_optional) {
     root.fail("camera", "required table [camera] is missing");
   }
@@ -262,11 +234,8 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
       light.kind = LightDescription::Kind::point;
     } else if (kind == "sphere") {
       light.kind = LightDescription::Kind::sphere;
-      light.radius = l.get_double("radius");
-      if (!(light.radius > 0.0) || !std::isfinite(light.radius))
-        l.fail("radius",
-               "a sphere light needs a positive radius (got " + std::to_string(light.radius) + ")");
-      light.samples = int_in(l, "samples", light.samples, 1, kMaxLightSamples);
+      light.radius = checked(l, "radius", l.get_double("radius"), light_radius_problem);
+      light.samples = int_key(l, "samples", light.samples, light_samples_problem);
     } else {
       l.fail("kind", "unknown light kind '" + kind + "' (expected point or sphere)");
     }
@@ -289,9 +258,7 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
       MediumDescription md;
       md.name = name;
       if (m.has("ior")) {
-        md.ior = m.get_double("ior");
-        if (!(md.ior >= 1.0 && md.ior < 10.0))
-          m.fail("ior", "must be in [1, 10) (got " + std::to_string(md.ior) + ")");
+        md.ior = checked(m, "ior", m.get_double("ior"), ior_problem);
       }
       if (name == "vacuum")
         m.fail(m.has("ior") ? "ior" : "", "'vacuum' is predefined (n = 1) and cannot be redefined");
@@ -320,14 +287,11 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
     if (shape == "sphere") {
       obj.shape = ObjectDescription::Shape::sphere;
       obj.center = o.get_vec3("center");
-      obj.radius = o.require_positive("radius", o.get_double("radius"));
+      obj.radius = o.get_double("radius");
     } else if (shape == "box") {
       obj.shape = ObjectDescription::Shape::box;
       obj.box_min = o.get_vec3("min");
       obj.box_max = o.get_vec3("max");
-      for (int k = 0; k < 3; ++k)
-        if (!(obj.box_min[k] < obj.box_max[k]))
-          o.fail("max", "must exceed min in every coordinate");
     } else if (shape == "plane") {
       obj.shape = ObjectDescription::Shape::plane;
       obj.point = o.get_vec3("point");
@@ -337,12 +301,13 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
       const std::string file = o.get_string("file");
       if (file.empty()) o.fail("file", "must name an OBJ file");
       obj.mesh_file = file;
-      obj.scale = o.require_positive("scale", o.get_double("scale", 1.0));
+      obj.scale = o.get_double("scale", 1.0);
       obj.translate = o.get_vec3("translate", {0.0, 0.0, 0.0});
       obj.smooth_normals = o.get_bool("smooth_normals", false);
     } else {
       o.fail("shape", "unknown shape '" + shape + "' (expected mesh, sphere, box or plane)");
     }
+    if (const auto problem = object_problem(obj)) o.fail(problem->key, problem->problem);
     const bool has_material = o.has("material");
     const bool has_media = o.has("inside") || o.has("outside");
     if (has_material && has_media)

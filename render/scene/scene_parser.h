@@ -1,7 +1,8 @@
 #pragma once
 // Reads a thaw scene file (TOML; keys documented in docs/render.md) into a SceneDescription.
-// Every key is checked: unknown keys, wrong types, out-of-range values and unknown medium or
-// material names are thaw::UserError naming the file, line and key. Meshes are not loaded here
+// Every key is checked: unknown keys, wrong types, out-of-range values (the rules of
+// render/scene/scene_rules.h) and unknown medium or material names are thaw::UserError naming the
+// file, line and key. Meshes are not loaded here
 // (build_scene does that), so parsing is cheap and testable from strings.
 #include <filesystem>
 #include <optional>
@@ -9,6 +10,7 @@
 #include <string_view>
 
 #include "render/scene/scene_description.h"
+#include "render/scene/scene_rules.h"
 #include "src/common/toml_table.h"
 
 namespace thaw::render {
@@ -27,24 +29,5 @@ SceneDescription parse_scene_string(const std::string& text, const std::string& 
 /// leaves the default CameraDescription instead of being an error.
 SceneDescription parse_scene_table(const TomlTable& table, const std::filesystem::path& base_dir,
                                    bool camera_optional = false);
-
-/// Largest accepted image side [pixels] and pixel count.
-inline constexpr int kMaxImageSide = 16384;
-inline constexpr long long kMaxImagePixels = 1LL << 26;
-
-/// Accepted [image] samples_per_pixel (the cap) and min_samples, [image] adaptive_threshold
-/// (display units) and [[lights]] samples of a sphere light.
-inline constexpr int kMaxSamplesPerPixel = 65536;
-inline constexpr double kMinAdaptiveThreshold = 1e-4, kMaxAdaptiveThreshold = 1.0;
-inline constexpr int kMaxLightSamples = 1024;
-
-/// Accepted [image] dispersion_wavelengths and dispersion_resolution_nm [nm].
-inline constexpr int kMinDispersionWavelengths = 4, kMaxDispersionWavelengths = 1024;
-inline constexpr double kMinDispersionResolutionNm = 0.05, kMaxDispersionResolutionNm = 100.0;
-
-/// [image] dispersion and wavelength_pattern values by name, as in scene files and the flags of
-/// `thaw render`; nullopt for an unknown name.
-std::optional<ImageSettings::Dispersion> dispersion_from_name(std::string_view name);
-std::optional<ImageSettings::WavelengthPattern> wavelength_pattern_from_name(std::string_view name);
 
 }  // namespace thaw::render

@@ -13,6 +13,7 @@
 #include "render/integrator/whitted.h"
 #include "render/scene/scene.h"
 #include "render/scene/scene_parser.h"
+#include "render/scene/scene_rules.h"
 #include "src/cli/commands.h"
 #include "src/common/error.h"
 #include "src/common/interrupt.h"
@@ -31,12 +32,44 @@ struct RenderArgs {
   bool quiet = false;
 };
 
-int checked(const char* option, int value, int lo, int hi) {
-  if (value < lo || value > hi)
-    throw UserError("", option,
-                    "must be between " + std::to_string(lo) + " and " + std::to_string(hi) +
-                        " (got " + std::to_string(value) + ")");
+/// `value` unless the scene's own rule for the key it overrides (render/scene/scene_rules.h)
+/// finds a problem, which is then reported against the flag, in the same words as in a file.
+template <typename T, typename Rule>
+T checked(const char* option, T value, Rule rule) {
+  if (const auto problem = rule(value)) throw UserError("", option, *problem);
   return value;
+}
+
+int checked_threads(int threads) {
+  if (threads < 1 || threads > 1024)
+    throw UserError("", "--threads",
+                    "must be between 1 and 1024 (got " + std::to_string(threads) + ")");
+  return threads;
+}
+
+/// The [image] keys given on the command line, each checked by the file key's rule.
+void apply_image_flags(const RenderArgs& a, render::ImageSettings& image) {
+  if (a.width) image.width = checked("--width", *a.width, render::image_side_problem);
+  if (a.height) image.height = checked("--height", *a.height, render::image_side_problem);
+  if (const auto problem = render::image_pixels_problem(image.width, image.height))
+    throw UserError("", a.width ? "--width" : "--height", *problem);
+  if (a.spp) image.samples_per_pixel = checked("--spp", *a.spp, render::samples_per_pixel_problem);
+  if (a.dispersion_wavelengths)
+    image.dispersion_wavelengths = checked("--dispersion-wavelengths", *a.dispersion_wavelengths,
+                                           render::dispersion_wavelengths_problem);
+  if (a.dispersion)
+    image.dispersion = *render::dispersion_from_name(
+        checked("--dispersion", *a.dispersion, render::dispersion_name_problem));
+  if (a.dispersion_resolution_nm)
+    image.dispersion_resolution_nm =
+        checked("--dispersion-resolution-nm", *a.dispersion_resolution_nm,
+                render::dispersion_resolution_problem);
+  if (a.wavelength_pattern)
+    image.wavelength_pattern = *render::wavelength_pattern_from_name(checked(
+        "--wavelength-pattern", *a.wavelength_pattern, render::wavelength_pattern_name_problem));
+  if (a.max_depth)
+    image.max_depth = checked("--max-depth", *a.max_depth, render::max_depth_problem);
+  if (a.exposure) image.exposure = *a.exposure;
 }
 
 void run_render(const RenderArgs& a) {
@@ -45,39 +78,9 @@ void run_render(const RenderArgs& a) {
   if (!render::valid_png_bits(a.png_bits))
     throw UserError("", "--png-bits", "must be 8 or 16 (got " + std::to_string(a.png_bits) + ")");
   render::SceneDescription desc = render::parse_scene_file(a.scene);
-  if (a.width) desc.image.width = checked("--width", *a.width, 1, render::kMaxImageSide);
-  if (a.height) desc.image.height = checked("--height", *a.height, 1, render::kMaxImageSide);
-  if (static_cast<long long>(desc.image.width) * desc.image.height > render::kMaxImagePixels)
-    throw UserError("", "--width/--height", "image has too many pixels");
-  if (a.spp) desc.image.samples_per_pixel = checked("--spp", *a.spp, 1, 65536);
-  if (a.dispersion_wavelengths)
-    desc.image.dispersion_wavelengths =
-        checked("--dispersion-wavelengths", *a.dispersion_wavelengths,
-                render::kMinDispersionWavelengths, render::kMaxDispersionWavelengths);
-  if (a.dispersion) {
-    const auto mode = render::dispersion_from_name(*a.dispersion);
-    if (!mode)
-      throw UserError("", "--dispersion",
-                      "must be adaptive, split or hero (got '" + *a.dispersion + "')");
-    desc.image.dispersion = *mode;
-  }
-  if (a.dispersion_resolution_nm) {
-    if (!(*a.dispersion_resolution_nm >= render::kMinDispersionResolutionNm &&
-          *a.dispersion_resolution_nm <= render::kMaxDispersionResolutionNm))
-      throw UserError("", "--dispersion-resolution-nm", "must be between 0.05 and 100 nm");
-    desc.image.dispersion_resolution_nm = *a.dispersion_resolution_nm;
-  }
-  if (a.wavelength_pattern) {
-    const auto pattern = render::wavelength_pattern_from_name(*a.wavelength_pattern);
-    if (!pattern)
-      throw UserError("", "--wavelength-pattern",
-                      "must be shared or per_pixel (got '" + *a.wavelength_pattern + "')");
-    desc.image.wavelength_pattern = *pattern;
-  }
-  if (a.max_depth) desc.image.max_depth = checked("--max-depth", *a.max_depth, 1, 64);
-  if (a.exposure) desc.image.exposure = *a.exposure;
+  apply_image_flags(a, desc.image);
   render::RenderOptions options;
-  if (a.threads) options.threads = checked("--threads", *a.threads, 1, 1024);
+  if (a.threads) options.threads = checked_threads(*a.threads);
 
   const render::Scene scene = render::build_scene(desc);
   const int tile = options.tile_size;

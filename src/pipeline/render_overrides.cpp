@@ -3,7 +3,7 @@
 #include <charconv>
 #include <cstdio>
 
-#include "render/scene/scene_parser.h"
+#include "render/scene/scene_rules.h"
 #include "src/common/error.h"
 
 namespace thaw::pipeline {
@@ -26,12 +26,10 @@ RenderOverrides parse_size_override(const std::string& text) {
   const auto w = whole_number(std::string_view(text).substr(0, x));
   const auto h = whole_number(std::string_view(text).substr(x + 1));
   if (!w || !h) fail("expected WIDTHxHEIGHT in pixels, e.g. 640x480 (got \"" + text + "\")");
+  // The scene file's rules for [image] width and height (render/scene/scene_rules.h).
   for (long long side : {*w, *h})
-    if (side < 1 || side > render::kMaxImageSide)
-      fail("each side must be between 1 and " + std::to_string(render::kMaxImageSide) +
-           " pixels (got \"" + text + "\")");
-  if (*w * *h > render::kMaxImagePixels)
-    fail("image has too many pixels (limit " + std::to_string(render::kMaxImagePixels) + ")");
+    if (const auto problem = render::image_side_problem(side)) fail(*problem);
+  if (const auto problem = render::image_pixels_problem(*w, *h)) fail(*problem);
   RenderOverrides o;
   o.width = static_cast<int>(*w);
   o.height = static_cast<int>(*h);
@@ -39,11 +37,9 @@ RenderOverrides parse_size_override(const std::string& text) {
 }
 
 int checked_spp_override(long long spp) {
-  // The scene parser's range for [render.image] samples_per_pixel (scene_parser.cpp).
-  if (spp < 1 || spp > render::kMaxSamplesPerPixel)
-    throw UserError("", "--spp",
-                    "must be between 1 and " + std::to_string(render::kMaxSamplesPerPixel) +
-                        " (got " + std::to_string(spp) + ")");
+  // The scene file's rule for [render.image] samples_per_pixel (render/scene/scene_rules.h).
+  if (const auto problem = render::samples_per_pixel_problem(spp))
+    throw UserError("", "--spp", *problem);
   return static_cast<int>(spp);
 }
 

@@ -3,7 +3,7 @@
 // quick preview or a final render, replacing the scenario's [render.image] / [film] values. Size
 // and samples count in the render stage's fingerprint only, the frame rate in the film's only,
 // so changing them neither re-simulates nor re-meshes. Validated by the same rules as the
-// scenario's keys (render/scene/scene_parser.h limits, fps_problem in run_scenario.h).
+// scenario's keys (render/scene/scene_rules.h, fps_problem in run_scenario.h).
 #include <optional>
 #include <string>
 
@@ -21,7 +21,8 @@ struct RenderOverrides {
 /// a side outside 1..kMaxImageSide or more than kMaxImagePixels pixels.
 RenderOverrides parse_size_override(const std::string& text);
 
-/// Checks `spp` against the scene parser's range; throws thaw::UserError(--spp, problem).
+/// Checks `spp` by the samples_per_pixel rule (render/scene/scene_rules.h); throws
+/// thaw::UserError(--spp, problem).
 int checked_spp_override(long long spp);
 
 /// Checks a --fps value by fps_problem; throws thaw::UserError(--fps, problem).

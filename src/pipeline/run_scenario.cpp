@@ -4,6 +4,8 @@
 #include <cstdio>
 
 #include "render/scene/scene_parser.h"
+#include "render/scene/scene_rules.h"
+#include "sim/grid/grid_rules.h"
 #include "sim/scenario/scenario_file.h"
 #include "src/common/error.h"
 #include "src/common/toml_table.h"
@@ -70,6 +72,29 @@ ShellPlacement parse_shell(const TomlTable& t) {
   return s;
 }
 
+/// The finest detail of the shell's meshes [m]: the mesher's edge length (given, or automatic:
+/// a twelfth of the shell's radius, src/mesh/mesh_options.h), or a grid run's cell.
+double shell_detail_m(const RunScenario& r) {
+  if (r.mesh.edge_length_m > 0) return r.mesh.edge_length_m;
+  if (r.simulation.grid != sim::GridGeometry::none) return sim::effective_cell_size_m(r.simulation);
+  return r.simulation.outer_radius_m / 12;
+}
+
+/// [render.shell] center and floor_y move the shell's meshes; far from the origin single
+/// precision cannot hold them (the class of a floor at y = 2^31): the scene's placement rule,
+/// reported at the key that moved it.
+void check_shell_placement(const TomlTable& shell, const RunScenario& r) {
+  const double size_m =
+      r.simulation.grid != sim::GridGeometry::none ? 0.0 : r.simulation.outer_radius_m;
+  const double detail_m = shell_detail_m(r);
+  for (int k = 0; k < 3; ++k)
+    if (const auto p = render::placement_problem(std::abs(r.shell.center[k]) + size_m, detail_m))
+      shell.fail("center", "the shell " + *p);
+  if (r.shell.rest_on_floor)
+    if (const auto p = render::placement_problem(std::abs(r.shell.floor_y) + 2 * size_m, detail_m))
+      shell.fail("floor_y", "the shell " + *p);
+}
+
 void check_medium_declared(const TomlTable& shell, const render::SceneDescription& scene,
                            const char* key, const std::string& name) {
   if (name == "vacuum") return;
@@ -126,6 +151,7 @@ RunScenario parse_run_scenario(const TomlTable& root) {
     const auto shell = render_table->optional_table("shell");
     if (shell) {
       r.shell = parse_shell(*shell);
+      check_shell_placement(*shell, r);
       check_medium_declared(*shell, r.scene, "ice_medium", r.shell.ice_medium);
       check_medium_declared(*shell, r.scene, "water_medium", r.shell.water_medium);
       check_medium_declared(*shell, r.scene, "outside_medium", r.shell.outside_medium);

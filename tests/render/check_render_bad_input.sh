@@ -64,6 +64,38 @@ expect_bad bad_png_bits "--png-bits" "$good" --png-bits 12
 OUT="$work/out.jpg" expect_bad bad_extension "unsupported output format" "$good"
 OUT="$work/no/such/dir/out.png" expect_bad missing_out_dir "does not exist" "$good"
 
+# A flag that overrides an [image] key is checked by that key's rule (render/scene/scene_rules.h):
+# the same bad value gives the same problem from the command line and from the file.
+# problem_of ARGS...: the problem thaw render reports (without file, line and key or flag), or
+# "exit N" unless it exits with code 2
+problem_of() {
+  local err code
+  err=$("$thaw" render "$@" -o "$work/out.png" --quiet 2>&1 >/dev/null)
+  code=$?
+  if [ "$code" -ne 2 ]; then echo "exit $code"; return; fi
+  printf '%s\n' "$err" | sed -e "s/^.*\(--[a-z-]*\|key '[a-z_.]*'\): //"
+}
+# same_problem NAME SED_EXPRESSION FLAG VALUE
+same_problem() {
+  local name=$1 edit=$2; shift 2
+  local from_file from_flag
+  from_file=$(problem_of "$(scene "$name" "$edit")")
+  from_flag=$(problem_of "$good" "$@")
+  if [ -n "$from_file" ] && [ "${from_file#exit }" = "$from_file" ] && [ "$from_file" = "$from_flag" ]; then
+    echo "ok   $name: file and $1 both say: $from_flag"
+  else
+    echo "FAIL $name: file says '$from_file', $1 says '$from_flag'"; failures=$((failures + 1))
+  fi
+}
+same_problem same_width 's/^width = 640/width = 0/' --width 0
+same_problem same_height 's/^height = 640/height = 20000/' --height 20000
+same_problem same_spp 's/^samples_per_pixel = 1/samples_per_pixel = 70000/' --spp 70000
+same_problem same_depth 's/^max_depth = 10/max_depth = 65/' --max-depth 65
+same_problem same_wavelengths 's/^max_depth = 10/max_depth = 10\ndispersion_wavelengths = 2/' --dispersion-wavelengths 2
+same_problem same_resolution 's/^max_depth = 10/max_depth = 10\ndispersion_resolution_nm = 0.01/' --dispersion-resolution-nm 0.01
+same_problem same_dispersion 's/^max_depth = 10/max_depth = 10\ndispersion = "rainbow"/' --dispersion rainbow
+same_problem same_pattern 's/^max_depth = 10/max_depth = 10\nwavelength_pattern = "random"/' --wavelength-pattern random
+
 # And the good scene renders (tiny) and leaves exactly the PNG.
 if "$thaw" render "$good" -o "$work/out.png" --width 24 --height 24 --quiet && [ -s "$work/out.png" ]; then
   echo "ok   good scene renders"

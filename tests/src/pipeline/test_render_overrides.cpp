@@ -38,6 +38,40 @@ TEST(RenderOverrides, SppRange) {
   EXPECT_THROW(checked_spp_override(65537), UserError);
 }
 
+/// The problem a scene file reports for `image_keys` in its [image] table.
+std::string file_problem(const std::string& image_keys) {
+  try {
+    render::parse_scene_string("[image]\n" + image_keys +
+                                   "\n[camera]\nposition = [0.0, 0.0, 5.0]\n"
+                                   "look_at = [0.0, 0.0, 0.0]\nvertical_fov_deg = 40.0\n",
+                               "s.toml");
+  } catch (const UserError& e) {
+    return e.problem();
+  }
+  return "";
+}
+
+template <typename F>
+std::string flag_problem(F f) {
+  try {
+    f();
+  } catch (const UserError& e) {
+    return e.problem();
+  }
+  return "";
+}
+
+// --size and --spp are checked by the file keys' rules: the same words for the same value.
+TEST(RenderOverrides, SameMessageAsTheFileKey) {
+  EXPECT_EQ(flag_problem([] { checked_spp_override(0); }), file_problem("samples_per_pixel = 0"));
+  EXPECT_EQ(flag_problem([] { checked_spp_override(70000); }),
+            file_problem("samples_per_pixel = 70000"));
+  EXPECT_EQ(flag_problem([] { parse_size_override("0x480"); }), file_problem("width = 0"));
+  EXPECT_EQ(flag_problem([] { parse_size_override("16384x16384"); }),
+            file_problem("width = 16384\nheight = 16384"));
+  EXPECT_NE(file_problem("width = 0"), "");
+}
+
 TEST(RenderOverrides, ChangeTheImageAndOnlyTheRenderFingerprint) {
   RunScenario sc = default_run_scenario();
   const RunScenario before = sc;

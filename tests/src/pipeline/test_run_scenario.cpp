@@ -1,5 +1,6 @@
 // Tests src/pipeline/run_scenario.h: [film] frames_format (issue 13): "png" by default, "exr"
-// accepted, anything else a UserError naming the file and the key.
+// accepted, anything else a UserError naming the file and the key; [render.shell] placement
+// (issue 12): a floor or centre too far out for single precision names its key.
 #include "src/pipeline/run_scenario.h"
 
 #include <gtest/gtest.h>
@@ -41,6 +42,34 @@ TEST(RunScenario, UnknownFramesFormatNamesFileAndKey) {
     EXPECT_EQ(what.find('\n'), std::string::npos) << what;
   }
   EXPECT_THROW(with_film_line("frames_format = 3"), UserError);
+}
+
+/// The default scenario with its [render.shell] line starting `key` replaced by `line`.
+RunScenario with_shell_line(const std::string& key, const std::string& line) {
+  std::string text = default_run_scenario_text();
+  const auto at = text.find("\n" + key + " = ", text.find("[render.shell]"));
+  EXPECT_NE(at, std::string::npos);
+  text.replace(at + 1, text.find('\n', at + 1) - at - 1, line);
+  return parse_run_scenario(TomlTable::parse_string(text, "scenario.toml"));
+}
+
+// Before: "shell outer surface: shell outer surface: a dielectric mesh must be oriented outward"
+// at render time, after simulating and meshing.
+TEST(RunScenario, FarFloorOrCentreNamesFileAndKey) {
+  for (const auto& [line, key] :
+       {std::pair{"floor_y = 2147483647", "floor_y"}, std::pair{"floor_y = -1e12", "floor_y"},
+        std::pair{"center = [0.0, 0.0, 3e9]", "center"}}) {
+    try {
+      with_shell_line(key, line);
+      ADD_FAILURE() << "accepted " << line;
+    } catch (const UserError& e) {
+      EXPECT_EQ(e.file(), "scenario.toml") << e.what();
+      EXPECT_NE(e.where().find(std::string("render.shell.") + key), std::string::npos) << e.what();
+      EXPECT_NE(e.problem().find("single precision"), std::string::npos) << e.what();
+    }
+  }
+  // A 3 cm shell's mesh edges (2.5 mm) are still resolved 100 m up.
+  EXPECT_EQ(with_shell_line("floor_y", "floor_y = 100.0").shell.floor_y, 100.0);
 }
 
 }  // namespace
