@@ -90,7 +90,7 @@ same_problem() {
 same_problem same_width 's/^width = 640/width = 0/' --width 0
 same_problem same_height 's/^height = 640/height = 20000/' --height 20000
 same_problem same_spp 's/^samples_per_pixel = 1/samples_per_pixel = 70000/' --spp 70000
-same_problem same_depth 's/^max_depth = 10/max_depth = 65/' --max-depth 65
+same_problem same_depth 's/^max_depth = 10/max_depth = 257/' --max-depth 257
 same_problem same_wavelengths 's/^max_depth = 10/max_depth = 10\ndispersion_wavelengths = 2/' --dispersion-wavelengths 2
 same_problem same_resolution 's/^max_depth = 10/max_depth = 10\ndispersion_resolution_nm = 0.01/' --dispersion-resolution-nm 0.01
 same_problem same_dispersion 's/^max_depth = 10/max_depth = 10\ndispersion = "rainbow"/' --dispersion rainbow
