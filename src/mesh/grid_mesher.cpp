@@ -65,24 +65,87 @@ double ice_between(const GridSurfaces& s) {
   return enclosed_volume(s.outer) - enclosed_volume(s.inner);
 }
 
-// The level of the extracted isosurface: 1/2, unless the ice enclosed at 1/2 falls short of the
-// field's ice volume by more than the interpolation error can explain (0.0858 h per unit area,
-// docs/mesh.md): then thin walls of partly melted cells (every fraction below 1/2 across them)
-// would vanish from the film although the solver still has their ice, and the level is lowered
-// (bisection in [0.05, 1/2]; the enclosed volume grows as the level falls) until the surfaces
-// enclose the field's ice volume, never so low that the number of sealed cavities changes.
+// Whether `f` holds water sealed from the outside by the solver's own rule
+// (sim/grid/enthalpy_solver.cpp): a cell is open when less than half of it is ice, the outside
+// is the open cells 6-connected to the material-free cells of the grid's border (the axis of an
+// axisymmetric grid is no border), and the solver drains every cell in or next to the outside
+// each step; an enclosed open cell holding water is a sealed cavity (melt inside the ice, in cells
+// at least half ice, is not: after break-through such cells hold ~1e-6 of water). Until the
+// solver's break_through the film must show the cavity closed and full, after it open.
+bool holds_sealed_water(const sim::GridField& f) {
+  const bool axi = f.geometry == sim::GridField::Geometry::axisymmetric;
+  const int nx = f.cells[0], ny = f.cells[1], nz = f.cells[2];
+  std::vector<char> outside(f.cell_count(), 0);
+  std::vector<std::size_t> queue;
+  auto open = [&](std::size_t c) { return f.ice_fraction[c] < 0.5f; };
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const bool border =
+            (!axi && (i == 0 || k == 0 || k == nz - 1)) || i == nx - 1 || j == 0 || j == ny - 1;
+        const std::size_t c = f.index(i, j, k);
+        if (border && f.ice_fraction[c] == 0 && f.water_fraction[c] == 0) {
+          outside[c] = 1;
+          queue.push_back(c);
+        }
+      }
+  const std::size_t sx = 1, sy = static_cast<std::size_t>(nx),
+                    sz = static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny);
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    const std::size_t c = queue[head];
+    const int i = static_cast<int>(c % sy), j = static_cast<int>((c / sy) % ny),
+              k = static_cast<int>(c / sz);
+    auto visit = [&](bool inside, std::size_t nb) {
+      if (inside && !outside[nb] && open(nb)) {
+        outside[nb] = 1;
+        queue.push_back(nb);
+      }
+    };
+    visit(i > 0, c - sx);
+    visit(i + 1 < nx, c + sx);
+    visit(j > 0, c - sy);
+    visit(j + 1 < ny, c + sy);
+    visit(k > 0, c - sz);
+    visit(k + 1 < nz, c + sz);
+  }
+  for (std::size_t c = 0; c < f.cell_count(); ++c)
+    if (!outside[c] && open(c) && f.water_fraction[c] > 0.01f) return true;
+  return false;
+}
+
+// The level of the extracted isosurface: 1/2, unless
+//  - the field holds sealed water (holds_sealed_water) but the lattice at 1/2 opens the cavity
+//    (a wall the lattice resolves with every value below 1/2: block averages, an axisymmetric
+//    field revolved): then the highest level that seals it (bisection in [0.05, 1/2]); the film
+//    must not open the shell before the solver does;
+//  - the ice enclosed (outer minus inner volume) falls short of the field's ice volume by more
+//    than the interpolation error can explain (0.0858 h per unit area, docs/mesh.md): then thin
+//    walls of partly melted cells (every fraction below 1/2 across them) would vanish from the
+//    film although the solver still has their ice, and the level is lowered further (bisection;
+//    the enclosed volume grows as the level falls) until the surfaces enclose the field's ice
+//    volume, never so low that the number of sealed cavities changes (a lower level first
+//    sealed the fresh hole of a broken-through shell, and the film opened one frame late).
 GridSurfaces extract_with_field_volume(const NodeLattice& ice, const NodeLattice& water,
-                                       const sim::GridField& field, float& level) {
+                                       const sim::GridField& field, bool sealed, float& level) {
   level = 0.5f;
   GridSurfaces s = extract_grid_surfaces(ice, water, level);
+  if (sealed && s.cavities == 0) {
+    float lo = 0.05f, hi = 0.5f;
+    if (extract_grid_surfaces(ice, water, lo).cavities > 0) {
+      for (int it = 0; it < 7; ++it) {  // level to 0.45 / 2^7 = 0.004
+        const float mid = 0.5f * (lo + hi);
+        (extract_grid_surfaces(ice, water, mid).cavities > 0 ? lo : hi) = mid;
+      }
+      level = lo;
+      s = extract_grid_surfaces(ice, water, level);
+    }
+  }
   const double target = field_ice_volume(field);
   const double slack = 0.0858 * field.spacing_m * (surface_area(s.outer) + surface_area(s.inner));
   if (target - ice_between(s) <= slack) return s;
-  float lo = 0.05f, hi = 0.5f;
-  for (int it = 0; it < 7; ++it) {  // level to 0.45 / 2^7 = 0.004
+  float lo = 0.05f, hi = level;
+  for (int it = 0; it < 7; ++it) {
     const float mid = 0.5f * (lo + hi);
-    // A level so low that it seals the hole of a broken-through shell (fewer or more cavities
-    // than at 1/2) is too low: the film must open when the solver's shell opens.
     const GridSurfaces x = extract_grid_surfaces(ice, water, mid);
     (ice_between(x) < target && x.cavities == s.cavities ? hi : lo) = mid;
   }
@@ -141,13 +204,24 @@ GridMeshResult mesh_grid_field(const sim::GridField& fine, const GridMeshOptions
     coarse = coarsened_twice(coarsened ? coarse : fine);
     coarsened = true;
   }
-  const sim::GridField& field = coarsened ? coarse : fine;
-  const NodeLattice ice = NodeLattice::from_ice_fraction(field, o.smoothing_passes);
-  const NodeLattice water = NodeLattice::from_water_fraction(field);
+  // The block average is used only where it shows what the field shows: at level 1/2, with the
+  // solver's topology (a sealed cavity stays sealed). A wall thinner than two cells averages
+  // below 1/2 and would need a lowered level, which made the thinning shell lumpy and opened it
+  // in the film up to three frames before the solver's break_through (hollow_cube.toml at
+  // 1458 s): such steps are extracted from the cells themselves.
+  const bool sealed = holds_sealed_water(fine);
   GridMeshResult r;
   float level = 0.5f;
-  GridSurfaces s = o.match_field_volume ? extract_with_field_volume(ice, water, field, level)
-                                        : extract_grid_surfaces(ice, water, level);
+  GridSurfaces s;
+  auto extract = [&](const sim::GridField& field) {
+    const NodeLattice ice = NodeLattice::from_ice_fraction(field, o.smoothing_passes);
+    const NodeLattice water = NodeLattice::from_water_fraction(field);
+    level = 0.5f;
+    s = o.match_field_volume ? extract_with_field_volume(ice, water, field, sealed, level)
+                             : extract_grid_surfaces(ice, water, level);
+  };
+  if (coarsened) extract(coarse);
+  if (!coarsened || level != 0.5f || (s.cavities > 0) != sealed) extract(fine);
   r.iso_level = level;
   r.cavities = s.cavities;
   r.cavity_water_fraction = s.cavity_water_fraction;

@@ -202,6 +202,48 @@ TEST(GridMesher, BlockAverageKeepsVolumesAndMeshesCoarseEdgesWithinTheCoarseBoun
   EXPECT_NEAR(enclosed_volume(m.outer), v, kDelta * 2 * h * area);
 }
 
+// A water-filled box cavity in an ice box whose +x wall has thinned to one layer of cells that
+// are 60 % ice (the rest melt water): the solver still counts the cavity as sealed (a cell is
+// open below 1/2 ice), but the 2 x 2 x 2 block average pairs that layer with the cavity's water
+// (0.3 ice), so a mesh from the block average would open the shell before the solver's
+// break_through. Melting the layer to 40 % ice opens it for both.
+sim::GridField thin_walled_box(float wall_ice) {
+  sim::GridField f;
+  f.geometry = sim::GridField::Geometry::cartesian3d;
+  const int n = 20;
+  f.cells = {n, n, n};
+  f.spacing_m = 0.0005;
+  f.origin_m = {-0.005, -0.005, -0.005};
+  f.temperature_c.assign(f.cell_count(), 0.0f);
+  f.ice_fraction.assign(f.cell_count(), 0.0f);
+  f.water_fraction.assign(f.cell_count(), 0.0f);
+  auto in = [](int i, int lo, int hi) { return i >= lo && i <= hi; };
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const std::size_t c = f.index(i, j, k);
+        if (!in(i, 3, 15) || !in(j, 3, 16) || !in(k, 3, 16)) continue;  // air
+        const bool cavity = in(i, 5, 14) && in(j, 5, 14) && in(k, 5, 14);
+        const float ice = cavity ? 0.0f : (i == 15 ? wall_ice : 1.0f);
+        f.ice_fraction[c] = ice;
+        f.water_fraction[c] = 1.0f - ice;
+      }
+  return f;
+}
+
+TEST(GridMesher, CavityStaysSealedUntilTheSolverOpensIt) {
+  GridMeshOptions o;
+  o.edge_length_m = 0.001;  // two cells: the block average would be used
+  const GridMeshResult sealed = mesh_grid_field(thin_walled_box(0.6f), o);
+  EXPECT_EQ(sealed.cavities, 1);
+  EXPECT_GT(sealed.cavity_water_fraction, 0.9);
+  ASSERT_EQ(check_closed_oriented_components(sealed.outer), "");
+  ASSERT_EQ(check_closed_oriented_components(sealed.inner), "");
+  const GridMeshResult open = mesh_grid_field(thin_walled_box(0.4f), o);
+  EXPECT_EQ(open.cavities, 0);
+  EXPECT_TRUE(open.inner.faces.empty());
+}
+
 TEST(GridMesher, NoIceGivesNoSurface) {
   const auto f =
       sample_cartesian([](double, double, double) { return 1.0; }, nullptr, 0.004, 0.0005);
