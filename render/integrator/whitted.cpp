@@ -1,5 +1,7 @@
 #include "render/integrator/whitted.h"
 
+#include <cmath>
+
 #include "render/integrator/image_tile_integrator.h"
 #include "render/integrator/spectral_whitted.h"
 #include "render/integrator/whitted_shading.h"
@@ -9,19 +11,24 @@ namespace thaw::render {
 namespace {
 
 /// The RGB variant of the shading: radiance as linear sRGB triples, a scalar pruning weight,
-/// media indices at the sodium D line (589.3 nm), no absorption, no dispersion.
+/// media indices at the sodium D line (589.3 nm), Beer-Lambert absorption with one coefficient
+/// per channel (media::Absorption::srgb_per_m: white light's channel-weighted alpha, exact to
+/// first order in alpha d), no dispersion.
 class RgbTracer : public WhittedShading<RgbTracer> {
  public:
   using Radiance = Rgb;
   using Throughput = float;
   using Reflectance = float;
   struct Path {};
-  static constexpr bool kAbsorption = false, kDispersion = false;
+  static constexpr bool kAbsorption = true, kDispersion = false;
 
   explicit RgbTracer(const Scene& scene, const photon::CausticMap* caustics = nullptr)
       : WhittedShading(scene, caustics) {
-    for (const auto& m : scene.media())
+    for (const auto& m : scene.media()) {
       m_ior.push_back(static_cast<float>(m.optics.n_at(media::kFraunhoferD_nm)));
+      const LinearSrgb a = m.optics.absorption().srgb_per_m();
+      m_alpha.push_back(Rgb{float(a.r), float(a.g), float(a.b)});
+    }
   }
 
   /// Radiance of a primary ray starting in `medium`; `camera`: the camera sample it belongs to
@@ -51,12 +58,20 @@ class RgbTracer : public WhittedShading<RgbTracer> {
   static float attenuate(float beta, const Rgb& tint, const Path&) {
     return beta * tint.max_component();
   }
+  bool absorbs(std::uint32_t medium) const { return !m_alpha[medium].is_black(); }
+  /// exp(-alpha_c d) per channel; d [m] (scene units are metres).
+  Rgb transmittance(std::uint32_t medium, double distance, const Path&) const {
+    const Rgb& a = m_alpha[medium];
+    return {float(std::exp(-double(a.r) * distance)), float(std::exp(-double(a.g) * distance)),
+            float(std::exp(-double(a.b) * distance))};
+  }
   Fresnel fresnel(std::uint32_t from, std::uint32_t to, float cos_i, const Path&) const {
     const float eta = m_ior[to] / m_ior[from];
     return {fresnel_dielectric(cos_i, eta), eta, false};
   }
 
   std::vector<float> m_ior;
+  std::vector<Rgb> m_alpha;  ///< per medium, [1/m]
 };
 
 /// One thread's share of an RGB render: each camera sample's radiance; the film

@@ -5,7 +5,8 @@
 // - dielectric interfaces between named media: exact Fresnel split (R reflected, 1 - R
 //   transmitted), Snell refraction, total internal reflection, the medium carried by every ray
 //   (a ray reaching an interface from a side whose label differs counts as a medium mismatch),
-//   Beer-Lambert absorption along each segment in an absorbing medium (spectral variant);
+//   Beer-Lambert absorption along each segment in an absorbing medium (per wavelength in the
+//   spectral variant, per channel in RGB);
 // - metal: tinted mirror; matte/phong: ambient + direct light (point lights with hard shadows,
 //   sphere lights with soft shadows from stratified low-discrepancy samples) + Phong highlight,
 //   and the classic reflect/transmit terms; emissive: its emission.
@@ -143,7 +144,7 @@ class WhittedShading {
       if (absorbs) {
         // Beer-Lambert over this segment: |direction| = 1, so t is the distance (scene units = m).
         segment = self().transmittance(medium, hit.t, path);
-        b *= segment;
+        b = self().attenuate(b, segment, path);
       }
     }
     const SurfaceInteraction si = m_scene.interaction(ray, hit);

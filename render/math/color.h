@@ -19,6 +19,12 @@ struct Rgb {
     b += o.b;
     return *this;
   }
+  constexpr Rgb& operator*=(const Rgb& o) {
+    r *= o.r;
+    g *= o.g;
+    b *= o.b;
+    return *this;
+  }
   constexpr Rgb& operator*=(float s) {
     r *= s;
     g *= s;

@@ -72,6 +72,21 @@ SampledSpectrum Absorption::transmittance(double distance_m,
   return t;
 }
 
+LinearSrgb Absorption::srgb_per_m() const {
+  if (is_zero()) return {};
+  // Midpoint rule at 1 nm on the CIE/D65 tables (piecewise linear at 5 nm) and the absorption
+  // table (2.5-10 nm): the weights integrate to the channel's white within 1e-4.
+  Xyz weighted, white;
+  for (double l = kLambdaMinNm + 0.5; l < kLambdaMaxNm; l += 1.0) {
+    const Xyz bar = cie_xyz_bar(l);
+    const double e = illuminant_d65(l), a = per_m_at(l);
+    white.x += e * bar.x, white.y += e * bar.y, white.z += e * bar.z;
+    weighted.x += e * a * bar.x, weighted.y += e * a * bar.y, weighted.z += e * a * bar.z;
+  }
+  const LinearSrgb num = xyz_to_linear_srgb(weighted), den = xyz_to_linear_srgb(white);
+  return {std::max(0.0, num.r / den.r), std::max(0.0, num.g / den.g), std::max(0.0, num.b / den.b)};
+}
+
 void Absorption::validate(const std::string& file, const std::string& where) const {
   auto fail = [&](const std::string& key, const std::string& problem) {
     throw UserError(file, "key '" + where + "." + key + "'", problem);

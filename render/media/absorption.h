@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "render/spectrum/colour.h"
 #include "render/spectrum/sampled_spectrum.h"
 #include "render/spectrum/sampled_wavelengths.h"
 
@@ -34,6 +35,16 @@ class Absorption {
   SampledSpectrum per_m(const SampledWavelengths& wavelengths) const;
   /// exp(-alpha(l_i) * distance) for each carried wavelength; distance [m] >= 0.
   SampledSpectrum transmittance(double distance_m, const SampledWavelengths& wavelengths) const;
+
+  /// The RGB renderer's coefficients [1/m] per linear-sRGB channel: alpha(lambda) weighted by
+  /// what white light (D65, the uplift of RGB white) contributes to that channel,
+  ///   alpha_c = [M int D65 cmf alpha dl]_c / [M int D65 cmf dl]_c   (M: XYZ -> linear sRGB),
+  /// the slope at d = 0 of the channel's transmittance -ln T_c(d) / d of white light through d
+  /// metres. Exact to first order in alpha d; the second-order error of T_c is at most
+  /// var_c(alpha) d^2 / 2 (Jensen: exp of the mean is below the mean of exp, so thick media come
+  /// out slightly too dark in RGB; spectral rendering is exact). Negative sRGB lobes are kept
+  /// (they are what M says); a result below zero is clamped to 0.
+  LinearSrgb srgb_per_m() const;
 
   /// Throws thaw::UserError naming `where` (e.g. "media.ice") and the key when a coefficient is
   /// negative or not finite, the table does not cover 380-780 nm or is not increasing, or the

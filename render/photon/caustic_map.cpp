@@ -189,10 +189,11 @@ CausticMap CausticMap::build(const Scene& scene, int threads, const std::atomic<
                                              ScrambledHalton::sample(i, 4));
           part.rays += tracer.trace(Ray{origin, dir}, plan.medium, lambda, events, i);
           for (const PathEvent& e : events) {
-            const Flux f = flux_of(power, e.weight);
+            const Rgb tinted = power * e.tint;  // RGB absorption (photon_tracer.h)
+            const Flux f = flux_of(tinted, e.weight);
             switch (e.end) {
               case PathEnd::stored:
-                part.photons.push_back(Photon{e.position, e.normal, power * e.weight});
+                part.photons.push_back(Photon{e.position, e.normal, tinted * e.weight});
                 part.target.push_back(plan.cone.target_index);
                 part.stored += f;
                 break;
@@ -218,7 +219,7 @@ CausticMap CausticMap::build(const Scene& scene, int threads, const std::atomic<
                 const double w = e.weight > 0 ? e.weight : kRouletteWeight + e.weight;
                 const double v = w * (kRouletteWeight - w);
                 part.roulette_variance +=
-                    Flux{power.r * power.r * v, power.g * power.g * v, power.b * power.b * v};
+                    Flux{tinted.r * tinted.r * v, tinted.g * tinted.g * v, tinted.b * tinted.b * v};
                 break;
               }
             }

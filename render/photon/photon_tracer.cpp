@@ -26,6 +26,8 @@ struct Branch {
   float weight;
   int depth;
   bool caustic;
+  /// RGB absorption kept so far, per channel (PathEvent::tint)
+  Rgb tint;
   /// index-matched interfaces crossed (they cost no depth level; bounded against degenerate scenes)
   int matched = 0;
 };
@@ -63,8 +65,11 @@ PhotonTracer::PhotonTracer(const Scene& scene, float roulette_weight)
   const int samples = static_cast<int>(kLambdaMaxNm - kLambdaMinNm) + 1;
   for (const auto& m : scene.media()) {
     std::vector<float> n, alpha;
+    Rgb alpha_rgb;
     if (!m_spectral) {
       n.push_back(static_cast<float>(m.optics.n_at(media::kFraunhoferD_nm)));
+      const LinearSrgb a = m.optics.absorption().srgb_per_m();
+      alpha_rgb = Rgb{float(a.r), float(a.g), float(a.b)};
     } else {
       for (int i = 0; i < samples; ++i)
         n.push_back(static_cast<float>(m.optics.n_at(kLambdaMinNm + i)));
@@ -74,6 +79,7 @@ PhotonTracer::PhotonTracer(const Scene& scene, float roulette_weight)
     }
     m_ior.push_back(std::move(n));
     m_alpha.push_back(std::move(alpha));
+    m_alpha_rgb.push_back(alpha_rgb);
   }
 }
 
@@ -120,9 +126,11 @@ std::uint32_t PhotonTracer::trace(const Ray& start, std::uint32_t medium, double
     Branch& operator[](int i) { return s[i].b; }
   } stack{slots};
   int top = 0;
-  stack[top++] = Branch{start, medium, 1.0f, 0, false, 0};
+  const Rgb white{1.0f, 1.0f, 1.0f};
+  stack[top++] = Branch{start, medium, 1.0f, 0, false, white, 0};
+  Rgb tint = white;  // the current branch's
   auto end = [&](PathEnd how, const Vec3& p, const Vec3& n, float w) {
-    if (w != 0.0f) events.push_back(PathEvent{how, p, n, w});
+    if (w != 0.0f) events.push_back(PathEvent{how, p, n, w, tint});
   };
   int decisions = 0;
   // Whether a new branch of weight w at p is followed; w may be raised by the roulette.
@@ -146,11 +154,13 @@ std::uint32_t PhotonTracer::trace(const Ray& start, std::uint32_t medium, double
   std::uint32_t rays = 0;
   while (top > 0) {
     Branch b = stack[--top];
+    tint = b.tint;
     Hit hit;
     ++rays;
     if (!m_scene.intersect(b.ray, hit)) {
       // Leaving through an absorbing medium keeps nothing (an infinite path), as for camera rays.
-      const bool absorbing = absorption_per_m(b.medium, lambda_nm) > 0.0f;
+      const bool absorbing =
+          absorption_per_m(b.medium, lambda_nm) > 0.0f || !m_alpha_rgb[b.medium].is_black();
       end(absorbing   ? PathEnd::absorbed
           : b.caustic ? PathEnd::escaped
                       : PathEnd::direct,
@@ -162,6 +172,15 @@ std::uint32_t PhotonTracer::trace(const Ray& start, std::uint32_t medium, double
       const float kept = b.weight * std::exp(-alpha * hit.t);  // unit direction: t is the length
       end(PathEnd::absorbed, b.ray.origin, b.ray.direction, b.weight - kept);
       b.weight = kept;
+    }
+    if (const Rgb& a = m_alpha_rgb[b.medium]; !a.is_black()) {
+      // RGB: the channels keep exp(-alpha_c t); the lost share is an absorbed event.
+      const auto t = double(hit.t);
+      const Rgb kept = b.tint * Rgb{float(std::exp(-a.r * t)), float(std::exp(-a.g * t)),
+                                    float(std::exp(-a.b * t))};
+      tint = Rgb{b.tint.r - kept.r, b.tint.g - kept.g, b.tint.b - kept.b};
+      end(PathEnd::absorbed, b.ray.origin, b.ray.direction, b.weight);
+      tint = b.tint = kept;
     }
     const SurfaceInteraction si = m_scene.interaction(b.ray, hit);
     const SceneObject& obj = m_scene.objects()[si.object];
@@ -192,6 +211,7 @@ std::uint32_t PhotonTracer::trace(const Ray& start, std::uint32_t medium, double
                             b.weight,
                             b.depth,
                             b.caustic,
+                            b.tint,
                             b.matched + 1};
       continue;
     }
@@ -212,6 +232,7 @@ std::uint32_t PhotonTracer::trace(const Ray& start, std::uint32_t medium, double
                             wr,
                             b.depth + 1,
                             true,
+                            b.tint,
                             b.matched};
     }
     if (wt > 0.0f) {
@@ -226,6 +247,7 @@ std::uint32_t PhotonTracer::trace(const Ray& start, std::uint32_t medium, double
                               wt,
                               b.depth + 1,
                               true,
+                              b.tint,
                               b.matched};
       }
     }

@@ -3,23 +3,23 @@
 // camera rays of the Whitted integrator cross them: media tracked by interface labels, eta =
 // n_to / n_from at the photon's wavelength (n_d in RGB scenes), exact Fresnel reflectance
 // (render/material/fresnel.h), Snell refraction, total internal reflection, and Beer-Lambert
-// absorption exp(-alpha(lambda) d) along every segment inside an absorbing medium (spectral
-// scenes only, as the integrator). At each interface BOTH branches are followed, the reflected
-// one with weight R and the refracted one with 1 - R (splitting: no branch-choice noise on the
-// light that carries the caustic). Branches lighter than `roulette_weight` (a fraction of the
-// photon's power) are decided by Russian roulette instead: they go on with probability
-// w / roulette_weight carrying roulette_weight, else end. Splitting everything down to
-// min_weight traced 10.8 rays per S1 photon, mostly for the 2-4 % Fresnel reflections; roulette
-// on them brings it to ~5.5 at no bias. The decisions are low-discrepancy too (Halton dimensions
-// 5-7 of the photon's index for its first three decisions, a fixed hash after; 0-4 are the
-// direction, wavelength and emission point), so they are the
-// same in every frame and stratified across photons. Without roulette (roulette_weight = 0)
-// branches are split down to the scene's min_weight like camera rays.
-// Accounting is exact either way: a branch lost to roulette is an event of weight +w, a survivor
-// one of weight -(roulette_weight - w) (the power it gains), so a photon's events always sum to
-// its weight (the flux-conservation test), and the roulette events sum to zero on average.
-// Index-matched interfaces (SceneObject::index_matched) are crossed straight, without a split and
-// without using a level of max_depth: they are invisible.
+// absorption exp(-alpha(lambda) d) along every segment inside an absorbing medium (in RGB scenes
+// exp(-alpha_c d) per channel with the integrator's coefficients, media::Absorption::srgb_per_m,
+// carried as the events' tint: photons keep the light's colour and no wavelength noise). At each
+// interface BOTH branches are followed, the reflected one with weight R and the refracted one with
+// 1 - R (splitting: no branch-choice noise on the light that carries the caustic). Branches lighter
+// than `roulette_weight` (a fraction of the photon's power) are decided by Russian roulette
+// instead: they go on with probability w / roulette_weight carrying roulette_weight, else end.
+// Splitting everything down to min_weight traced 10.8 rays per S1 photon, mostly for the 2-4 %
+// Fresnel reflections; roulette on them brings it to ~5.5 at no bias. The decisions are
+// low-discrepancy too (Halton dimensions 5-7 of the photon's index for its first three decisions, a
+// fixed hash after; 0-4 are the direction, wavelength and emission point), so they are the same in
+// every frame and stratified across photons. Without roulette (roulette_weight = 0) branches are
+// split down to the scene's min_weight like camera rays. Accounting is exact either way: a branch
+// lost to roulette is an event of weight +w, a survivor one of weight -(roulette_weight - w) (the
+// power it gains), so a photon's events always sum to its weight (the flux-conservation test), and
+// the roulette events sum to zero on average. Index-matched interfaces (SceneObject::index_matched)
+// are crossed straight, without a split and without using a level of max_depth: they are invisible.
 // A path ends on an opaque surface, in the sky, fully absorbed or cut. It is a CAUSTIC photon
 // if, before reaching a diffuse (matte or phong) surface, it met an interface that is not index
 // matched: shadow rays are blocked by exactly those interfaces (Scene::occluded), so stored
@@ -60,6 +60,10 @@ struct PathEvent {
   Vec3 normal;
   /// fraction of the photon's power ending this way
   float weight = 0;
+  /// RGB scenes with absorbing media: the per-channel Beer-Lambert transmittance the branch kept
+  /// (for an `absorbed` event: the share it lost on that segment); the event carries
+  /// power * weight * tint. (1, 1, 1) otherwise.
+  Rgb tint{1.0f, 1.0f, 1.0f};
 };
 
 /// Reusable buffer for one photon's events (keeps its capacity between photons).
@@ -102,6 +106,8 @@ class PhotonTracer {
   std::vector<std::vector<float>> m_ior;
   /// per medium: alpha [1/m] at 380, ..., 780 nm, empty when it does not absorb
   std::vector<std::vector<float>> m_alpha;
+  /// RGB scenes, per medium: alpha [1/m] per linear-sRGB channel (black: no absorption)
+  std::vector<Rgb> m_alpha_rgb;
 };
 
 }  // namespace thaw::render::photon

@@ -69,11 +69,12 @@ Material build_material(const MaterialDescription& d) {
 
 /// Whether an interface between media `a` and `b` changes nothing the renderer computes: the same
 /// index at every rendered wavelength (1 nm steps over 380-780 nm; n_d alone in RGB scenes, which
-/// use nothing else) to float precision, and, in spectral scenes, no absorption on either side.
+/// use nothing else) to float precision, and no absorption on either side (RGB scenes absorb per
+/// channel, spectral ones per wavelength).
 bool index_matched(const media::Medium& a, const media::Medium& b, bool spectral) {
+  if (a.absorbs() || b.absorbs()) return false;
   if (!spectral)
     return std::abs(a.n_at(media::kFraunhoferD_nm) - b.n_at(media::kFraunhoferD_nm)) <= 1e-7;
-  if (a.absorbs() || b.absorbs()) return false;
   for (int l = 380; l <= 780; ++l)
     if (std::abs(a.n_at(l) - b.n_at(l)) > 1e-7) return false;
   return true;

@@ -48,7 +48,7 @@ struct ImageSettings {
   double exposure = 0.0;
   /// spectral transport (render/integrator/spectral_whitted.h): automatic = on iff some medium
   /// is dispersive or absorbs (build_scene decides); off renders RGB with each medium's n_d
-  /// and no absorption
+  /// and per-channel absorption (media::Absorption::srgb_per_m)
   enum class Spectral { automatic, on, off };
   Spectral spectral = Spectral::automatic;
   /// at a refraction into or out of a dispersive medium: split = one ray per carried wavelength

@@ -659,5 +659,36 @@ TEST(Whitted, EscapingRaysSeeTheSky) {
   EXPECT_NEAR(down.r, 0.6f, 1e-6f);
 }
 
+TEST(Whitted, RgbAbsorptionIsBeerLambertPerChannel) {
+  // A ray starting inside an absorbing medium meets an emissive plane 0.5 m below: it arrives
+  // with emission * exp(-alpha_c 0.5) per channel, alpha_c = Absorption::srgb_per_m() (float
+  // exp: 1e-6 relative).
+  SceneDescription d = base_scene(4, 4);
+  d.image.spectral = ImageSettings::Spectral::off;
+  MediumDescription murky = test::medium("murky", 1.33);
+  media::MediumSpec spec;
+  spec.name = "murky";
+  spec.preset = "water-0c";
+  spec.absorption_scale = 20.0;
+  murky.spec = spec;
+  d.media.push_back(murky);
+  add_plane(d, MaterialDescription::Kind::emissive, {1.0, 1.0, 1.0});
+  d.materials.back().emission = {1.0, 1.0, 1.0};
+  d.objects.back().point = {0.0, -0.5, 0.0};
+  const Scene scene = build_scene(d);
+  std::uint32_t m = 0;
+  while (scene.media()[m].optics.name() != "murky") ++m;
+  const LinearSrgb alpha = scene.media()[m].optics.absorption().srgb_per_m();
+  const Rgb c = trace_ray(scene, Ray{{0, 0, 0}, {0, -1, 0}}, m);
+  EXPECT_NEAR(c.r, std::exp(-alpha.r * 0.5), 1e-6);
+  EXPECT_NEAR(c.g, std::exp(-alpha.g * 0.5), 1e-6);
+  EXPECT_NEAR(c.b, std::exp(-alpha.b * 0.5), 1e-6);
+  EXPECT_LT(c.r, 0.1f);  // 20 x 0.30 /m over 0.5 m: red mostly gone, blue kept
+  EXPECT_GT(c.b, 0.9f);
+  // The same ray in vacuum keeps everything.
+  const Rgb clear = trace_ray(scene, Ray{{0, 0, 0}, {0, -1, 0}}, 0);
+  EXPECT_EQ(clear, Rgb(1.0f, 1.0f, 1.0f));
+}
+
 }  // namespace
 }  // namespace thaw::render

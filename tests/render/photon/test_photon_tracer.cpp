@@ -148,11 +148,10 @@ outside = "vacuum"
   EXPECT_EQ(tracer.medium_at({3, 0, 0}), 0u);
 }
 
-/// A 0.5 m slab of medium `medium_keys` (n and absorption) over a matte floor (spectral).
-Scene absorbing_slab(const std::string& medium_keys) {
-  return scene_from(R"(
-[image]
-spectral = true
+/// A 0.5 m slab of medium `medium_keys` (n and absorption) over a matte floor (spectral unless
+/// `spectral` is false).
+Scene absorbing_slab(const std::string& medium_keys, bool spectral = true) {
+  return scene_from(std::string("[image]\nspectral = ") + (spectral ? "true" : "false") + R"(
 [[lights]]
 position = [0.0, 10.0, 0.0]
 [media.tinted]
@@ -189,6 +188,33 @@ TEST(PhotonTracer, BeerLambertPerWavelength) {
     EXPECT_NEAR(sum_weights(ev, PathEnd::stored), std::exp(-alpha * 0.5), 1e-6) << lambda;
     EXPECT_NEAR(sum_weights(ev, PathEnd::absorbed), 1 - std::exp(-alpha * 0.5), 1e-6) << lambda;
   }
+}
+
+// RGB scenes: photons keep the light's colour and carry the per-channel transmittance
+// exp(-alpha_c 0.5 m) as their events' tint (alpha_c = Absorption::srgb_per_m, as the camera
+// rays); the absorbed events carry the rest, so every channel's power is conserved. An absorbing
+// slab is not index matched in RGB either. Float exp: 1e-6.
+TEST(PhotonTracer, BeerLambertPerChannelInRgb) {
+  const Scene scene = absorbing_slab(
+      "ior = 1.0\nabsorption_per_m = { wavelength_nm = [380.0, 780.0], per_m = [0.5, 3.0] }",
+      false);
+  EXPECT_FALSE(scene.spectral());
+  EXPECT_FALSE(scene.objects()[0].index_matched);
+  const LinearSrgb a = scene.media()[1].optics.absorption().srgb_per_m();
+  const PhotonTracer tracer(scene);
+  PathEvents ev;
+  tracer.trace(Ray{{0, 5, 0}, {0, -1, 0}}, 0, 550.0, ev);
+  Rgb stored, absorbed;
+  for (const auto& e : ev) {
+    if (e.end == PathEnd::stored) stored += e.tint * e.weight;
+    if (e.end == PathEnd::absorbed) absorbed += e.tint * e.weight;
+  }
+  EXPECT_NEAR(stored.r, std::exp(-a.r * 0.5), 1e-6);
+  EXPECT_NEAR(stored.g, std::exp(-a.g * 0.5), 1e-6);
+  EXPECT_NEAR(stored.b, std::exp(-a.b * 0.5), 1e-6);
+  EXPECT_NEAR(stored.r + absorbed.r, 1.0, 1e-6);
+  EXPECT_NEAR(stored.b + absorbed.b, 1.0, 1e-6);
+  EXPECT_LT(stored.r, stored.b);  // alpha rises towards the red
 }
 
 // An index-matched, non-absorbing slab changes nothing: photons through it are direct light.
