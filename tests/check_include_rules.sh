@@ -14,6 +14,9 @@ check() { # $1 description, $2 folders to scan, $3 forbidden include regex
 }
 check "CGAL outside src/mesh" "sim render src/common src/meshio src/inspect src/pipeline src/cli src/gui" "CGAL/"
 check "VTK outside src/inspect and src/gui" "sim render src/common src/meshio src/mesh src/pipeline src/cli" "vtk"
+check "OpenVDB outside src/pipeline/handoff_vdb.cpp" "sim render src/common src/meshio src/mesh src/inspect src/cli src/gui src/pipeline/*.h" "openvdb/"
+hits=$(grep -lrE '^\s*#\s*include\s*[<"]openvdb/' src/pipeline --include='*.cpp' 2>/dev/null | grep -v 'src/pipeline/handoff_vdb.cpp')
+if [ -n "$hits" ]; then echo "violation: OpenVDB outside src/pipeline/handoff_vdb.cpp"; echo "$hits"; fail=1; fi
 check "sim includes render" "sim" "render/"
 check "render includes sim" "render" "sim/"
 check "Qt outside src/gui" "sim render src/common src/meshio src/mesh src/inspect src/pipeline src/cli" "(Q[A-Z][A-Za-z]*|Qt[A-Za-z]*/|QVTK[A-Za-z]*)(\.h)?>"

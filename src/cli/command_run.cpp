@@ -106,7 +106,8 @@ void run_alone_or_as_rank(const RunArgs& a, pipeline::RunRanks* ranks) {
                                     {"plot:  ", report.plot},
                                     {"pvd:   ", report.pvd},
                                     {"obj:   ", report.handoff_obj},
-                                    {"fields:", report.fields_pvd}})
+                                    {"fields:", report.fields_pvd},
+                                    {"vdb:   ", report.handoff_vdb}})
     if (!path.empty()) std::printf("%s%s\n", label, path.string().c_str());
 }
 

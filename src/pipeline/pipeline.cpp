@@ -33,6 +33,7 @@
 #include "src/pipeline/frame_puddle.h"
 #include "src/pipeline/frame_scene.h"
 #include "src/pipeline/handoff_export.h"
+#include "src/pipeline/handoff_vdb.h"
 #include "src/pipeline/ranks_mesh_farm.h"
 #include "src/pipeline/run_manifest.h"
 #include "src/pipeline/water_budget.h"
@@ -477,6 +478,9 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
     inspect_hash.add("inspect/4").add(mesh_hash.hex()).add(sc.shell.rest_on_floor ? "floor" : "");
     for (double v : sc.shell.center) inspect_hash.add(v);
     inspect_hash.add(sc.shell.floor_y);
+#if THAW_OPENVDB
+    inspect_hash.add("openvdb");  // a build with OpenVDB adds the volumes to an older run's
+#endif
     StageClock clock(report, "inspect");
     const bool up_to_date = manifest.begin_stage("inspect", inspect_hash.hex()) &&
                             fs::exists(report.plot) && fs::exists(report.pvd) &&
@@ -497,6 +501,12 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
       // Grid runs: the solver's fields as a ParaView image series beside the meshes.
       if (inspect::write_field_series(simdir, out / "fields.pvd") > 0)
         report.fields_pvd = out / "fields.pvd";
+#if THAW_OPENVDB
+      // 3D runs: the fields as OpenVDB volumes, placed like the OBJ sequence.
+      if (write_vdb_sequence(simdir, out / "handoff" / "vdb",
+                             [&](long step) { return offset_of_step.at(step); }) > 0)
+        report.handoff_vdb = out / "handoff" / "vdb";
+#endif
       progress.finish();
       manifest.mark_stage_complete("inspect");
       clock.timing().items_done = 1;

@@ -63,6 +63,8 @@ struct RunReport {
   std::filesystem::path handoff_obj;
   /// grid runs: the solver's fields as .vti series (src/inspect/field_export.h)
   std::filesystem::path fields_pvd;
+  /// 3D runs in a build with OpenVDB: DIR/handoff/vdb (handoff_vdb.h).
+  std::filesystem::path handoff_vdb;
   /// the simulation's events, one line each as `thaw simulate` prints them
   /// ("event melt_onset at t = 20.6778 s, r = 0.03 m")
   std::vector<std::string> events;

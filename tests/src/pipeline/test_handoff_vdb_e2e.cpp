@@ -1,0 +1,80 @@
+// `thaw run` on the tiny 3D cube (tests/src/pipeline/data/tiny_cube.toml) writes one OpenVDB file
+// per step into DIR/handoff/vdb, placed where the hand-off meshes are: the world bounding box of
+// the step-0 outer OBJ (the ice fraction's 1/2 isosurface, in world space) against the box of
+// the cell faces of the voxels holding at least half ice. Across a face, the 1/2 crossing of the
+// fraction interpolated from a cell with f >= 1/2 to its neighbour with g < 1/2 is (f - 1/2) /
+// (f - g) of a cell edge h beyond the first centre, so within h/2 of the cell face: each side
+// within h/2 (the mesher's Taubin smoothing does not shrink; measured 0.14-0.17 h here). A wrong
+// offset (the floor placement, ~ the cube's size) or a half-voxel error in the transform
+// (h/2 + the measured gap) exceeds it.
+#include <gtest/gtest.h>
+#include <openvdb/openvdb.h>
+
+#include <algorithm>
+#include <array>
+#include <limits>
+
+#include "src/common/subprocess.h"
+#include "src/meshio/obj_reader.h"
+#include "tests/src/pipeline/run_test_support.h"
+
+namespace thaw::pipeline {
+namespace {
+using namespace test;
+
+class ThawRunVdb : public TempDirTest {
+ protected:
+  ThawRunVdb() : TempDirTest("thaw_test_vdb_run") {}
+};
+
+TEST_F(ThawRunVdb, VolumesOfEveryStepSitWithTheMeshes) {
+  const fs::path cube = fs::path(THAW_SOURCE_DIR) / "tests/src/pipeline/data/tiny_cube.toml";
+  const fs::path out = m_dir / "out";
+  for (const char* stage : {"simulate", "mesh", "inspect"}) {
+    const auto r = run_process(
+        {kThaw.string(), "run", cube.string(), "--out", out.string(), "--stage", stage, "-q"});
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
+  std::size_t steps = 0;
+  for (const auto& e : fs::directory_iterator(out / "sim/fields")) steps += e.is_regular_file();
+  ASSERT_GT(steps, 1u);
+  for (std::size_t k = 0; k < steps; ++k) {
+    char name[64];
+    std::snprintf(name, sizeof name, "fields_%06zu.vdb", k);
+    EXPECT_TRUE(fs::exists(out / "handoff/vdb" / name)) << name;
+  }
+
+  openvdb::initialize();
+  openvdb::io::File file((out / "handoff/vdb/fields_000000.vdb").string());
+  file.open();
+  const auto ice = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid("ice_fraction"));
+  file.close();
+  ASSERT_TRUE(ice);
+  const double h = ice->voxelSize()[0];
+  std::array<double, 3> lo, hi;
+  lo.fill(std::numeric_limits<double>::infinity());
+  hi.fill(-std::numeric_limits<double>::infinity());
+  for (auto v = ice->cbeginValueOn(); v; ++v)
+    if (*v >= 0.5f) {
+      const openvdb::Vec3d w = ice->indexToWorld(v.getCoord());
+      for (int c = 0; c < 3; ++c) {
+        lo[c] = std::min(lo[c], w[c] - h / 2);
+        hi[c] = std::max(hi[c], w[c] + h / 2);
+      }
+    }
+  const meshio::TriangleMesh outer = meshio::read_obj(out / "handoff/obj/shell_outer_000000.obj");
+  ASSERT_FALSE(outer.vertices.empty());
+  std::array<double, 3> mlo = outer.vertices[0], mhi = outer.vertices[0];
+  for (const auto& p : outer.vertices)
+    for (int c = 0; c < 3; ++c) {
+      mlo[c] = std::min(mlo[c], p[c]);
+      mhi[c] = std::max(mhi[c], p[c]);
+    }
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(mlo[c], lo[c], h / 2) << "axis " << c;
+    EXPECT_NEAR(mhi[c], hi[c], h / 2) << "axis " << c;
+  }
+}
+
+}  // namespace
+}  // namespace thaw::pipeline
