@@ -108,6 +108,12 @@ class Bvh {
   template <class LeafFn>
   bool occluded(const RayData& ray, float t_max, LeafFn&& leaf) const;
 
+  /// Region query: visits the leaves whose boxes pass `box_test(lo, hi)` (a conservative test of
+  /// a region, e.g. a shadow cone) until `leaf(first, count)` returns true; returns whether one
+  /// did. Subtrees whose box fails the test are skipped whole.
+  template <class BoxTest, class LeafFn>
+  bool any_leaf(BoxTest&& box_test, LeafFn&& leaf) const;
+
   /// Slab test of the four children of `n`: bit i of the result is set if child i is met within
   /// (0, t_max); its entry distance is t_enter[i].
   static int hit_children(const Bvh4Node& n, const RayData& r, float t_max, float t_enter[4]);
@@ -260,6 +266,32 @@ bool Bvh::occluded(const RayData& ray, float t_max, LeafFn&& leaf) const {
     --sp;
     ref = stack[sp].ref;
     count = stack[sp].count;
+  }
+}
+
+template <class BoxTest, class LeafFn>
+bool Bvh::any_leaf(BoxTest&& box_test, LeafFn&& leaf) const {
+  if (m_wide.empty()) return false;
+  struct Entry {
+    std::uint32_t ref, count;
+  };
+  Entry stack[kBvhStackSize];
+  int sp = 0;
+  Entry e{0, 0};  // the root: its children are tested
+  while (true) {
+    if (e.count > 0) {
+      if (leaf(e.ref, e.count)) return true;
+    } else {
+      const Bvh4Node& n = m_wide[e.ref];
+      for (int i = 0; i < 4; ++i) {
+        const Vec3 lo{n.planes[0][i], n.planes[2][i], n.planes[4][i]};
+        const Vec3 hi{n.planes[1][i], n.planes[3][i], n.planes[5][i]};
+        if (lo.x > hi.x || !box_test(lo, hi)) continue;  // unused slot, or outside the region
+        stack[sp++] = {n.child[i], n.count[i]};
+      }
+    }
+    if (sp == 0) return false;
+    e = stack[--sp];
   }
 }
 

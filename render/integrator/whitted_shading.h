@@ -407,7 +407,8 @@ class WhittedShading {
           if (s > 0.0f)
             result += self().emission(spheres[k].material, path) *
                       (weight * mat.ks * std::pow(s, mat.shininess));
-        });
+        },
+        mat.ks > 0.0f);
   }
 
   const Scene& m_scene;

@@ -50,10 +50,15 @@ inline std::uint32_t penumbra_samples(std::uint32_t n) {
 /// horizon cast no shadow ray. For camera sample s a shading point takes points s N .. s N + n - 1
 /// (N = penumbra_samples(n)) and, in a penumbra, the rest up to s N + N - 1: the first n and all
 /// N are both nets of the sequence. `rays` counts the shadow rays.
+/// Where no shadow ray can be occluded (Scene::light_unoccluded: the cone from the rays' common
+/// origin to the light meets nothing) no ray is cast: every sample would be seen, the fraction is
+/// 1, and the result is the same to the bit; without `highlights` (a matte surface) not even the
+/// samples are drawn. On the default film this skips most shading points away from the ice.
 template <class Diffuse, class Specular>
 void sample_sphere_lights(const Scene& scene, const Vec3& p, const Vec3& p_error, const Vec3& ng,
                           const Vec3& ns, int depth, const CameraSampleContext& ctx,
-                          std::uint64_t& rays, Diffuse&& diffuse, Specular&& specular) {
+                          std::uint64_t& rays, Diffuse&& diffuse, Specular&& specular,
+                          bool highlights = true) {
   const auto& lights = scene.sphere_lights();
   for (std::size_t k = 0; k < lights.size(); ++k) {
     const SphereLight& light = lights[k];
@@ -65,6 +70,12 @@ void sample_sphere_lights(const Scene& scene, const Vec3& p, const Vec3& p_error
     if (!(e_unit > 0.0)) continue;  // wholly below the horizon
     const auto n = static_cast<std::uint32_t>(light.samples);
     const std::uint32_t n_max = penumbra_samples(n);
+    // Every traced ray (dot(wi, ng) > 0) starts from the same offset origin.
+    const bool clear = scene.light_unoccluded(offset_ray_origin(p, p_error, ng, ng), k);
+    if (clear && !highlights) {
+      diffuse(k, static_cast<float>(sphere_light_falloff_scale(light, p) * e_unit));
+      continue;
+    }
     const std::uint32_t dim = light_dimension(depth, k);
     double all = 0.0, visible = 0.0;
     float falloff_scale = 1.0f;
@@ -90,10 +101,12 @@ void sample_sphere_lights(const Scene& scene, const Vec3& p, const Vec3& p_error
       const Vec3 origin = offset_ray_origin(p, p_error, ng, s.wi);
       // Stop just short of the point sampled on the light's own (visible, opaque) sphere.
       const Ray shadow{origin, s.wi, length(p + s.wi * s.distance - origin) * (1.0f - 1e-4f)};
-      ++rays;
-      if (scene.occluded(shadow)) {
-        ++hidden;
-        continue;
+      if (!clear) {
+        ++rays;
+        if (scene.occluded(shadow)) {
+          ++hidden;
+          continue;
+        }
       }
       ++seen;
       visible += f;

@@ -22,6 +22,19 @@ double sphere_irradiance_per_radiance(double cos_theta, double sin2_sigma) {
   return std::max(0.0, (cos_theta * std::acos(y) - x * s) * sin2_sigma + a);
 }
 
+namespace {
+/// Squared distance from p to the light's centre, in double (as the sampling uses it).
+double squared_distance(const SphereLight& light, const Vec3& p) {
+  const double cx = double(light.center.x) - p.x, cy = double(light.center.y) - p.y,
+               cz = double(light.center.z) - p.z;
+  return cx * cx + cy * cy + cz * cz;
+}
+}  // namespace
+
+float sphere_light_falloff_scale(const SphereLight& light, const Vec3& p) {
+  return light.inverse_square ? 1.0f : static_cast<float>(squared_distance(light, p));
+}
+
 bool sample_sphere_light(const SphereLight& light, const Vec3& p, sampling::Point2 u,
                          SphereLightSample& out) {
   constexpr double kPi = 3.14159265358979323846;
@@ -55,7 +68,7 @@ bool sample_sphere_light(const SphereLight& light, const Vec3& p, sampling::Poin
   out.wi = Vec3{static_cast<float>(dx), static_cast<float>(dy), static_cast<float>(dz)};
   out.distance = static_cast<float>(t);
   out.pdf = static_cast<float>(1.0 / (2.0 * kPi * one_minus_cos_max));
-  out.falloff_scale = light.inverse_square ? 1.0f : static_cast<float>(d2);
+  out.falloff_scale = sphere_light_falloff_scale(light, p);
   out.radiance = light.radiance * out.falloff_scale;
   return true;
 }

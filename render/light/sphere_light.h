@@ -56,6 +56,10 @@ Rgb sphere_light_radiance(const Rgb& intensity, float radius);
 /// MSR-TR-96-11; Lagarde & de Rousiers 2014, "Moving Frostbite to PBR", eq. 19), 0 below.
 double sphere_irradiance_per_radiance(double cos_theta, double sin2_sigma);
 
+/// SphereLightSample::falloff_scale of every sample drawn at `p`: 1, or the squared distance to
+/// the centre for falloff = "none".
+float sphere_light_falloff_scale(const SphereLight& light, const Vec3& p);
+
 /// A direction towards the light from `p`, uniform in the solid angle of the visible cap, from
 /// the unit square point `u`. False when p lies inside (or on) the sphere: no light is sampled.
 bool sample_sphere_light(const SphereLight& light, const Vec3& p, sampling::Point2 u,

@@ -9,6 +9,7 @@
 #include "render/geometry/box.h"
 #include "render/geometry/obj_loader.h"
 #include "render/geometry/plane.h"
+#include "render/geometry/shadow_cone.h"
 #include "render/geometry/sphere.h"
 #include "render/scene/scene_rules.h"
 #include "src/common/error.h"
@@ -558,6 +559,46 @@ bool Scene::intersect(const Ray& ray, Hit& hit) const {
     }
   }
   return found;
+}
+
+bool Scene::light_unoccluded(const Vec3& origin, std::size_t light) const {
+  const SphereLight& l = m_sphere_lights[light];
+  const Vec3 to_light = l.center - origin;
+  const float d = length(to_light);
+  if (!(d > l.radius)) return false;
+  // Slack for the float rounding of the tests: 1e-4 of the cone's length (0.1 mm at 1 m), far
+  // above float's 6e-8 relative error and far below any gap that matters.
+  const float slack = 1e-4f * (d + l.radius);
+  for (const std::uint32_t k : m_planes) {
+    // intersect_plane's t = num / dot(direction, n), num the same for all rays from `origin`:
+    // num = 0 never gives t > 0; otherwise only rays heading to the plane's side opposite to the
+    // origin can meet it, which end at the ball first if the ball lies wholly on the origin's side.
+    const SceneObject& o = m_objects[k];
+    const float num = dot(o.plane_point - origin, o.plane_normal);
+    const float s_l = dot(l.center - o.plane_point, o.plane_normal);
+    const bool clear = num == 0.0f || (num < 0.0f && s_l > l.radius + slack) ||
+                       (num > 0.0f && s_l < -(l.radius + slack));
+    if (!clear) return false;
+  }
+  const ShadowCone cone(origin, l.center, l.radius, slack);
+  const Primitive* prims = m_primitives.data();
+  return !m_bvh.any_leaf(
+      [&](const Vec3& lo, const Vec3& hi) { return cone.may_touch_box(lo, hi); },
+      [&](std::uint32_t first, std::uint32_t count) {
+        for (std::uint32_t i = first; i < first + count; ++i) {
+          const Primitive& p = prims[i];
+          // The light's own visible sphere: the rays stop short of it.
+          if (p.kind == PrimitiveKind::sphere && p.a == l.center && p.b.x == l.radius) continue;
+          const bool touches =
+              p.kind == PrimitiveKind::sphere
+                  ? cone.may_touch_sphere(p.a, p.b.x)
+                  : (p.kind == PrimitiveKind::box
+                         ? cone.may_touch_box(p.a, p.b)
+                         : cone.may_touch_box(min(min(p.a, p.b), p.c), max(max(p.a, p.b), p.c)));
+          if (touches) return true;
+        }
+        return false;
+      });
 }
 
 bool Scene::occluded(const Ray& ray) const {

@@ -125,6 +125,11 @@ class Scene {
   bool occluded(const Ray& ray) const;
   /// The surface at `hit` along `ray`.
   SurfaceInteraction interaction(const Ray& ray, const Hit& hit) const;
+  /// Whether no shadow ray from `origin` to sphere light `light` can be occluded: no plane
+  /// separates them and no primitive's box (but the light's own sphere) meets their shadow cone
+  /// (render/geometry/shadow_cone.h). Conservative: false means "maybe", and the rays decide.
+  /// `origin` is the rays' common origin (offset_ray_origin of the shading point).
+  bool light_unoccluded(const Vec3& origin, std::size_t light) const;
 
  private:
   friend Scene build_scene(const SceneDescription&);

@@ -51,6 +51,64 @@ TEST(Scene, IndexMatchedInterfacesLetShadowRaysThrough) {
   }
 }
 
+// light_unoccluded() is conservative: wherever it says no shadow ray can be occluded, none of 64
+// rays from that origin to points of the light's ball is (Scene::occluded, the rays' own test);
+// over the floor under a shell, a ball and a box it says so for most points but not all.
+TEST(Scene, LightUnoccludedOnlyWhereNoShadowRayIsOccluded) {
+  SceneDescription d = shell_scene();
+  LightDescription l;
+  l.kind = LightDescription::Kind::sphere;
+  l.position = {-2, 4, 1};
+  l.radius = 0.6;
+  d.lights.push_back(l);
+  MaterialDescription m;
+  m.name = "grey";
+  d.materials.push_back(m);
+  ObjectDescription floor;
+  floor.shape = ObjectDescription::Shape::plane;
+  floor.point = {0, -1, 0};
+  floor.normal = {0, 1, 0};
+  floor.material = "grey";
+  d.objects.push_back(floor);
+  ObjectDescription ball;
+  ball.shape = ObjectDescription::Shape::sphere;
+  ball.center = {2, 0, 0};
+  ball.radius = 0.5;
+  ball.material = "grey";
+  d.objects.push_back(ball);
+  ObjectDescription box;
+  box.shape = ObjectDescription::Shape::box;
+  box.box_min = {-1, -1, 2};
+  box.box_max = {0, 0.5, 2.5};
+  box.material = "grey";
+  d.objects.push_back(box);
+  const Scene s = build_scene(d);
+  const SphereLight& light = s.sphere_lights()[0];
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  int clear = 0, maybe = 0;
+  for (int i = 0; i < 1500; ++i) {
+    // Floor points (y = -1 exactly, as plane hits are projected), points above and below it.
+    const Vec3 p{6 * u(rng), i % 3 ? -1.0f : 2.0f * u(rng) + 0.5f, 6 * u(rng)};
+    if (!s.light_unoccluded(p, 0)) {
+      ++maybe;
+      continue;
+    }
+    ++clear;
+    for (int k = 0; k < 64; ++k) {
+      // Towards a point inside the light's ball, up to the near side of its sphere (as the
+      // light's samples: their rays stop short of the visible cap).
+      const Vec3 q = light.center + Vec3{u(rng), u(rng), u(rng)} * (0.57f * light.radius);
+      const Vec3 dir = normalize(q - p), oc = p - light.center;
+      const float b = dot(oc, dir), c = dot(oc, oc) - light.radius * light.radius;
+      const float t = -b - std::sqrt(b * b - c);
+      ASSERT_FALSE(s.occluded(Ray{p, dir, t * (1.0f - 1e-4f)})) << i << " " << k;
+    }
+  }
+  EXPECT_GT(clear, 500);
+  EXPECT_GT(maybe, 100);
+}
+
 TEST(Scene, BuildsFromInMemoryMeshesAndFindsCameraMedium) {
   const Scene s = build_scene(shell_scene());
   EXPECT_EQ(s.statistics().triangles, 2u * 1280u);

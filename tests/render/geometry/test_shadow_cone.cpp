@@ -1,0 +1,60 @@
+// The shadow cone's tests are conservative: a shape it calls clear meets none of the segments
+// from the apex to the light's ball; shapes on the axis are never called clear.
+#include "render/geometry/shadow_cone.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace thaw::render {
+namespace {
+
+/// Distance from point c to the segment [a, b].
+float segment_distance(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a;
+  const float t = std::clamp(dot(c - a, ab) / dot(ab, ab), 0.0f, 1.0f);
+  return length(a + ab * t - c);
+}
+
+// Random balls around a cone from the origin to a light ball of radius 0.5 at distance 4: for
+// every ball called clear, no segment from the apex to 2000 points of the light ball (its
+// surface and inside) comes within the ball's radius. Each ball called touching is counted, so
+// the test also shows that most near-axis balls are caught (not a test that cannot fail: a cone
+// that called everything clear would fail the first assertion).
+TEST(ShadowCone, ClearBallsMeetNoSegment) {
+  const Vec3 apex{0.1f, 0.2f, -0.3f}, light{1.0f, 4.0f, 0.5f};
+  const float radius = 0.5f;
+  const ShadowCone cone(apex, light, radius, 0.0f);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::vector<Vec3> targets;
+  while (targets.size() < 2000) {
+    const Vec3 q{u(rng), u(rng), u(rng)};
+    if (dot(q, q) <= 1.0f) targets.push_back(light + q * radius);
+  }
+  int clear = 0, touching = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const float s = 0.5f * (u(rng) + 1.0f);
+    const Vec3 c = apex + (light - apex) * (0.5f * (u(rng) + 1.0f) * 1.3f - 0.1f) +
+                   Vec3{u(rng), u(rng), u(rng)} * s;
+    const float rho = 0.3f * (0.5f * (u(rng) + 1.0f));
+    if (cone.may_touch_sphere(c, rho)) {
+      ++touching;
+      continue;
+    }
+    ++clear;
+    for (const Vec3& t : targets) ASSERT_GT(segment_distance(apex, t, c), rho) << i;
+  }
+  EXPECT_GT(clear, 300);
+  EXPECT_GT(touching, 300);
+  // On the axis, in front of the light, behind the apex, beyond the light.
+  EXPECT_TRUE(cone.may_touch_sphere(apex + (light - apex) * 0.5f, 0.01f));
+  EXPECT_TRUE(cone.may_touch_box(apex + (light - apex) * 0.5f - Vec3{0.01f, 0.01f, 0.01f},
+                                 apex + (light - apex) * 0.5f + Vec3{0.01f, 0.01f, 0.01f}));
+  EXPECT_FALSE(cone.may_touch_sphere(apex - (light - apex) * 0.5f, 0.1f));
+  EXPECT_FALSE(cone.may_touch_sphere(apex + (light - apex) * 2.0f, 0.1f));
+}
+
+}  // namespace
+}  // namespace thaw::render
