@@ -1,9 +1,8 @@
 #pragma once
 // The simulation as a library call, for `thaw simulate` and the `thaw run` pipeline: run a
-// scenario, sampling the state at exactly the requested output times, and write the result
-// folder (interfaces.csv, summary.json, and profiles/step_NNNNNN.csv for the 1D geometries or
-// fields/step_NNNNNN.grid for the axisymmetric and 3D ones). Knows nothing of the command
-// line; progress goes through a callback.
+// scenario, sampling the state at exactly the requested output times. Part of the sim core (no
+// TOML, no JSON): the result folder is written by sim/io/simulation_output.h. Knows nothing of
+// the command line; progress goes through a callback.
 #include <filesystem>
 #include <vector>
 
@@ -46,9 +45,5 @@ SimulationResult simulate(const Scenario& scenario, const std::vector<double>& t
                           const ProgressCallback& progress = {});
 /// simulate(scenario, output_times(scenario), progress).
 SimulationResult simulate(const Scenario& scenario, const ProgressCallback& progress = {});
-
-/// Writes interfaces.csv, profiles/step_NNNNNN.csv and summary.json into `dir` (which must
-/// exist; use a thaw::StagingDirectory for an all-or-nothing result folder).
-void write_simulation_outputs(const std::filesystem::path& dir, const SimulationResult& result);
 
 }  // namespace thaw::sim

@@ -1,8 +1,9 @@
 #pragma once
 // An optical medium as the integrator sees it: a name, n(lambda) and Beer-Lambert absorption.
-// Parsing and building are separate (STYLE 6): parse_medium_spec() turns a [media.NAME] TOML
-// table into a plain MediumSpec (testable from strings), build_medium() resolves presets from
-// the built-in library (data/optics/media.toml) and validates over 380-780 nm, never seeing TOML.
+// Parsing and building are separate (STYLE 6): parse_medium_spec() (medium_parser.h, the file
+// layer) turns a [media.NAME] TOML table into a plain MediumSpec, resolve_preset()
+// (medium_library.h) fills in a preset from the built-in library (data/optics/media.toml), and
+// build_medium() (here, render's core) validates over 380-780 nm, never seeing TOML.
 //
 // [media.NAME] keys (exactly one index source):
 //   preset = "water-0c"                     a library entry (`thaw materials` lists them)
@@ -18,10 +19,6 @@
 
 #include "render/media/absorption.h"
 #include "render/media/ior_model.h"
-
-namespace thaw {
-class TomlTable;
-}
 
 namespace thaw::render::media {
 
@@ -66,15 +63,8 @@ class Medium {
   std::string m_source;
 };
 
-/// Reads a [media.NAME] table. Malformed values, several index sources or none throw
-/// thaw::UserError naming the key. Keys are marked as read, so the caller's
-/// check_no_unknown_keys() reports typos. `library_entry` also accepts description, source and
-/// absorption_source and rejects preset.
-MediumSpec parse_medium_spec(const TomlTable& table, const std::string& name,
-                             bool library_entry = false);
-
-/// Resolves the preset (unknown preset: error listing the known ones) and validates the index
-/// and absorption over 380-780 nm (errors name the medium and key).
+/// Validates the index and absorption over 380-780 nm (errors name the medium and key) and builds
+/// the medium. A preset must have been resolved first (resolve_preset, medium_library.h).
 Medium build_medium(const MediumSpec& spec);
 
 }  // namespace thaw::render::media

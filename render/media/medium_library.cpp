@@ -2,6 +2,8 @@
 #include "render/media/medium_library.h"
 
 #include "embedded/media_library_toml.h"
+#include "render/media/medium_parser.h"
+#include "src/common/error.h"
 #include "src/common/toml_table.h"
 
 namespace thaw::render::media {
@@ -29,6 +31,20 @@ std::string medium_preset_names() {
   std::string s;
   for (const MediumSpec& p : medium_presets()) s += (s.empty() ? "" : ", ") + p.name;
   return s;
+}
+
+MediumSpec resolve_preset(MediumSpec spec) {
+  if (spec.preset.empty()) return spec;
+  const MediumSpec* preset = find_medium_preset(spec.preset);
+  if (!preset)
+    throw UserError(spec.file, "key '" + spec.key + ".preset'",
+                    "unknown preset \"" + spec.preset + "\" for medium '" + spec.name +
+                        "'; known presets: " + medium_preset_names());
+  spec.ior = preset->ior;
+  if (!spec.absorption) spec.absorption = preset->absorption;
+  spec.source = preset->source;
+  spec.preset.clear();
+  return spec;
 }
 
 }  // namespace thaw::render::media

@@ -15,5 +15,8 @@ const std::vector<MediumSpec>& medium_presets();
 const MediumSpec* find_medium_preset(const std::string& name);
 /// "vacuum, air, water-20c, ..." for error messages.
 std::string medium_preset_names();
+/// `spec` with its preset (if any) replaced by the preset's index, absorption (unless `spec`
+/// gives its own) and source; an unknown preset is a thaw::UserError listing the known ones.
+MediumSpec resolve_preset(MediumSpec spec);
 
 }  // namespace thaw::render::media

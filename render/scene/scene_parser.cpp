@@ -5,6 +5,8 @@
 #include <set>
 #include <sstream>
 
+#include "render/media/medium_library.h"
+#include "render/media/medium_parser.h"
 #include "src/common/error.h"
 #include "src/common/toml_table.h"
 
@@ -263,7 +265,7 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
       if (name == "vacuum")
         m.fail(m.has("ior") ? "ior" : "", "'vacuum' is predefined (n = 1) and cannot be redefined");
       // Everything else a medium may say (preset, sellmeier, ..., absorption): render/media.
-      md.spec = media::parse_medium_spec(m, name);
+      md.spec = media::resolve_preset(media::parse_medium_spec(m, name));
       media.insert(name);
       s.media.push_back(md);
     }

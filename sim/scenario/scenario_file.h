@@ -1,14 +1,16 @@
 #pragma once
-// Scenario TOML <-> Scenario: parsing with every key checked (unknown keys are errors naming the
-// key and its line), validation of the physics (one line naming file, key and problem), the
-// built-in defaults (data/materials/ice_water.toml, data/scenarios/default.toml, embedded in the
-// binary) and the echo of every effective parameter into summary.json. Knows nothing of the solver.
+// Scenario TOML <-> Scenario (the sim's file-format layer): parsing with every key checked
+// (unknown keys are errors naming the key and its line), the physics rules of scenario_rules.h
+// applied with the key's line, the built-in defaults (data/materials/ice_water.toml,
+// data/scenarios/default.toml, embedded in the binary) and the echo of every effective parameter
+// into summary.json. Knows nothing of the solver.
 #include <filesystem>
 #include <nlohmann/json_fwd.hpp>
 #include <set>
 #include <string>
 
 #include "sim/scenario/scenario.h"
+#include "sim/scenario/scenario_rules.h"
 
 namespace thaw {
 class TomlTable;
@@ -35,19 +37,6 @@ Scenario parse_scenario(const TomlTable& table);
 Scenario parse_scenario(const TomlTable& table, const std::set<std::string>& foreign_sections);
 Scenario parse_scenario_string(const std::string& text, const std::string& source_name);
 Scenario read_scenario_file(const std::filesystem::path& path);
-
-/// Checks a scenario built in code (the parser applies the same rules with line numbers);
-/// throws thaw::UserError(source_name, key, problem); "" names scenario.source_name.
-void validate_scenario(const Scenario& scenario, const std::string& source_name = "");
-
-/// The key most likely behind a solver failure on a valid scenario: the value farthest outside
-/// the range typical scenarios use (sizes and coefficients in decades, temperatures per 100 K),
-/// or simulation.time_tolerance when every value is typical; `hint` says what to try.
-struct LikelyCause {
-  std::string key;  ///< dotted key, e.g. "shell.inner_radius_m"
-  std::string hint;
-};
-LikelyCause likely_cause_of_solver_failure(const Scenario& scenario);
 
 /// Every effective parameter, keyed as in the scenario file (summary.json "parameters").
 nlohmann::json scenario_to_json(const Scenario& scenario);

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <map>
+#include <limits>
 #include <numbers>
-#include <sstream>
 
 #include "src/common/error.h"
+#include "src/meshio/edge_topology.h"
+#include "src/meshio/obj_reader.h"
 
 namespace thaw::sim {
 
@@ -97,63 +97,39 @@ ObjMesh read_obj_mesh(const std::filesystem::path& file, double scale, const V3&
   auto fail = [&](const std::string& problem) {
     throw UserError(scenario, key, "OBJ file '" + name + "': " + problem);
   };
-  std::ifstream in(file);
-  if (!in) fail(std::filesystem::exists(file) ? "cannot be read" : "file not found");
+  // The one strict OBJ reader (src/meshio): its problems, named by line, under the scenario's key.
+  meshio::TriangleMesh obj;
+  try {
+    obj = meshio::read_obj(file);
+  } catch (const UserError& e) {
+    fail((e.where().empty() ? "" : e.where() + ": ") + e.problem());
+  }
   ObjMesh mesh;
-  std::string line;
-  long line_no = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    std::istringstream ls(line);
-    std::string tag;
-    if (!(ls >> tag) || tag[0] == '#') continue;
-    const std::string where = "line " + std::to_string(line_no) + ": ";
-    if (tag == "v") {
-      V3 v{};
-      for (double& x : v)
-        if (!(ls >> x) || !std::isfinite(x))
-          fail(where + "a vertex needs three finite coordinates");
-      mesh.vertices.push_back({v[0] * scale + translate_m[0], v[1] * scale + translate_m[1],
-                               v[2] * scale + translate_m[2]});
-    } else if (tag == "f") {
-      std::vector<int> face;
-      std::string token;
-      while (ls >> token) {
-        const std::string index = token.substr(0, token.find('/'));
-        char* end = nullptr;
-        const long i = std::strtol(index.c_str(), &end, 10);
-        const long count = static_cast<long>(mesh.vertices.size());
-        if (index.empty() || *end != '\0' || i == 0 || i > count || i < -count)
-          fail(where + "bad vertex index '" + token + "'");
-        face.push_back(static_cast<int>(i > 0 ? i - 1 : count + i));
-      }
-      if (face.size() < 3) fail(where + "a face needs at least three vertices");
-      for (std::size_t k = 1; k + 1 < face.size(); ++k) {
-        const std::array<int, 3> t{face[0], face[k], face[k + 1]};
-        if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
-          fail(where + "degenerate face (repeated vertex)");
-        mesh.triangles.push_back(t);
-      }
-    }
+  mesh.vertices.reserve(obj.vertices.size());
+  for (const V3& v : obj.vertices)
+    mesh.vertices.push_back({v[0] * scale + translate_m[0], v[1] * scale + translate_m[1],
+                             v[2] * scale + translate_m[2]});
+  if (obj.vertices.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    fail("has more than 2^31 vertices");
+  for (std::size_t f = 0; f < obj.triangles.size(); ++f) {
+    const auto& t = obj.triangles[f];
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+      fail("triangle " + std::to_string(f + 1) + " is degenerate (repeated vertex)");
+    mesh.triangles.push_back(
+        {static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
   }
   if (mesh.triangles.size() < 4)
     fail("needs a closed surface (at least 4 triangles), found " +
          std::to_string(mesh.triangles.size()));
-  // Closed, edge-manifold and consistently oriented: every directed edge exactly once, and its
-  // reverse exactly once.
-  std::map<std::pair<int, int>, int> directed;
-  for (const auto& t : mesh.triangles)
-    for (int e = 0; e < 3; ++e) ++directed[{t[e], t[(e + 1) % 3]}];
-  for (const auto& [edge, count] : directed) {
-    if (count > 1)
-      fail("not manifold or inconsistently oriented: edge " + std::to_string(edge.first + 1) + "-" +
-           std::to_string(edge.second + 1) + " is used " + std::to_string(count) +
-           " times in the same direction");
-    const auto rev = directed.find({edge.second, edge.first});
-    if (rev == directed.end())
-      fail("not closed: edge " + std::to_string(edge.first + 1) + "-" +
-           std::to_string(edge.second + 1) + " borders only one face");
-  }
+  // Closed, edge-manifold and consistently oriented: every edge used by exactly two triangles,
+  // once in each direction (linear-time edge hash, src/meshio/edge_topology.h).
+  const meshio::EdgeTopology topo = meshio::edge_topology(obj.vertices, obj.triangles);
+  if (topo.non_manifold_edges > 0 || topo.inconsistent_edges > 0)
+    fail("not manifold or inconsistently oriented: " +
+         std::to_string(topo.non_manifold_edges + topo.inconsistent_edges) +
+         " edges are used by more than two faces or twice in the same direction");
+  if (topo.boundary_edges > 0)
+    fail("not closed: " + std::to_string(topo.boundary_edges) + " edges border only one face");
   const double v = mesh.volume();
   if (!(v > 0))
     fail(

@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "sim/reference/neumann.h"
-#include "sim/scenario/scenario_file.h"
+#include "sim/scenario/scenario_rules.h"
 #include "src/common/check.h"
 #include "src/common/error.h"
 

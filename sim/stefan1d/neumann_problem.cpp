@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sim/scenario/scenario_file.h"
+#include "sim/scenario/scenario_rules.h"
 
 namespace thaw::sim {
 

@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "sim/io/simulation_output.h"
 #include "sim/scenario/scenario_file.h"
 #include "sim/simulate.h"
 #include "src/cli/commands.h"

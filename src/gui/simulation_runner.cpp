@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "sim/io/simulation_output.h"
 #include "sim/simulate.h"
 #include "src/common/atomic_file.h"
 #include "src/common/error.h"

@@ -16,6 +16,7 @@
 #include "render/integrator/whitted.h"
 #include "render/scene/scene.h"
 #include "sim/io/interface_history.h"
+#include "sim/io/simulation_output.h"
 #include "sim/simulate.h"
 #include "src/common/atomic_file.h"
 #include "src/common/error.h"

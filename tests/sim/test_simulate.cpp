@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "sim/io/simulation_output.h"
 #include "sim/scenario/scenario_file.h"
 #include "src/common/error.h"
 

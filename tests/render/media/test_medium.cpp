@@ -7,6 +7,7 @@
 
 #include "render/media/medium.h"
 #include "render/media/medium_library.h"
+#include "render/media/medium_parser.h"
 #include "src/common/error.h"
 #include "src/common/toml_table.h"
 
@@ -17,7 +18,7 @@ Medium build(const std::string& toml, const std::string& name = "m") {
   const TomlTable root = TomlTable::parse_string(toml, "scene.toml");
   const MediumSpec spec = parse_medium_spec(root.table("media").table(name), name);
   root.check_no_unknown_keys();
-  return build_medium(spec);
+  return build_medium(resolve_preset(spec));
 }
 
 std::string error_of(const std::string& toml) {

@@ -1,0 +1,319 @@
+#include "sim/scenario/scenario_rules.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include "sim/grid/grid_rules.h"
+#include "src/common/error.h"
+
+// GCC 12 reports a false -Wrestrict inside std::string's operator+(const char*, string&&) once
+// these messages are inlined into one function (GCC bug 105651, fixed in GCC 13).
+#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ == 12
+#pragma GCC diagnostic ignored "-Wrestrict"
+#endif
+
+namespace thaw::sim {
+
+const char* to_string(InnerBoundary kind) {
+  return kind == InnerBoundary::symmetry ? "symmetry" : "temperature";
+}
+
+const char* to_string(OuterBoundary kind) {
+  switch (kind) {
+    case OuterBoundary::temperature:
+      return "temperature";
+    case OuterBoundary::convective:
+      return "convective";
+    case OuterBoundary::flux:
+      return "flux";
+    case OuterBoundary::insulated:
+      return "insulated";
+  }
+  return "?";
+}
+
+namespace {
+
+/// Shortest text that reads back as the same double ("0.04", not "0.040000000000000001").
+std::string num(double v) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+/// The supported physical range of one numeric key, and the range typical scenarios use (only
+/// for naming the likely cause when the solver fails). Documented in docs/simulate.md.
+struct KeyRange {
+  const char* key;
+  double (*value)(const Scenario&);  ///< the quantity checked (the key itself, or a ratio)
+  double (*raw)(const Scenario&);    ///< the key's own value when `value` is a ratio, else null
+  bool (*applies)(const Scenario&);
+  double lo, hi;                  ///< allowed, inclusive
+  double typical_lo, typical_hi;  ///< what the shipped scenarios and the literature use
+  bool decades;                   ///< distance from typical in decades (else in units of 100 K)
+  const char* unit;
+  const char* why;
+};
+
+constexpr double kAbsoluteZeroC = -273.15;
+
+bool always(const Scenario&) {
+  return true;
+}
+double inner_m(const Scenario& s) {
+  return s.inner_radius_m;
+}
+bool has_core(const Scenario& s) {
+  return s.inner_radius_m > 0;
+}
+bool has_ice(const Scenario& s) {
+  return s.outer_radius_m > s.inner_radius_m;
+}
+bool held_inner(const Scenario& s) {
+  return s.inner_kind == InnerBoundary::temperature;
+}
+bool uses_outer_temperature(const Scenario& s) {
+  return s.outer_kind == OuterBoundary::temperature || s.outer_kind == OuterBoundary::convective;
+}
+bool convective(const Scenario& s) {
+  return s.outer_kind == OuterBoundary::convective;
+}
+bool flux(const Scenario& s) {
+  return s.outer_kind == OuterBoundary::flux;
+}
+
+/// Sizes: 0.1 mm to 100 m (a continuum heat-conduction model of a hand-sized object; below
+/// 0.1 mm surface effects and above 100 m gravity-driven flow dominate). A core or an ice layer
+/// thinner than 1e-4 of the outer radius is 100 times the solver's remnant size (1e-6 b0), the
+/// least that still resolves it on 4+ cells. Temperatures: not below absolute zero; liquid water
+/// at 1 atm below 100 C (boiling is not modelled); air up to 1000 C (a flame). Heat transfer
+/// coefficients up to 1e5 W/(m^2 K), the top of the boiling/condensation range (Incropera et
+/// al., Fundamentals of Heat and Mass Transfer, 7th ed., Table 1.1); fluxes up to 1e7 W/m^2
+/// (a solar furnace). Materials within the span of real solids and liquids.
+const std::vector<KeyRange>& key_ranges() {
+  static const std::vector<KeyRange> ranges = {
+      {"shell.outer_radius_m", [](const Scenario& s) { return s.outer_radius_m; }, nullptr, always,
+       1e-4, 100, 1e-3, 1, true, "m", "a hand-sized continuum object"},
+      {"shell.inner_radius_m",
+       [](const Scenario& s) { return s.inner_radius_m / s.outer_radius_m; }, inner_m, has_core,
+       1e-4, 1, 0.05, 1, true, "x outer_radius_m",
+       "a core thinner than 1e-4 of the shell is below the solver's resolution"},
+      {"shell.inner_radius_m",
+       [](const Scenario& s) { return 1 - s.inner_radius_m / s.outer_radius_m; }, inner_m, has_ice,
+       1e-4, 1, 0.05, 1, true, "x outer_radius_m of ice thickness",
+       "an ice layer thinner than 1e-4 of the shell is below the solver's resolution"},
+      {"water.initial_temperature_c",
+       [](const Scenario& s) { return s.water_initial_temperature_c; }, nullptr, has_core,
+       kAbsoluteZeroC, 100, 0, 40, false, "C", "liquid water boils at 100 C (not modelled)"},
+      {"ice.initial_temperature_c", [](const Scenario& s) { return s.ice_initial_temperature_c; },
+       nullptr, has_ice, kAbsoluteZeroC, 100, -40, 0, false, "C",
+       "nothing is colder than absolute zero"},
+      {"inner_boundary.temperature_c", [](const Scenario& s) { return s.inner_temperature_c; },
+       nullptr, held_inner, kAbsoluteZeroC, 100, 0, 60, false, "C",
+       "water at the wall boils at 100 C (not modelled)"},
+      {"outer_boundary.temperature_c", [](const Scenario& s) { return s.outer_temperature_c; },
+       nullptr, uses_outer_temperature, kAbsoluteZeroC, 1000, -40, 60, false, "C",
+       "air from absolute zero to a flame"},
+      {"outer_boundary.heat_transfer_coefficient_w_m2k",
+       [](const Scenario& s) { return s.heat_transfer_coefficient_w_m2k; }, nullptr, convective,
+       1e-3, 1e5, 2, 1000, true, "W/(m^2 K)",
+       "free convection to boiling water (Incropera Table 1.1)"},
+      {"outer_boundary.flux_w_m2", [](const Scenario& s) { return std::abs(s.flux_w_m2); }, nullptr,
+       flux, 0, 1e7, 0, 1e4, true, "W/m^2 (absolute)", "up to a solar furnace"},
+      {"materials.ice_conductivity_w_mk",
+       [](const Scenario& s) { return s.materials.ice_conductivity_w_mk; }, nullptr, always, 1e-3,
+       1e4, 0.1, 10, true, "W/(m K)", "aerogel to diamond"},
+      {"materials.water_conductivity_w_mk",
+       [](const Scenario& s) { return s.materials.water_conductivity_w_mk; }, nullptr, always, 1e-3,
+       1e4, 0.1, 10, true, "W/(m K)", "aerogel to diamond"},
+      {"materials.ice_density_kg_m3",
+       [](const Scenario& s) { return s.materials.ice_density_kg_m3; }, nullptr, always, 1, 1e5,
+       500, 2000, true, "kg/m^3", "real solids and liquids"},
+      {"materials.water_density_kg_m3",
+       [](const Scenario& s) { return s.materials.water_density_kg_m3; }, nullptr, always, 1, 1e5,
+       500, 2000, true, "kg/m^3", "real solids and liquids"},
+      {"materials.ice_specific_heat_j_kgk",
+       [](const Scenario& s) { return s.materials.ice_specific_heat_j_kgk; }, nullptr, always, 10,
+       1e5, 500, 5000, true, "J/(kg K)", "real solids and liquids"},
+      {"materials.water_specific_heat_j_kgk",
+       [](const Scenario& s) { return s.materials.water_specific_heat_j_kgk; }, nullptr, always, 10,
+       1e5, 500, 5000, true, "J/(kg K)", "real solids and liquids"},
+      {"materials.latent_heat_j_kg", [](const Scenario& s) { return s.materials.latent_heat_j_kg; },
+       nullptr, always, 100, 1e7, 1e4, 1e6, true, "J/kg", "real solids"},
+      {"materials.melting_point_c", [](const Scenario& s) { return s.materials.melting_point_c; },
+       nullptr, always, kAbsoluteZeroC, 100, -10, 10, false, "C",
+       "below the boiling point of water"},
+  };
+  return ranges;
+}
+
+/// How far v lies outside [lo, hi]: in decades, or in units of 100 K for temperatures.
+double distance_outside(const KeyRange& r, double v) {
+  if (!r.decades) return std::max({0.0, r.typical_lo - v, v - r.typical_hi}) / 100.0;
+  if (!(v > 0)) return r.typical_lo > 0 ? 1.0 : 0.0;
+  const double lv = std::log10(v);
+  return std::max({0.0, (r.typical_lo > 0 ? std::log10(r.typical_lo) : lv) - lv,
+                   lv - std::log10(r.typical_hi)});
+}
+
+std::optional<ScenarioProblem> outside_range(const Scenario& s) {
+  for (const KeyRange& r : key_ranges()) {
+    if (!r.applies(s)) continue;
+    const double v = r.value(s);
+    if (v >= r.lo && v <= r.hi) continue;
+    const std::string shown = r.raw ? num(r.raw(s)) + " m, i.e. " : "";
+    return ScenarioProblem{r.key, "(" + shown + num(v) + " " + r.unit +
+                                      ") is outside the supported range [" + num(r.lo) + ", " +
+                                      num(r.hi) + "] " + r.unit + ": " + r.why +
+                                      " (see docs/simulate.md)"};
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<ScenarioProblem> find_scenario_problem(const Scenario& s) {
+  const Materials& m = s.materials;
+  const double tm = m.melting_point_c;
+  const std::pair<const char*, double> positive_materials[] = {
+      {"materials.ice_conductivity_w_mk", m.ice_conductivity_w_mk},
+      {"materials.ice_density_kg_m3", m.ice_density_kg_m3},
+      {"materials.ice_specific_heat_j_kgk", m.ice_specific_heat_j_kgk},
+      {"materials.water_conductivity_w_mk", m.water_conductivity_w_mk},
+      {"materials.water_density_kg_m3", m.water_density_kg_m3},
+      {"materials.water_specific_heat_j_kgk", m.water_specific_heat_j_kgk},
+      {"materials.latent_heat_j_kg", m.latent_heat_j_kg}};
+  const std::pair<const char*, double> finite[] = {
+      {"simulation.duration_s", s.duration_s},
+      {"simulation.output_interval_s", s.output_interval_s},
+      {"simulation.time_tolerance", s.time_tolerance},
+      {"shell.inner_radius_m", s.inner_radius_m},
+      {"shell.outer_radius_m", s.outer_radius_m},
+      {"shell.length_m", s.length_m},
+      {"shell.lateral_size_m", s.lateral_size_m},
+      {"water.initial_temperature_c", s.water_initial_temperature_c},
+      {"ice.initial_temperature_c", s.ice_initial_temperature_c},
+      {"inner_boundary.temperature_c", s.inner_temperature_c},
+      {"outer_boundary.temperature_c", s.outer_temperature_c},
+      {"outer_boundary.heat_transfer_coefficient_w_m2k", s.heat_transfer_coefficient_w_m2k},
+      {"outer_boundary.flux_w_m2", s.flux_w_m2},
+      {"materials.melting_point_c", tm}};
+  for (auto [key, v] : finite)
+    if (!std::isfinite(v))
+      return ScenarioProblem{key, "must be a finite number (got " + num(v) + ")"};
+  for (auto [key, v] : positive_materials)
+    if (!(v > 0) || !std::isfinite(v))
+      return ScenarioProblem{key, "must be positive (got " + num(v) + ")"};
+  if (!(s.duration_s > 0))
+    return ScenarioProblem{"simulation.duration_s",
+                           "must be positive (got " + num(s.duration_s) + ")"};
+  if (!(s.output_interval_s > 0))
+    return ScenarioProblem{"simulation.output_interval_s",
+                           "must be positive (got " + num(s.output_interval_s) + ")"};
+  if (s.output_interval_s > s.duration_s)
+    return ScenarioProblem{"simulation.output_interval_s",
+                           "(" + num(s.output_interval_s) +
+                               " s) is longer than the run (duration_s = " + num(s.duration_s) +
+                               " s)"};
+  if (s.duration_s / s.output_interval_s > 1e6)
+    return ScenarioProblem{"simulation.output_interval_s",
+                           "gives more than 10^6 output rows; use a longer interval"};
+  if (s.cells_per_phase < 4 || s.cells_per_phase > 100000)
+    return ScenarioProblem{
+        "simulation.cells_per_phase",
+        "must be between 4 and 100000 (got " + std::to_string(s.cells_per_phase) + ")"};
+  if (!(s.time_tolerance > 0 && s.time_tolerance <= 1e-2))
+    return ScenarioProblem{"simulation.time_tolerance",
+                           "must be in (0, 0.01] (got " + num(s.time_tolerance) + ")"};
+  if (!(s.inner_radius_m >= 0))
+    return ScenarioProblem{"shell.inner_radius_m",
+                           "must not be negative (got " + num(s.inner_radius_m) + ")"};
+  if (!(s.outer_radius_m > 0))
+    return ScenarioProblem{"shell.outer_radius_m",
+                           "must be positive (got " + num(s.outer_radius_m) + ")"};
+  if (s.inner_radius_m > s.outer_radius_m)
+    return ScenarioProblem{"shell.inner_radius_m", "(" + num(s.inner_radius_m) +
+                                                       " m) is larger than outer_radius_m (" +
+                                                       num(s.outer_radius_m) + " m)"};
+  if (!(s.length_m > 0))
+    return ScenarioProblem{"shell.length_m", "must be positive (got " + num(s.length_m) + ")"};
+  if (!(s.lateral_size_m > 0))
+    return ScenarioProblem{"shell.lateral_size_m",
+                           "must be positive (got " + num(s.lateral_size_m) + ")"};
+  if (s.inner_radius_m > 0 && s.water_initial_temperature_c < tm)
+    return ScenarioProblem{"water.initial_temperature_c",
+                           "(" + num(s.water_initial_temperature_c) +
+                               " C) is below the melting point: supercooled water is not modelled"};
+  if (s.outer_radius_m > s.inner_radius_m && s.ice_initial_temperature_c > tm)
+    return ScenarioProblem{"ice.initial_temperature_c", "(" + num(s.ice_initial_temperature_c) +
+                                                            " C) is above the melting point"};
+  if (s.geometry != Geometry::planar && s.inner_kind != InnerBoundary::symmetry)
+    return ScenarioProblem{"inner_boundary.kind",
+                           "a held inner temperature needs geometry = \"planar\""};
+  if (s.inner_kind == InnerBoundary::temperature && s.inner_temperature_c < tm)
+    return ScenarioProblem{
+        "inner_boundary.temperature_c",
+        "(" + num(s.inner_temperature_c) +
+            " C) is below the melting point: water would freeze onto the wall (not modelled)"};
+  if (s.outer_kind == OuterBoundary::temperature && s.outer_temperature_c > tm)
+    return ScenarioProblem{
+        "outer_boundary.temperature_c",
+        "(" + num(s.outer_temperature_c) +
+            " C) is above the melting point: a held temperature above melting on a "
+            "draining surface is ill-posed (use kind = \"convective\" or \"flux\")"};
+  if (s.outer_kind == OuterBoundary::convective && !(s.heat_transfer_coefficient_w_m2k > 0))
+    return ScenarioProblem{"outer_boundary.heat_transfer_coefficient_w_m2k",
+                           "must be positive (got " + num(s.heat_transfer_coefficient_w_m2k) + ")"};
+  if (auto p = outside_range(s)) return p;
+  if (s.inner_radius_m == s.outer_radius_m) {
+    // No ice yet: it must start freezing at once.
+    const bool water_at_melting = s.water_initial_temperature_c == tm;
+    const bool freezes =
+        (s.outer_kind == OuterBoundary::temperature && s.outer_temperature_c < tm) ||
+        (s.outer_kind == OuterBoundary::convective && s.outer_temperature_c < tm &&
+         water_at_melting) ||
+        (s.outer_kind == OuterBoundary::flux && s.flux_w_m2 < 0 && water_at_melting);
+    if (!freezes)
+      return ScenarioProblem{
+          "shell.outer_radius_m",
+          "equals inner_radius_m (no ice at t = 0), so the outer boundary must freeze "
+          "the water at once: "
+          "a held temperature below melting, or convective/flux cooling of water at the "
+          "melting point"};
+  }
+  // Grid runs ([shape]); the [shell] rules above pass on its unused defaults.
+  if (auto p = find_grid_problem(s)) return ScenarioProblem{p->key, p->message};
+  return std::nullopt;
+}
+
+LikelyCause likely_cause_of_solver_failure(const Scenario& s) {
+  const KeyRange* worst = nullptr;
+  double worst_distance = 0;
+  for (const KeyRange& r : key_ranges()) {
+    if (!r.applies(s)) continue;
+    const double d = distance_outside(r, r.value(s));
+    if (d > worst_distance) worst = &r, worst_distance = d;
+  }
+  if (!worst)
+    return {"simulation.time_tolerance",
+            "every value is in its typical range; try a looser simulation.time_tolerance (now " +
+                num(s.time_tolerance) + ") or fewer simulation.cells_per_phase (now " +
+                std::to_string(s.cells_per_phase) + ")"};
+  const double v = worst->raw ? worst->raw(s) : worst->value(s);
+  const std::string typical = worst->raw ? ""
+                                         : " (typical: " + num(worst->typical_lo) + " to " +
+                                               num(worst->typical_hi) + " " + worst->unit + ")";
+  return {worst->key, "its value " + num(v) + " is the farthest from typical scenarios" + typical +
+                          "; try a less extreme value"};
+}
+
+void validate_scenario(const Scenario& scenario, const std::string& source_name) {
+  if (auto p = find_scenario_problem(scenario))
+    throw UserError(source_name.empty() ? scenario.source_name : source_name,
+                    "key '" + p->key + "'", p->message);
+}
+
+}  // namespace thaw::sim
