@@ -8,6 +8,8 @@
 #include <memory>
 
 #include "src/common/error.h"
+#include "src/common/interrupt.h"
+#include "src/gui/film_runner.h"
 #include "src/gui/main_window.h"
 #include "src/gui/screenshot.h"
 #include "src/inspect/virtual_display.h"
@@ -46,6 +48,13 @@ int run_gui(const GuiOptions& options) {
       window.show_step(static_cast<int>(window.simulation_run()->steps.size() / 2));
     });
   }
+  // Ctrl-C or SIGTERM (src/common/interrupt.h only raises a flag) closes the window; the
+  // film's own cancel raises the same flag and is told apart (film_runner.h).
+  QTimer interrupt_poll;
+  QObject::connect(&interrupt_poll, &QTimer::timeout, &app, [&app] {
+    if (interrupt_requested() && !FilmRunner::cancelling()) app.quit();
+  });
+  interrupt_poll.start(200);
   if (options.screenshot.empty()) return app.exec();
   std::string problem;
   take_screenshot_when_ready(window, options.screenshot, [&](const std::string& p) {

@@ -177,6 +177,14 @@ QWidget* MainWindow::make_render_tab() {
   m_film_button->setToolTip(
       "thaw run on this scenario into a folder (simulate, mesh, render, film)");
   frow->addWidget(m_film_button);
+  m_film_cancel = new QPushButton("Cancel");
+  m_film_cancel->setObjectName("film_cancel_button");
+  m_film_cancel->setToolTip(
+      "Stop the run at its next safe point; nothing is left half-written, and Render film into "
+      "the same folder resumes where it stopped");
+  m_film_cancel->setEnabled(false);
+  connect(m_film_cancel, &QPushButton::clicked, this, [this] { cancel_film(); });
+  frow->addWidget(m_film_cancel);
   m_film_progress = new QProgressBar;
   m_film_progress->setObjectName("film_progress");
   frow->addWidget(m_film_progress, 1);
@@ -217,6 +225,7 @@ QWidget* MainWindow::make_render_tab() {
   connect(m_film, &FilmRunner::finished, this, [this](const QString& film) {
     m_film_poll->stop();
     m_film_button->setEnabled(true);
+    m_film_cancel->setEnabled(false);
     m_frames.clear();
     std::error_code ec;
     const std::filesystem::path frames =
@@ -235,11 +244,22 @@ QWidget* MainWindow::make_render_tab() {
   connect(m_film, &FilmRunner::failed, this, [this](const QString& message) {
     m_film_poll->stop();
     m_film_button->setEnabled(true);
+    m_film_cancel->setEnabled(false);
     m_film_status->setText("Failed: " + message);
   });
+  connect(m_film, &FilmRunner::cancelled, this, [this] {
+    m_film_poll->stop();
+    m_film_progress->setValue(m_film->frames_done());
+    m_film_button->setEnabled(true);
+    m_film_cancel->setEnabled(false);
+    m_film_status->setText(QString("Cancelled after %1 frames; nothing is half-written. Render "
+                                   "film into the same folder resumes.")
+                               .arg(m_film->frames_done()));
+    emit filmCancelled();
+  });
   auto* note = new QLabel(
-      "The preview renders the first film frame as <tt>thaw run</tt> would: a quarter-size pass, "
-      "then the full preview size, then with the frame's anti-aliasing and caustics. Every edit "
+      "The preview renders the first film frame as <tt>thaw run</tt> would: a quick half-size "
+      "pass, the full preview size, then with the frame's anti-aliasing and caustics. Every edit "
       "restarts it.");
   note->setWordWrap(true);
   v->addWidget(note);
@@ -547,11 +567,19 @@ bool MainWindow::start_film(const std::filesystem::path& dir) {
   if (!m_check.ok() || m_film->running()) return false;
   if (!m_film->start(*m_check.scenario, m_document.text(), dir)) return false;
   m_film_button->setEnabled(false);
+  m_film_cancel->setEnabled(true);
   m_film_progress->setRange(0, static_cast<int>(pipeline::frame_times(*m_check.scenario).size()));
   m_film_progress->setValue(0);
   m_film_status->setText("Running thaw run into " + QString::fromStdString(dir.string()) + "...");
   m_film_poll->start();
   return true;
+}
+
+void MainWindow::cancel_film() {
+  if (!m_film->running()) return;
+  m_film->cancel();
+  m_film_cancel->setEnabled(false);
+  m_film_status->setText("Cancelling: the run stops at its next safe point...");
 }
 
 bool MainWindow::film_running() const {
@@ -604,10 +632,12 @@ void MainWindow::request_preview(bool full_quality) {
   }
   m_full_quality = full_quality;
   m_pass = -1;
-  m_renderer->request(std::move(r));
+  m_request_serial = m_renderer->request(std::move(r));
 }
 
-void MainWindow::on_image(const QImage& image, int pass, int passes, double seconds) {
+void MainWindow::on_image(const QImage& image, int pass, int passes, double seconds,
+                          quint64 serial) {
+  if (serial != m_request_serial) return;  // queued before the newer request was made
   m_image = image;
   m_pass = pass;
   m_passes = passes;
@@ -619,14 +649,15 @@ void MainWindow::on_image(const QImage& image, int pass, int passes, double seco
                         .arg(image.width())
                         .arg(image.height())
                         .arg(seconds, 0, 'f', 2));
+  emit previewShown(pass);
   if (pass + 1 == passes) emit previewFinished();
 }
 
 void MainWindow::show_image() {
   if (m_image.isNull()) return;
   const QSize room = m_preview->size() - QSize(4, 4);
-  m_preview->setPixmap(QPixmap::fromImage(m_image.scaled(
-      room, Qt::KeepAspectRatio, m_pass == 0 ? Qt::FastTransformation : Qt::SmoothTransformation)));
+  m_preview->setPixmap(
+      QPixmap::fromImage(m_image.scaled(room, Qt::KeepAspectRatio, Qt::SmoothTransformation)));
 }
 
 void MainWindow::resizeEvent(QResizeEvent* event) {

@@ -75,6 +75,9 @@ class MainWindow : public QMainWindow {
   /// Runs `thaw run` on the scenario into `dir` in the background; false if one is running or
   /// the scenario has a problem.
   bool start_film(const std::filesystem::path& dir);
+  /// Stops the film's run at its next safe point (filmCancelled follows): nothing is left
+  /// half-written, and start_film() into the same folder resumes.
+  void cancel_film();
   bool film_running() const;
   /// The frames of the last finished film (sorted), shown by the frame slider.
   const std::vector<std::filesystem::path>& film_frames() const { return m_frames; }
@@ -97,11 +100,14 @@ class MainWindow : public QMainWindow {
   void show_step(int index);
 
  signals:
+  /// Pass `pass` of the preview of the current scenario is shown (older requests' are dropped).
+  void previewShown(int pass);
   /// The preview's last pass for the current scenario is shown.
   void previewFinished();
   void simulationFinished();
   void simulationCancelled();
   void filmFinished();
+  void filmCancelled();
 
  private:
   QWidget* make_render_tab();
@@ -109,7 +115,7 @@ class MainWindow : public QMainWindow {
   QWidget* make_simulation_tab();
   void recheck();
   void request_preview(bool full_quality = false);
-  void on_image(const QImage& image, int pass, int passes, double seconds);
+  void on_image(const QImage& image, int pass, int passes, double seconds, quint64 serial);
   void show_image();
   void on_shell_ready();
   /// Writes the 3D view's camera (after an orbit) as the scenario's [render.camera].
@@ -131,6 +137,8 @@ class MainWindow : public QMainWindow {
   std::vector<KeyForm*> m_forms;
   QImage m_image;
   int m_pass = -1, m_passes = 0;
+  /// the serial of the latest preview request: only its images are shown
+  std::uint64_t m_request_serial = 0;
   double m_seconds = 0;
   int m_preview_width = 320, m_preview_height = 240;
   bool m_full_quality = false;
@@ -151,6 +159,7 @@ class MainWindow : public QMainWindow {
   std::vector<std::filesystem::path> m_frames;
   QSlider* m_frame_slider = nullptr;
   QPushButton* m_film_button = nullptr;
+  QPushButton* m_film_cancel = nullptr;
   QPushButton* m_play_button = nullptr;
   QProgressBar* m_film_progress = nullptr;
   QTimer* m_film_poll = nullptr;

@@ -9,6 +9,8 @@
 #include "render/integrator/whitted.h"
 #include "render/scene/scene.h"
 #include "src/common/error.h"
+#include "src/common/interrupt.h"
+#include "src/gui/film_runner.h"
 
 namespace thaw::gui {
 
@@ -41,14 +43,17 @@ PreviewRenderer::~PreviewRenderer() {
   m_thread.join();
 }
 
-void PreviewRenderer::request(PreviewRequest request) {
+std::uint64_t PreviewRenderer::request(PreviewRequest request) {
+  std::uint64_t serial = 0;
   {
     std::lock_guard lock(m_mutex);
     m_pending = std::move(request);
     m_requested_at = std::chrono::steady_clock::now();
+    serial = ++m_serial;
     m_cancel = true;  // the pass in flight stops at its next tile
   }
   m_wake.notify_all();
+  return serial;
 }
 
 std::shared_ptr<const ShellStep> PreviewRenderer::initial_shell() const {
@@ -71,6 +76,7 @@ void PreviewRenderer::loop() {
   for (;;) {
     PreviewRequest request;
     std::chrono::steady_clock::time_point start;
+    std::uint64_t serial = 0;
     {
       std::unique_lock lock(m_mutex);
       m_wake.wait(lock, [this] { return m_quit || m_pending.has_value(); });
@@ -78,11 +84,12 @@ void PreviewRenderer::loop() {
       request = std::move(*m_pending);
       m_pending.reset();
       start = m_requested_at;
+      serial = m_serial;
       m_cancel = false;
       m_rendering = true;
     }
     try {
-      serve(request, start);
+      serve(request, start, serial);
     } catch (const UserError& e) {
       emit failed(QString::fromStdString(e.what()));
     } catch (const std::exception& e) {
@@ -94,7 +101,7 @@ void PreviewRenderer::loop() {
 }
 
 void PreviewRenderer::serve(const PreviewRequest& request,
-                            std::chrono::steady_clock::time_point start) {
+                            std::chrono::steady_clock::time_point start, std::uint64_t serial) {
   std::shared_ptr<const ShellStep> step = request.step;
   if (!step) {
     // The initial shell depends on the simulation's and the mesher's keys only.
@@ -116,18 +123,30 @@ void PreviewRenderer::serve(const PreviewRequest& request,
     step = cached;
   }
   const auto passes = preview_passes(request.width, request.height, request.samples);
-  for (std::size_t i = 0; i < passes.size(); ++i) {
+  for (std::size_t i = 0; i < passes.size();) {
     if (m_cancel) return;
     const render::Scene scene =
         render::build_scene(preview_scene(request.scenario, *step, request.camera_rows, passes[i]));
     render::RenderOptions options;
     options.cancel = &m_cancel;
+    const std::uint64_t interrupts = FilmRunner::interrupts_started();
     const render::RenderResult result = render::render(scene, options);
-    if (m_cancel) return;  // incomplete: a newer request replaces it
+    if (m_cancel) {  // incomplete: a newer request replaces it
+      ++m_abandoned;
+      return;
+    }
+    if (interrupt_requested() || FilmRunner::interrupts_started() != interrupts) {
+      // A film's cancel raised the process-wide interrupt meanwhile: tiles may have been
+      // skipped. Redo the pass once it is lowered (when the film's run has stopped).
+      while (interrupt_requested() && !m_cancel)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      continue;
+    }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     emit imageReady(to_qimage(result.image, request.scenario.scene.image.exposure),
-                    static_cast<int>(i), static_cast<int>(passes.size()), seconds);
+                    static_cast<int>(i), static_cast<int>(passes.size()), seconds, serial);
+    ++i;
   }
 }
 

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -43,15 +44,19 @@ class PreviewRenderer : public QObject {
   ~PreviewRenderer() override;
 
   /// Replaces whatever is pending or rendering by `request` (GUI thread; returns at once).
-  void request(PreviewRequest request);
+  /// Returns its serial number, which its images carry.
+  std::uint64_t request(PreviewRequest request);
+  /// Passes started and then abandoned because a newer request came (stale previews cancelled).
+  std::uint64_t abandoned_passes() const { return m_abandoned; }
   /// The initial shell the worker last meshed (for the 3D view); null before the first.
   std::shared_ptr<const ShellStep> initial_shell() const;
   /// True while a request is pending or a pass is rendering.
   bool busy() const;
 
  signals:
-  /// A pass finished: its image, its index among `passes`, and the seconds since the request.
-  void imageReady(const QImage& image, int pass, int passes, double seconds);
+  /// A pass finished: its image, its index among `passes`, the seconds since the request and
+  /// the request's serial (an image queued just before a newer request is stale: drop it).
+  void imageReady(const QImage& image, int pass, int passes, double seconds, quint64 serial);
   /// The initial shell of a new scenario was meshed (initial_shell() has it).
   void shellReady();
   /// The request cannot be rendered (a scene problem build_scene found); one line.
@@ -59,7 +64,8 @@ class PreviewRenderer : public QObject {
 
  private:
   void loop();
-  void serve(const PreviewRequest& request, std::chrono::steady_clock::time_point start);
+  void serve(const PreviewRequest& request, std::chrono::steady_clock::time_point start,
+             std::uint64_t serial);
 
   mutable std::mutex m_mutex;
   std::condition_variable m_wake;
@@ -67,6 +73,8 @@ class PreviewRenderer : public QObject {
   std::chrono::steady_clock::time_point m_requested_at;
   bool m_quit = false, m_rendering = false;
   std::atomic<bool> m_cancel{false};
+  std::uint64_t m_serial = 0;  // guarded by m_mutex
+  std::atomic<std::uint64_t> m_abandoned{0};
   std::shared_ptr<const ShellStep> m_initial;
   std::string m_initial_key;
   std::thread m_thread;

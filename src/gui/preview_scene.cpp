@@ -9,10 +9,15 @@
 namespace thaw::gui {
 
 std::vector<PreviewPass> preview_passes(int width, int height, int samples) {
+  // Quick passes: 1 sample, no caustics, 6 Whitted levels, one shadow ray per sphere light: on
+  // the default scene a 160x120 one costs 0.06 s of CPU against 0.15 s for the full-size
+  // 1-sample pass of the scene's own depth and shadow rays (bench/gui/bench_preview_passes).
+  constexpr int kQuickDepth = 6;
   std::vector<PreviewPass> passes;
-  passes.push_back({std::max(1, width / 4), std::max(1, height / 4), 1, false, false});
-  passes.push_back({width, height, 1, false, false});
-  passes.push_back({width, height, std::max(2, samples), true, true});
+  passes.push_back(
+      {std::max(1, width / 2), std::max(1, height / 2), 1, false, false, kQuickDepth, true});
+  passes.push_back({width, height, 1, false, false, kQuickDepth, true});
+  passes.push_back({width, height, std::max(2, samples), true, true, 0, false});
   return passes;
 }
 
@@ -39,6 +44,9 @@ render::SceneDescription preview_scene(const pipeline::RunScenario& sc, const Sh
   desc.image.samples_per_pixel =
       pass.adaptive ? std::max(pass.samples, desc.image.min_samples) : pass.samples;
   if (!pass.caustics) desc.caustics.enabled = false;
+  if (pass.max_depth > 0) desc.image.max_depth = std::min(desc.image.max_depth, pass.max_depth);
+  if (pass.one_shadow_ray)
+    for (auto& light : desc.lights) light.samples = 1;
   return desc;
 }
 

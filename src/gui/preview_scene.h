@@ -20,11 +20,16 @@ struct PreviewPass {
   bool adaptive = false;
   /// photon-mapped caustics as the scene sets them (off for the quick passes)
   bool caustics = false;
+  /// quick passes: at most this many Whitted levels and one shadow ray per sphere light and
+  /// shading point (0: the scene's own depth and samples)
+  int max_depth = 0;
+  bool one_shadow_ray = false;
 };
 
-/// The passes for a preview of `width` x `height` with up to `samples` per pixel: a quarter-size
-/// image at 1 sample (appears at once), the full size at 1 sample, then the full size at the
-/// scene's own settings (adaptive up to `samples`, caustics) when that adds anything.
+/// The passes for a preview of `width` x `height` with up to `samples` per pixel: a half-size
+/// quick image (1 sample, no caustics, fewer levels and shadow rays; shown scaled to the preview
+/// size at once), the full size at the same quick settings, then the full size at the scene's
+/// own settings (adaptive up to `samples`, caustics).
 std::vector<PreviewPass> preview_passes(int width, int height, int samples);
 
 /// The frame scene of `step`; `camera_rows` are the rows the built-in camera frames (all of a

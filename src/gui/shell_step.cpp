@@ -1,7 +1,11 @@
 #include "src/gui/shell_step.h"
 
+#include <vtkAlgorithm.h>
+#include <vtkMapper.h>
+
 #include "render/geometry/obj_loader.h"
 #include "src/common/error.h"
+#include "src/inspect/surface_actor.h"
 #include "src/mesh/shell_shape.h"
 #include "src/mesh/surface_mesher.h"
 #include "src/pipeline/water_budget.h"
@@ -59,8 +63,15 @@ namespace {
 
 void set_surface(ShellStep& step, bool outer, render::TriangleMesh mesh) {
   auto shared = std::make_shared<const render::TriangleMesh>(std::move(mesh));
-  (outer ? step.outer_view : step.inner_view) = to_view_mesh(*shared);
+  inspect::TriangleMesh& view = outer ? step.outer_view : step.inner_view;
+  view = to_view_mesh(*shared);
   (outer ? step.outer : step.inner) = std::move(shared);
+  // The actor with its smooth normals computed now (the mapper's input filter brought up to
+  // date): the GUI thread's draw then only uploads the triangles.
+  vtkSmartPointer<vtkActor> actor = inspect::surface_actor(
+      view, outer ? inspect::SurfaceRole::outer : inspect::SurfaceRole::inner, /*edges=*/outer);
+  if (vtkAlgorithm* input = actor->GetMapper()->GetInputAlgorithm()) input->Update();
+  (outer ? step.outer_actor : step.inner_actor) = std::move(actor);
 }
 
 }  // namespace

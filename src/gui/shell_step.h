@@ -2,7 +2,10 @@
 // The shell at one step as the GUI shows it: its two surfaces as the renderer takes them (the
 // preview) and as the 3D view draws them (src/inspect), with the solver's row for that step.
 // Made either by meshing the scenario's initial shell (before any simulation) or by reading a
-// simulated, meshed step. Qt-free.
+// simulated, meshed step, on a worker thread. Qt-free (VTK for the 3D view's actors).
+#include <vtkActor.h>
+#include <vtkSmartPointer.h>
+
 #include <memory>
 #include <optional>
 #include <string>
@@ -22,6 +25,10 @@ struct ShellStep {
   std::shared_ptr<const render::TriangleMesh> outer, inner;
   /// the same surfaces for the 3D view (empty when vanished)
   inspect::TriangleMesh outer_view, inner_view;
+  /// and drawn as the 3D view draws them (src/inspect/surface_actor.h), their normals computed
+  /// when the step is made, off the GUI thread: showing a step then only swaps these actors
+  /// (null when the surface has vanished)
+  vtkSmartPointer<vtkActor> outer_actor, inner_actor;
   /// why a surface is missing ("" when both are there)
   std::string note;
 };

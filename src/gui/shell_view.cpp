@@ -77,14 +77,16 @@ void ShellView::show_step(const ShellStep& step, bool frame) {
   if (m_inner) m_renderer->RemoveActor(m_inner);
   m_outer = m_inner = nullptr;
   m_triangles = 0;
-  // Opaque water first, then the translucent ice (depth peeling sorts them anyway).
-  if (!step.inner_view.triangles.empty()) {
-    m_inner = inspect::surface_actor(step.inner_view, inspect::SurfaceRole::inner, false);
+  // Opaque water first, then the translucent ice. The step's actors were built with their
+  // normals off the GUI thread (shell_step.h); each keeps its uploaded triangles, so scrubbing
+  // back over a step only draws.
+  if (step.inner_actor && !step.inner_view.triangles.empty()) {
+    m_inner = step.inner_actor;
     m_renderer->AddActor(m_inner);
     m_triangles += static_cast<long>(step.inner_view.triangles.size());
   }
-  if (!step.outer_view.triangles.empty()) {
-    m_outer = inspect::surface_actor(step.outer_view, inspect::SurfaceRole::outer, true);
+  if (step.outer_actor && !step.outer_view.triangles.empty()) {
+    m_outer = step.outer_actor;
     m_renderer->AddActor(m_outer);
     m_triangles += static_cast<long>(step.outer_view.triangles.size());
   }

@@ -6,6 +6,7 @@
 #include "sim/simulate.h"
 #include "src/common/atomic_file.h"
 #include "src/common/error.h"
+#include "src/common/interrupt.h"
 #include "src/gui/preview_renderer.h"
 #include "src/mesh/mesh_series.h"
 
@@ -47,6 +48,23 @@ std::shared_ptr<const SimulationRun> SimulationRunner::result() const {
   return m_result;
 }
 
+mesh::MeshManifest SimulationRunner::mesh_cancellably(const std::filesystem::path& simdir,
+                                                      const mesh::MeshOptions& options) {
+  for (;;) {
+    try {
+      return mesh::mesh_simulation_folder(
+          simdir, options,
+          [this](std::int64_t done, std::int64_t total) { emit progress("mesh", done, total); });
+    } catch (const Interrupted&) {
+      // The process-wide interrupt: a film's cancel (film_runner.h) or Ctrl-C. The mesher stopped
+      // cleanly; mesh again once it is lowered, unless this run is cancelled too.
+      while (interrupt_requested() && !m_cancel)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      if (m_cancel) throw Cancelled{};
+    }
+  }
+}
+
 void SimulationRunner::run(pipeline::RunScenario sc) {
   lower_thread_priority();
   try {
@@ -71,9 +89,7 @@ void SimulationRunner::run(pipeline::RunScenario sc) {
     if (m_cancel) throw Cancelled{};
     // 2. mesh every step (OpenMP inside; not interruptible)
     t = std::chrono::steady_clock::now();
-    const mesh::MeshManifest manifest = mesh::mesh_simulation_folder(
-        simdir, sc.mesh,
-        [this](std::int64_t done, std::int64_t total) { emit progress("mesh", done, total); });
+    const mesh::MeshManifest manifest = mesh_cancellably(simdir, sc.mesh);
     run->mesh_seconds = since(t);
     if (m_cancel) throw Cancelled{};
     // 3. load every step's surfaces for the slider

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "src/gui/shell_step.h"
+#include "src/mesh/mesh_series.h"
 
 namespace thaw::gui {
 
@@ -50,6 +51,10 @@ class SimulationRunner : public QObject {
 
  private:
   void run(pipeline::RunScenario scenario);
+  /// Meshes every step of `simdir` (src/mesh); a process-wide interrupt that is not this run's
+  /// cancel (a film's cancel) makes it mesh again.
+  mesh::MeshManifest mesh_cancellably(const std::filesystem::path& simdir,
+                                      const mesh::MeshOptions& options);
 
   QTemporaryDir m_work;
   std::thread m_thread;

@@ -1,6 +1,7 @@
 // The workbench window (QTest, under $DISPLAY or a private Xvfb): editing through the fields,
 // saving and reloading; a bad value's message and blocked saving; an added object changing the
-// preview; the screenshot of the default with its panels and a non-empty render.
+// preview; a stale preview cancelled by an edit; cancelling and resuming "Render film"; the
+// screenshot of the default with its panels and a non-empty render.
 #include <QVTKOpenGLNativeWidget.h>
 #include <QApplication>
 #include <QLabel>
@@ -14,8 +15,12 @@
 #include <QtTest>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <map>
 #include <memory>
+#include <numeric>
 
+#include "src/common/interrupt.h"
 #include "src/gui/main_window.h"
 #include "src/gui/screenshot.h"
 #include "src/gui/shell_view.h"
@@ -57,6 +62,19 @@ double mean_difference(const QImage& a, const QImage& b) {
              std::abs(qBlue(p) - qBlue(q));
     }
   return sum / (3.0 * a.width() * a.height());
+}
+
+/// Mean grey level of `image` [0, 255].
+double mean_grey(const QImage& image) {
+  double s = 0;
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) s += qGray(image.pixel(x, y));
+  return s / std::max(1, image.width() * image.height());
+}
+
+std::string read_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 /// Standard deviation of the grey level over `r` of `image`.
@@ -281,6 +299,95 @@ class TestMainWindow : public QObject {
     QVERIFY(slider && slider->isEnabled());
     slider->setValue(2);
     QCOMPARE(w.preview_image().size(), QSize(64, 48));  // the frame, not the 320x240 preview
+  }
+
+  // Cancel from the window uses the pipeline's interrupt: the run stops at a safe point with no
+  // temporary or partial file, no film; Render film into the same folder then resumes: the
+  // frames already there are kept as they were (not rendered again) and the rest are made.
+  void cancelFilmLeavesNothingHalfWrittenAndResumes() {
+    ScenarioDocument doc;
+    doc.set("film.frames", 8LL);
+    doc.set("render.image.width", 160LL);
+    doc.set("render.image.height", 120LL);
+    MainWindow w{doc};
+    w.show();
+    QSignalSpy cancelled(&w, &MainWindow::filmCancelled);
+    QSignalSpy finished(&w, &MainWindow::filmFinished);
+    const fs::path out = temp_dir() / "cancelled_film";
+    fs::remove_all(out);
+    QVERIFY(w.start_film(out));
+    // Cancel once the first frame is written (the film's frames come after the simulation).
+    QTRY_VERIFY_WITH_TIMEOUT(fs::exists(out / "frames/frame_000000.png") || !w.film_running(),
+                             300000);
+    QVERIFY2(w.film_running(), "the film finished before it could be cancelled");
+    auto* cancel = w.findChild<QPushButton*>("film_cancel_button");
+    QVERIFY(cancel && cancel->isEnabled());
+    cancel->click();
+    QTRY_VERIFY_WITH_TIMEOUT(cancelled.count() == 1, 120000);
+    QCOMPARE(finished.count(), 0);
+    QVERIFY(!w.film_running());
+    QVERIFY(!thaw::interrupt_requested());  // lowered again for the rest of the window
+    std::map<fs::path, std::string> kept;
+    for (const auto& e : fs::recursive_directory_iterator(out)) {
+      QVERIFY2(e.path().filename().string().find(".tmp") == std::string::npos, e.path().c_str());
+      if (e.path().parent_path().filename() == "frames") kept[e.path()] = read_bytes(e.path());
+    }
+    QVERIFY(!kept.empty());
+
+    QVERIFY(!fs::exists(out / "melt.mp4"));
+    for (const auto& [path, bytes] : kept) {  // whole PNGs, not cut short
+      QImage frame(QString::fromStdString(path.string()));
+      QCOMPARE(frame.size(), QSize(160, 120));
+    }
+    std::map<fs::path, fs::file_time_type> written;
+    for (const auto& [path, bytes] : kept) written[path] = fs::last_write_time(path);
+
+    QVERIFY(w.start_film(out));
+    QTRY_VERIFY_WITH_TIMEOUT(finished.count() == 1, 300000);
+    QVERIFY(fs::exists(out / "melt.mp4"));
+    // (the film's frames: film.frames = 8 less those after the break-through)
+    QVERIFY2(kept.size() < w.film_frames().size(),
+             "every frame had been rendered: nothing was cancelled");
+    for (const auto& [path, bytes] : kept) {
+      QCOMPARE(read_bytes(path), bytes);
+      QVERIFY2(fs::last_write_time(path) == written[path], path.c_str());  // resumed, not redone
+    }
+  }
+
+  // An edit while a pass renders abandons that pass (its remaining tiles are skipped) and the
+  // window shows only the new scenario's images from then on, in pass order.
+  void anEditCancelsTheStalePreview() {
+    MainWindow w{ScenarioDocument()};
+    w.show();
+    QVERIFY(wait_for_full_size(w));
+    QTRY_VERIFY_WITH_TIMEOUT(!w.renderer().busy(), 120000);
+    std::vector<int> shown;
+    std::vector<double> brightness;
+    bool edited_b = false;
+    const std::uint64_t abandoned = w.renderer().abandoned_passes();
+    // Edit A brightens (exposure +2 stops); as soon as its quick pass shows, edit B darkens
+    // (-2 stops): A's next pass is rendering then.
+    QObject::connect(&w, &MainWindow::previewShown, &w, [&](int pass) {
+      if (!edited_b) {
+        QCOMPARE(pass, 0);
+        brightness.push_back(mean_grey(w.preview_image()));
+        edited_b = true;
+        QVERIFY(w.apply_edit("render.image.exposure", -2.0));
+        return;
+      }
+      shown.push_back(pass);
+      brightness.push_back(mean_grey(w.preview_image()));
+    });
+    QVERIFY(w.apply_edit("render.image.exposure", 2.0));
+    QTRY_VERIFY_WITH_TIMEOUT(!shown.empty() && shown.back() == w.preview_passes() - 1, 120000);
+    QVERIFY(w.renderer().abandoned_passes() > abandoned);
+    std::vector<int> in_order(static_cast<std::size_t>(w.preview_passes()));
+    std::iota(in_order.begin(), in_order.end(), 0);
+    QCOMPARE(shown, in_order);  // B's passes only, each once
+    // 4 stops apart: B's images are far darker than A's (a stale A image would not be).
+    for (std::size_t k = 1; k < brightness.size(); ++k)
+      QVERIFY2(brightness[k] < 0.5 * brightness[0],
+               qPrintable(QString("%1 vs %2").arg(brightness[k]).arg(brightness[0])));
   }
 
   void screenshotOfTheDefaultHasThePanelsAndARender() {
