@@ -195,6 +195,7 @@ class TestMainWindow : public QObject {
     // The ice medium's index as Sellmeier coefficients.
     w.modify([](ScenarioDocument& d) {
       d.remove("render.media.ice.ior");
+      d.remove("render.media.ice.preset");
       d.set("render.media.ice.sellmeier.B", std::array<double, 3>{0.7, 0.0, 0.0});
       d.set("render.media.ice.sellmeier.C", std::array<double, 3>{0.01, 0.0, 0.0});
     });

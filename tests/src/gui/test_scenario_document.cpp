@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -208,12 +209,13 @@ TEST(ScenarioDocument, ALayoutNotEditableInPlaceIsReserialisedCorrectly) {
   // [render.image] written with dotted keys under [render]: a new key cannot go in place; the
   // document is re-serialised (comments lost, said by layout_kept) and still right.
   std::string text = pipeline::default_run_scenario_text();
-  text.replace(text.find("[render.image]\nwidth = 640"), 26, "[render]\nimage.width = 640");
-  for (const char* k : {"height", "samples_per_pixel", "min_samples", "adaptive_threshold",
-                        "max_depth", "background"}) {
-    const auto at = text.find(std::string("\n") + k + " = ", text.find("image.width"));
-    text.insert(at + 1, "image.");
-  }
+  const auto header = text.find("[render.image]\n");
+  ASSERT_NE(header, std::string::npos);
+  text.replace(header, 15, "[render]\n");
+  // Every key line of the section, up to the next header, becomes image.KEY.
+  for (auto at = text.find('\n', header) + 1; at < text.size() && text[at] != '[';
+       at = text.find('\n', at) + 1)
+    if (std::isalpha(static_cast<unsigned char>(text[at]))) text.insert(at, "image.");
   ScenarioDocument doc = ScenarioDocument::from_text(text, "dotted.toml");
   ASSERT_TRUE(doc.check().ok()) << doc.check().message;
   doc.set("render.image.exposure", 0.5);
