@@ -5,6 +5,10 @@
 #include <cmath>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
 #include "src/common/check.h"
 
 namespace thaw::render::photon {
@@ -85,7 +89,7 @@ PhotonMap::PhotonMap(const std::vector<Photon>& photons, float radius, double ph
     : m_radius(radius) {
   THAW_CHECK(radius > 0.0f && std::isfinite(radius), "photon map radius must be positive");
   if (photons.empty()) return;
-  THAW_CHECK(photons.size() < (1u << 31), "too many photons for one map");
+  THAW_CHECK(photons.size() < (1u << 30), "too many photons for one map");
   // Pilot count: the photons in the 8 grid cells around each photon, an O(1) estimate of the
   // local density (a per-photon neighbour search cost as much as the frame's queries).
   const PilotGrid pilot(photons, radius);
@@ -96,12 +100,34 @@ PhotonMap::PhotonMap(const std::vector<Photon>& photons, float radius, double ph
     out.inv_radius2 = 1.0f / (radius * scale * radius * scale);
     m_photons.push_back(out);
   }
-  m_nodes.reserve(2 * (photons.size() / kLeafPhotons + 1));
-  m_nodes.emplace_back();
-  build(0, 0, static_cast<std::uint32_t>(m_photons.size()));
+  std::vector<Node> nodes;
+  nodes.reserve(2 * (photons.size() / kLeafPhotons + 1));
+  nodes.emplace_back();
+  build(nodes, 0, 0, static_cast<std::uint32_t>(m_photons.size()));
+  m_wide.emplace_back();
+  if (nodes[0].count > 0) {  // a single leaf: a root with one child
+    WideNode& root = m_wide[0];
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < 4; ++i) {
+        root.lo[a][i] = std::numeric_limits<float>::infinity();
+        root.hi[a][i] = -std::numeric_limits<float>::infinity();
+      }
+    root.lo[0][0] = nodes[0].lo.x;
+    root.lo[1][0] = nodes[0].lo.y;
+    root.lo[2][0] = nodes[0].lo.z;
+    root.hi[0][0] = nodes[0].hi.x;
+    root.hi[1][0] = nodes[0].hi.y;
+    root.hi[2][0] = nodes[0].hi.z;
+    const std::uint32_t block = add_block(nodes[0]);
+    m_wide[0].child[0] = block;
+    m_wide[0].leaf_mask = 1;
+  } else {
+    collapse(nodes, 0, 0);
+  }
 }
 
-void PhotonMap::build(std::uint32_t node, std::uint32_t begin, std::uint32_t end) {
+void PhotonMap::build(std::vector<Node>& nodes, std::uint32_t node, std::uint32_t begin,
+                      std::uint32_t end) {
   Vec3 lo = m_photons[begin].position, hi = lo, clo = lo, chi = lo;
   for (std::uint32_t i = begin; i < end; ++i) {
     const Photon& ph = m_photons[i];
@@ -112,11 +138,11 @@ void PhotonMap::build(std::uint32_t node, std::uint32_t begin, std::uint32_t end
     clo = min(clo, ph.position);
     chi = max(chi, ph.position);
   }
-  m_nodes[node].lo = lo;
-  m_nodes[node].hi = hi;
+  nodes[node].lo = lo;
+  nodes[node].hi = hi;
   if (end - begin <= kLeafPhotons) {
-    m_nodes[node].first = begin;
-    m_nodes[node].count = end - begin;
+    nodes[node].first = begin;
+    nodes[node].count = end - begin;
     return;
   }
   // Median split along the widest axis of the positions (deterministic: the tree and its order
@@ -127,59 +153,163 @@ void PhotonMap::build(std::uint32_t node, std::uint32_t begin, std::uint32_t end
   std::nth_element(
       m_photons.begin() + begin, m_photons.begin() + mid, m_photons.begin() + end,
       [axis](const Photon& a, const Photon& b) { return a.position[axis] < b.position[axis]; });
-  const auto child = static_cast<std::uint32_t>(m_nodes.size());
-  m_nodes[node].first = child;
-  m_nodes[node].count = 0;
-  m_nodes.emplace_back();
-  m_nodes.emplace_back();
-  build(child, begin, mid);
-  build(child + 1, mid, end);
+  const auto child = static_cast<std::uint32_t>(nodes.size());
+  nodes[node].first = child;
+  nodes[node].count = 0;
+  nodes.emplace_back();
+  nodes.emplace_back();
+  build(nodes, child, begin, mid);
+  build(nodes, child + 1, mid, end);
+}
+
+std::uint32_t PhotonMap::add_block(const Node& leaf) {
+  PhotonBlock b{};
+  for (std::uint32_t k = 0; k < leaf.count; ++k) {
+    const Photon& ph = m_photons[leaf.first + k];
+    b.x[k] = ph.position.x;
+    b.y[k] = ph.position.y;
+    b.z[k] = ph.position.z;
+    b.nx[k] = ph.normal.x;
+    b.ny[k] = ph.normal.y;
+    b.nz[k] = ph.normal.z;
+    b.inv_r2[k] = ph.inv_radius2;
+    b.r[k] = ph.power.r;
+    b.g[k] = ph.power.g;
+    b.b[k] = ph.power.b;
+  }
+  m_blocks.push_back(b);
+  return static_cast<std::uint32_t>(m_blocks.size() - 1);
+}
+
+void PhotonMap::collapse(const std::vector<Node>& nodes, std::uint32_t node, std::uint32_t wide) {
+  // The node's children, and the children of interior children: up to four slots.
+  std::uint32_t slots[4];
+  int n = 0;
+  for (std::uint32_t c = nodes[node].first; c < nodes[node].first + 2; ++c) {
+    if (nodes[c].count > 0) {
+      slots[n++] = c;
+    } else {
+      slots[n++] = nodes[c].first;
+      slots[n++] = nodes[c].first + 1;
+    }
+  }
+  WideNode w{};
+  for (int i = 0; i < 4; ++i) {
+    const bool used = i < n;
+    const Vec3 lo =
+        used ? nodes[slots[i]].lo : Vec3{1, 1, 1} * std::numeric_limits<float>::infinity();
+    const Vec3 hi =
+        used ? nodes[slots[i]].hi : Vec3{1, 1, 1} * -std::numeric_limits<float>::infinity();
+    for (int a = 0; a < 3; ++a) {
+      w.lo[a][i] = lo[a];
+      w.hi[a][i] = hi[a];
+    }
+  }
+  m_wide[wide] = w;
+  for (int i = 0; i < n; ++i) {
+    const Node& c = nodes[slots[i]];
+    if (c.count > 0) {
+      const std::uint32_t block = add_block(c);
+      m_wide[wide].child[i] = block;
+      m_wide[wide].leaf_mask |= 1u << i;
+    } else {
+      const auto child = static_cast<std::uint32_t>(m_wide.size());
+      m_wide.emplace_back();
+      m_wide[wide].child[i] = child;
+      collapse(nodes, slots[i], child);
+    }
+  }
 }
 
 Rgb PhotonMap::irradiance(const Vec3& p, const Vec3& n) const {
-  if (m_nodes.empty()) return {};
-  float sum_r = 0, sum_g = 0, sum_b = 0;
-  const auto inside = [&p](const Node& nd) {
-    return p.x >= nd.lo.x && p.y >= nd.lo.y && p.z >= nd.lo.z && p.x <= nd.hi.x && p.y <= nd.hi.y &&
-           p.z <= nd.hi.z;
-  };
-  if (!inside(m_nodes[0])) return {};
-  // Depth <= log2(N / kLeafPhotons) + 1 < 32 for N < 2^31 (median splits).
+  if (m_wide.empty()) return {};
+  // Depth <= log2(N / kLeafPhotons) + 1 < 30 binary levels (median splits), <= 15 wide levels
+  // of at most 3 pushes each.
   std::uint32_t stack[64];
   int top = 0;
   std::uint32_t node = 0;
+#if defined(__SSE2__)
+  const __m128 px = _mm_set1_ps(p.x), py = _mm_set1_ps(p.y), pz = _mm_set1_ps(p.z);
+  const __m128 qx = _mm_set1_ps(n.x), qy = _mm_set1_ps(n.y), qz = _mm_set1_ps(n.z);
+  const __m128 one = _mm_set1_ps(1.0f), min_cos = _mm_set1_ps(kMinNormalCos),
+               max_h2 = _mm_set1_ps(kMaxPlaneDistance * kMaxPlaneDistance);
+  __m128 sum_r = _mm_setzero_ps(), sum_g = _mm_setzero_ps(), sum_b = _mm_setzero_ps();
   while (true) {
-    const Node& nd = m_nodes[node];
-    if (nd.count > 0) {
-      for (std::uint32_t i = nd.first; i < nd.first + nd.count; ++i) {
-        const Photon& ph = m_photons[i];
-        const Vec3 v = ph.position - p;
-        const float u = dot(v, v) * ph.inv_radius2;
-        if (u >= 1.0f || dot(ph.normal, n) < kMinNormalCos) continue;
+    const WideNode& w = m_wide[node];
+    const __m128 in = _mm_and_ps(
+        _mm_and_ps(_mm_and_ps(_mm_cmple_ps(_mm_load_ps(w.lo[0]), px),
+                              _mm_cmple_ps(px, _mm_load_ps(w.hi[0]))),
+                   _mm_and_ps(_mm_cmple_ps(_mm_load_ps(w.lo[1]), py),
+                              _mm_cmple_ps(py, _mm_load_ps(w.hi[1])))),
+        _mm_and_ps(_mm_cmple_ps(_mm_load_ps(w.lo[2]), pz), _mm_cmple_ps(pz, _mm_load_ps(w.hi[2]))));
+    auto mask = static_cast<unsigned>(_mm_movemask_ps(in));
+    while (mask) {
+      const int i = __builtin_ctz(mask);
+      mask &= mask - 1;
+      if (!(w.leaf_mask & (1u << i))) {
+        stack[top++] = w.child[i];
+        continue;
+      }
+      const PhotonBlock& b = m_blocks[w.child[i]];
+      const __m128 vx = _mm_sub_ps(_mm_load_ps(b.x), px), vy = _mm_sub_ps(_mm_load_ps(b.y), py),
+                   vz = _mm_sub_ps(_mm_load_ps(b.z), pz);
+      const __m128 inv = _mm_load_ps(b.inv_r2);
+      const __m128 u = _mm_mul_ps(
+          _mm_add_ps(_mm_add_ps(_mm_mul_ps(vx, vx), _mm_mul_ps(vy, vy)), _mm_mul_ps(vz, vz)), inv);
+      const __m128 cos_n = _mm_add_ps(
+          _mm_add_ps(_mm_mul_ps(_mm_load_ps(b.nx), qx), _mm_mul_ps(_mm_load_ps(b.ny), qy)),
+          _mm_mul_ps(_mm_load_ps(b.nz), qz));
+      const __m128 h =
+          _mm_add_ps(_mm_add_ps(_mm_mul_ps(vx, qx), _mm_mul_ps(vy, qy)), _mm_mul_ps(vz, qz));
+      const __m128 ok = _mm_and_ps(_mm_and_ps(_mm_cmplt_ps(u, one), _mm_cmpge_ps(cos_n, min_cos)),
+                                   _mm_cmple_ps(_mm_mul_ps(_mm_mul_ps(h, h), inv), max_h2));
+      const __m128 wgt = _mm_and_ps(_mm_mul_ps(_mm_sub_ps(one, u), inv), ok);
+      sum_r = _mm_add_ps(sum_r, _mm_mul_ps(wgt, _mm_load_ps(b.r)));
+      sum_g = _mm_add_ps(sum_g, _mm_mul_ps(wgt, _mm_load_ps(b.g)));
+      sum_b = _mm_add_ps(sum_b, _mm_mul_ps(wgt, _mm_load_ps(b.b)));
+    }
+    if (top == 0) break;
+    node = stack[--top];
+  }
+  float r[4], g[4], bl[4];
+  _mm_storeu_ps(r, sum_r);
+  _mm_storeu_ps(g, sum_g);
+  _mm_storeu_ps(bl, sum_b);
+  const float sr = (r[0] + r[1]) + (r[2] + r[3]), sg = (g[0] + g[1]) + (g[2] + g[3]),
+              sb = (bl[0] + bl[1]) + (bl[2] + bl[3]);
+#else
+  float sr = 0, sg = 0, sb = 0;
+  while (true) {
+    const WideNode& w = m_wide[node];
+    for (int i = 0; i < 4; ++i) {
+      if (!(w.lo[0][i] <= p.x && p.x <= w.hi[0][i] && w.lo[1][i] <= p.y && p.y <= w.hi[1][i] &&
+            w.lo[2][i] <= p.z && p.z <= w.hi[2][i]))
+        continue;
+      if (!(w.leaf_mask & (1u << i))) {
+        stack[top++] = w.child[i];
+        continue;
+      }
+      const PhotonBlock& b = m_blocks[w.child[i]];
+      for (int k = 0; k < 4; ++k) {
+        const Vec3 v{b.x[k] - p.x, b.y[k] - p.y, b.z[k] - p.z};
+        const float u = dot(v, v) * b.inv_r2[k];
+        const float cos_n = b.nx[k] * n.x + b.ny[k] * n.y + b.nz[k] * n.z;
         const float h = dot(v, n);
-        if (h * h * ph.inv_radius2 > kMaxPlaneDistance * kMaxPlaneDistance) continue;
-        const float w = (1.0f - u) * ph.inv_radius2;
-        sum_r += ph.power.r * w;
-        sum_g += ph.power.g * w;
-        sum_b += ph.power.b * w;
-      }
-    } else {
-      const bool a = inside(m_nodes[nd.first]), b = inside(m_nodes[nd.first + 1]);
-      if (a) {
-        if (b) stack[top++] = nd.first + 1;
-        node = nd.first;
-        continue;
-      }
-      if (b) {
-        node = nd.first + 1;
-        continue;
+        if (!(u < 1.0f) || !(cos_n >= kMinNormalCos) ||
+            !(h * h * b.inv_r2[k] <= kMaxPlaneDistance * kMaxPlaneDistance))
+          continue;
+        const float wgt = (1.0f - u) * b.inv_r2[k];
+        sr += wgt * b.r[k];
+        sg += wgt * b.g[k];
+        sb += wgt * b.b[k];
       }
     }
     if (top == 0) break;
     node = stack[--top];
   }
+#endif
   const float norm = 2.0f / kPi;
-  return {sum_r * norm, sum_g * norm, sum_b * norm};
+  return {sr * norm, sg * norm, sb * norm};
 }
 
 }  // namespace thaw::render::photon

@@ -19,7 +19,8 @@
 // side of a thin wall, a ball resting on the floor).
 // Lookup: a bounding volume hierarchy over the photons' kernel balls (each photon's box is its
 // position +- r_p; nodes bound their photons' boxes; leaves of up to kLeafPhotons photons),
-// descended only into nodes whose box contains the query point, so a query examines about the
+// collapsed to 4-wide nodes and 4-photon leaf blocks tested with SSE, descended only into nodes
+// whose box contains the query point, so a query examines about the
 // photons whose kernels reach it, whatever their radii (the "scatter" form of the estimate as a
 // point-in-box query, the reverse of a k-nearest-neighbour search). It replaced seven hashed
 // grids, one per radius class, whose 2 x 2 x 2 cells of 2 r_class gave 8.6 candidates per
@@ -68,17 +69,37 @@ class PhotonMap {
   Rgb irradiance(const Vec3& p, const Vec3& n) const;
 
  private:
-  /// A tree node: the box of its photons' kernel balls; a leaf (count > 0) holds photons
-  /// [first, first + count), an inner node (count = 0) has children first and first + 1.
+  /// A node of the binary build tree: the box of its photons' kernel balls; a leaf (count > 0)
+  /// holds photons [first, first + count), an inner node (count = 0) has children first and
+  /// first + 1.
   struct Node {
     Vec3 lo, hi;
     std::uint32_t first = 0, count = 0;
   };
-  /// Builds the subtree of m_photons[begin, end) into m_nodes[node].
-  void build(std::uint32_t node, std::uint32_t begin, std::uint32_t end);
+  /// The traversal tree: the binary tree collapsed into 4-wide nodes, the children's boxes as
+  /// structure of arrays (tested together with SSE, as render/accel/bvh.h does for rays).
+  /// child[i]: a WideNode index, or for a leaf (leaf bit i set) a PhotonBlock index; unused
+  /// slots have an empty box.
+  struct alignas(16) WideNode {
+    float lo[3][4], hi[3][4];
+    std::uint32_t child[4];
+    std::uint32_t leaf_mask = 0;
+  };
+  /// The (up to) 4 photons of a leaf as structure of arrays, tested together; unused lanes have
+  /// zero power and inv_radius2 (they add 0).
+  struct alignas(16) PhotonBlock {
+    float x[4], y[4], z[4], nx[4], ny[4], nz[4], inv_r2[4], r[4], g[4], b[4];
+  };
+  /// Builds the subtree of m_photons[begin, end) into nodes[node].
+  void build(std::vector<Node>& nodes, std::uint32_t node, std::uint32_t begin, std::uint32_t end);
+  /// Collapses binary node `node` (interior) into m_wide[wide].
+  void collapse(const std::vector<Node>& nodes, std::uint32_t node, std::uint32_t wide);
+  /// A leaf's photons as a block; returns its index.
+  std::uint32_t add_block(const Node& leaf);
 
   std::vector<Photon> m_photons;
-  std::vector<Node> m_nodes;
+  std::vector<WideNode> m_wide;
+  std::vector<PhotonBlock> m_blocks;
   float m_radius = 0;
 };
 
