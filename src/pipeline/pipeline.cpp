@@ -57,6 +57,7 @@ class StageClock {
     m_report.stages.push_back(m_timing);
   }
   StageTiming& timing() { return m_timing; }
+  double elapsed_s() const { return std::chrono::duration<double>(now() - m_start).count(); }
 
  private:
   static std::chrono::steady_clock::time_point now() { return std::chrono::steady_clock::now(); }
@@ -464,6 +465,9 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
                           sc.film.film_fps(), 18};
       encode_mp4(request, report.film);
       if (sc.film.gif) encode_gif(request, report.gif);
+      say(o, stage_title(4, "film") + ": " + std::to_string(frame_count) + "/" +
+                 std::to_string(frame_count) + " done in " +
+                 ProgressReporter::format_duration(clock.elapsed_s()));
       manifest.mark_stage_complete("film");
       clock.timing().items_done = 1;
     }

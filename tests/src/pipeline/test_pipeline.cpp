@@ -47,6 +47,11 @@ TEST_F(ThawRun, TinyScenarioEndToEndThenNothingToDo) {
   const fs::path out = m_dir / "out";
   const auto first = thaw({"run", kTiny.string(), "--out", out.string()});
   ASSERT_EQ(first.exit_code, 0) << first.output;
+  // Every stage's progress ends clearly (issue 13), and the events are printed.
+  for (const char* end :
+       {"[1/5] simulate: 4/4 ", "[2/5] mesh: ", "[3/5] render: 4/4 done in ",
+        "[4/5] film: 4/4 done in ", "[5/5] inspect: 4/4 done in ", "event melt_onset at t = "})
+    EXPECT_NE(first.output.find(end), std::string::npos) << end << "\n" << first.output;
   EXPECT_EQ(count_video_frames(out / "melt.mp4"), 4);
   EXPECT_GT(fs::file_size(out / "plot.png"), 1000u);
   EXPECT_NE(read_file(out / "meshes.pvd").find("<VTKFile type=\"Collection\""), std::string::npos);
