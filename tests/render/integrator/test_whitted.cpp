@@ -16,6 +16,7 @@
 #include <cmath>
 #include <string>
 
+#include "render/media/medium_library.h"
 #include "render/photon/caustic_map.h"
 #include "render/scene/scene_parser.h"
 #include "tests/render/test_util.h"
@@ -672,7 +673,7 @@ TEST(Whitted, RgbAbsorptionIsBeerLambertPerChannel) {
   spec.name = "murky";
   spec.preset = "water-0c";
   spec.absorption_scale = 20.0;
-  murky.spec = spec;
+  murky.spec = media::resolve_preset(spec);  // presets are the file layer's (medium_library.h)
   d.media.push_back(murky);
   add_plane(d, MaterialDescription::Kind::emissive, {1.0, 1.0, 1.0});
   d.materials.back().emission = {1.0, 1.0, 1.0};
