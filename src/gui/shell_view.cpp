@@ -91,8 +91,8 @@ void ShellView::show_step(const ShellStep& step, bool frame) {
     m_triangles += static_cast<long>(step.outer_view.triangles.size());
   }
   char text[160];
-  std::snprintf(text, sizeof text, "t = %.0f s   water %.1f mm   ice %.1f mm%s", step.row.time_s,
-                1e3 * step.row.inner_radius_m, 1e3 * step.row.outer_radius_m,
+  std::snprintf(text, sizeof text, "t = %.0f s   water radius %.1f mm   ice radius %.1f mm%s",
+                step.row.time_s, 1e3 * step.row.inner_radius_m, 1e3 * step.row.outer_radius_m,
                 m_triangles == 0 ? "   (no surface)" : "");
   m_label->SetInput(text);
   if (frame) {
