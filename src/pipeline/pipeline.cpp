@@ -204,54 +204,81 @@ void on_every_rank(RunRanks& ranks, Step&& step) {
   if (!error.empty()) throw UserError("", "", error);
 }
 
-}  // namespace
+/// What the stages of one run share: the scenario and options (quiet on all but the leader, which
+/// alone speaks and keeps the manifest), the ranks, the folders, the stages' fingerprints, the
+/// manifest and the report.
+struct Run {
+  Run(const RunScenario& scenario, const RunOptions& opt, RunRanks& run_ranks)
+      : sc(scenario),
+        o(opt),
+        ranks(run_ranks),
+        leader(run_ranks.leader()),
+        subset(opt.frames.has_value()),
+        out(opt.out_dir),
+        simdir(out / "sim"),
+        mesh_dir(simdir / "mesh"),
+        frames_dir(out / "frames"),
+        times(frame_times(scenario)),
+        manifest(out / "run_manifest.json") {
+    o.quiet = opt.quiet || !leader;
+  }
+  bool wanted(const std::string& stage) const { return o.stage.empty() || o.stage == stage; }
 
-RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
-  const auto start = std::chrono::steady_clock::now();
-  const std::unique_ptr<RunRanks> alone = opt.ranks ? nullptr : single_process();
-  RunRanks& ranks = opt.ranks ? *opt.ranks : *alone;
-  const bool leader = ranks.leader();
-  // Only the leader speaks and keeps the manifest; the other ranks render and write their items.
-  RunOptions o = opt;
-  o.quiet = opt.quiet || !leader;
-  const auto wanted = [&](const std::string& stage) { return o.stage.empty() || o.stage == stage; };
-  // Stages after render need every frame; a --frames or --stage render process leaves them.
-  const bool subset = o.frames.has_value();
-
+  const RunScenario& sc;
+  RunOptions o;
+  RunRanks& ranks;
+  const bool leader;
+  /// --frames: stages after render need every frame, so this process leaves them.
+  const bool subset;
+  const fs::path out, simdir, mesh_dir, frames_dir;
+  const std::vector<double> times;
+  ContentHash sim_hash, mesh_hash, render_hash;
+  bool exr_frames = false;
+  std::unique_ptr<CaptionFont> font;
+  RunManifest manifest;
   RunReport report;
-  const fs::path out = o.out_dir;
-  const fs::path simdir = out / "sim", mesh_dir = simdir / "mesh", frames_dir = out / "frames";
-  const std::vector<double> times = frame_times(sc);
+};
+
+/// Each stage's fingerprint: its scenario sections and the fingerprint of the stage before (and
+/// the caption's font, loaded here: DejaVu Sans, or the bitmap font if it cannot be loaded).
+void fingerprint_stages(Run& r) {
+  const RunScenario& sc = r.sc;
+  ContentHash& sim_hash = r.sim_hash;
+  ContentHash& mesh_hash = r.mesh_hash;
+  ContentHash& render_hash = r.render_hash;
   // What each stage depends on: its scenario sections and the fingerprint of the stage before.
-  ContentHash sim_hash;
   sim_hash.add("simulate").add(THAW_VERSION_STRING).add(sc.simulation_text);
-  for (double t : times) sim_hash.add(t);
-  ContentHash mesh_hash;
+  for (double t : r.times) sim_hash.add(t);
   mesh_hash.add("mesh").add(sim_hash.hex()).add(sc.mesh_text);
-  ContentHash render_hash;
   render_hash.add("render")
       .add(mesh_hash.hex())
       .add(sc.render_text)
       .add(sc.film.caption ? "caption" : "");
-  const bool exr_frames = sc.film.frames_format == FilmSettings::FramesFormat::exr;
-  if (exr_frames) render_hash.add("frames_format=exr");
+  r.exr_frames = sc.film.frames_format == FilmSettings::FramesFormat::exr;
+  if (r.exr_frames) render_hash.add("frames_format=exr");
   // The caption's font: DejaVu Sans, or the bitmap font if it cannot be loaded (said once).
-  std::unique_ptr<CaptionFont> font;
   if (sc.film.caption) {
     std::string problem;
-    font = CaptionFont::load(kDefaultCaptionFont, problem);
-    if (font)
+    r.font = CaptionFont::load(kDefaultCaptionFont, problem);
+    if (r.font)
       render_hash.add_file(kDefaultCaptionFont);
     else
-      say(o, "caption: " + problem + "; using the built-in bitmap font");
+      say(r.o, "caption: " + problem + "; using the built-in bitmap font");
   }
   for (const auto& obj : sc.scene.objects)
     if (!obj.mesh_file.empty())
       render_hash.add_file(obj.mesh_file.is_absolute() ? obj.mesh_file
                                                        : sc.scene.base_dir / obj.mesh_file);
-  RunManifest manifest(out / "run_manifest.json");
-  // --stage: the stages it reads must be up to date; checked before anything is written (by
-  // every rank, so that all of them stop).
+}
+
+/// --stage: the stages it reads must be up to date; checked before anything is written (by every
+/// rank, so that all of them stop).
+void check_stage_inputs(Run& r) {
+  const RunOptions& o = r.o;
+  const ContentHash& sim_hash = r.sim_hash;
+  const ContentHash& mesh_hash = r.mesh_hash;
+  const ContentHash& render_hash = r.render_hash;
+  RunManifest& manifest = r.manifest;
   if (!o.stage.empty()) {
     if (o.force)
       throw UserError("", "--force", "redoes every stage: it cannot be combined with --stage");
@@ -264,6 +291,17 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
     for (long i = 0; i < count; ++i)
       require_up_to_date(manifest, reads[i].first, reads[i].second, o);
   }
+}
+
+/// The output folder made ready (stale temporaries removed, --force, scenario.toml) by the
+/// leader, then every rank goes on together.
+void prepare_output(Run& r) {
+  const RunOptions& o = r.o;
+  RunRanks& ranks = r.ranks;
+  const bool leader = r.leader;
+  const bool subset = r.subset;
+  const fs::path& out = r.out;
+  RunManifest& manifest = r.manifest;
   if (leader) {
     ensure_directory(out);
     // A run killed while writing leaves its temporary file behind; the finished outputs are
@@ -275,10 +313,21 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
   if (leader && !o.scenario_text.empty()) write_file_atomic(out / "scenario.toml", o.scenario_text);
   ranks.barrier();
   if (o.jobs > 0) omp_set_num_threads(o.jobs);
+}
 
-  // 1. simulate, sampled at exactly the frame times (the leader; the others wait)
+/// 1. Simulate, sampled at exactly the frame times (the leader; the others wait). Returns the
+/// interface history every later stage reads.
+std::vector<sim::InterfaceRecord> simulate_stage(Run& r) {
+  const RunScenario& sc = r.sc;
+  const RunOptions& o = r.o;
+  RunRanks& ranks = r.ranks;
+  const fs::path& simdir = r.simdir;
+  const std::vector<double>& times = r.times;
+  const ContentHash& sim_hash = r.sim_hash;
+  RunManifest& manifest = r.manifest;
+  RunReport& report = r.report;
   on_leader(ranks, [&] {
-    if (wanted("simulate")) {
+    if (r.wanted("simulate")) {
       StageClock clock(report, "simulate");
       const bool up_to_date = manifest.begin_stage("simulate", sim_hash.hex()) &&
                               fs::exists(simdir / "interfaces.csv") &&
@@ -306,13 +355,22 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
     }
   });
   report.events = event_lines(simdir / "summary.json");
-  const std::vector<sim::InterfaceRecord> rows =
-      sim::read_interfaces_csv(simdir / "interfaces.csv");
+  return sim::read_interfaces_csv(simdir / "interfaces.csv");
+}
 
-  // 2. mesh the inner and outer surface of every frame: every rank meshes (distinct surfaces,
-  // then the steps' files, handed out like frames); the leader checks, writes the manifest and
-  // commits the folder
-  if (wanted("mesh")) {
+/// 2. Mesh the inner and outer surface of every frame: every rank meshes (distinct surfaces, then
+/// the steps' files, handed out like frames); the leader checks, writes the manifest and commits.
+void mesh_stage(Run& r, const std::vector<sim::InterfaceRecord>& rows) {
+  const RunScenario& sc = r.sc;
+  const RunOptions& o = r.o;
+  RunRanks& ranks = r.ranks;
+  const bool leader = r.leader;
+  const fs::path& simdir = r.simdir;
+  const fs::path& mesh_dir = r.mesh_dir;
+  const ContentHash& mesh_hash = r.mesh_hash;
+  RunManifest& manifest = r.manifest;
+  RunReport& report = r.report;
+  if (r.wanted("mesh")) {
     StageClock clock(report, "mesh");
     mesh::MeshOptions options = sc.mesh;
     options.jobs = o.jobs;
@@ -339,13 +397,67 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
       });
     }
   }
-  if (o.stage == "simulate") return finish_report(report, start);
-  const mesh::MeshManifest meshes = mesh::read_mesh_manifest(mesh_dir / "manifest.json");
+}
 
-  // 3. render one frame per step
+/// The frames this process is asked for: --frames (less those past a simulation that ended
+/// early, said once) or all of them.
+std::vector<long> selected_frames(const Run& r, long frame_count) {
+  std::vector<long> selected;
+  if (!r.o.frames) {
+    for (long k = 0; k < frame_count; ++k) selected.push_back(k);
+    return selected;
+  }
+  selected = r.o.frames->resolve(static_cast<long>(r.times.size()));
+  // The simulation may have ended early (no ice left): those frames do not exist.
+  const auto past =
+      std::find_if(selected.begin(), selected.end(), [&](long k) { return k >= frame_count; });
+  if (past != selected.end())
+    say(r.o, stage_title(3, "render") + ": frames from " + std::to_string(*past) +
+                 " on do not exist (the simulation ended early with " +
+                 std::to_string(frame_count) + " frames)");
+  selected.erase(past, selected.end());
+  return selected;
+}
+
+/// Renders frame k and writes its PNG (and EXR) atomically; nothing if interrupted.
+void render_frame(const Run& r, const RunScenario& framed, const mesh::MeshManifest& meshes,
+                  const std::vector<WaterBudget>& water, long k) {
+  const RunScenario& sc = r.sc;
+  const fs::path& frames_dir = r.frames_dir;
+  throw_if_interrupted();
+  const mesh::StepRecord& step = meshes.steps[static_cast<std::size_t>(k)];
+  const render::Scene scene = render::build_scene(frame_scene(
+      framed, r.mesh_dir, meshes.geometry, step, water.at(static_cast<std::size_t>(step.step))));
+  render::RenderOptions ro;
+  ro.threads = r.o.jobs;
+  render::RenderResult result = render::render(scene, ro);
+  throw_if_interrupted();  // the render skipped its remaining tiles: write nothing
+  if (r.exr_frames) {      // for compositing: no caption, linear, with the AOV layers
+    const render::AovImage aovs = render::render_aovs(scene, r.o.jobs);
+    render::write_exr(
+        frames_dir / (frame_name(k) + ".exr"), result.image, &aovs,
+        {sc.source_name, step.time_s, sc.scene.image.samples_per_pixel, sc.scene.image.exposure});
+  }
+  if (sc.film.caption) stamp_frame_caption(result.image, step.time_s, r.font.get());
+  render::write_png(frames_dir / (frame_name(k) + ".png"), result.image, sc.scene.image.exposure);
+}
+
+/// 3. Render one frame per step, handed out over the ranks. Returns whether every frame of the run
+/// (not only this process's) is done, which the film needs.
+bool render_stage(Run& r, const mesh::MeshManifest& meshes,
+                  const std::vector<sim::InterfaceRecord>& rows) {
+  const RunScenario& sc = r.sc;
+  const RunOptions& o = r.o;
+  RunRanks& ranks = r.ranks;
+  const bool leader = r.leader;
+  const bool subset = r.subset;
+  const fs::path& out = r.out;
+  const fs::path& frames_dir = r.frames_dir;
+  const ContentHash& render_hash = r.render_hash;
+  const bool exr_frames = r.exr_frames;
+  RunManifest& manifest = r.manifest;
+  RunReport& report = r.report;
   const long frame_count = static_cast<long>(meshes.steps.size());
-  report.frames = static_cast<int>(frame_count);
-  if (o.stage == "mesh") return finish_report(report, start);
   // The built-in camera frames the shell's largest extent over the run: one camera for all frames.
   RunScenario framed = sc;
   if (!sc.camera_set)
@@ -357,7 +469,7 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
       water_budget(rows, meshes.geometry, sc.simulation.materials.ice_density_kg_m3,
                    sc.simulation.materials.water_density_kg_m3);
   bool all_frames_done = true;
-  if (wanted("render")) {
+  if (r.wanted("render")) {
     StageClock clock(report, "render");
     bool complete = false;
     if (leader) {
@@ -373,20 +485,7 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
     ranks.barrier();
     // The leader has (re)started the stage under this fingerprint: read it back on every rank.
     if (!leader) manifest = RunManifest(out / "run_manifest.json");
-    std::vector<long> selected;
-    if (o.frames) {
-      selected = o.frames->resolve(static_cast<long>(times.size()));
-      // The simulation may have ended early (no ice left): those frames do not exist.
-      const auto past =
-          std::find_if(selected.begin(), selected.end(), [&](long k) { return k >= frame_count; });
-      if (past != selected.end())
-        say(o, stage_title(3, "render") + ": frames from " + std::to_string(*past) +
-                   " on do not exist (the simulation ended early with " +
-                   std::to_string(frame_count) + " frames)");
-      selected.erase(past, selected.end());
-    } else {
-      for (long k = 0; k < frame_count; ++k) selected.push_back(k);
-    }
+    const std::vector<long> selected = selected_frames(r, frame_count);
     std::vector<long> todo;
     for (long k : selected)
       if (!(manifest.item_done("render", frame_name(k)) &&
@@ -401,24 +500,7 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
     ranks.farm(
         todo,
         [&](long k) {
-          throw_if_interrupted();
-          const mesh::StepRecord& step = meshes.steps[static_cast<std::size_t>(k)];
-          const render::Scene scene =
-              render::build_scene(frame_scene(framed, mesh_dir, meshes.geometry, step,
-                                              water.at(static_cast<std::size_t>(step.step))));
-          render::RenderOptions ro;
-          ro.threads = o.jobs;
-          render::RenderResult result = render::render(scene, ro);
-          throw_if_interrupted();  // the render skipped its remaining tiles: write nothing
-          if (exr_frames) {        // for compositing: no caption, linear, with the AOV layers
-            const render::AovImage aovs = render::render_aovs(scene, o.jobs);
-            render::write_exr(frames_dir / (frame_name(k) + ".exr"), result.image, &aovs,
-                              {sc.source_name, step.time_s, sc.scene.image.samples_per_pixel,
-                               sc.scene.image.exposure});
-          }
-          if (sc.film.caption) stamp_frame_caption(result.image, step.time_s, font.get());
-          render::write_png(frames_dir / (frame_name(k) + ".png"), result.image,
-                            sc.scene.image.exposure);
+          render_frame(r, framed, meshes, water, k);
           manifest.mark_item_done("render", frame_name(k));
           ++rendered_here;
           return std::string();
@@ -441,15 +523,24 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
                  " rendered); render the rest with --frames, then run thaw run again");
     }
   }
-  if (!leader || o.stage == "render" || !all_frames_done) return finish_report(report, start);
+  return all_frames_done;
+}
 
-  // 4. film
+/// 4. The film (and GIF) from every frame (the leader).
+void film_stage(Run& r, long frame_count) {
+  const RunScenario& sc = r.sc;
+  const RunOptions& o = r.o;
+  const fs::path& out = r.out;
+  const fs::path& frames_dir = r.frames_dir;
+  const ContentHash& render_hash = r.render_hash;
+  RunManifest& manifest = r.manifest;
+  RunReport& report = r.report;
   ContentHash film_hash;
   film_hash.add("film")
       .add(render_hash.hex())
       .add(sc.film_text)
       .add(static_cast<double>(frame_count));
-  if (wanted("film")) {
+  if (r.wanted("film")) {
     report.film = out / "melt.mp4";
     if (sc.film.gif) report.gif = out / "melt.gif";
     StageClock clock(report, "film");
@@ -472,10 +563,20 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
       clock.timing().items_done = 1;
     }
   }
+}
 
-  // 5. inspect: the radius plot, the ParaView series and the Blender OBJ sequence, the surfaces
-  // placed where the film shows them
-  if (wanted("inspect")) {
+/// 5. Inspect: the radius plot, the ParaView series, the Blender OBJ sequence and (3D runs) the
+/// OpenVDB volumes, the surfaces placed where the film shows them (the leader).
+void inspect_stage(Run& r, const mesh::MeshManifest& meshes) {
+  const RunScenario& sc = r.sc;
+  const RunOptions& o = r.o;
+  const fs::path& out = r.out;
+  const fs::path& simdir = r.simdir;
+  const fs::path& mesh_dir = r.mesh_dir;
+  const ContentHash& mesh_hash = r.mesh_hash;
+  RunManifest& manifest = r.manifest;
+  RunReport& report = r.report;
+  if (r.wanted("inspect")) {
     report.plot = out / "plot.png";
     report.pvd = out / "meshes.pvd";
     report.handoff_obj = out / "handoff" / "obj";
@@ -494,7 +595,8 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
       clock.timing().skipped = true;
       say(o, stage_title(5, "inspect") + ": up to date");
     } else {
-      ProgressReporter progress(stage_title(5, "inspect"), frame_count, o.quiet);
+      ProgressReporter progress(stage_title(5, "inspect"), static_cast<long>(meshes.steps.size()),
+                                o.quiet);
       const auto offsets = rendered_offsets(sc, mesh_dir, meshes);
       std::map<long, std::array<double, 3>> offset_of_step;
       for (std::size_t k = 0; k < offsets.size(); ++k)
@@ -517,7 +619,29 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
       clock.timing().items_done = 1;
     }
   }
-  return finish_report(report, start);
+}
+
+}  // namespace
+
+RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::unique_ptr<RunRanks> alone = opt.ranks ? nullptr : single_process();
+  Run r(sc, opt, opt.ranks ? *opt.ranks : *alone);
+  fingerprint_stages(r);
+  check_stage_inputs(r);
+  prepare_output(r);
+  const std::vector<sim::InterfaceRecord> rows = simulate_stage(r);
+  mesh_stage(r, rows);
+  if (r.o.stage == "simulate") return finish_report(r.report, start);
+  const mesh::MeshManifest meshes = mesh::read_mesh_manifest(r.mesh_dir / "manifest.json");
+  const long frame_count = static_cast<long>(meshes.steps.size());
+  r.report.frames = static_cast<int>(frame_count);
+  if (r.o.stage == "mesh") return finish_report(r.report, start);
+  const bool all_frames_done = render_stage(r, meshes, rows);
+  if (!r.leader || r.o.stage == "render" || !all_frames_done) return finish_report(r.report, start);
+  film_stage(r, frame_count);
+  inspect_stage(r, meshes);
+  return finish_report(r.report, start);
 }
 
 }  // namespace thaw::pipeline
