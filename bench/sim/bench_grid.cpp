@@ -3,7 +3,9 @@
 // Target (issue 11): at most 30 s on 2 cores at default resolution. Prints, per run: cells,
 // threads, wall and CPU time, steps, Newton iterations, and cell updates per second (cells x
 // Newton iterations / wall time); then 2 threads against 1 and the cost per halving of the cell.
-// Usage: bench_grid [scenario.toml] (default: the shipped hollow cube)
+// Usage: bench_grid [scenario.toml [THREADS]] (default: the shipped hollow cube); with THREADS,
+// only the default resolution on that many threads (for farm-bench pairs: 2 threads vs 1 as
+// whole processes, alternating, so a drifting machine load affects both alike).
 #include <omp.h>
 
 #include <chrono>
@@ -53,6 +55,10 @@ int main(int argc, char** argv) {
       argc > 1 ? argv[1] : std::string(THAW_SOURCE_DIR) + "/data/scenarios/hollow_cube.toml";
   const thaw::sim::Scenario sc = thaw::sim::read_scenario_file(file);
   const double cell = thaw::sim::effective_cell_size_m(sc);
+  if (argc > 2) {
+    run(sc, std::atoi(argv[2]), cell);
+    return 0;
+  }
   const Run coarse = run(sc, 1, 2 * cell);
   const Run one = run(sc, 1, cell);
   const Run two = run(sc, 2, cell);
