@@ -370,7 +370,10 @@ QWidget* MainWindow::make_simulation_tab() {
   m_scrub_timer = new QTimer(this);
   m_scrub_timer->setSingleShot(true);
   m_scrub_timer->setInterval(120);
-  connect(m_scrub_timer, &QTimer::timeout, this, [this] { request_preview(); });
+  connect(m_scrub_timer, &QTimer::timeout, this, [this] {
+    m_view->settle();
+    request_preview();
+  });
   connect(m_slider, &QSlider::valueChanged, this, [this](int k) { show_step(k); });
   connect(m_runner, &SimulationRunner::progress, this,
           [this](const QString& stage, qint64 done, qint64 total) {
@@ -432,7 +435,7 @@ void MainWindow::show_step(int index) {
   if (!m_run || index < 0 || index >= static_cast<int>(m_run->steps.size())) return;
   m_step = index;
   const ShellStep& step = *m_run->steps[static_cast<std::size_t>(index)];
-  m_view->show_step(step, false);
+  m_view->show_step(step, false, /*moving=*/true);
   m_plot->set_marker(step.row.time_s);
   if (m_slider->value() != index) m_slider->setValue(index);
   m_pass = -1;             // the image shown is of another step now

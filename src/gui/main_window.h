@@ -152,7 +152,8 @@ class MainWindow : public QMainWindow {
   QPushButton* m_cancel_button = nullptr;
   QLabel* m_sim_status = nullptr;
   /// While the slider moves, the preview of the step waits for it to rest (the 3D view follows
-  /// at once): renders restarted at every tick would take the CPU from the GUI thread.
+  /// at once, without the outer surface's edges): renders restarted at every tick would take
+  /// the CPU from the GUI thread.
   QTimer* m_scrub_timer = nullptr;
   ScenePanel* m_scene = nullptr;
   FilmRunner* m_film = nullptr;

@@ -6,6 +6,7 @@
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkLightKit.h>
 #include <vtkNew.h>
+#include <vtkProperty.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
 #include <vtkTextActor.h>
@@ -72,7 +73,17 @@ void ShellView::report_camera() {
   emit cameraMoved();
 }
 
-void ShellView::show_step(const ShellStep& step, bool frame) {
+bool ShellView::edges_shown() const {
+  return m_outer && m_outer->GetProperty()->GetEdgeVisibility();
+}
+
+void ShellView::settle() {
+  if (!m_outer || m_outer->GetProperty()->GetEdgeVisibility()) return;
+  m_outer->GetProperty()->EdgeVisibilityOn();
+  renderWindow()->Render();
+}
+
+void ShellView::show_step(const ShellStep& step, bool frame, bool moving) {
   if (m_outer) m_renderer->RemoveActor(m_outer);
   if (m_inner) m_renderer->RemoveActor(m_inner);
   m_outer = m_inner = nullptr;
@@ -87,6 +98,7 @@ void ShellView::show_step(const ShellStep& step, bool frame) {
   }
   if (step.outer_actor && !step.outer_view.triangles.empty()) {
     m_outer = step.outer_actor;
+    m_outer->GetProperty()->SetEdgeVisibility(!moving);  // the look of surface_actor.h at rest
     m_renderer->AddActor(m_outer);
     m_triangles += static_cast<long>(step.outer_view.triangles.size());
   }

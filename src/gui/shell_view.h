@@ -20,8 +20,13 @@ class ShellView : public QVTKOpenGLNativeWidget {
   Q_OBJECT
  public:
   explicit ShellView(QWidget* parent = nullptr);
-  /// Shows `step`'s surfaces; the camera is framed on them when `frame` (a new scenario).
-  void show_step(const ShellStep& step, bool frame);
+  /// Shows `step`'s surfaces; the camera is framed on them when `frame` (a new scenario). While
+  /// `moving` (the time slider is dragged) the outer surface is drawn without its triangle
+  /// edges: with software OpenGL (llvmpipe) the edges' extra pass made each draw 2.5x slower
+  /// (bench/gui/bench_gui); settle() draws them again once the slider rests.
+  void show_step(const ShellStep& step, bool frame, bool moving = false);
+  /// Draws the shown step with its triangle edges (after a drag of the time slider).
+  void settle();
   /// The view's camera in the meshes' frame (the shell's core at the origin) [m, degrees].
   struct ViewCamera {
     std::array<double, 3> position, focal_point, view_up;
@@ -34,6 +39,8 @@ class ShellView : public QVTKOpenGLNativeWidget {
   void report_camera();
   /// Triangles drawn (both surfaces), for tests.
   long triangles() const { return m_triangles; }
+  /// Whether the outer surface is drawn with its triangle edges (false while the slider moves).
+  bool edges_shown() const;
 
  signals:
   /// The user orbited, panned or zoomed the view (the window writes it back as the scene camera).

@@ -273,6 +273,9 @@ class TestMainWindow : public QObject {
     while (last > 0 && !run->steps[static_cast<std::size_t>(last)]->outer) --last;
     QVERIFY(last > 0);
     slider->setValue(last);
+    // While the slider moves the ice is drawn without its triangle edges; once it rests, with.
+    QVERIFY(!w.shell_view().edges_shown());
+    QTRY_VERIFY_WITH_TIMEOUT(w.shell_view().edges_shown(), 10000);
     QVERIFY(wait_for_full_size(w));
     QVERIFY(mean_difference(at_start, w.preview_image()) > 1.0);
     // An edit of the simulation makes the run stale.
