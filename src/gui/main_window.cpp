@@ -388,6 +388,7 @@ QWidget* MainWindow::make_simulation_tab() {
   };
   connect(m_runner, &SimulationRunner::finished, this, [this, ended] {
     m_run = m_runner->result();
+    m_sim_progress->setFormat("done: %m steps");
     ended(QString("%1 steps: simulated in %2 s, meshed in %3 s, loaded in %4 s. Drag the slider.")
               .arg(m_run->steps.size())
               .arg(m_run->simulate_seconds, 0, 'f', 2)
