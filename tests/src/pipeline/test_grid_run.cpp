@@ -64,6 +64,16 @@ TEST(ThawRunGrid, HollowCubeMeltsBreaksThroughAndIsFilmed) {
   EXPECT_TRUE(steps[steps.size() - 1]["inner"].is_null());
   const auto summary = nlohmann::json::parse(read_file(out / "sim/summary.json"));
   EXPECT_NE(summary.dump().find("break_through"), std::string::npos);
+  // The film opens the shell exactly when the solver does: sealed before its break_through,
+  // open from then on (docs/mesh.md, "Topology as the solver sees it").
+  for (const auto& e : summary["events"]) {
+    if (e["kind"] != "break_through") continue;
+    for (const auto& s : steps) {
+      if (!s["outer"].is_string()) continue;
+      EXPECT_EQ(s["cavities"], s["time_s"].get<double>() < e["time_s"].get<double>() ? 1 : 0)
+          << "step " << s["step"] << " at " << s["time_s"] << " s";
+    }
+  }
   EXPECT_EQ(count_video_frames(out / "melt.mp4"), static_cast<int>(steps.size()));
   // The solver's fields as a ParaView image series, one .vti per step (issue 13).
   EXPECT_TRUE(std::filesystem::exists(out / "fields.pvd"));
