@@ -1,21 +1,23 @@
 #pragma once
-// The radiance of directions that leave the scene: a constant background colour, or a
-// procedural sky (a gradient from the horizon to the zenith above, a ground colour below, joined
-// smoothly across the horizon), so that ice and water refract and reflect a surround with light
-// and dark parts, which is what makes transparent bodies read as transparent. Seen only by
-// rays that escape (camera, reflected, refracted): it is not sampled as a light (Whitted
-// transport; the scene's lights and ambient term light diffuse surfaces). Knows nothing about
-// scenes or rays beyond a direction.
+// The radiance of directions that leave the scene: a constant background colour, a procedural
+// sky (a gradient from the horizon to the zenith above, a ground colour below, joined smoothly
+// across the horizon) or a lat-long HDR image (latlong_map.h, turned about +y), so that ice and
+// water refract and reflect a surround with light and dark parts, which is what makes transparent
+// bodies read as transparent. Seen only by rays that escape (camera, reflected, refracted): it is
+// not sampled as a light (Whitted transport; the scene's lights and ambient term light diffuse
+// surfaces). Knows nothing about scenes or rays beyond a direction.
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
+#include "render/light/latlong_map.h"
 #include "render/math/color.h"
 #include "render/math/vec3.h"
 
 namespace thaw::render {
 
 struct Environment {
-  enum class Kind { constant, sky };
+  enum class Kind { constant, sky, latlong };
   Kind kind = Kind::constant;
   /// constant: the colour; sky: unused
   Rgb background{0.0f, 0.0f, 0.0f};
@@ -26,10 +28,21 @@ struct Environment {
   /// sky: how fast the gradient leaves the horizon colour: L = horizon + (zenith - horizon)
   /// * sin(elevation)^exponent, exponent in (0, 10]
   float exponent = 0.5f;
+  /// latlong: the image (shared by the frames of a film), its scale, and the cosine and sine of
+  /// its turn about +y (right-handed: a feature at map direction m is seen at R_y(angle) m; +90
+  /// degrees brings the image's centre, -z, to -x)
+  std::shared_ptr<const LatLongMap> map;
+  float map_scale = 1.0f;
+  float map_cos = 1.0f, map_sin = 0.0f;
 
   /// Radiance arriving from unit direction `d` (of light travelling along -d).
   Rgb radiance(const Vec3& d) const {
     if (kind == Kind::constant) return background;
+    if (kind == Kind::latlong) {
+      // Into the map's frame: R_y(-angle) d.
+      const Vec3 m{map_cos * d.x - map_sin * d.z, d.y, map_sin * d.x + map_cos * d.z};
+      return map->radiance(m) * map_scale;
+    }
     const float s = dot(d, up);  // sin(elevation)
     if (s >= 0.0f) {
       const float t = std::pow(std::min(s, 1.0f), exponent);

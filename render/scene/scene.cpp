@@ -2,7 +2,9 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <set>
 
@@ -271,6 +273,25 @@ Scene build_scene(const SceneDescription& desc) {
     s.m_environment.ground = to_rgb(e.ground) * scale;
     s.m_environment.up = normalize(to_vec3(e.up));
     s.m_environment.exponent = static_cast<float>(e.exponent);
+  } else if (desc.environment.kind == EnvironmentDescription::Kind::latlong) {
+    const EnvironmentDescription& e = desc.environment;
+    std::shared_ptr<const LatLongMap> map = e.map;
+    if (!map) {
+      const std::filesystem::path path = std::filesystem::path(e.file).is_absolute()
+                                             ? std::filesystem::path(e.file)
+                                             : desc.base_dir / e.file;
+      std::string problem;
+      auto loaded = load_latlong_hdr(path.string(), problem);
+      if (!loaded)
+        throw UserError(desc.source_name, "environment.file", "'" + path.string() + "' " + problem);
+      map = std::make_shared<const LatLongMap>(std::move(*loaded));
+    }
+    const double angle = e.rotation_deg * std::numbers::pi / 180.0;
+    s.m_environment.kind = Environment::Kind::latlong;
+    s.m_environment.map = std::move(map);
+    s.m_environment.map_scale = static_cast<float>(e.intensity);
+    s.m_environment.map_cos = static_cast<float>(std::cos(angle));
+    s.m_environment.map_sin = static_cast<float>(std::sin(angle));
   }
 
   std::map<std::string, std::uint32_t> media{{"vacuum", 0}};

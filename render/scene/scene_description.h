@@ -93,9 +93,11 @@ struct CausticSettings {
   std::optional<double> radius;
 };
 
+class LatLongMap;
+
 /// [environment]: what rays that leave the scene see (render/light/environment.h).
 struct EnvironmentDescription {
-  enum class Kind { constant, sky };
+  enum class Kind { constant, sky, latlong };
   /// constant: [image] background everywhere
   Kind kind = Kind::constant;
   RgbD zenith{0.15, 0.3, 0.65}, horizon{0.8, 0.85, 0.9}, ground{0.25, 0.22, 0.2};
@@ -103,8 +105,14 @@ struct EnvironmentDescription {
   Vec3d up{0.0, 1.0, 0.0};
   /// gradient exponent, (0, 10]
   double exponent = 0.5;
-  /// scales zenith, horizon and ground, >= 0
+  /// scales zenith, horizon and ground (sky) or the image (latlong), >= 0
   double intensity = 1.0;
+  /// latlong: the Radiance .hdr file as written (relative to base_dir), and the image once read
+  /// (the parser reads it; build_scene reads `file` when it is null)
+  std::string file;
+  std::shared_ptr<const LatLongMap> map;
+  /// latlong: turn of the image about +y [degrees], right-handed, [-360, 360]
+  double rotation_deg = 0.0;
 };
 
 struct CameraDescription {

@@ -5,6 +5,7 @@
 #include <set>
 #include <sstream>
 
+#include "render/light/latlong_map.h"
 #include "render/media/medium_library.h"
 #include "render/media/medium_parser.h"
 #include "src/common/error.h"
@@ -167,6 +168,42 @@ MaterialDescription parse_material(const std::string& name, const TomlTable& m) 
   return mat;
 }
 
+/// [environment]: constant, sky or latlong; the keys of the other kinds stay unread (unknown-key
+/// errors). A lat-long map's file is read here, once (a film's frames share it).
+void parse_environment(const TomlTable& env, SceneDescription& s) {
+  EnvironmentDescription& e = s.environment;
+  const std::string kind = env.get_string("kind", "constant");
+  if (kind == "constant") {
+    e.kind = EnvironmentDescription::Kind::constant;
+    return;
+  }
+  if (kind == "sky") {
+    e.kind = EnvironmentDescription::Kind::sky;
+    e.zenith = color3(env, "zenith", e.zenith);
+    e.horizon = color3(env, "horizon", e.horizon);
+    e.ground = color3(env, "ground", e.ground);
+    if (env.has("up")) e.up = unit_vec3(env, "up");
+    e.exponent = checked(env, "exponent", env.get_double("exponent", e.exponent),
+                         environment_exponent_problem);
+  } else if (kind == "latlong") {
+    e.kind = EnvironmentDescription::Kind::latlong;
+    e.file = env.get_string("file");
+    e.rotation_deg = checked(env, "rotation_deg", env.get_double("rotation_deg", 0.0),
+                             environment_rotation_problem);
+    const std::filesystem::path path = std::filesystem::path(e.file).is_absolute()
+                                           ? std::filesystem::path(e.file)
+                                           : s.base_dir / e.file;
+    std::string problem;
+    auto map = load_latlong_hdr(path.string(), problem);
+    if (!map) env.fail("file", "'" + path.string() + "' " + problem);
+    e.map = std::make_shared<const LatLongMap>(std::move(*map));
+  } else {
+    env.fail("kind", "unknown environment '" + kind + "' (expected constant, sky or latlong)");
+  }
+  e.intensity =
+      checked(env, "intensity", env.get_double("intensity", 1.0), environment_intensity_problem);
+}
+
 }  // namespace
 
 SceneDescription parse_scene_string(const std::string& text, const std::string& source_name,
@@ -192,28 +229,7 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
     if (c->has("radius"))
       s.caustics.radius = checked(*c, "radius", c->get_double("radius"), caustic_radius_problem);
   }
-  if (auto env = root.optional_table("environment")) {
-    const std::string kind = env->get_string("kind", "constant");
-    if (kind == "constant") {
-      s.environment.kind = EnvironmentDescription::Kind::constant;
-    } else if (kind == "sky") {
-      s.environment.kind = EnvironmentDescription::Kind::sky;
-      s.environment.zenith = color3(*env, "zenith", s.environment.zenith);
-      s.environment.horizon = color3(*env, "horizon", s.environment.horizon);
-      s.environment.ground = color3(*env, "ground", s.environment.ground);
-      if (env->has("up")) s.environment.up = unit_vec3(*env, "up");
-      s.environment.exponent = env->get_double("exponent", s.environment.exponent);
-      if (!(s.environment.exponent > 0.0 && s.environment.exponent <= 10.0))
-        env->fail("exponent",
-                  "must be in (0, 10] (got " + std::to_string(s.environment.exponent) + ")");
-      s.environment.intensity =
-          env->require_non_negative("intensity", env->get_double("intensity", 1.0));
-      if (!std::isfinite(s.environment.intensity) || s.environment.intensity > 1e6)
-        env->fail("intensity", "must be at most 1e6");
-    } else {
-      env->fail("kind", "unknown environment '" + kind + "' (expected constant or sky)");
-    }
-  }
+  if (auto env = root.optional_table("environment")) parse_environment(*env, s);
   if (auto cam = root.optional_table("camera")) {
     s.camera.position = cam->get_vec3("position");
     s.camera.look_at = cam->get_vec3("look_at");

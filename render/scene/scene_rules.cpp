@@ -155,6 +155,19 @@ std::optional<std::string> caustic_radius_problem(double radius) {
   return "must be positive and finite (got " + num(radius) + ")";
 }
 
+std::optional<std::string> environment_intensity_problem(double intensity) {
+  return real_between(intensity, 0.0, 1e6, "");
+}
+
+std::optional<std::string> environment_exponent_problem(double exponent) {
+  if (exponent > 0.0 && exponent <= 10.0) return std::nullopt;
+  return "must be in (0, 10] (got " + num(exponent) + ")";
+}
+
+std::optional<std::string> environment_rotation_problem(double degrees) {
+  return real_between(degrees, -360.0, 360.0, " degrees");
+}
+
 std::optional<std::string> placement_problem(double reach, double detail) {
   // Spacing of floats at `reach`: 2^(e - 23) for reach in [2^e, 2^(e+1)) (24-bit significand),
   // so every reach below detail / kMinResolvedParts * 2^23 passes.
@@ -242,6 +255,15 @@ std::optional<SceneProblem> find_scene_problem(const SceneDescription& s) {
   if (s.caustics.radius)
     if (auto p = caustic_radius_problem(*s.caustics.radius))
       return SceneProblem{"caustics.radius", *p};
+  if (s.environment.kind != EnvironmentDescription::Kind::constant)
+    if (auto p = environment_intensity_problem(s.environment.intensity))
+      return SceneProblem{"environment.intensity", *p};
+  if (s.environment.kind == EnvironmentDescription::Kind::sky)
+    if (auto p = environment_exponent_problem(s.environment.exponent))
+      return SceneProblem{"environment.exponent", *p};
+  if (s.environment.kind == EnvironmentDescription::Kind::latlong)
+    if (auto p = environment_rotation_problem(s.environment.rotation_deg))
+      return SceneProblem{"environment.rotation_deg", *p};
   if (auto p = camera_problem(s.camera)) return SceneProblem{"camera." + p->key, p->problem};
   for (std::size_t i = 0; i < s.lights.size(); ++i)
     if (auto p = light_problem(s.lights[i]))

@@ -62,6 +62,13 @@ std::optional<std::string> light_samples_problem(long long samples);
 std::optional<std::string> ior_problem(double ior);
 std::optional<std::string> caustic_photons_problem(long long photons);
 std::optional<std::string> caustic_radius_problem(double radius);
+// [environment]
+/// intensity of a sky or lat-long map: [0, 1e6]
+std::optional<std::string> environment_intensity_problem(double intensity);
+/// exponent of a sky's gradient: (0, 10]
+std::optional<std::string> environment_exponent_problem(double exponent);
+/// rotation_deg of a lat-long map: [-360, 360]
+std::optional<std::string> environment_rotation_problem(double degrees);
 
 /// An object with detail `detail` (scene units; see kMinResolvedParts) whose coordinates reach
 /// `reach` from the origin: a problem when single precision there is coarser than

@@ -61,6 +61,14 @@ expect_bad negative_radius "caustics.radius" "$(scene negative_radius 's/^enable
 expect_bad bad_enabled "caustics.enabled" "$(scene bad_enabled 's/^enabled = false/enabled = "no"/')"
 expect_bad bad_cli_width "--width" "$good" --width 0
 expect_bad bad_png_bits "--png-bits" "$good" --png-bits 12
+# [environment] kind = "latlong": the file's problems and the keys (issue 10)
+env() { scene "$1" "s#^\[camera\]#[environment]\nkind = \"latlong\"\n$2\n\n[camera]#"; }
+expect_bad env_missing "environment.file.*no_sky.hdr' no such file" "$(env env_missing 'file = "no_sky.hdr"')"
+expect_bad env_not_hdr "environment.file.*is not a Radiance HDR image" "$(env env_not_hdr "file = \"$good\"")"
+printf '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 2\n%s' "$(head -c 16 /dev/zero | tr '\0' 'A')" >"$work/square.hdr"
+expect_bad env_square "twice as wide as high" "$(env env_square "file = \"$work/square.hdr\"")"
+expect_bad env_intensity "environment.intensity" "$(env env_intensity "file = \"$src/data/environments/studio.hdr\"\nintensity = -1.0")"
+expect_bad env_rotation "environment.rotation_deg" "$(env env_rotation "file = \"$src/data/environments/studio.hdr\"\nrotation_deg = 1000.0")"
 OUT="$work/out.jpg" expect_bad bad_extension "unsupported output format" "$good"
 OUT="$work/no/such/dir/out.png" expect_bad missing_out_dir "does not exist" "$good"
 

@@ -1,13 +1,41 @@
 #pragma once
 // Helpers shared by the render tests: small in-memory meshes, media built in code.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <functional>
 #include <map>
+#include <string>
 #include <utility>
 
 #include "render/geometry/triangle_mesh.h"
 #include "render/scene/scene_description.h"
 
 namespace thaw::render::test {
+
+/// Writes a flat (not run-length encoded) Radiance RGBE file of w x h texels, texel(i, j) from
+/// the top row; values whose largest component is 2^k times a multiple of 2^-8 (0.25, 0.5, 3)
+/// read back exactly. Returns false if the file cannot be written.
+inline bool write_flat_hdr(const std::string& path, int w, int h,
+                           const std::function<RgbD(int, int)>& texel) {
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) return false;
+  std::fprintf(f, "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y %d +X %d\n", h, w);
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      const RgbD c = texel(i, j);
+      const double v = std::max({c[0], c[1], c[2]});
+      unsigned char b[4] = {0, 0, 0, 0};
+      if (v > 1e-32) {
+        int e = 0;
+        const double m = std::frexp(v, &e), scale = m * 256.0 / v;
+        for (int k = 0; k < 3; ++k) b[k] = static_cast<unsigned char>(c[k] * scale);
+        b[3] = static_cast<unsigned char>(e + 128);
+      }
+      std::fwrite(b, 1, 4, f);
+    }
+  return std::fclose(f) == 0;
+}
 
 /// A medium of constant index `ior` (by field, so added members keep their defaults).
 inline MediumDescription medium(const std::string& name, double ior) {

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <string>
 
+#include "render/light/latlong_map.h"
 #include "render/media/medium_library.h"
 #include "render/photon/caustic_map.h"
 #include "render/scene/scene_parser.h"
@@ -660,6 +661,46 @@ TEST(Whitted, EscapingRaysSeeTheSky) {
   const Rgb down = trace_ray(scene, Ray{{0, 0, 0}, {0, -1, 0}}, 0);
   EXPECT_NEAR(up.b, 1.2f, 1e-6f);
   EXPECT_NEAR(down.r, 0.6f, 1e-6f);
+}
+
+TEST(Whitted, ConstantLatLongMapRendersAsTheConstantBackground) {
+  // A glass ball over a matte floor, seen, reflected and refracted against a constant map: the
+  // image equals the one with kind = "constant" and the same colour, bit for bit (the map's
+  // bilinear lookup of a constant is exact; intensity 1).
+  SceneDescription d = base_scene(32, 24);
+  d.camera.position = {0.0, 1.0, 4.0};
+  d.camera.look_at = {0.0, 1.0, 0.0};
+  d.camera.up = {0.0, 1.0, 0.0};
+  d.image.samples_per_pixel = 4;
+  d.image.background = {0.25, 0.5, 0.75};
+  d.media = {test::medium("glass", 1.5)};
+  add_plane(d, MaterialDescription::Kind::matte, {0.8, 0.8, 0.8});
+  d.objects.back().point = {0.0, -1.0, 0.0};
+  ObjectDescription ball;
+  ball.shape = ObjectDescription::Shape::sphere;
+  ball.radius = 0.8;
+  ball.inside = "glass";
+  ball.outside = "vacuum";
+  d.objects.push_back(ball);
+  LightDescription light;
+  light.position = {2.0, 3.0, 1.0};
+  d.lights.push_back(light);
+  const RenderResult constant = render(build_scene(d));
+  d.image.background = {0.0, 0.0, 0.0};
+  d.environment.kind = EnvironmentDescription::Kind::latlong;
+  d.environment.map =
+      std::make_shared<const LatLongMap>(16, 8, std::vector<Rgb>(128, Rgb{0.25f, 0.5f, 0.75f}));
+  d.environment.rotation_deg = 33.0;
+  const RenderResult map = render(build_scene(d));
+  int sky = 0;
+  for (int y = 0; y < 24; ++y)
+    for (int x = 0; x < 32; ++x) {
+      EXPECT_EQ(map.image.at(x, y), constant.image.at(x, y)) << x << ", " << y;
+      // The map's colour up to the film's filter weights (whose mean is 1 only on average).
+      const Rgb c = map.image.at(x, y);
+      sky += c.r > 0.0f && std::abs(c.b / c.r - 3.0f) < 1e-3f && std::abs(c.g / c.r - 2.0f) < 1e-3f;
+    }
+  EXPECT_GT(sky, 10);  // the map is in the picture
 }
 
 TEST(Whitted, RgbAbsorptionIsBeerLambertPerChannel) {

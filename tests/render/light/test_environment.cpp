@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
+#include <numbers>
+#include <vector>
 
 namespace thaw::render {
 namespace {
@@ -36,6 +39,25 @@ TEST(Environment, SkyGradientAndGround) {
   // Another zenith direction.
   e.up = {0, 0, 1};
   EXPECT_EQ(e.radiance({0, 0, 1}), e.zenith);
+}
+
+TEST(Environment, LatLongMapTurnsAboutUp) {
+  // A map bright only at its centre texels (facing -z): unrotated it is seen towards -z; turned
+  // +90 degrees (right-handed about +y) towards -x; -90 towards +x. Intensity scales it.
+  std::vector<Rgb> texels(32, Rgb{0.1f, 0.1f, 0.1f});
+  for (int j = 0; j < 4; ++j) texels[j * 8 + 3] = texels[j * 8 + 4] = Rgb{2.0f, 2.0f, 2.0f};
+  Environment e;
+  e.kind = Environment::Kind::latlong;
+  e.map = std::make_shared<const LatLongMap>(8, 4, texels);
+  e.map_scale = 1.5f;
+  EXPECT_NEAR(e.radiance({0, 0, -1}).g, 3.0f, 1e-5f);
+  EXPECT_NEAR(e.radiance({0, 0, 1}).g, 0.15f, 1e-5f);
+  const double a = std::numbers::pi / 2;
+  e.map_cos = static_cast<float>(std::cos(a)), e.map_sin = static_cast<float>(std::sin(a));
+  EXPECT_NEAR(e.radiance({-1, 0, 0}).g, 3.0f, 1e-5f);
+  EXPECT_NEAR(e.radiance({0, 0, -1}).g, 0.15f, 1e-5f);
+  e.map_sin = -e.map_sin;
+  EXPECT_NEAR(e.radiance({1, 0, 0}).g, 3.0f, 1e-5f);
 }
 
 }  // namespace

@@ -332,6 +332,26 @@ TEST(SceneParser, BadEnvironmentIsAnError) {
   expect_error("[camera]", with("kind = \"sky\"\nintensity = -1.0"), "environment.intensity", "");
   // Sky keys with the constant environment are not used: a mistake, not a silent default.
   expect_error("[camera]", with("zenith = [0.1, 0.2, 0.9]"), "environment.zenith", "");
+  expect_error("[camera]", with("kind = \"sky\"\nintensity = -1.0"), "environment.intensity",
+               "between 0 and");
+  // latlong: the file (missing, not HDR, not 2:1), rotation and intensity, and no sky keys.
+  EXPECT_THROW(
+      parse_scene_string("[environment]\nkind = \"latlong\"\n" + std::string(kExample), "bad.toml"),
+      UserError);  // file is required
+  expect_error("[camera]", with("kind = \"latlong\"\nfile = \"/nonexistent/sky.hdr\""),
+               "environment.file", "/nonexistent/sky.hdr' no such file");
+  expect_error(
+      "[camera]",
+      with("kind = \"latlong\"\nfile = \"" THAW_SOURCE_DIR "/data/scenes/s1_ice_shell.toml\""),
+      "environment.file", "is not a Radiance HDR image");
+  const std::string studio =
+      "kind = \"latlong\"\nfile = \"" THAW_SOURCE_DIR "/data/environments/studio.hdr\"\n";
+  expect_error("[camera]", with(studio + "rotation_deg = 400.0"), "environment.rotation_deg",
+               "between -360 and 360 degrees");
+  expect_error("[camera]", with(studio + "intensity = -0.5"), "environment.intensity",
+               "between 0 and");
+  expect_error("[camera]", with(studio + "zenith = [1.0, 1.0, 1.0]"), "environment.zenith",
+               "unknown key");
 }
 
 TEST(SceneParser, MissingCameraIsAnError) {
@@ -343,8 +363,8 @@ TEST(SceneParser, MissingFileIsAnError) {
 }
 
 TEST(SceneParser, ShippedScenesParse) {
-  for (const char* name :
-       {"s1_ice_shell", "s1_ice_shell_mesh", "s3_dispersion_nodisp", "s4_spheres16"})
+  for (const char* name : {"s1_ice_shell", "s1_ice_shell_mesh", "s3_dispersion_nodisp",
+                           "s4_spheres16", "ice_shell_studio"})
     EXPECT_NO_THROW(
         parse_scene_file(std::string(THAW_SOURCE_DIR) + "/data/scenes/" + name + ".toml"))
         << name;

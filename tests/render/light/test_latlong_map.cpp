@@ -1,0 +1,141 @@
+// Tests render/light/latlong_map.h: the direction <-> (u, v) conventions (the image's centre
+// faces -z, the top row is the zenith), a known texel seen in its direction, bilinear lookups,
+// and reading Radiance files: flat and run-length encoded (the shipped studio map), and every
+// bad file named (missing, not HDR, not 2:1, no size line). (stb_image reads a truncated file's
+// missing texels as black: not detected.)
+#include "render/light/latlong_map.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include "tests/render/test_util.h"
+
+namespace thaw::render {
+namespace {
+
+std::filesystem::path temp_dir() {
+  const auto dir =
+      std::filesystem::temp_directory_path() /
+      ("thaw_latlong_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+TEST(LatLongMap, DirectionConventions) {
+  float u, v;
+  LatLongMap::direction_to_uv({0, 0, -1}, u, v);  // the image's centre
+  EXPECT_FLOAT_EQ(u, 0.5f);
+  EXPECT_FLOAT_EQ(v, 0.5f);
+  LatLongMap::direction_to_uv({1, 0, 0}, u, v);  // a quarter turn right of the centre
+  EXPECT_FLOAT_EQ(u, 0.75f);
+  LatLongMap::direction_to_uv({-1, 0, 0}, u, v);
+  EXPECT_FLOAT_EQ(u, 0.25f);
+  LatLongMap::direction_to_uv({0, 1, 0}, u, v);  // zenith: top row
+  EXPECT_FLOAT_EQ(v, 0.0f);
+  LatLongMap::direction_to_uv({0, -1, 0}, u, v);
+  EXPECT_FLOAT_EQ(v, 1.0f);
+  // Round trip over the sphere (float atan2/acos/sin/cos: a few 1e-7).
+  for (float uu = 0.01f; uu < 1.0f; uu += 0.07f)
+    for (float vv = 0.02f; vv < 1.0f; vv += 0.09f) {
+      const Vec3 d = LatLongMap::uv_to_direction(uu, vv);
+      EXPECT_NEAR(length(d), 1.0f, 1e-6f);
+      LatLongMap::direction_to_uv(d, u, v);
+      EXPECT_NEAR(u, uu, 2e-6f);
+      EXPECT_NEAR(v, vv, 2e-6f);
+    }
+}
+
+TEST(LatLongMap, KnownTexelIsSeenInItsDirection) {
+  // One hot texel in an 8 x 4 map: its centre (u, v) = ((i + 0.5) / 8, (j + 0.5) / 4) is the
+  // direction whose lookup returns it (bilinear weight 1, up to the float rounding of u * 8:
+  // a weight of 1e-6 on neighbours of 0); halfway to the next texel centre, half of it.
+  const int i = 5, j = 1;
+  std::vector<Rgb> texels(32, Rgb{0, 0, 0});
+  texels[j * 8 + i] = Rgb{4.0f, 2.0f, 1.0f};
+  const LatLongMap map(8, 4, texels);
+  const Vec3 d = LatLongMap::uv_to_direction((i + 0.5f) / 8, (j + 0.5f) / 4);
+  // Texel (5, 1): 0.6875 of a turn from -z's opposite edge, 45 degrees above the horizon.
+  EXPECT_NEAR(d.y, std::cos(0.375 * std::numbers::pi), 1e-6);
+  EXPECT_GT(d.x, 0.0f);
+  const Rgb hot = map.radiance(d);
+  EXPECT_NEAR(hot.r, 4.0f, 1e-4f);
+  EXPECT_NEAR(hot.b, 1.0f, 1e-4f);
+  const Rgb half = map.radiance(LatLongMap::uv_to_direction((i + 1.0f) / 8, (j + 0.5f) / 4));
+  EXPECT_NEAR(half.r, 2.0f, 1e-4f);
+  // Wrapping: texel 0 and texel 7 meet at u = 0 (= 1), behind the viewer (+z).
+  std::vector<Rgb> edge(32, Rgb{0, 0, 0});
+  edge[2 * 8 + 0] = Rgb{1, 1, 1};
+  const LatLongMap wrap(8, 4, edge);
+  EXPECT_NEAR(wrap.radiance(LatLongMap::uv_to_direction(0.0f, 0.625f)).r, 0.5f, 1e-4f);
+}
+
+TEST(LatLongMap, ConstantMapIsExactlyConstant) {
+  // The lerp a + (b - a) t returns a exactly when b == a, whatever t: a constant map is the
+  // constant bit for bit (what lets it render exactly as kind = "constant").
+  const LatLongMap map(16, 8, std::vector<Rgb>(128, Rgb{0.25f, 0.5f, 0.75f}));
+  for (float x = -1; x <= 1; x += 0.13f)
+    for (float y = -1; y <= 1; y += 0.17f) {
+      const Vec3 d = normalize(Vec3{x, y, 0.3f});
+      EXPECT_EQ(map.radiance(d), Rgb(0.25f, 0.5f, 0.75f));
+    }
+}
+
+TEST(LatLongMap, ReadsRadianceFiles) {
+  const auto dir = temp_dir();
+  const std::string path = (dir / "gradient.hdr").string();
+  ASSERT_TRUE(test::write_flat_hdr(path, 8, 4, [](int i, int j) {
+    return RgbD{0.25 * (i + 1), 0.5, 2.0 * j};  // exact in RGBE (see write_flat_hdr)
+  }));
+  std::string problem;
+  const auto map = load_latlong_hdr(path, problem);
+  ASSERT_TRUE(map) << problem;
+  EXPECT_EQ(map->width(), 8);
+  EXPECT_EQ(map->height(), 4);
+  EXPECT_EQ(map->texel(3, 0).r, 1.0f);
+  EXPECT_EQ(map->texel(3, 2).b, 4.0f);
+  EXPECT_EQ(map->texel(0, 1).g, 0.5f);
+  // The shipped studio (run-length encoded, data/environments/make_studio_hdr.py): 512 x 256,
+  // soft boxes brighter than 5, walls between 0.1 and 0.4.
+  const auto studio = load_latlong_hdr(THAW_SOURCE_DIR "/data/environments/studio.hdr", problem);
+  ASSERT_TRUE(studio) << problem;
+  EXPECT_EQ(studio->width(), 512);
+  float brightest = 0;
+  for (int y = 0; y < 256; ++y)
+    for (int x = 0; x < 512; ++x) brightest = std::max(brightest, studio->texel(x, y).g);
+  EXPECT_GT(brightest, 5.0f);
+  const Rgb behind = studio->radiance({0, 0, 1});  // the wall opposite the key box
+  EXPECT_GT(behind.g, 0.1f);
+  EXPECT_LT(behind.g, 0.4f);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(LatLongMap, BadFilesAreNamed) {
+  const auto dir = temp_dir();
+  std::string problem;
+  EXPECT_FALSE(load_latlong_hdr((dir / "nope.hdr").string(), problem));
+  EXPECT_EQ(problem, "no such file");
+  EXPECT_FALSE(load_latlong_hdr(dir.string(), problem));
+  EXPECT_EQ(problem, "is not a regular file");
+  const std::string text = (dir / "text.hdr").string();
+  std::ofstream(text) << "P3\n2 1\n255\n0 0 0 255 255 255\n";
+  EXPECT_FALSE(load_latlong_hdr(text, problem));
+  EXPECT_NE(problem.find("not a Radiance HDR image"), std::string::npos) << problem;
+  const std::string square = (dir / "square.hdr").string();
+  ASSERT_TRUE(test::write_flat_hdr(square, 4, 4, [](int, int) { return RgbD{1, 1, 1}; }));
+  EXPECT_FALSE(load_latlong_hdr(square, problem));
+  EXPECT_NE(problem.find("is 4 x 4 texels; a lat-long map is twice as wide as high"),
+            std::string::npos)
+      << problem;
+  const std::string headless = (dir / "headless.hdr").string();
+  std::ofstream(headless) << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n";
+  EXPECT_FALSE(load_latlong_hdr(headless, problem));
+  EXPECT_NE(problem.find("damaged"), std::string::npos) << problem;
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace thaw::render
