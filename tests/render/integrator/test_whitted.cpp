@@ -712,7 +712,10 @@ TEST(Whitted, RgbAbsorptionIsBeerLambertPerChannel) {
   MediumDescription murky = test::medium("murky", 1.33);
   media::MediumSpec spec;
   spec.name = "murky";
-  spec.preset = "water-0c";
+  spec.ior = media::IorModel::constant(1.33);
+  // Water-like: alpha rising from 0.01 /m in the blue to 2.5 /m at 750 nm, times 20.
+  spec.absorption = media::Absorption::table({380.0, 450.0, 550.0, 650.0, 750.0, 780.0},
+                                             {0.011, 0.009, 0.06, 0.34, 2.5, 2.4});
   spec.absorption_scale = 20.0;
   murky.spec = media::resolve_preset(spec);  // presets are the file layer's (medium_library.h)
   d.media.push_back(murky);
