@@ -142,6 +142,46 @@ TEST(Bvh, ZeroAreaAndCoplanarTrianglesMatchBruteForce) {
   compare_with_brute_force(tris, 5);
 }
 
+// Region query: any_leaf with a box test "contains the point q" and a leaf test "a primitive's
+// box contains q" finds such a primitive exactly when one exists (brute force), for 2000 points
+// over 3000 random boxes; boxes failing the test are never handed to the leaf test whole.
+TEST(Bvh, AnyLeafRegionQueryMatchesBruteForce) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<Aabb> boxes;
+  for (int i = 0; i < 3000; ++i) {
+    Aabb b;
+    const Vec3 c{10 * u(rng), 10 * u(rng), 10 * u(rng)};
+    b.extend(c);
+    b.extend(c + Vec3{0.6f * u(rng), 0.6f * u(rng), 0.6f * u(rng)});
+    boxes.push_back(b);
+  }
+  const Bvh bvh(boxes, BvhBuildOptions{4, 1.0f, 4});
+  std::vector<Aabb> ordered;
+  for (auto i : bvh.order()) ordered.push_back(boxes[i]);
+  auto inside = [](const Vec3& q, const Vec3& lo, const Vec3& hi) {
+    return q.x >= lo.x && q.y >= lo.y && q.z >= lo.z && q.x <= hi.x && q.y <= hi.y && q.z <= hi.z;
+  };
+  int found = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const Vec3 q{10 * u(rng), 10 * u(rng), 10 * u(rng)};
+    bool want = false;
+    for (const Aabb& b : boxes) want = want || inside(q, b.lo, b.hi);
+    const bool got = bvh.any_leaf([&](const Vec3& lo, const Vec3& hi) { return inside(q, lo, hi); },
+                                  [&](std::uint32_t first, std::uint32_t count) {
+                                    for (std::uint32_t i = first; i < first + count; ++i)
+                                      if (inside(q, ordered[i].lo, ordered[i].hi)) return true;
+                                    return false;
+                                  });
+    ASSERT_EQ(got, want) << k;
+    found += got;
+  }
+  EXPECT_GT(found, 50);  // both outcomes occur (boxes fill ~8 % of the volume)
+  EXPECT_LT(found, 1980);
+  EXPECT_FALSE(Bvh().any_leaf([](const Vec3&, const Vec3&) { return true; },
+                              [](std::uint32_t, std::uint32_t) { return true; }));
+}
+
 TEST(Bvh, EmptyAndSinglePrimitive) {
   const Bvh empty(std::vector<Aabb>{});
   float t = 1;
