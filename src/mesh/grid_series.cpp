@@ -148,8 +148,7 @@ MeshManifest mesh_grid_simulation_folder(const fs::path& simdir, const MeshOptio
   const fs::path final_dir = simdir / "mesh";
   // The leader stages the folder; the other processes of a farm write their files into it.
   std::optional<StagingDirectory> staging;
-  if (farm.leader()) staging.emplace(final_dir);
-  const fs::path out_dir = farm.share(staging ? staging->path().string() : "");
+  const fs::path out_dir = stage_on_leader(farm, staging, final_dir);
   const std::int64_t total = static_cast<std::int64_t>(rows.size());
   std::int64_t done = 0;
   if (progress) progress(0, total);

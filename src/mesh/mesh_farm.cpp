@@ -2,6 +2,8 @@
 
 #include <omp.h>
 
+#include "src/common/error.h"
+
 namespace thaw::mesh {
 
 std::vector<std::string> MeshFarm::run(long n, int threads,
@@ -18,6 +20,24 @@ std::vector<std::string> MeshFarm::run(long n, int threads,
     }
   }
   return results;
+}
+
+std::filesystem::path stage_on_leader(MeshFarm& farm, std::optional<StagingDirectory>& staging,
+                                      const std::filesystem::path& final_dir) {
+  std::optional<UserError> failed;
+  if (farm.leader()) try {
+      staging.emplace(final_dir);
+    } catch (const UserError& e) {
+      failed = e;
+    }
+  // "+path" or "-message": one word from the leader either way.
+  std::string said(1, failed ? '-' : '+');
+  said += failed ? std::string(failed->what()) : staging ? staging->path().string() : "";
+  const std::string word = farm.share(said);
+  if (failed) throw *failed;
+  if (word.empty() || word[0] == '-')
+    throw UserError("", "", word.empty() ? final_dir.string() + ": not staged" : word.substr(1));
+  return word.substr(1);
 }
 
 MeshFarm& this_process_farm() {

@@ -3,9 +3,13 @@
 // default on this process's OpenMP threads; `thaw run` under MPI passes a farm that spreads them
 // over the ranks sharing the simulation folder (src/pipeline). The meshers see only this
 // interface: nothing here knows about MPI or processes beyond "the leader and the others".
+#include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "src/common/atomic_file.h"
 
 namespace thaw::mesh {
 
@@ -25,6 +29,12 @@ class MeshFarm {
                                        const std::function<std::string(long)>& work,
                                        const std::function<void()>& done);
 };
+
+/// The leader stages `final_dir` into `staging`; every process gets the staged folder's path. A
+/// failure to stage is thrown on every process (the leader's own UserError there), so that no
+/// process waits for a leader that has given up.
+std::filesystem::path stage_on_leader(MeshFarm& farm, std::optional<StagingDirectory>& staging,
+                                      const std::filesystem::path& final_dir);
 
 /// This process's threads: the farm used when none is given.
 MeshFarm& this_process_farm();

@@ -264,8 +264,7 @@ MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& r
   const fs::path final_dir = simdir / "mesh";
   // The leader stages the folder; the other processes of a farm write their files into it.
   std::optional<StagingDirectory> staging;
-  if (farm.leader()) staging.emplace(final_dir);
-  const fs::path out_dir = farm.share(staging ? staging->path().string() : "");
+  const fs::path out_dir = stage_on_leader(farm, staging, final_dir);
 
   // Similar surfaces (equal canonical forms, similar_surface.h) share one mesh made at unit
   // scale; in a sphere series with the default relative distance bound that is nearly every
