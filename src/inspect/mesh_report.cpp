@@ -65,14 +65,11 @@ QualityStats mesh_quality(vtkPolyData* poly, Configure configure) {
   return stats;
 }
 
-}  // namespace
+using Triangles = std::vector<std::array<std::int64_t, 3>>;
 
-MeshReport inspect_mesh(const TriangleMesh& mesh, const std::string& source) {
-  MeshReport r;
-  r.source = source;
+/// Indices in range and finite coordinates, or a UserError naming the triangle or vertex.
+void check_indices_and_coordinates(const TriangleMesh& mesh, const std::string& source) {
   const auto nv = static_cast<std::int64_t>(mesh.vertices.size());
-  r.vertices = nv;
-  r.triangles = static_cast<std::int64_t>(mesh.triangles.size());
   if (mesh.triangles.empty()) throw UserError(source, "", "empty mesh: no triangles");
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
     for (const std::int64_t i : mesh.triangles[f])
@@ -84,33 +81,40 @@ MeshReport inspect_mesh(const TriangleMesh& mesh, const std::string& source) {
     for (const double c : mesh.vertices[v])
       if (!std::isfinite(c))
         throw UserError(source, "vertex " + std::to_string(v + 1), "non-finite coordinate");
+}
 
-  // Duplicated positions: sort vertex ids by position and count equal neighbours. Exact equality
-  // is the right test: a mesher that shares vertices writes each position once.
-  {
-    std::vector<std::int64_t> order(static_cast<std::size_t>(nv));
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(),
-              [&](std::int64_t a, std::int64_t b) { return mesh.vertices[a] < mesh.vertices[b]; });
-    for (std::size_t k = 1; k < order.size(); ++k)
-      if (mesh.vertices[order[k]] == mesh.vertices[order[k - 1]]) ++r.duplicate_vertices;
-  }
+/// Vertex records whose position repeats another's: vertex ids sorted by position, equal
+/// neighbours counted. Exact equality is the right test: a mesher that shares vertices writes
+/// each position once.
+std::int64_t duplicate_vertices(const TriangleMesh& mesh) {
+  std::vector<std::int64_t> order(mesh.vertices.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+            [&](std::int64_t a, std::int64_t b) { return mesh.vertices[a] < mesh.vertices[b]; });
+  std::int64_t duplicates = 0;
+  for (std::size_t k = 1; k < order.size(); ++k)
+    if (mesh.vertices[order[k]] == mesh.vertices[order[k - 1]]) ++duplicates;
+  return duplicates;
+}
 
-  // Triangles with a repeated corner have no edges of their own worth counting: they are reported
-  // as degenerate and left out of the topology; zero-area triangles with distinct corners stay in
-  // the topology but not in the quality statistics.
-  using Triangles = std::vector<std::array<std::int64_t, 3>>;
-  Triangles topo;  // triangles that take part in the topology
-  Triangles good;  // non-degenerate triangles, for the quality measures
-  topo.reserve(mesh.triangles.size());
-  good.reserve(mesh.triangles.size());
-  std::vector<char> used(static_cast<std::size_t>(nv), 0);
+/// The triangles split by use: `topology` (every triangle with three distinct corners) and
+/// `quality` (those of them with non-zero area). Triangles with a repeated corner have no edges of
+/// their own worth counting; zero-area triangles with distinct corners stay in the topology but
+/// not in the quality statistics. Both kinds count as degenerate.
+struct SortedTriangles {
+  Triangles topology, quality;
+  std::int64_t degenerate = 0;
+};
+SortedTriangles sort_triangles(const TriangleMesh& mesh) {
+  SortedTriangles out;
+  out.topology.reserve(mesh.triangles.size());
+  out.quality.reserve(mesh.triangles.size());
   for (const auto& t : mesh.triangles) {
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
-      ++r.degenerate_triangles;
+      ++out.degenerate;
       continue;
     }
-    topo.push_back(t);
+    out.topology.push_back(t);
     const Vec3 e0 = sub(mesh.vertices[t[1]], mesh.vertices[t[0]]);
     const Vec3 e1 = sub(mesh.vertices[t[2]], mesh.vertices[t[1]]);
     const Vec3 e2 = sub(mesh.vertices[t[0]], mesh.vertices[t[2]]);
@@ -118,15 +122,18 @@ MeshReport inspect_mesh(const TriangleMesh& mesh, const std::string& source) {
     // |e0 x e1| = 2A = L_max h; below 1e-12 L_max^2 the smallest angle is under ~1e-12 rad,
     // i.e. the triangle is flat to within a few thousand ulps of double precision.
     if (norm(cross(e0, e1)) <= 1e-12 * longest2) {
-      ++r.degenerate_triangles;
+      ++out.degenerate;
       continue;
     }
-    good.push_back(t);
+    out.quality.push_back(t);
   }
+  return out;
+}
 
-  // Edges, boundary / non-manifold / inconsistent counts and components in linear time (a hash
-  // table of edges: src/meshio/edge_topology.h). vtkFeatureEdges is not used: it is quadratic in
-  // the triangles around an edge and runs out of memory beyond ~850k vertices.
+/// Edges, boundary / non-manifold / inconsistent counts, components and edge lengths in linear
+/// time (a hash table of edges: src/meshio/edge_topology.h). vtkFeatureEdges is not used: it is
+/// quadratic in the triangles around an edge and runs out of memory beyond ~850k vertices.
+void add_topology(const TriangleMesh& mesh, const Triangles& topo, MeshReport& r) {
   const meshio::EdgeTopology topology = meshio::edge_topology(mesh.vertices, topo);
   r.edges = topology.edges;
   r.boundary_edges = topology.boundary_edges;
@@ -136,13 +143,20 @@ MeshReport inspect_mesh(const TriangleMesh& mesh, const std::string& source) {
   r.min_edge_m = topology.min_edge_m;
   r.mean_edge_m = topology.mean_edge_m;
   r.max_edge_m = topology.max_edge_m;
+  r.closed = r.boundary_edges == 0 && r.non_manifold_edges == 0;
+  r.consistently_oriented = r.inconsistent_edges == 0;
+}
+
+/// Bounding box of the vertices the topology uses, the unused vertex records and V - E + F.
+void add_extent(const TriangleMesh& mesh, const Triangles& topo, MeshReport& r) {
+  const auto nv = static_cast<std::int64_t>(mesh.vertices.size());
+  std::vector<char> used(mesh.vertices.size(), 0);
   for (const auto& t : topo)
     for (const std::int64_t i : t) used[i] = 1;
-
   std::int64_t used_vertices = 0;
-  r.bbox_min = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-                std::numeric_limits<double>::infinity()};
-  r.bbox_max = {-r.bbox_min[0], -r.bbox_min[0], -r.bbox_min[0]};
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  r.bbox_min = {inf, inf, inf};
+  r.bbox_max = {-inf, -inf, -inf};
   for (std::int64_t v = 0; v < nv; ++v) {
     if (!used[v]) continue;
     ++used_vertices;
@@ -154,42 +168,63 @@ MeshReport inspect_mesh(const TriangleMesh& mesh, const std::string& source) {
   if (used_vertices == 0) r.bbox_min = r.bbox_max = {0, 0, 0};
   r.unused_vertices = nv - used_vertices;
   r.euler_characteristic = used_vertices - r.edges + static_cast<std::int64_t>(topo.size());
+}
 
-  // Signed volume by the divergence theorem, sum of tetrahedra (origin, a, b, c); independent of
-  // the origin only for a closed surface. Positive when the normals (right-hand rule) point out.
+/// Signed volume by the divergence theorem, sum of tetrahedra (origin, a, b, c): independent of
+/// the origin only for a closed surface, positive when the normals (right-hand rule) point out;
+/// then the orientation verdict.
+void add_signed_volume(const TriangleMesh& mesh, const Triangles& topo, MeshReport& r) {
   long double signed6 = 0;
   for (const auto& t : topo)
     signed6 += dot(mesh.vertices[t[0]], cross(mesh.vertices[t[1]], mesh.vertices[t[2]]));
   r.signed_volume_m3 = static_cast<double>(signed6 / 6);
+  if (r.closed && r.consistently_oriented) r.outward = r.signed_volume_m3 > 0;
+}
 
+/// Volume and area (vtkMassProperties) over the topology's triangles, then the angle and aspect
+/// statistics (vtkMeshQuality) over the non-degenerate ones.
+void add_vtk_measures(const TriangleMesh& mesh, const SortedTriangles& sorted, MeshReport& r) {
   vtkSmartPointer<vtkPolyData> poly;
-  if (!topo.empty()) {
-    poly = to_polydata(mesh.vertices, topo);
+  if (!sorted.topology.empty()) {
+    poly = to_polydata(mesh.vertices, sorted.topology);
     vtkNew<vtkMassProperties> mass;
     mass->SetInputData(poly);
     mass->Update();
     r.volume_m3 = mass->GetVolume();
     r.area_m2 = mass->GetSurfaceArea();
   }
-  r.closed = r.boundary_edges == 0 && r.non_manifold_edges == 0;
-  r.consistently_oriented = r.inconsistent_edges == 0;
-  if (r.closed && r.consistently_oriented) r.outward = r.signed_volume_m3 > 0;
+  if (sorted.quality.empty()) return;
+  // Usually nothing is degenerate and the topology's data set serves as it is.
+  if (sorted.quality.size() != sorted.topology.size())
+    poly = to_polydata(mesh.vertices, sorted.quality);
+  const QualityStats min_angle =
+      mesh_quality(poly, [](vtkMeshQuality* q) { q->SetTriangleQualityMeasureToMinAngle(); });
+  const QualityStats max_angle =
+      mesh_quality(poly, [](vtkMeshQuality* q) { q->SetTriangleQualityMeasureToMaxAngle(); });
+  const QualityStats aspect =
+      mesh_quality(poly, [](vtkMeshQuality* q) { q->SetTriangleQualityMeasureToAspectRatio(); });
+  r.min_angle_deg = min_angle.min;
+  r.mean_min_angle_deg = min_angle.mean;
+  r.max_angle_deg = max_angle.max;
+  r.mean_aspect_ratio = aspect.mean;
+  r.max_aspect_ratio = aspect.max;
+}
 
-  if (!good.empty()) {
-    // Usually nothing is degenerate and the topology's data set serves as it is.
-    if (good.size() != topo.size()) poly = to_polydata(mesh.vertices, good);
-    const QualityStats min_angle =
-        mesh_quality(poly, [](vtkMeshQuality* q) { q->SetTriangleQualityMeasureToMinAngle(); });
-    const QualityStats max_angle =
-        mesh_quality(poly, [](vtkMeshQuality* q) { q->SetTriangleQualityMeasureToMaxAngle(); });
-    const QualityStats aspect =
-        mesh_quality(poly, [](vtkMeshQuality* q) { q->SetTriangleQualityMeasureToAspectRatio(); });
-    r.min_angle_deg = min_angle.min;
-    r.mean_min_angle_deg = min_angle.mean;
-    r.max_angle_deg = max_angle.max;
-    r.mean_aspect_ratio = aspect.mean;
-    r.max_aspect_ratio = aspect.max;
-  }
+}  // namespace
+
+MeshReport inspect_mesh(const TriangleMesh& mesh, const std::string& source) {
+  MeshReport r;
+  r.source = source;
+  r.vertices = static_cast<std::int64_t>(mesh.vertices.size());
+  r.triangles = static_cast<std::int64_t>(mesh.triangles.size());
+  check_indices_and_coordinates(mesh, source);
+  r.duplicate_vertices = duplicate_vertices(mesh);
+  const SortedTriangles sorted = sort_triangles(mesh);
+  r.degenerate_triangles = sorted.degenerate;
+  add_topology(mesh, sorted.topology, r);
+  add_extent(mesh, sorted.topology, r);
+  add_signed_volume(mesh, sorted.topology, r);
+  add_vtk_measures(mesh, sorted, r);
   return r;
 }
 
