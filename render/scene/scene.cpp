@@ -200,314 +200,374 @@ class LazyShearedRay {
 
 }  // namespace
 
-/// Sphere lights are visible: each is an opaque sphere of emissive material (radiance L) in the
-/// BVH, so camera and specular rays that meet it see L (the light itself, its highlight in the
-/// ice). Shadow rays towards a light stop just short of the point sampled on it.
-void add_visible_sphere_lights(Scene& s, std::vector<Aabb>& bounds, std::vector<Primitive>& prims) {
-  for (std::size_t i = 0; i < s.m_sphere_lights.size(); ++i) {
-    SphereLight& l = s.m_sphere_lights[i];
-    l.material = static_cast<std::uint32_t>(s.m_materials.size());
-    Material m;
-    m.kind = Material::Kind::emissive;
-    m.emission = l.radiance;
-    SceneObject obj;
-    obj.label = "lights[" + std::to_string(i) + "]";
-    obj.shape = ObjectDescription::Shape::sphere;
-    obj.material = l.material;
-    s.m_materials.push_back(m);
-    const auto object_id = static_cast<std::uint32_t>(s.m_objects.size());
-    s.m_objects.push_back(std::move(obj));
-    const float r = l.radius;
-    Aabb b;
-    b.extend(l.center - Vec3{r, r, r});
-    b.extend(l.center + Vec3{r, r, r});
-    bounds.push_back(b);
-    prims.push_back({l.center, Vec3{r, 0, 0}, Vec3{}, PrimitiveKind::sphere, object_id, 0});
-    ++s.m_stats.spheres;
+/// build_scene's steps, in order, each filling its part of the Scene (a friend): the checks of
+/// the whole description, camera, lights, environment, media, materials, objects (shape by
+/// shape), the visible sphere lights, the camera's medium, then the BVH and its leaf blocks.
+class SceneBuilder {
+ public:
+  explicit SceneBuilder(const SceneDescription& desc) : m_desc(desc), m_src(desc.source_name) {}
+
+  Scene build() {
+    const auto start = std::chrono::steady_clock::now();
+    if (const auto problem = find_scene_problem(m_desc))
+      throw UserError(m_src, problem->key, problem->problem);
+    m_s.m_settings = m_desc.image;
+    m_s.m_caustics = m_desc.caustics;
+    set_camera();
+    add_lights();
+    set_environment();
+    add_media();
+    add_materials();
+    for (std::size_t i = 0; i < m_desc.objects.size(); ++i) add_object(i);
+    check_lights_outside_objects(m_desc);
+    add_visible_sphere_lights();
+    choose_camera_medium();
+    build_acceleration();
+    m_s.m_stats.build_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return std::move(m_s);
   }
-}
 
-Scene build_scene(const SceneDescription& desc) {
-  const auto start = std::chrono::steady_clock::now();
-  const std::string& src = desc.source_name;
-  Scene s;
-  if (const auto problem = find_scene_problem(desc))
-    throw UserError(src, problem->key, problem->problem);
-  const ImageSettings& img = desc.image;
-  s.m_settings = img;
-  s.m_caustics = desc.caustics;
+ private:
+  /// The camera in single precision (find_scene_problem has checked it in double).
+  void set_camera() {
+    const CameraDescription& cam = m_desc.camera;
+    const Vec3 pos = to_vec3(cam.position), at = to_vec3(cam.look_at), up = to_vec3(cam.up);
+    if (!finite3f(pos) || !finite3f(at))
+      throw UserError(m_src, "camera", "camera coordinates are beyond single precision");
+    if (!(length(at - pos) > 0.0f))
+      throw UserError(m_src, "camera.look_at", "must differ from the camera position");
+    if (!(length(cross(normalize(at - pos), normalize(up))) > 1e-6f))
+      throw UserError(m_src, "camera.up", "must not be parallel to the viewing direction");
+    m_s.m_camera =
+        Camera(pos, at, up, cam.vertical_fov_deg, m_desc.image.width, m_desc.image.height);
+  }
 
-  const CameraDescription& cam = desc.camera;
-  const Vec3 pos = to_vec3(cam.position), at = to_vec3(cam.look_at), up = to_vec3(cam.up);
-  if (!finite3f(pos) || !finite3f(at))
-    throw UserError(src, "camera", "camera coordinates are beyond single precision");
-  if (!(length(at - pos) > 0.0f))
-    throw UserError(src, "camera.look_at", "must differ from the camera position");
-  if (!(length(cross(normalize(at - pos), normalize(up))) > 1e-6f))
-    throw UserError(src, "camera.up", "must not be parallel to the viewing direction");
-  s.m_camera = Camera(pos, at, up, cam.vertical_fov_deg, img.width, img.height);
-
-  for (const auto& l : desc.lights) {
-    if (!finite3f(to_vec3(l.position)) || !std::isfinite(float(l.intensity)))
-      throw UserError(src, "lights", "light position or intensity beyond single precision");
-    const Rgb intensity = to_rgb(l.color) * static_cast<float>(l.intensity);
-    const bool inverse_square = l.falloff == LightDescription::Falloff::inverse_square;
-    if (l.kind == LightDescription::Kind::point) {
-      s.m_lights.push_back({to_vec3(l.position), intensity, inverse_square});
-      continue;
+  void add_lights() {
+    for (const auto& l : m_desc.lights) {
+      if (!finite3f(to_vec3(l.position)) || !std::isfinite(float(l.intensity)))
+        throw UserError(m_src, "lights", "light position or intensity beyond single precision");
+      const Rgb intensity = to_rgb(l.color) * static_cast<float>(l.intensity);
+      const bool inverse_square = l.falloff == LightDescription::Falloff::inverse_square;
+      if (l.kind == LightDescription::Kind::point) {
+        m_s.m_lights.push_back({to_vec3(l.position), intensity, inverse_square});
+        continue;
+      }
+      const auto radius = static_cast<float>(l.radius);
+      m_s.m_sphere_lights.push_back({to_vec3(l.position), radius,
+                                     sphere_light_radiance(intensity, radius), inverse_square,
+                                     l.samples});
     }
-    const auto radius = static_cast<float>(l.radius);
-    s.m_sphere_lights.push_back({to_vec3(l.position), radius,
-                                 sphere_light_radiance(intensity, radius), inverse_square,
-                                 l.samples});
+    m_s.m_ambient = to_rgb(m_desc.ambient.color) * static_cast<float>(m_desc.ambient.intensity);
   }
-  s.m_ambient = to_rgb(desc.ambient.color) * static_cast<float>(desc.ambient.intensity);
-  s.m_background = to_rgb(img.background);
-  s.m_environment.background = s.m_background;
-  if (desc.environment.kind == EnvironmentDescription::Kind::sky) {
-    const EnvironmentDescription& e = desc.environment;
-    const auto scale = static_cast<float>(e.intensity);
-    s.m_environment.kind = Environment::Kind::sky;
-    s.m_environment.zenith = to_rgb(e.zenith) * scale;
-    s.m_environment.horizon = to_rgb(e.horizon) * scale;
-    s.m_environment.ground = to_rgb(e.ground) * scale;
-    s.m_environment.up = normalize(to_vec3(e.up));
-    s.m_environment.exponent = static_cast<float>(e.exponent);
-  } else if (desc.environment.kind == EnvironmentDescription::Kind::latlong) {
-    const EnvironmentDescription& e = desc.environment;
-    std::shared_ptr<const LatLongMap> map = e.map;
-    if (!map) {
-      const std::filesystem::path path = std::filesystem::path(e.file).is_absolute()
-                                             ? std::filesystem::path(e.file)
-                                             : desc.base_dir / e.file;
-      std::string problem;
-      auto loaded = load_latlong_hdr(path.string(), problem);
-      if (!loaded)
-        throw UserError(desc.source_name, "environment.file", "'" + path.string() + "' " + problem);
-      map = std::make_shared<const LatLongMap>(std::move(*loaded));
+
+  void set_environment() {
+    m_s.m_background = to_rgb(m_desc.image.background);
+    m_s.m_environment.background = m_s.m_background;
+    if (m_desc.environment.kind == EnvironmentDescription::Kind::sky) {
+      const EnvironmentDescription& e = m_desc.environment;
+      const auto scale = static_cast<float>(e.intensity);
+      m_s.m_environment.kind = Environment::Kind::sky;
+      m_s.m_environment.zenith = to_rgb(e.zenith) * scale;
+      m_s.m_environment.horizon = to_rgb(e.horizon) * scale;
+      m_s.m_environment.ground = to_rgb(e.ground) * scale;
+      m_s.m_environment.up = normalize(to_vec3(e.up));
+      m_s.m_environment.exponent = static_cast<float>(e.exponent);
+    } else if (m_desc.environment.kind == EnvironmentDescription::Kind::latlong) {
+      const EnvironmentDescription& e = m_desc.environment;
+      std::shared_ptr<const LatLongMap> map = e.map;
+      if (!map) {
+        const std::filesystem::path path = std::filesystem::path(e.file).is_absolute()
+                                               ? std::filesystem::path(e.file)
+                                               : m_desc.base_dir / e.file;
+        std::string problem;
+        auto loaded = load_latlong_hdr(path.string(), problem);
+        if (!loaded)
+          throw UserError(m_src, "environment.file", "'" + path.string() + "' " + problem);
+        map = std::make_shared<const LatLongMap>(std::move(*loaded));
+      }
+      const double angle = e.rotation_deg * std::numbers::pi / 180.0;
+      m_s.m_environment.kind = Environment::Kind::latlong;
+      m_s.m_environment.map = std::move(map);
+      m_s.m_environment.map_scale = static_cast<float>(e.intensity);
+      m_s.m_environment.map_cos = static_cast<float>(std::cos(angle));
+      m_s.m_environment.map_sin = static_cast<float>(std::sin(angle));
     }
-    const double angle = e.rotation_deg * std::numbers::pi / 180.0;
-    s.m_environment.kind = Environment::Kind::latlong;
-    s.m_environment.map = std::move(map);
-    s.m_environment.map_scale = static_cast<float>(e.intensity);
-    s.m_environment.map_cos = static_cast<float>(std::cos(angle));
-    s.m_environment.map_sin = static_cast<float>(std::sin(angle));
   }
 
-  std::map<std::string, std::uint32_t> media{{"vacuum", 0}};
-  s.m_media.push_back(
-      {"vacuum", media::Medium("vacuum", media::IorModel::constant(1.0), media::Absorption())});
-  bool wavelength_dependent = false;
-  for (const auto& m : desc.media) {
-    if (media.count(m.name))
-      throw UserError(src, "media." + m.name, "medium defined twice (or redefines vacuum)");
-    media[m.name] = static_cast<std::uint32_t>(s.m_media.size());
-    // A full spec (preset, Sellmeier, absorption, ...) is resolved and validated over 380-780 nm
-    // by render/media; a bare constant index stays exactly the RGB path's number.
-    media::Medium optics =
-        m.spec ? media::build_medium(*m.spec)
-               : media::Medium(m.name, media::IorModel::constant(m.ior), media::Absorption());
-    wavelength_dependent = wavelength_dependent || optics.is_dispersive() || optics.absorbs();
-    s.m_media.push_back({m.name, std::move(optics)});
-  }
-  s.m_spectral = img.spectral == ImageSettings::Spectral::on ||
-                 (img.spectral == ImageSettings::Spectral::automatic && wavelength_dependent);
-  std::map<std::string, std::uint32_t> materials;
-  for (const auto& m : desc.materials) {
-    if (materials.count(m.name))
-      throw UserError(src, "materials." + m.name, "material defined twice");
-    materials[m.name] = static_cast<std::uint32_t>(s.m_materials.size());
-    s.m_materials.push_back(build_material(m));
+  /// Vacuum and the described media; decides whether the render is spectral.
+  void add_media() {
+    m_s.m_media.push_back(
+        {"vacuum", media::Medium("vacuum", media::IorModel::constant(1.0), media::Absorption())});
+    bool wavelength_dependent = false;
+    for (const auto& m : m_desc.media) {
+      if (m_media.count(m.name))
+        throw UserError(m_src, "media." + m.name, "medium defined twice (or redefines vacuum)");
+      m_media[m.name] = static_cast<std::uint32_t>(m_s.m_media.size());
+      // A full spec (Sellmeier, absorption, ...) is validated over 380-780 nm by render/media; a
+      // bare constant index stays exactly the RGB path's number.
+      media::Medium optics =
+          m.spec ? media::build_medium(*m.spec)
+                 : media::Medium(m.name, media::IorModel::constant(m.ior), media::Absorption());
+      wavelength_dependent = wavelength_dependent || optics.is_dispersive() || optics.absorbs();
+      m_s.m_media.push_back({m.name, std::move(optics)});
+    }
+    const ImageSettings& img = m_desc.image;
+    m_s.m_spectral = img.spectral == ImageSettings::Spectral::on ||
+                     (img.spectral == ImageSettings::Spectral::automatic && wavelength_dependent);
   }
 
-  std::vector<Aabb> bounds;
-  std::vector<Primitive> prims;
-  std::map<std::filesystem::path, TriangleMesh> obj_cache;
-  std::set<std::uint32_t> inside_media, outside_media;
-  for (std::size_t oi = 0; oi < desc.objects.size(); ++oi) {
-    const ObjectDescription& od = desc.objects[oi];
-    const std::string label = od.label.empty() ? "objects[" + std::to_string(oi) + "]" : od.label;
+  void add_materials() {
+    for (const auto& m : m_desc.materials) {
+      if (m_materials.count(m.name))
+        throw UserError(m_src, "materials." + m.name, "material defined twice");
+      m_materials[m.name] = static_cast<std::uint32_t>(m_s.m_materials.size());
+      m_s.m_materials.push_back(build_material(m));
+    }
+  }
+
+  /// The object's surface: the media on its two sides (a dielectric) or its material.
+  SceneObject surface(const ObjectDescription& od, const std::string& label) {
     SceneObject obj;
     obj.label = label;
     obj.shape = od.shape;
     obj.dielectric = od.is_dielectric();
-    if (obj.dielectric) {
-      auto in = media.find(od.inside), out = media.find(od.outside);
-      if (in == media.end())
-        throw UserError(src, label + ".inside", "unknown medium '" + od.inside + "'");
-      if (out == media.end())
-        throw UserError(src, label + ".outside", "unknown medium '" + od.outside + "'");
-      if (in->second == out->second)
-        throw UserError(src, label, "inside and outside must be different media");
-      obj.inside = in->second;
-      obj.outside = out->second;
-      obj.index_matched =
-          index_matched(s.m_media[obj.inside].optics, s.m_media[obj.outside].optics, s.m_spectral);
-      s.m_any_index_matched = s.m_any_index_matched || obj.index_matched;
-      inside_media.insert(obj.inside);
-      outside_media.insert(obj.outside);
-    } else {
-      auto m = materials.find(od.material);
-      if (m == materials.end())
-        throw UserError(src, label + ".material", "unknown material '" + od.material + "'");
+    if (!obj.dielectric) {
+      auto m = m_materials.find(od.material);
+      if (m == m_materials.end())
+        throw UserError(m_src, label + ".material", "unknown material '" + od.material + "'");
       obj.material = m->second;
+      return obj;
     }
-    const auto object_id = static_cast<std::uint32_t>(s.m_objects.size());
-    const std::size_t first_bound = bounds.size();
-    switch (od.shape) {
-      case ObjectDescription::Shape::sphere: {
-        const Vec3 c = to_vec3(od.center);
-        const float r = static_cast<float>(od.radius);
-        Aabb b;
-        b.extend(c - Vec3{r, r, r});
-        b.extend(c + Vec3{r, r, r});
-        bounds.push_back(b);
-        prims.push_back({c, Vec3{r, 0, 0}, Vec3{}, PrimitiveKind::sphere, object_id, 0});
-        ++s.m_stats.spheres;
-        break;
-      }
-      case ObjectDescription::Shape::box: {
-        Aabb b;
-        b.extend(to_vec3(od.box_min));
-        b.extend(to_vec3(od.box_max));
-        bounds.push_back(b);
-        prims.push_back({b.lo, b.hi, Vec3{}, PrimitiveKind::box, object_id, 0});
-        ++s.m_stats.boxes;
-        break;
-      }
-      case ObjectDescription::Shape::plane: {
-        if (obj.dielectric)
-          throw UserError(src, label, "a plane is not closed and cannot be a dielectric interface");
-        obj.plane_point = to_vec3(od.point);
-        obj.plane_normal = normalize(to_vec3(od.normal));
-        s.m_planes.push_back(object_id);
-        ++s.m_stats.planes;
-        break;
-      }
-      case ObjectDescription::Shape::mesh: {
-        TriangleMesh mesh;
-        std::string mesh_name;
-        if (od.mesh) {
-          mesh = *od.mesh;
-          mesh_name = src;  // built in code: the label names it (not twice, as file and key)
-          if (auto problem = validate_mesh(mesh)) throw UserError(src, label, "mesh: " + *problem);
-        } else {
-          if (od.mesh_file.empty())
-            throw UserError(src, label, "mesh object needs a file or an in-memory mesh");
-          const std::filesystem::path path =
-              od.mesh_file.is_absolute() ? od.mesh_file : desc.base_dir / od.mesh_file;
-          mesh_name = path.string();
-          auto it = obj_cache.find(path);
-          if (it == obj_cache.end()) it = obj_cache.emplace(path, load_obj(path)).first;
-          mesh = it->second;
-        }
-        if (const auto problem = mesh_placement_problem(mesh, od.scale, od.translate))
-          throw UserError(mesh_name, label + "." + problem->key, problem->problem);
-        if (od.scale != 1.0 || od.translate != Vec3d{0.0, 0.0, 0.0})
-          transform_mesh(mesh, od.scale, od.translate);
-        if (od.smooth_normals) compute_smooth_normals(mesh);
-        if (obj.dielectric) {
-          if (auto problem = closed_surface_problem(mesh))
-            throw UserError(mesh_name, label,
-                            "a dielectric mesh must be a closed surface: " + *problem);
-          if (!(signed_volume(mesh) > 0.0))
-            throw UserError(
-                mesh_name, label,
-                "a dielectric mesh must be oriented outward (its signed volume is not positive)");
-        }
-        if (mesh.has_normals()) {
-          obj.normal_set = static_cast<int>(s.m_normal_sets.size());
-          std::vector<float> curvature(mesh.triangles.size());
-          for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-            const auto& tri = mesh.triangles[t];
-            const auto& ni = mesh.normal_indices[t];
-            curvature[t] = triangle_curvature(mesh.normals[ni[0]], mesh.normals[ni[1]],
-                                              mesh.normals[ni[2]], mesh.positions[tri[0]],
-                                              mesh.positions[tri[1]], mesh.positions[tri[2]]);
-          }
-          s.m_normal_sets.push_back(
-              {std::move(mesh.normals), std::move(mesh.normal_indices), std::move(curvature)});
-        }
-        for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-          const auto& tri = mesh.triangles[t];
-          const Vec3 a = mesh.positions[tri[0]], b = mesh.positions[tri[1]],
-                     c = mesh.positions[tri[2]];
-          Aabb bb;
-          bb.extend(a);
-          bb.extend(b);
-          bb.extend(c);
-          bounds.push_back(bb);
-          prims.push_back(
-              {a, b, c, PrimitiveKind::triangle, object_id, static_cast<std::uint32_t>(t)});
-        }
-        s.m_stats.triangles += mesh.triangles.size();
-        break;
-      }
-    }
-    for (std::size_t b = first_bound; b < bounds.size(); ++b)
-      if (!finite3f(bounds[b].lo) || !finite3f(bounds[b].hi))
-        throw UserError(src, label,
-                        "coordinates are too large (beyond single precision) or not finite");
-    s.m_objects.push_back(std::move(obj));
+    auto in = m_media.find(od.inside), out = m_media.find(od.outside);
+    if (in == m_media.end())
+      throw UserError(m_src, label + ".inside", "unknown medium '" + od.inside + "'");
+    if (out == m_media.end())
+      throw UserError(m_src, label + ".outside", "unknown medium '" + od.outside + "'");
+    if (in->second == out->second)
+      throw UserError(m_src, label, "inside and outside must be different media");
+    obj.inside = in->second;
+    obj.outside = out->second;
+    obj.index_matched = index_matched(m_s.m_media[obj.inside].optics,
+                                      m_s.m_media[obj.outside].optics, m_s.m_spectral);
+    m_s.m_any_index_matched = m_s.m_any_index_matched || obj.index_matched;
+    m_inside_media.insert(obj.inside);
+    m_outside_media.insert(obj.outside);
+    return obj;
   }
 
-  check_lights_outside_objects(desc);
-  add_visible_sphere_lights(s, bounds, prims);
+  void add_object(std::size_t index) {
+    const ObjectDescription& od = m_desc.objects[index];
+    const std::string label =
+        od.label.empty() ? "objects[" + std::to_string(index) + "]" : od.label;
+    SceneObject obj = surface(od, label);
+    const auto id = static_cast<std::uint32_t>(m_s.m_objects.size());
+    const std::size_t first_bound = m_bounds.size();
+    switch (od.shape) {
+      case ObjectDescription::Shape::sphere:
+        add_sphere(to_vec3(od.center), static_cast<float>(od.radius), id);
+        break;
+      case ObjectDescription::Shape::box:
+        add_box(od, id);
+        break;
+      case ObjectDescription::Shape::plane:
+        add_plane(od, label, obj, id);
+        break;
+      case ObjectDescription::Shape::mesh:
+        add_mesh(od, label, obj, id);
+        break;
+    }
+    for (std::size_t b = first_bound; b < m_bounds.size(); ++b)
+      if (!finite3f(m_bounds[b].lo) || !finite3f(m_bounds[b].hi))
+        throw UserError(m_src, label,
+                        "coordinates are too large (beyond single precision) or not finite");
+    m_s.m_objects.push_back(std::move(obj));
+  }
 
-  // The camera's medium: given, or the one medium that is outside some interface but inside none.
-  if (!desc.camera.medium.empty()) {
-    auto it = media.find(desc.camera.medium);
-    if (it == media.end())
-      throw UserError(src, "camera.medium", "unknown medium '" + desc.camera.medium + "'");
-    s.m_camera_medium = it->second;
-  } else {
+  void add_sphere(const Vec3& c, float r, std::uint32_t id) {
+    Aabb b;
+    b.extend(c - Vec3{r, r, r});
+    b.extend(c + Vec3{r, r, r});
+    m_bounds.push_back(b);
+    m_prims.push_back({c, Vec3{r, 0, 0}, Vec3{}, PrimitiveKind::sphere, id, 0});
+    ++m_s.m_stats.spheres;
+  }
+
+  void add_box(const ObjectDescription& od, std::uint32_t id) {
+    Aabb b;
+    b.extend(to_vec3(od.box_min));
+    b.extend(to_vec3(od.box_max));
+    m_bounds.push_back(b);
+    m_prims.push_back({b.lo, b.hi, Vec3{}, PrimitiveKind::box, id, 0});
+    ++m_s.m_stats.boxes;
+  }
+
+  void add_plane(const ObjectDescription& od, const std::string& label, SceneObject& obj,
+                 std::uint32_t id) {
+    if (obj.dielectric)
+      throw UserError(m_src, label, "a plane is not closed and cannot be a dielectric interface");
+    obj.plane_point = to_vec3(od.point);
+    obj.plane_normal = normalize(to_vec3(od.normal));
+    m_s.m_planes.push_back(id);
+    ++m_s.m_stats.planes;
+  }
+
+  /// The mesh in memory or from its file (each file read once), and the name errors give it.
+  TriangleMesh load_mesh(const ObjectDescription& od, const std::string& label,
+                         std::string& mesh_name) {
+    if (od.mesh) {
+      mesh_name = m_src;  // built in code: the label names it (not twice, as file and key)
+      if (auto problem = validate_mesh(*od.mesh))
+        throw UserError(m_src, label, "mesh: " + *problem);
+      return *od.mesh;
+    }
+    if (od.mesh_file.empty())
+      throw UserError(m_src, label, "mesh object needs a file or an in-memory mesh");
+    const std::filesystem::path path =
+        od.mesh_file.is_absolute() ? od.mesh_file : m_desc.base_dir / od.mesh_file;
+    mesh_name = path.string();
+    auto it = m_obj_cache.find(path);
+    if (it == m_obj_cache.end()) it = m_obj_cache.emplace(path, load_obj(path)).first;
+    return it->second;
+  }
+
+  void add_mesh(const ObjectDescription& od, const std::string& label, SceneObject& obj,
+                std::uint32_t id) {
+    std::string mesh_name;
+    TriangleMesh mesh = load_mesh(od, label, mesh_name);
+    if (const auto problem = mesh_placement_problem(mesh, od.scale, od.translate))
+      throw UserError(mesh_name, label + "." + problem->key, problem->problem);
+    if (od.scale != 1.0 || od.translate != Vec3d{0.0, 0.0, 0.0})
+      transform_mesh(mesh, od.scale, od.translate);
+    if (od.smooth_normals) compute_smooth_normals(mesh);
+    if (obj.dielectric) {
+      if (auto problem = closed_surface_problem(mesh))
+        throw UserError(mesh_name, label,
+                        "a dielectric mesh must be a closed surface: " + *problem);
+      if (!(signed_volume(mesh) > 0.0))
+        throw UserError(
+            mesh_name, label,
+            "a dielectric mesh must be oriented outward (its signed volume is not positive)");
+    }
+    if (mesh.has_normals()) {
+      obj.normal_set = static_cast<int>(m_s.m_normal_sets.size());
+      std::vector<float> curvature(mesh.triangles.size());
+      for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const auto& tri = mesh.triangles[t];
+        const auto& ni = mesh.normal_indices[t];
+        curvature[t] = triangle_curvature(mesh.normals[ni[0]], mesh.normals[ni[1]],
+                                          mesh.normals[ni[2]], mesh.positions[tri[0]],
+                                          mesh.positions[tri[1]], mesh.positions[tri[2]]);
+      }
+      m_s.m_normal_sets.push_back(
+          {std::move(mesh.normals), std::move(mesh.normal_indices), std::move(curvature)});
+    }
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const auto& tri = mesh.triangles[t];
+      const Vec3 a = mesh.positions[tri[0]], b = mesh.positions[tri[1]], c = mesh.positions[tri[2]];
+      Aabb bb;
+      bb.extend(a);
+      bb.extend(b);
+      bb.extend(c);
+      m_bounds.push_back(bb);
+      m_prims.push_back({a, b, c, PrimitiveKind::triangle, id, static_cast<std::uint32_t>(t)});
+    }
+    m_s.m_stats.triangles += mesh.triangles.size();
+  }
+
+  /// Sphere lights are visible: each is an opaque sphere of emissive material (radiance L) in
+  /// the BVH, so camera and specular rays that meet it see L (the light itself, its highlight in
+  /// the ice). Shadow rays towards a light stop just short of the point sampled on it.
+  void add_visible_sphere_lights() {
+    for (std::size_t i = 0; i < m_s.m_sphere_lights.size(); ++i) {
+      SphereLight& l = m_s.m_sphere_lights[i];
+      l.material = static_cast<std::uint32_t>(m_s.m_materials.size());
+      Material m;
+      m.kind = Material::Kind::emissive;
+      m.emission = l.radiance;
+      SceneObject obj;
+      obj.label = "lights[" + std::to_string(i) + "]";
+      obj.shape = ObjectDescription::Shape::sphere;
+      obj.material = l.material;
+      m_s.m_materials.push_back(m);
+      const auto id = static_cast<std::uint32_t>(m_s.m_objects.size());
+      m_s.m_objects.push_back(std::move(obj));
+      add_sphere(l.center, l.radius, id);
+    }
+  }
+
+  /// The camera's medium: given, or the one medium that is outside some interface but inside
+  /// none.
+  void choose_camera_medium() {
+    if (!m_desc.camera.medium.empty()) {
+      auto it = m_media.find(m_desc.camera.medium);
+      if (it == m_media.end())
+        throw UserError(m_src, "camera.medium", "unknown medium '" + m_desc.camera.medium + "'");
+      m_s.m_camera_medium = it->second;
+      return;
+    }
     std::vector<std::uint32_t> outermost;
-    for (auto m : outside_media)
-      if (!inside_media.count(m)) outermost.push_back(m);
+    for (auto m : m_outside_media)
+      if (!m_inside_media.count(m)) outermost.push_back(m);
     if (outermost.size() == 1) {
-      s.m_camera_medium = outermost[0];
+      m_s.m_camera_medium = outermost[0];
     } else if (outermost.size() > 1) {
       std::string names;
-      for (auto m : outermost) names += (names.empty() ? "" : ", ") + s.m_media[m].name;
-      throw UserError(src, "camera.medium",
+      for (auto m : outermost) names += (names.empty() ? "" : ", ") + m_s.m_media[m].name;
+      throw UserError(m_src, "camera.medium",
                       "the camera's medium is ambiguous (" + names + "): set camera.medium");
     }
   }
 
-  s.m_bvh = Bvh(bounds);
-  s.m_primitives.resize(prims.size());
-  for (std::size_t i = 0; i < prims.size(); ++i) s.m_primitives[i] = prims[s.m_bvh.order()[i]];
-  s.m_triangle_normals.assign(s.m_primitives.size(), Vec3{0, 0, 0});
-  for (std::size_t i = 0; i < s.m_primitives.size(); ++i) {
-    const Primitive& pr = s.m_primitives[i];
-    if (pr.kind == PrimitiveKind::triangle) s.m_triangle_normals[i] = triangle_normal(pr);
-  }
-  s.m_leaf_block.assign(s.m_primitives.size(), Scene::kNoBlock);
-  for (const Bvh4Node& n : s.m_bvh.wide_nodes()) {
-    for (int i = 0; i < 4; ++i) {
-      const std::uint32_t first = n.child[i], count = n.count[i];
-      if (count == 0 || count > 4) continue;
-      // Index-matched triangles stay out of the blocks: occluded() must be able to skip them.
-      bool all_triangles = true;
-      for (std::uint32_t k = first; k < first + count; ++k)
-        all_triangles = all_triangles && s.m_primitives[k].kind == PrimitiveKind::triangle &&
-                        !s.m_objects[s.m_primitives[k].object].index_matched;
-      if (!all_triangles) continue;
-      Triangle4 block{};
-      for (std::uint32_t lane = 0; lane < 4; ++lane) {
-        const std::uint32_t k = first + (lane < count ? lane : 0);  // unused lanes repeat lane 0
-        const Primitive& p = s.m_primitives[k];
-        block.set(static_cast<int>(lane), p.a, p.b, p.c, k);
-      }
-      s.m_leaf_block[first] = static_cast<std::uint32_t>(s.m_leaf_triangles.size());
-      s.m_leaf_triangles.push_back(block);
+  /// The BVH over every primitive, the primitives in its order, triangle normals and the
+  /// packed 4-triangle leaf blocks.
+  void build_acceleration() {
+    m_s.m_bvh = Bvh(m_bounds);
+    m_s.m_primitives.resize(m_prims.size());
+    for (std::size_t i = 0; i < m_prims.size(); ++i)
+      m_s.m_primitives[i] = m_prims[m_s.m_bvh.order()[i]];
+    m_s.m_triangle_normals.assign(m_s.m_primitives.size(), Vec3{0, 0, 0});
+    for (std::size_t i = 0; i < m_s.m_primitives.size(); ++i) {
+      const Primitive& pr = m_s.m_primitives[i];
+      if (pr.kind == PrimitiveKind::triangle) m_s.m_triangle_normals[i] = triangle_normal(pr);
     }
+    m_s.m_leaf_block.assign(m_s.m_primitives.size(), Scene::kNoBlock);
+    for (const Bvh4Node& n : m_s.m_bvh.wide_nodes()) {
+      for (int i = 0; i < 4; ++i) {
+        const std::uint32_t first = n.child[i], count = n.count[i];
+        if (count == 0 || count > 4) continue;
+        // Index-matched triangles stay out of the blocks: occluded() must be able to skip them.
+        bool all_triangles = true;
+        for (std::uint32_t k = first; k < first + count; ++k)
+          all_triangles = all_triangles && m_s.m_primitives[k].kind == PrimitiveKind::triangle &&
+                          !m_s.m_objects[m_s.m_primitives[k].object].index_matched;
+        if (!all_triangles) continue;
+        Triangle4 block{};
+        for (std::uint32_t lane = 0; lane < 4; ++lane) {
+          const std::uint32_t k = first + (lane < count ? lane : 0);  // unused lanes repeat lane 0
+          const Primitive& p = m_s.m_primitives[k];
+          block.set(static_cast<int>(lane), p.a, p.b, p.c, k);
+        }
+        m_s.m_leaf_block[first] = static_cast<std::uint32_t>(m_s.m_leaf_triangles.size());
+        m_s.m_leaf_triangles.push_back(block);
+      }
+    }
+    m_s.m_stats.bvh_nodes = m_s.m_bvh.nodes().size();
+    m_s.m_stats.bvh_depth = m_s.m_bvh.depth();
   }
-  s.m_stats.bvh_nodes = s.m_bvh.nodes().size();
-  s.m_stats.bvh_depth = s.m_bvh.depth();
-  s.m_stats.build_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return s;
+
+  const SceneDescription& m_desc;
+  const std::string& m_src;
+  Scene m_s;
+  std::map<std::string, std::uint32_t> m_media{{"vacuum", 0}}, m_materials;
+  std::vector<Aabb> m_bounds;
+  std::vector<Primitive> m_prims;
+  std::map<std::filesystem::path, TriangleMesh> m_obj_cache;
+  std::set<std::uint32_t> m_inside_media, m_outside_media;
+};
+
+Scene build_scene(const SceneDescription& desc) {
+  return SceneBuilder(desc).build();
 }
 
 bool Scene::intersect(const Ray& ray, Hit& hit) const {

@@ -133,7 +133,7 @@ class Scene {
 
  private:
   friend Scene build_scene(const SceneDescription&);
-  friend void add_visible_sphere_lights(Scene&, std::vector<Aabb>&, std::vector<Primitive>&);
+  friend class SceneBuilder;
   ImageSettings m_settings;
   CausticSettings m_caustics;
   Camera m_camera;
