@@ -17,7 +17,8 @@ inline bool intersect_sphere(const Ray& ray, const Vec3& center, float radius, f
   const double a = dx * dx + dy * dy + dz * dz;
   const double beta = -(fx * dx + fy * dy + fz * dz);
   // |f + (beta/a) d|^2 is the squared distance of the line from the centre (no cancellation).
-  const double s = beta / a;
+  const double inv_a = 1.0 / a;  // one division instead of two: s and t1 below
+  const double s = beta * inv_a;
   const double lx = fx + s * dx, ly = fy + s * dy, lz = fz + s * dz;
   const double r2 = double(radius) * radius;
   const double disc = r2 - (lx * lx + ly * ly + lz * lz);
@@ -25,7 +26,7 @@ inline bool intersect_sphere(const Ray& ray, const Vec3& center, float radius, f
   const double c = fx * fx + fy * fy + fz * fz - r2;
   const double q = beta + std::copysign(std::sqrt(a * disc), beta);
   if (q == 0.0) return false;
-  double t0 = c / q, t1 = q / a;
+  double t0 = c / q, t1 = q * inv_a;
   if (t0 > t1) std::swap(t0, t1);
   const double t = t0 > 0.0 ? t0 : t1;
   if (!(t > 0.0) || !(t < t_max)) return false;
