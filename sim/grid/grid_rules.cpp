@@ -1,10 +1,10 @@
 #include "sim/grid/grid_rules.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 
 #include "src/common/error.h"
+#include "src/common/number_text.h"
 
 namespace thaw::sim {
 
@@ -22,10 +22,9 @@ const char* to_string(GridGeometry grid) {
 
 namespace {
 
+/// Numbers in messages: the shortest text that reads back as the same double.
 std::string num(double v) {
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
+  return shortest_text(v);
 }
 
 std::string vec(const std::array<double, 3>& v) {

@@ -1,5 +1,6 @@
 #include "sim/io/simulation_output.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -10,6 +11,23 @@
 namespace thaw::sim {
 
 namespace {
+
+/// The largest energy balance error over the run's output steps (summary.json "solver").
+double max_energy_balance_error(const SimulationResult& r) {
+  double max_error = 0;
+  for (const Snapshot& snap : r.snapshots)
+    max_error = std::max(max_error, snap.energy_balance_error);
+  return max_error;
+}
+
+/// summary.json "final": the last output step's radii and volumes.
+nlohmann::json final_state_json(const SimulationResult& r) {
+  const Snapshot& last = r.snapshots.back();
+  return {{"inner_radius_m", last.inner_radius_m},
+          {"outer_radius_m", last.outer_radius_m},
+          {"liquid_volume_m3", last.liquid_volume_m3},
+          {"ice_volume_m3", last.ice_volume_m3}};
+}
 
 void write_grid_outputs(const std::filesystem::path& dir, const SimulationResult& r) {
   write_interfaces_csv(dir / "interfaces.csv", r.interface_records());
@@ -32,9 +50,6 @@ void write_grid_outputs(const std::filesystem::path& dir, const SimulationResult
   }
   j["wall_time_s"] = r.wall_time_s;
   const GridStatistics& s = r.grid_statistics;
-  double max_error = 0;
-  for (const Snapshot& snap : r.snapshots)
-    max_error = std::max(max_error, snap.energy_balance_error);
   const GridField& f = r.fields.front();
   j["solver"] = {
       {"method", "fixed-grid enthalpy (Voller & Prakash), backward Euler, semismooth Newton + CG"},
@@ -54,18 +69,14 @@ void write_grid_outputs(const std::filesystem::path& dir, const SimulationResult
       {"min_step_s", s.min_step_s},
       {"max_step_s", s.max_step_s},
       {"max_step_energy_error", s.max_step_energy_error},
-      {"max_energy_balance_error", max_error},
+      {"max_energy_balance_error", max_energy_balance_error(r)},
       {"reference_energy_j", r.reference_energy_j}};
   j["output"] = {
       {"rows", r.snapshots.size()},
       {"ended_early", r.ended_early},
       {"final_time_s", r.snapshots.back().time_s},
       {"radii", "volume-equivalent: inner from the liquid volume, outer from ice + liquid"}};
-  const Snapshot& last = r.snapshots.back();
-  j["final"] = {{"inner_radius_m", last.inner_radius_m},
-                {"outer_radius_m", last.outer_radius_m},
-                {"liquid_volume_m3", last.liquid_volume_m3},
-                {"ice_volume_m3", last.ice_volume_m3}};
+  j["final"] = final_state_json(r);
   write_file_atomic(dir / "summary.json", j.dump(2) + "\n");
 }
 
@@ -94,9 +105,6 @@ void write_simulation_outputs(const std::filesystem::path& dir, const Simulation
     j["events"].push_back({{"kind", e.kind}, {"time_s", e.time_s}, {"radius_m", e.radius_m}});
   j["wall_time_s"] = r.wall_time_s;
   const SolverStatistics& s = r.statistics;
-  double max_error = 0;
-  for (const Snapshot& snap : r.snapshots)
-    max_error = std::max(max_error, snap.energy_balance_error);
   j["solver"] = {
       {"method", "front-fixing finite volumes (Landau transform, ALE), TR-BDF2, step doubling"},
       {"steps", s.steps},
@@ -106,19 +114,15 @@ void write_simulation_outputs(const std::filesystem::path& dir, const Simulation
       {"min_step_s", s.min_step_s},
       {"max_step_s", s.max_step_s},
       {"max_step_energy_error", s.max_step_energy_error},
-      {"max_energy_balance_error", max_error},
+      {"max_energy_balance_error", max_energy_balance_error(r)},
       {"reference_energy_j", r.reference_energy_j},
       {"removed_remnant_energy_j", s.removed_energy_j},
       {"small_time_start_s", s.start_time_s},
       {"small_time_start_energy_j", s.start_energy_j}};
   j["output"] = {{"rows", r.snapshots.size()},
                  {"ended_early", r.ended_early},
-                 {"final_time_s", r.snapshots.empty() ? 0.0 : r.snapshots.back().time_s}};
-  const Snapshot& last = r.snapshots.back();
-  j["final"] = {{"inner_radius_m", last.inner_radius_m},
-                {"outer_radius_m", last.outer_radius_m},
-                {"liquid_volume_m3", last.liquid_volume_m3},
-                {"ice_volume_m3", last.ice_volume_m3}};
+                 {"final_time_s", r.snapshots.back().time_s}};
+  j["final"] = final_state_json(r);
   write_file_atomic(dir / "summary.json", j.dump(2) + "\n");
 }
 

@@ -1,13 +1,13 @@
 #include "sim/scenario/scenario_rules.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <optional>
 #include <vector>
 
 #include "sim/grid/grid_rules.h"
 #include "src/common/error.h"
+#include "src/common/number_text.h"
 
 // GCC 12 reports a false -Wrestrict inside std::string's operator+(const char*, string&&) once
 // these messages are inlined into one function (GCC bug 105651, fixed in GCC 13).
@@ -37,11 +37,9 @@ const char* to_string(OuterBoundary kind) {
 
 namespace {
 
-/// Shortest text that reads back as the same double ("0.04", not "0.040000000000000001").
+/// Numbers in messages: the shortest text that reads back as the same double.
 std::string num(double v) {
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
+  return shortest_text(v);
 }
 
 /// The supported physical range of one numeric key, and the range typical scenarios use (only

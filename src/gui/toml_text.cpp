@@ -3,12 +3,12 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
 #include "src/common/check.h"
+#include "src/common/number_text.h"
 
 namespace thaw::gui::toml_text {
 namespace {
@@ -101,9 +101,7 @@ std::string format_key(const std::string& k) {
 std::string format_double(double v) {
   if (std::isnan(v)) return "nan";
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buffer[64];
-  const auto r = std::to_chars(buffer, buffer + sizeof buffer, v);  // shortest exact round trip
-  std::string s(buffer, r.ptr);
+  std::string s = shortest_text(v);                           // shortest exact round trip
   if (s.find_first_of(".e") == std::string::npos) s += ".0";  // stays a float
   return s;
 }
