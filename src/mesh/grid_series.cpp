@@ -1,6 +1,8 @@
 #include "src/mesh/grid_series.h"
 
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <optional>
 
 #include <nlohmann/json.hpp>
@@ -9,9 +11,11 @@
 
 #include "src/common/atomic_file.h"
 #include "src/common/error.h"
+#include "src/common/fnv_hash.h"
 #include "src/common/interrupt.h"
 #include "src/mesh/grid_mesher.h"
 #include "src/mesh/obj_writer.h"
+#include "thaw_version.h"
 
 namespace thaw::mesh {
 
@@ -41,6 +45,7 @@ struct StepResult {
   double cavity_water_fraction = 0;
   std::string remesh_problem;
   double iso_level = 0.5;
+  bool resumed = false;  // taken from SIMDIR/mesh.partial/ (grid_series.cpp, "Resume")
 };
 
 // A step's result as text, to pass between processes (JSON; doubles read back exactly).
@@ -69,7 +74,8 @@ std::string encode(const StepResult& r) {
                       {"cavities", r.cavities},
                       {"cavity_water_fraction", r.cavity_water_fraction},
                       {"remesh_problem", r.remesh_problem},
-                      {"iso_level", r.iso_level}};
+                      {"iso_level", r.iso_level},
+                      {"resumed", r.resumed}};
   if (r.user_error)
     j["user_error"] = {r.user_error->file(), r.user_error->where(), r.user_error->problem()};
   return j.dump();
@@ -87,6 +93,7 @@ StepResult decode(const std::string& text) {
   r.cavity_water_fraction = j.at("cavity_water_fraction").get<double>();
   r.remesh_problem = j.at("remesh_problem").get<std::string>();
   r.iso_level = j.at("iso_level").get<double>();
+  r.resumed = j.value("resumed", false);
   return r;
 }
 
@@ -131,6 +138,96 @@ void mesh_step(const fs::path& field_file, const fs::path& out_dir, long step,
   }
 }
 
+// Resume: as soon as a step is meshed, its surfaces (hard links to the staged files, a copy where
+// links are impossible) and its result are kept in SIMDIR/mesh.partial/, so a meshing run that is
+// interrupted (SIGINT, SIGTERM, a kill) keeps its finished steps and the next run meshes only the
+// others, writing exactly the bytes a fresh run does (the kept files are those bytes). A step is
+// taken only if the first line of its record describes exactly what was meshed: the thaw
+// version, the step, the options that reach the grid mesher and the field file's size and
+// FNV-1a hash (a simulation rerun into the same folder invalidates every kept step). The record
+// is written last, atomically: a step whose files are kept without it is meshed again. The
+// folder is removed once SIMDIR/mesh is complete (mesh_series.cpp does the same per 1D form).
+std::string step_description(const fs::path& field_file, long step, const MeshOptions& o) {
+  std::ifstream in(field_file, std::ios::binary);
+  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "thaw %s grid step %ld: field %zu bytes fnv1a %016llx, edge %.17g normals %d",
+                THAW_VERSION_STRING, step, bytes.size(),
+                static_cast<unsigned long long>(fnv1a_64(bytes)), o.edge_length_m,
+                o.normals ? 1 : 0);
+  return buf;
+}
+
+fs::path kept_record(const fs::path& partial_dir, long step) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "grid_step_%06ld.json", step);
+  return partial_dir / buf;
+}
+
+// `to` as the same bytes as `from`: a hard link, else a copy. Throws std::filesystem_error.
+void link_or_copy(const fs::path& from, const fs::path& to) {
+  std::error_code ec;
+  fs::remove(to, ec);
+  fs::create_hard_link(from, to, ec);
+  if (ec) fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+}
+
+// The kept result of `step` with its surfaces placed in out_dir, or nullopt (absent, another
+// description, damaged: the step is meshed again).
+std::optional<StepResult> take_kept_step(const fs::path& partial_dir, const fs::path& out_dir,
+                                         long step, const std::string& description) {
+  try {
+    std::ifstream in(kept_record(partial_dir, step));
+    std::string first_line, text;
+    if (!std::getline(in, first_line) || first_line != "# " + description) return std::nullopt;
+    std::getline(in, text);
+    StepResult r = decode(text);
+    if (r.user_error || !r.error.empty()) return std::nullopt;
+    for (const SurfaceRecord* s : {&r.outer, &r.inner})
+      if (s->file) link_or_copy(partial_dir / *s->file, out_dir / *s->file);
+    r.resumed = true;
+    return r;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+// Keeps a meshed step for a resumed run. A cache only: a failure (disk full) is ignored.
+void keep_step(const fs::path& partial_dir, const fs::path& out_dir, long step,
+               const std::string& description, const StepResult& r) {
+  if (r.user_error || !r.error.empty()) return;
+  try {
+    ensure_directory(partial_dir);
+    fs::remove(kept_record(partial_dir, step));  // its files are about to change
+    for (const SurfaceRecord* s : {&r.outer, &r.inner})
+      if (s->file) link_or_copy(out_dir / *s->file, partial_dir / *s->file);
+    write_file_atomic(kept_record(partial_dir, step), "# " + description + "\n" + encode(r) + "\n");
+  } catch (const std::exception&) {
+  }
+}
+
+// Step k of the series: taken from SIMDIR/mesh.partial/ or meshed (and kept). Never throws: a
+// failure is the result's error.
+StepResult mesh_or_resume_step(const fs::path& simdir, const fs::path& out_dir, long step,
+                               const MeshOptions& options) {
+  StepResult r;
+  const fs::path field = grid_field_file(simdir, step), partial_dir = simdir / "mesh.partial";
+  try {
+    const std::string description = step_description(field, step, options);
+    if (auto kept = take_kept_step(partial_dir, out_dir, step, description)) return *kept;
+    mesh_step(field, out_dir, step, options, r);
+    keep_step(partial_dir, out_dir, step, description, r);
+  } catch (const UserError& e) {
+    r.user_error = e;
+  } catch (const std::exception& e) {
+    r.error = std::string("meshing failed: ") + e.what();
+  } catch (...) {
+    r.error = "meshing failed";
+  }
+  return r;
+}
+
 }  // namespace
 
 MeshManifest mesh_grid_simulation_folder(const fs::path& simdir, const MeshOptions& requested,
@@ -156,19 +253,9 @@ MeshManifest mesh_grid_simulation_folder(const fs::path& simdir, const MeshOptio
   const std::vector<std::string> texts = farm.run(
       static_cast<long>(rows.size()), requested.jobs,
       [&](long k) -> std::string {
-        StepResult r;
-        if (interrupt_requested()) return encode(r);  // skip the rest, throw after the loop
-        const long step = rows[static_cast<std::size_t>(k)].step;
-        try {
-          mesh_step(grid_field_file(simdir, step), out_dir, step, requested, r);
-        } catch (const UserError& e) {
-          r.user_error = e;
-        } catch (const std::exception& e) {
-          r.error = std::string("meshing failed: ") + e.what();
-        } catch (...) {
-          r.error = "meshing failed";
-        }
-        return encode(r);
+        if (interrupt_requested()) return encode(StepResult{});  // skip, throw after the loop
+        return encode(mesh_or_resume_step(simdir, out_dir, rows[static_cast<std::size_t>(k)].step,
+                                          requested));
       },
       [&] {
         if (progress) progress(++done, total);
@@ -198,6 +285,9 @@ MeshManifest mesh_grid_simulation_folder(const fs::path& simdir, const MeshOptio
   manifest.distinct_meshes = static_cast<long>(rows.size());
   write_file_atomic(staging->path() / "manifest.json", to_json(manifest).dump(1) + "\n");
   staging->commit();
+  std::error_code ec;
+  fs::remove_all(simdir / "mesh.partial", ec);  // complete: nothing left to resume
+  for (const StepResult& r : results) manifest.resumed_meshes += r.resumed ? 1 : 0;
   return manifest;
 }
 

@@ -12,6 +12,7 @@
 
 #include "src/common/atomic_file.h"
 #include "src/common/error.h"
+#include "src/common/fnv_hash.h"
 #include "src/common/interrupt.h"
 #include "src/mesh/grid_series.h"
 #include "src/mesh/obj_writer.h"
@@ -144,10 +145,9 @@ std::string form_description(const SimilarSurface& f, const MeshOptions& unit_op
 }
 
 fs::path form_cache_file(const fs::path& partial_dir, const std::string& description) {
-  std::uint64_t h = 1469598103934665603ULL;  // FNV-1a 64
-  for (const unsigned char c : description) h = (h ^ c) * 1099511628211ULL;
   char name[40];
-  std::snprintf(name, sizeof name, "form_%016llx.obj", static_cast<unsigned long long>(h));
+  std::snprintf(name, sizeof name, "form_%016llx.obj",
+                static_cast<unsigned long long>(fnv1a_64(description)));
   return partial_dir / name;
 }
 
@@ -187,223 +187,280 @@ void store_cached_form(const fs::path& file, const std::string& description,
   }
 }
 
-}  // namespace
+// The inputs of a 1D series: the steps of interfaces.csv and the shell of summary.json.
+struct SeriesInput {
+  std::vector<sim::InterfaceRecord> rows;
+  sim::ShellGeometry geometry;
+};
 
-MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& requested,
-                                    const ProgressCallback& progress, MeshFarm& farm) {
-  if (is_grid_simulation_folder(simdir))
-    return mesh_grid_simulation_folder(simdir, requested, progress, farm);
-  validate(requested);
+SeriesInput read_series_input(const fs::path& simdir) {
   const fs::path summary = simdir / "summary.json";
-  const auto rows = sim::read_interfaces_csv(simdir / "interfaces.csv");
-  const auto geometry = sim::read_shell_geometry(summary);
-  validate_geometry(geometry, summary);
+  SeriesInput in{sim::read_interfaces_csv(simdir / "interfaces.csv"),
+                 sim::read_shell_geometry(summary)};
+  validate_geometry(in.geometry, summary);
+  return in;
+}
 
+// The requested options resolved for the series: the largest outer surface sets the scene radius
+// (the scale of the automatic edge length and distance) and the area the triangle target is for.
+MeshOptions series_options(const MeshOptions& requested, const SeriesInput& in) {
   double largest_area = 0, scene_radius = 0;
-  for (const auto& r : rows) {
-    const ShellShape outer = ShellShape::from_geometry(geometry, r.outer_radius_m);
+  for (const auto& r : in.rows) {
+    const ShellShape outer = ShellShape::from_geometry(in.geometry, r.outer_radius_m);
     largest_area = std::max(largest_area, outer.area());
     scene_radius = std::max(scene_radius, outer.bounding_radius());
   }
   if (!(scene_radius > 0)) scene_radius = 1;  // nothing to mesh: any positive scale will do
-  const MeshOptions options =
-      resolve_triangle_target(resolve_scene(requested, scene_radius), largest_area);
+  return resolve_triangle_target(resolve_scene(requested, scene_radius), largest_area);
+}
 
-  MeshManifest manifest;
-  manifest.options = options;
-  manifest.geometry = geometry;
+// A step's record with the reasons its surfaces are not meshed, if any ("" = meshed).
+StepRecord step_record(const sim::InterfaceRecord& row, const MeshOptions& options) {
+  StepRecord rec;
+  rec.step = row.step;
+  rec.time_s = row.time_s;
+  rec.inner_radius_m = rec.inner.radius_m = row.inner_radius_m;
+  rec.outer_radius_m = rec.outer.radius_m = row.outer_radius_m;
+  if (!(row.outer_radius_m > row.inner_radius_m)) {
+    rec.outer.reason = rec.inner.reason = "no ice left (outer_radius_m == inner_radius_m)";
+    return rec;
+  }
+  if (row.inner_radius_m <= 0)
+    rec.inner.reason = "no liquid core left (inner_radius_m == 0)";
+  else if (row.inner_radius_m < options.min_radius_m)
+    rec.inner.reason = "inner radius below min_radius_m";
+  if (row.outer_radius_m < options.min_radius_m)
+    rec.outer.reason = "outer radius below min_radius_m";
+  return rec;
+}
+
+// The surface `inner` of step `step_index` as a task, or nullopt (with the reason recorded) if it
+// is too thin to mesh.
+std::optional<Task> surface_task(std::size_t step_index, bool inner, const sim::ShellGeometry& g,
+                                 const MeshOptions& options, StepRecord& rec) {
+  SurfaceRecord& s = inner ? rec.inner : rec.outer;
+  Task t;
+  t.step_index = step_index;
+  t.inner = inner;
+  t.shape = ShellShape::from_geometry(g, s.radius_m);
+  if (too_thin_to_mesh(t.shape, options)) {
+    s.reason = "slab too thin for its lateral size to mesh within max_triangles";
+    return std::nullopt;
+  }
+  t.criteria = criteria_for(t.shape, options);
+  if (!inner && rec.inner.reason.empty()) {
+    // Keep the outer mesh's facets off the inner surface: a facet deviates inward by at most its
+    // distance bound, so a bound below the shell thickness keeps the inner mesh strictly inside.
+    // Refining costs triangles ~ 1 / distance; stop at 1/8 of the normal bound.
+    const double shell = rec.outer_radius_m - rec.inner_radius_m;
+    const double d = t.criteria.facet_distance_m;
+    t.criteria = criteria_for(t.shape, options, std::max(std::min(d, 0.5 * shell), d / 8));
+  }
+  s.file = surface_file_name(rec.step, inner);
+  s.distance_bound_m = t.criteria.facet_distance_m;
+  s.exact_volume_m3 = t.shape.volume();
+  return t;
+}
+
+// The manifest's step records and the surfaces to mesh, in step order (inner before outer).
+std::vector<Task> plan_surfaces(const SeriesInput& in, const MeshOptions& options,
+                                MeshManifest& manifest) {
   std::vector<Task> tasks;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const auto& row = rows[i];
-    StepRecord rec;
-    rec.step = row.step;
-    rec.time_s = row.time_s;
-    rec.inner_radius_m = row.inner_radius_m;
-    rec.outer_radius_m = row.outer_radius_m;
-    rec.inner.radius_m = row.inner_radius_m;
-    rec.outer.radius_m = row.outer_radius_m;
-    const bool no_ice = !(row.outer_radius_m > row.inner_radius_m);
-    if (no_ice) {
-      rec.outer.reason = rec.inner.reason = "no ice left (outer_radius_m == inner_radius_m)";
-    } else {
-      if (row.inner_radius_m <= 0)
-        rec.inner.reason = "no liquid core left (inner_radius_m == 0)";
-      else if (row.inner_radius_m < options.min_radius_m)
-        rec.inner.reason = "inner radius below min_radius_m";
-      if (row.outer_radius_m < options.min_radius_m)
-        rec.outer.reason = "outer radius below min_radius_m";
-    }
-    const double shell = row.outer_radius_m - row.inner_radius_m;
-    for (bool inner : {true, false}) {
-      SurfaceRecord& s = inner ? rec.inner : rec.outer;
-      if (!s.reason.empty()) continue;
-      Task t;
-      t.step_index = i;
-      t.inner = inner;
-      t.shape = ShellShape::from_geometry(geometry, s.radius_m);
-      if (too_thin_to_mesh(t.shape, options)) {
-        s.reason = "slab too thin for its lateral size to mesh within max_triangles";
-        continue;
-      }
-      t.criteria = criteria_for(t.shape, options);
-      if (!inner && rec.inner.reason.empty()) {
-        // Keep the outer mesh's facets off the inner surface: a facet deviates inward by at most
-        // its distance bound, so a bound below the shell thickness keeps the inner mesh strictly
-        // inside. Refining costs triangles ~ 1 / distance; stop at 1/8 of the normal bound.
-        const double d = t.criteria.facet_distance_m;
-        t.criteria = criteria_for(t.shape, options, std::max(std::min(d, 0.5 * shell), d / 8));
-      }
-      s.file = surface_file_name(row.step, inner);
-      s.distance_bound_m = t.criteria.facet_distance_m;
-      s.exact_volume_m3 = t.shape.volume();
-      tasks.push_back(t);
-    }
+  for (std::size_t i = 0; i < in.rows.size(); ++i) {
+    StepRecord rec = step_record(in.rows[i], options);
+    for (bool inner : {true, false})
+      if ((inner ? rec.inner : rec.outer).reason.empty())
+        if (auto t = surface_task(i, inner, in.geometry, options, rec)) tasks.push_back(*t);
     manifest.steps.push_back(rec);
   }
+  return tasks;
+}
 
-  const fs::path final_dir = simdir / "mesh";
-  // The leader stages the folder; the other processes of a farm write their files into it.
-  std::optional<StagingDirectory> staging;
-  const fs::path out_dir = stage_on_leader(farm, staging, final_dir);
+// Similar surfaces (equal canonical forms, similar_surface.h) share one mesh made at unit scale;
+// in a sphere series with the default relative distance bound that is nearly every surface.
+struct FormPlan {
+  std::vector<SimilarSurface> forms;     // the distinct meshes to make
+  std::vector<std::size_t> form_of;      // per task: its form
+  std::vector<double> scale_of;          // per task: the form's unit mesh times this [m]
+  std::vector<std::string> description;  // per form: form_description (the resume key)
+};
 
-  // Similar surfaces (equal canonical forms, similar_surface.h) share one mesh made at unit
-  // scale; in a sphere series with the default relative distance bound that is nearly every
-  // surface. Each distinct form is meshed once, then every task scales it, takes the normals of
-  // its own shape and writes its file. Both loops are in task order, so the output is the same
-  // for any thread count.
-  std::vector<SimilarSurface> forms;
-  std::vector<std::size_t> form_of(tasks.size());
-  std::vector<double> scale_of(tasks.size(), 1.0);
-  {
-    std::map<decltype(SimilarSurface{}.key()), std::size_t> index;
-    for (std::size_t k = 0; k < tasks.size(); ++k) {
-      if (!options.reuse_similar) {  // every surface meshed as it is (benchmarks compare)
-        form_of[k] = forms.size();
-        forms.push_back(SimilarSurface{tasks[k].shape, tasks[k].criteria, 1.0});
-        continue;
-      }
-      const SimilarSurface f = similar_surface(tasks[k].shape, tasks[k].criteria);
-      const auto [pos, added] = index.try_emplace(f.key(), forms.size());
-      if (added) forms.push_back(f);
-      form_of[k] = pos->second;
-      scale_of[k] = f.scale_m;
+FormPlan group_similar_surfaces(const std::vector<Task>& tasks, const MeshOptions& options,
+                                const MeshOptions& unit_options) {
+  FormPlan plan;
+  plan.form_of.resize(tasks.size());
+  plan.scale_of.assign(tasks.size(), 1.0);
+  std::map<decltype(SimilarSurface{}.key()), std::size_t> index;
+  for (std::size_t k = 0; k < tasks.size(); ++k) {
+    if (!options.reuse_similar) {  // every surface meshed as it is (benchmarks compare)
+      plan.form_of[k] = plan.forms.size();
+      plan.forms.push_back(SimilarSurface{tasks[k].shape, tasks[k].criteria, 1.0});
+      continue;
+    }
+    const SimilarSurface f = similar_surface(tasks[k].shape, tasks[k].criteria);
+    const auto [pos, added] = index.try_emplace(f.key(), plan.forms.size());
+    if (added) plan.forms.push_back(f);
+    plan.form_of[k] = pos->second;
+    plan.scale_of[k] = f.scale_m;
+  }
+  for (const SimilarSurface& f : plan.forms)
+    plan.description.push_back(form_description(f, unit_options));
+  return plan;
+}
+
+// (done, total) of the series, reported to the caller's callback (on the leader, sequentially).
+struct SeriesProgress {
+  const ProgressCallback& callback;
+  std::int64_t done = 0, total = 0;
+  void report() const {
+    if (callback) callback(done, total);
+  }
+  void one_done() {
+    ++done;
+    report();
+  }
+};
+
+// The unit mesh of every form, or the reason it failed.
+struct FormMeshes {
+  std::vector<TriangleMesh> unit;
+  std::vector<std::string> error;  // "" if fine
+  std::vector<char> have;          // 1 once unit[k] is there
+  long resumed = 0;                // taken from SIMDIR/mesh.partial/
+};
+
+// Meshes kept by an earlier, interrupted run (read before meshing: a mesh made in this run is
+// never taken for one of them).
+void take_kept_forms(const FormPlan& plan, const fs::path& partial_dir, FormMeshes& m) {
+  for (std::size_t k = 0; k < plan.forms.size(); ++k)
+    if (auto kept = load_cached_form(form_cache_file(partial_dir, plan.description[k]),
+                                     plan.description[k])) {
+      m.unit[k] = std::move(*kept);
+      m.have[k] = 1;
+      ++m.resumed;
+    }
+}
+
+// Meshes form k and keeps it for a resumed run; a failure is stored in m.error[k], never thrown.
+void mesh_form(const FormPlan& plan, std::size_t k, const MeshOptions& unit_options,
+               const fs::path& partial_dir, FormMeshes& m) {
+  try {
+    m.unit[k] = mesh_surface(plan.forms[k].unit_shape, plan.forms[k].unit_criteria, unit_options);
+    store_cached_form(form_cache_file(partial_dir, plan.description[k]), plan.description[k],
+                      m.unit[k]);
+    m.have[k] = 1;
+  } catch (const std::exception& e) {
+    m.error[k] = e.what();
+  } catch (...) {
+    m.error[k] = "unknown failure";
+  }
+}
+
+// Meshes the forms not kept, spread over the farm. A form another process meshed reaches this
+// one through the resume cache (kept since the farm returned); one that cannot be read back (a
+// failed cache write) is meshed again here.
+void mesh_missing_forms(const FormPlan& plan, const MeshOptions& unit_options, int jobs,
+                        const fs::path& partial_dir, MeshFarm& farm, SeriesProgress& progress,
+                        FormMeshes& m) {
+  std::vector<std::size_t> to_mesh;
+  for (std::size_t k = 0; k < plan.forms.size(); ++k)
+    if (!m.have[k]) to_mesh.push_back(k);
+  // Nothing may throw out of the farmed work: every failure is stored or returned as text.
+  const std::vector<std::string> results = farm.run(
+      static_cast<long>(to_mesh.size()), jobs,
+      [&](long i) -> std::string {
+        const std::size_t k = to_mesh[static_cast<std::size_t>(i)];
+        if (interrupt_requested()) return "interrupted";  // thrown after the loop
+        mesh_form(plan, k, unit_options, partial_dir, m);
+        return m.error[k];
+      },
+      [&] { progress.one_done(); });
+  for (std::size_t i = 0; i < to_mesh.size(); ++i)
+    if (!results[i].empty()) m.error[to_mesh[i]] = results[i];
+  for (std::size_t k = 0; k < plan.forms.size(); ++k) {
+    if (m.have[k] || !m.error[k].empty() || interrupt_requested()) continue;
+    if (auto kept = load_cached_form(form_cache_file(partial_dir, plan.description[k]),
+                                     plan.description[k])) {
+      m.unit[k] = std::move(*kept);
+      m.have[k] = 1;
+    } else {
+      mesh_form(plan, k, unit_options, partial_dir, m);
     }
   }
-  manifest.distinct_meshes = static_cast<long>(forms.size());
+}
 
-  const fs::path partial_dir = simdir / "mesh.partial";
-  std::vector<TriangleMesh> unit_meshes(forms.size());
-  std::vector<std::string> form_errors(forms.size());
-  std::vector<TaskResult> results(tasks.size());
-  const std::int64_t total = static_cast<std::int64_t>(forms.size() + tasks.size());
-  std::int64_t done = 0;
-  const auto one_done = [&] {
-    if (progress) progress(++done, total);
-  };
-  MeshOptions unit_options = options;
-  unit_options.normals = false;  // each task takes the normals of its own shape
-  std::vector<std::string> descriptions;
-  for (const SimilarSurface& f : forms) descriptions.push_back(form_description(f, unit_options));
-  // Meshes kept by an earlier, interrupted run (read before the loop: a mesh made in this run
-  // is never taken for one of them).
-  long resumed = 0;
-  std::vector<char> have(forms.size(), 0);
-  for (std::size_t k = 0; k < forms.size(); ++k)
-    if (auto cached =
-            load_cached_form(form_cache_file(partial_dir, descriptions[k]), descriptions[k])) {
-      unit_meshes[k] = std::move(*cached);
-      have[k] = 1;
-      ++resumed;
-    }
-  done = resumed;
-  if (progress) progress(done, total);
-  const auto mesh_form = [&](std::size_t k) {
-    try {
-      unit_meshes[k] = mesh_surface(forms[k].unit_shape, forms[k].unit_criteria, unit_options);
-      store_cached_form(form_cache_file(partial_dir, descriptions[k]), descriptions[k],
-                        unit_meshes[k]);
-      have[k] = 1;
-    } catch (const std::exception& e) {
-      form_errors[k] = e.what();
-    } catch (...) {
-      form_errors[k] = "unknown failure";
-    }
-  };
-  // Nothing may throw out of the farmed work: every failure is stored or returned as text.
-  std::vector<long> to_mesh;
-  for (std::size_t k = 0; k < forms.size(); ++k)
-    if (!have[k]) to_mesh.push_back(static_cast<long>(k));
-  const std::vector<std::string> form_results = farm.run(
-      static_cast<long>(to_mesh.size()), options.jobs,
-      [&](long i) -> std::string {
-        const std::size_t k = static_cast<std::size_t>(to_mesh[static_cast<std::size_t>(i)]);
-        if (interrupt_requested()) return "interrupted";  // thrown after the loop
-        mesh_form(k);
-        return form_errors[k];
-      },
-      one_done);
-  for (std::size_t i = 0; i < to_mesh.size(); ++i)
-    if (!form_results[i].empty())
-      form_errors[static_cast<std::size_t>(to_mesh[i])] = form_results[i];
-  // A form another process meshed reaches this one through the resume cache (kept since the
-  // farm returned); one that cannot be read back (a failed cache write) is meshed again here.
-  for (std::size_t k = 0; k < forms.size(); ++k)
-    if (!have[k] && form_errors[k].empty() && !interrupt_requested()) {
-      if (auto cached =
-              load_cached_form(form_cache_file(partial_dir, descriptions[k]), descriptions[k])) {
-        unit_meshes[k] = std::move(*cached);
-        have[k] = 1;
-      } else {
-        mesh_form(k);
-      }
-    }
-  const std::vector<std::string> task_results = farm.run(
+// Task k's surface: its form's unit mesh scaled, with the normals of its own shape, measured and
+// written to out_dir. Never throws: a failure is the result's error.
+TaskResult write_surface(const Task& t, const FormPlan& plan, std::size_t k, const FormMeshes& m,
+                         const MeshManifest& manifest, const MeshOptions& options,
+                         const fs::path& out_dir) {
+  TaskResult r;
+  const std::size_t form = plan.form_of[k];
+  try {
+    if (!m.error[form].empty()) throw MeshError(m.error[form]);
+    const TriangleMesh mesh = scaled_copy(m.unit[form], plan.scale_of[k], t.shape, options.normals);
+    measure(t.shape, mesh, r);
+    const StepRecord& rec = manifest.steps[t.step_index];
+    char comment[256];
+    std::snprintf(comment, sizeof comment,
+                  "thaw mesh: step %ld, %s surface of a %s, radius %.17g m", rec.step,
+                  t.inner ? "inner (water|ice)" : "outer (ice|air)",
+                  sim::to_string(t.shape.geometry), t.shape.radius_m);
+    write_obj(out_dir / surface_file_name(rec.step, t.inner), mesh, comment);
+  } catch (const std::exception& e) {
+    r.error = e.what();
+  } catch (...) {
+    r.error = "unknown failure";
+  }
+  return r;
+}
+
+// Every surface written, spread over the farm in task order (the output is the same for any
+// thread count); on the leader the results, on the others empty ones.
+std::vector<TaskResult> write_surfaces(const std::vector<Task>& tasks, const FormPlan& plan,
+                                       const FormMeshes& m, const MeshManifest& manifest,
+                                       const MeshOptions& options, const fs::path& out_dir,
+                                       MeshFarm& farm, SeriesProgress& progress) {
+  const std::vector<std::string> texts = farm.run(
       static_cast<long>(tasks.size()), options.jobs,
       [&](long k) -> std::string {
         if (interrupt_requested()) return encode(TaskResult{"interrupted"});
-        const Task& t = tasks[static_cast<std::size_t>(k)];
-        TaskResult r;
-        const std::size_t form = form_of[static_cast<std::size_t>(k)];
-        try {
-          if (!form_errors[form].empty()) throw MeshError(form_errors[form]);
-          const TriangleMesh m = scaled_copy(
-              unit_meshes[form], scale_of[static_cast<std::size_t>(k)], t.shape, options.normals);
-          measure(t.shape, m, r);
-          const StepRecord& rec = manifest.steps[t.step_index];
-          char comment[256];
-          std::snprintf(comment, sizeof comment,
-                        "thaw mesh: step %ld, %s surface of a %s, radius %.17g m", rec.step,
-                        t.inner ? "inner (water|ice)" : "outer (ice|air)",
-                        sim::to_string(t.shape.geometry), t.shape.radius_m);
-          write_obj(out_dir / surface_file_name(rec.step, t.inner), m, comment);
-        } catch (const std::exception& e) {
-          r.error = e.what();
-        } catch (...) {
-          r.error = "unknown failure";
-        }
-        return encode(r);
+        const auto i = static_cast<std::size_t>(k);
+        return encode(write_surface(tasks[i], plan, i, m, manifest, options, out_dir));
       },
-      one_done);
-  throw_if_interrupted();
-  if (!farm.leader()) return manifest;  // the leader gathers, checks and commits
-  for (std::size_t k = 0; k < tasks.size(); ++k) results[k] = decode(task_results[k]);
+      [&] { progress.one_done(); });
+  std::vector<TaskResult> results;
+  if (farm.leader())
+    for (const std::string& text : texts) results.push_back(decode(text));
+  return results;
+}
 
-  // Gather in step order, so the first error reported does not depend on scheduling.
-  std::vector<const TaskResult*> inner_of(manifest.steps.size(), nullptr),
-      outer_of(manifest.steps.size(), nullptr);
+// Takes each surface's triangle count and volume into the manifest, in step order (so the first
+// error reported does not depend on scheduling); a failed surface is a UserError.
+void record_surfaces(const std::vector<Task>& tasks, const std::vector<TaskResult>& results,
+                     const fs::path& final_dir, MeshManifest& manifest) {
   for (std::size_t k = 0; k < tasks.size(); ++k) {
     const Task& t = tasks[k];
-    const TaskResult& r = results[k];
     StepRecord& rec = manifest.steps[t.step_index];
-    if (!r.error.empty())
+    if (!results[k].error.empty())
       throw UserError(
           (final_dir / surface_file_name(rec.step, t.inner)).string(), "",
-          "meshing failed: " + r.error + " (try a smaller --edge-length or --distance)");
+          "meshing failed: " + results[k].error + " (try a smaller --edge-length or --distance)");
     SurfaceRecord& s = t.inner ? rec.inner : rec.outer;
-    s.triangles = r.triangles;
-    s.volume_m3 = r.volume_m3;
-    (t.inner ? inner_of : outer_of)[t.step_index] = &r;
+    s.triangles = results[k].triangles;
+    s.volume_m3 = results[k].volume_m3;
   }
+}
+
+// Whether each step's inner mesh is strictly inside its outer mesh (TaskResult's bound), the
+// thinnest shell for which it is, and the steps too thin for it; a thick shell whose meshes
+// touch is a UserError.
+void check_containment(const std::vector<Task>& tasks, const std::vector<TaskResult>& results,
+                       const fs::path& final_dir, MeshManifest& manifest) {
+  std::vector<const TaskResult*> inner_of(manifest.steps.size(), nullptr),
+      outer_of(manifest.steps.size(), nullptr);
+  for (std::size_t k = 0; k < tasks.size(); ++k)
+    (tasks[k].inner ? inner_of : outer_of)[tasks[k].step_index] = &results[k];
   for (std::size_t i = 0; i < manifest.steps.size(); ++i) {
     if (!inner_of[i] || !outer_of[i]) continue;
     StepRecord& rec = manifest.steps[i];
@@ -413,22 +470,61 @@ MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& r
     if (inside) {
       if (!manifest.thinnest_contained_shell_m || shell < *manifest.thinnest_contained_shell_m)
         manifest.thinnest_contained_shell_m = shell;
-    } else {
-      // CGAL bounds the deviation at facet circumcentres; elsewhere on a capsule or slab facet it
-      // was measured up to ~1.2x that, so only a shell over twice the bound must be contained.
-      if (shell > 2 * rec.outer.distance_bound_m)
-        throw UserError((final_dir / surface_file_name(rec.step, false)).string(), "",
-                        "inner mesh not strictly inside the outer mesh although the shell (" +
-                            std::to_string(shell) + " m) is over twice the distance bound");
-      manifest.steps_inner_touching_outer.push_back(rec.step);
+      continue;
     }
+    // CGAL bounds the deviation at facet circumcentres; elsewhere on a capsule or slab facet it
+    // was measured up to ~1.2x that, so only a shell over twice the bound must be contained.
+    if (shell > 2 * rec.outer.distance_bound_m)
+      throw UserError((final_dir / surface_file_name(rec.step, false)).string(), "",
+                      "inner mesh not strictly inside the outer mesh although the shell (" +
+                          std::to_string(shell) + " m) is over twice the distance bound");
+    manifest.steps_inner_touching_outer.push_back(rec.step);
   }
+}
 
+}  // namespace
+
+MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& requested,
+                                    const ProgressCallback& progress, MeshFarm& farm) {
+  if (is_grid_simulation_folder(simdir))
+    return mesh_grid_simulation_folder(simdir, requested, progress, farm);
+  validate(requested);
+  const SeriesInput in = read_series_input(simdir);
+  MeshManifest manifest;
+  manifest.options = series_options(requested, in);
+  manifest.geometry = in.geometry;
+  const MeshOptions& options = manifest.options;
+  const std::vector<Task> tasks = plan_surfaces(in, options, manifest);
+
+  const fs::path final_dir = simdir / "mesh", partial_dir = simdir / "mesh.partial";
+  // The leader stages the folder; the other processes of a farm write their files into it.
+  std::optional<StagingDirectory> staging;
+  const fs::path out_dir = stage_on_leader(farm, staging, final_dir);
+
+  MeshOptions unit_options = options;
+  unit_options.normals = false;  // each surface takes the normals of its own shape
+  const FormPlan plan = group_similar_surfaces(tasks, options, unit_options);
+  manifest.distinct_meshes = static_cast<long>(plan.forms.size());
+  FormMeshes meshes{std::vector<TriangleMesh>(plan.forms.size()),
+                    std::vector<std::string>(plan.forms.size()),
+                    std::vector<char>(plan.forms.size(), 0)};
+  take_kept_forms(plan, partial_dir, meshes);
+  SeriesProgress counter{progress, meshes.resumed,
+                         static_cast<std::int64_t>(plan.forms.size() + tasks.size())};
+  counter.report();
+  mesh_missing_forms(plan, unit_options, options.jobs, partial_dir, farm, counter, meshes);
+  const std::vector<TaskResult> results =
+      write_surfaces(tasks, plan, meshes, manifest, options, out_dir, farm, counter);
+  throw_if_interrupted();
+  if (!farm.leader()) return manifest;  // the leader gathers, checks and commits
+
+  record_surfaces(tasks, results, final_dir, manifest);
+  check_containment(tasks, results, final_dir, manifest);
   write_file_atomic(out_dir / "manifest.json", to_json(manifest).dump(1) + "\n");
   staging->commit();
   std::error_code ec;
   fs::remove_all(partial_dir, ec);  // complete: nothing left to resume
-  manifest.resumed_meshes = resumed;
+  manifest.resumed_meshes = meshes.resumed;
   return manifest;
 }
 

@@ -13,6 +13,7 @@
 
 #include "sim/io/interface_history.h"
 #include "src/common/error.h"
+#include "src/common/interrupt.h"
 #include "tests/src/mesh/grid_field_samples.h"
 
 namespace thaw::mesh {
@@ -124,6 +125,57 @@ TEST(GridSeries, MissingOrDamagedFieldIsAUserErrorAndWritesNothing) {
   fs::resize_file(grid_field_file(damaged, 1), 100);
   EXPECT_THROW(mesh_simulation_folder(damaged, MeshOptions{}), UserError);
   EXPECT_FALSE(fs::exists(damaged / "mesh"));
+}
+
+// Issue 12: an interrupted grid meshing run keeps every step it finished (SIMDIR/mesh.partial/),
+// leaves no SIMDIR/mesh, and the next run meshes only the other steps and writes exactly the
+// bytes of an uninterrupted run, manifest included. A kept step is not used for another field
+// or other options.
+TEST(GridSeries, InterruptedRunResumesStepByStep) {
+  const fs::path fresh = grid_run("resume_fresh"), cut = grid_run("resume_cut");
+  MeshOptions o;
+  o.jobs = 1;  // one step at a time: the interrupt falls between step 0 and step 1
+  const MeshManifest reference = mesh_simulation_folder(fresh, o);
+  EXPECT_EQ(reference.resumed_meshes, 0);
+  EXPECT_FALSE(fs::exists(fresh / "mesh.partial"));
+
+  const auto interrupt_after_first_step = [](std::int64_t done, std::int64_t) {
+    if (done >= 1) request_interrupt();  // as the SIGINT handler would
+  };
+  clear_interrupt_request();
+  EXPECT_THROW(mesh_simulation_folder(cut, o, interrupt_after_first_step), Interrupted);
+  clear_interrupt_request();
+  EXPECT_FALSE(fs::exists(cut / "mesh"));
+  EXPECT_TRUE(fs::exists(cut / "mesh.partial" / "grid_step_000000.json"));
+  EXPECT_TRUE(fs::exists(cut / "mesh.partial" / "step_000000_outer.obj"));
+  EXPECT_TRUE(fs::exists(cut / "mesh.partial" / "step_000000_inner.obj"));
+  EXPECT_FALSE(fs::exists(cut / "mesh.partial" / "grid_step_000001.json"));
+  // The same kept step in two more folders, for the stale cases below.
+  std::vector<fs::path> stale;
+  for (const char* name : {"resume_other_field", "resume_other_options"}) {
+    stale.push_back(grid_run(name));
+    fs::copy(cut / "mesh.partial", stale.back() / "mesh.partial");
+  }
+
+  const MeshManifest resumed = mesh_simulation_folder(cut, o);
+  EXPECT_EQ(resumed.resumed_meshes, 1);
+  EXPECT_FALSE(fs::exists(cut / "mesh.partial"));
+  int compared = 0;
+  for (const auto& e : fs::directory_iterator(fresh / "mesh")) {
+    EXPECT_EQ(read_text(e.path()), read_text(cut / "mesh" / e.path().filename()))
+        << e.path().filename();
+    ++compared;
+  }
+  EXPECT_EQ(compared, 3 + 1);
+
+  // Kept steps of another field (the simulation rerun into the folder) or of other options are
+  // meshed again.
+  fs::copy_file(grid_field_file(stale[0], 1), grid_field_file(stale[0], 0),
+                fs::copy_options::overwrite_existing);
+  EXPECT_EQ(mesh_simulation_folder(stale[0], o).resumed_meshes, 0);
+  MeshOptions coarser = o;
+  coarser.edge_length_m = 0.0016;
+  EXPECT_EQ(mesh_simulation_folder(stale[1], coarser).resumed_meshes, 0);
 }
 
 }  // namespace
