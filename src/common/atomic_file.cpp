@@ -4,7 +4,10 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cstdlib>
 #include <cstring>
+#include <string>
+#include <string_view>
 #include <system_error>
 #include <vector>
 
@@ -20,17 +23,35 @@ fs::path temporary_sibling(const fs::path& final_path) {
   return p;
 }
 
+namespace {
+
+// The process id in a temporary_sibling() name, <final>.tmp-<pid>-<counter> with both numbers
+// plain decimal digits to the end of the name, or 0 for any other name (a user's "notes.tmp-old"
+// is not thaw's and is never removed).
+long temporary_owner(const std::string& name) {
+  const auto pos = name.rfind(".tmp-");
+  if (pos == std::string::npos) return 0;
+  const std::string tail = name.substr(pos + 5);
+  const auto dash = tail.find('-');
+  const auto digits = [](std::string_view s) {
+    return !s.empty() && s.size() <= 18 &&
+           s.find_first_not_of("0123456789") == std::string_view::npos;
+  };
+  if (dash == std::string::npos || !digits(std::string_view(tail).substr(0, dash)) ||
+      !digits(std::string_view(tail).substr(dash + 1)))
+    return 0;
+  return std::strtol(tail.c_str(), nullptr, 10);
+}
+
+}  // namespace
+
 int remove_stale_temporaries(const fs::path& dir) {
   std::error_code ec;
   std::vector<fs::path> stale;
   for (auto it = fs::recursive_directory_iterator(dir, ec);
        !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
-    // temporary_sibling() names: <final>.tmp-<pid>-<counter>
-    const std::string name = it->path().filename().string();
-    const auto pos = name.rfind(".tmp-");
-    if (pos == std::string::npos) continue;
-    const long pid = std::strtol(name.c_str() + pos + 5, nullptr, 10);
-    if (pid <= 0 || (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)) {
+    const long pid = temporary_owner(it->path().filename().string());
+    if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
       stale.push_back(it->path());
       if (it->is_directory(ec)) it.disable_recursion_pending();
     }

@@ -486,6 +486,10 @@ void check_containment(const std::vector<Task>& tasks, const std::vector<TaskRes
 
 MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& requested,
                                     const ProgressCallback& progress, MeshFarm& farm) {
+  // A run killed outright (SIGKILL, a lost node) leaves its staged folder and temporaries: the
+  // leader removes those of dead processes before staging (the other processes of a farm write
+  // nothing before the staged folder is shared).
+  if (farm.leader()) remove_stale_temporaries(simdir);
   if (is_grid_simulation_folder(simdir))
     return mesh_grid_simulation_folder(simdir, requested, progress, farm);
   validate(requested);

@@ -97,7 +97,14 @@ TEST(AtomicFile, StaleTemporariesOfDeadProcessesAreRemoved) {
   const std::string live = "n.json.tmp-" + std::to_string(::getpid()) + "-0";
   std::ofstream(dir / live) << "being written";
   std::ofstream(dir / "keep.json") << "done";
+  // Names that are not temporary_sibling()'s are the user's: kept whatever follows ".tmp-".
+  for (const char* name : {"notes.tmp-old", "a.tmp-12", "b.tmp-12-", "c.tmp--3", "d.tmp-0x1-2",
+                           "e.tmp-999999999-1.bak"})
+    std::ofstream(dir / name) << "user's";
   EXPECT_EQ(remove_stale_temporaries(dir), 2);
+  for (const char* name : {"notes.tmp-old", "a.tmp-12", "b.tmp-12-", "c.tmp--3", "d.tmp-0x1-2",
+                           "e.tmp-999999999-1.bak"})
+    EXPECT_TRUE(std::filesystem::exists(dir / name)) << name;
   EXPECT_TRUE(std::filesystem::exists(dir / live));
   EXPECT_TRUE(std::filesystem::exists(dir / "keep.json"));
   EXPECT_FALSE(std::filesystem::exists(dir / "m.json.tmp-999999999-0"));

@@ -157,9 +157,15 @@ TEST(GridSeries, InterruptedRunResumesStepByStep) {
     fs::copy(cut / "mesh.partial", stale.back() / "mesh.partial");
   }
 
+  // What a run killed outright (SIGKILL) leaves besides: its staged folder, removed on resuming.
+  const fs::path killed_staging = cut / "mesh.tmp-999999999-0";  // no such process
+  fs::create_directories(killed_staging);
+  std::ofstream(killed_staging / "step_000000_outer.obj") << "v 0 0";
+
   const MeshManifest resumed = mesh_simulation_folder(cut, o);
   EXPECT_EQ(resumed.resumed_meshes, 1);
   EXPECT_FALSE(fs::exists(cut / "mesh.partial"));
+  EXPECT_FALSE(fs::exists(killed_staging));
   int compared = 0;
   for (const auto& e : fs::directory_iterator(fresh / "mesh")) {
     EXPECT_EQ(read_text(e.path()), read_text(cut / "mesh" / e.path().filename()))
