@@ -45,12 +45,17 @@ int main(int argc, char** argv) {
   const gui::ShellStep step = gui::initial_shell(sc);
   const int spp = sc.scene.image.samples_per_pixel;
   std::vector<Variant> variants = {
-      {"80x60 1 spp (old pass 0)", {80, 60, 1, false, false, 0, false}, {}, {}, {}, {}},
+      {"80x60 1 spp", {80, 60, 1, false, false, 0, false}, {}, {}, {}, {}},
       {"160x120 1 spp", {160, 120, 1, false, false, 0, false}, {}, {}, {}, {}},
-      {"160x120 1 spp depth 6 1 shadow ray", {160, 120, 1, false, false, 6, true}, {}, {}, {}, {}},
-      {"320x240 1 spp (old pass 1)", {320, 240, 1, false, false, 0, false}, {}, {}, {}, {}},
-      {"320x240 1 spp depth 6 1 shadow ray", {320, 240, 1, false, false, 6, true}, {}, {}, {}, {}},
-      {"320x240 adaptive + caustics (last pass)",
+      {"160x120 quick (the former pass 0)", {160, 120, 1, false, false, 6, true}, {}, {}, {}, {}},
+      {"320x240 1 spp, own depth, shadow rays",
+       {320, 240, 1, false, false, 0, false},
+       {},
+       {},
+       {},
+       {}},
+      {"320x240 quick (pass 0)", {320, 240, 1, false, false, 6, true}, {}, {}, {}, {}},
+      {"320x240 adaptive + caustics (pass 1)",
        {320, 240, spp, true, true, 0, false},
        {},
        {},

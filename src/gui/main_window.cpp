@@ -23,6 +23,7 @@
 #include "src/gui/radius_plot.h"
 #include "src/gui/scene_panel.h"
 #include "src/gui/shell_view.h"
+#include "src/pipeline/frame_scene.h"
 
 namespace thaw::gui {
 namespace {
@@ -116,6 +117,12 @@ MainWindow::MainWindow(ScenarioDocument document, QWidget* parent)
   connect(m_view, &ShellView::cameraMoved, this, &MainWindow::camera_from_view);
   connect(m_renderer, &PreviewRenderer::imageReady, this, &MainWindow::on_image);
   connect(m_renderer, &PreviewRenderer::shellReady, this, &MainWindow::on_shell_ready);
+  connect(m_renderer, &PreviewRenderer::sceneReady, this, [this](quint64 serial) {
+    // Only the current request's: an older one's camera would undo an orbit just written back.
+    if (serial != m_request_serial) return;
+    if (auto props = m_renderer->scene_props(); props && props->serial == serial)
+      m_view->set_scene(*props);
+  });
   connect(m_renderer, &PreviewRenderer::failed, this, [this](const QString& message) {
     m_status->setText("preview: " + message);
     m_problem->setText(message);
@@ -258,9 +265,10 @@ QWidget* MainWindow::make_render_tab() {
     emit filmCancelled();
   });
   auto* note = new QLabel(
-      "The preview renders the first film frame as <tt>thaw run</tt> would: a quick half-size "
-      "pass, the full preview size, then with the frame's anti-aliasing and caustics. Every edit "
-      "restarts it.");
+      "The preview renders the first film frame as <tt>thaw run</tt> would: a quick pass at the "
+      "preview size, then with the frame's anti-aliasing and caustics. Every edit restarts it. "
+      "The 3D view below shows the same scene through the same camera: orbit, pan or zoom it "
+      "and the camera is written back.");
   note->setWordWrap(true);
   v->addWidget(note);
   v->addStretch(1);
@@ -436,7 +444,7 @@ void MainWindow::show_step(int index) {
   if (!m_run || index < 0 || index >= static_cast<int>(m_run->steps.size())) return;
   m_step = index;
   const ShellStep& step = *m_run->steps[static_cast<std::size_t>(index)];
-  m_view->show_step(step, false, /*moving=*/true);
+  m_view->show_step(step, shell_offset_of(step), false, /*moving=*/true);
   m_plot->set_marker(step.row.time_s);
   if (m_slider->value() != index) m_slider->setValue(index);
   m_pass = -1;             // the image shown is of another step now
@@ -521,7 +529,8 @@ void MainWindow::recheck() {
       m_slider->setEnabled(false);
       m_plot->set_rows({});
       m_sim_status->setText("The scenario changed: simulate again to scrub through time.");
-      if (auto shell = m_renderer->initial_shell()) m_view->show_step(*shell, false);
+      if (auto shell = m_renderer->initial_shell())
+        m_view->show_step(*shell, shell_offset_of(*shell), false);
     }
     request_preview();
   } else {
@@ -635,6 +644,7 @@ void MainWindow::request_preview(bool full_quality) {
     r.camera_rows = m_run->rows;
   }
   m_full_quality = full_quality;
+  m_request_size = QSize(r.width, r.height);
   m_pass = -1;
   m_request_serial = m_renderer->request(std::move(r));
 }
@@ -669,28 +679,24 @@ void MainWindow::resizeEvent(QResizeEvent* event) {
   show_image();
 }
 
+std::array<double, 3> MainWindow::shell_offset_of(const ShellStep& step) const {
+  if (!m_check.ok()) return {0.0, 0.0, 0.0};
+  std::optional<double> min_y;
+  if (step.outer && !step.outer->positions.empty()) {
+    min_y = step.outer->positions.front().y;
+    for (const auto& p : step.outer->positions) min_y = std::min<double>(*min_y, p.y);
+  }
+  return pipeline::shell_offset(*m_check.scenario, min_y);
+}
+
 void MainWindow::camera_from_view() {
   if (!m_check.ok()) return;
-  const RunScenario& sc = *m_check.scenario;
-  // The view shows the meshes about the shell's core; the frames place them at [render.shell]
-  // center, lowered onto the floor when the shell rests on it (frame_scene.h): the same offset.
-  std::shared_ptr<const ShellStep> step = m_run && m_step >= 0
-                                              ? m_run->steps[static_cast<std::size_t>(m_step)]
-                                              : m_renderer->initial_shell();
-  std::array<double, 3> offset = sc.shell.center;
-  if (sc.shell.rest_on_floor && step && step->outer) {
-    double min_y = step->outer->positions.front().y;
-    for (const auto& p : step->outer->positions) min_y = std::min<double>(min_y, p.y);
-    offset[1] = sc.shell.floor_y - min_y;
-  }
+  // The view is in scene coordinates (the shell drawn where the frames place it).
   const ShellView::ViewCamera v = m_view->camera();
-  auto moved = [&](const std::array<double, 3>& p) {
-    return std::array<double, 3>{p[0] + offset[0], p[1] + offset[1], p[2] + offset[2]};
-  };
   const double n = std::hypot(v.view_up[0], v.view_up[1], v.view_up[2]);
   modify([&](ScenarioDocument& d) {
-    d.set("render.camera.position", moved(v.position));
-    d.set("render.camera.look_at", moved(v.focal_point));
+    d.set("render.camera.position", v.position);
+    d.set("render.camera.look_at", v.focal_point);
     d.set("render.camera.up",
           std::array<double, 3>{v.view_up[0] / n, v.view_up[1] / n, v.view_up[2] / n});
     d.set("render.camera.vertical_fov_deg", v.vertical_fov_deg);
@@ -699,7 +705,7 @@ void MainWindow::camera_from_view() {
 
 void MainWindow::on_shell_ready() {
   if (auto shell = m_renderer->initial_shell()) {
-    m_view->show_step(*shell, true);
+    m_view->show_step(*shell, shell_offset_of(*shell), true);
     if (!shell->note.empty()) m_status->setText(QString::fromStdString(shell->note));
   }
 }

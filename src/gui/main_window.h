@@ -64,6 +64,9 @@ class MainWindow : public QMainWindow {
   /// The latest preview image and the pass it came from (-1 before the first).
   const QImage& preview_image() const { return m_image; }
   int preview_pass() const { return m_pass; }
+  /// Whether the image shown is of the current request at its full size (the preview size, or
+  /// the frame's size after Render): the first such image is what an edit waits for.
+  bool preview_full_size() const { return m_pass >= 0 && m_image.size() == m_request_size; }
   /// The pass count of a full preview and the seconds from the edit to the latest image.
   int preview_passes() const { return m_passes; }
   double preview_seconds() const { return m_seconds; }
@@ -118,6 +121,8 @@ class MainWindow : public QMainWindow {
   void on_image(const QImage& image, int pass, int passes, double seconds, quint64 serial);
   void show_image();
   void on_shell_ready();
+  /// Where the frames place `step`'s shell (pipeline::shell_offset) [m].
+  std::array<double, 3> shell_offset_of(const ShellStep& step) const;
   /// Writes the 3D view's camera (after an orbit) as the scenario's [render.camera].
   void camera_from_view();
   void update_title();
@@ -141,6 +146,8 @@ class MainWindow : public QMainWindow {
   std::uint64_t m_request_serial = 0;
   double m_seconds = 0;
   int m_preview_width = 320, m_preview_height = 240;
+  /// the size of the current request's images
+  QSize m_request_size;
   bool m_full_quality = false;
   SimulationRunner* m_runner = nullptr;
   std::shared_ptr<const SimulationRun> m_run;

@@ -61,6 +61,11 @@ std::shared_ptr<const ShellStep> PreviewRenderer::initial_shell() const {
   return m_initial;
 }
 
+std::shared_ptr<const SceneProps> PreviewRenderer::scene_props() const {
+  std::lock_guard lock(m_mutex);
+  return m_props;
+}
+
 bool PreviewRenderer::busy() const {
   std::lock_guard lock(m_mutex);
   return m_pending.has_value() || m_rendering;
@@ -125,8 +130,9 @@ void PreviewRenderer::serve(const PreviewRequest& request,
   const auto passes = preview_passes(request.width, request.height, request.samples);
   for (std::size_t i = 0; i < passes.size();) {
     if (m_cancel) return;
-    const render::Scene scene =
-        render::build_scene(preview_scene(request.scenario, *step, request.camera_rows, passes[i]));
+    const render::SceneDescription desc =
+        preview_scene(request.scenario, *step, request.camera_rows, passes[i]);
+    const render::Scene scene = render::build_scene(desc);
     render::RenderOptions options;
     options.cancel = &m_cancel;
     const std::uint64_t interrupts = FilmRunner::interrupts_started();
@@ -146,8 +152,28 @@ void PreviewRenderer::serve(const PreviewRequest& request,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     emit imageReady(to_qimage(result.image, request.scenario.scene.image.exposure),
                     static_cast<int>(i), static_cast<int>(passes.size()), seconds, serial);
+    if (i == 0) update_scene_props(desc, *step, serial);
     ++i;
   }
+}
+
+void PreviewRenderer::update_scene_props(const render::SceneDescription& desc,
+                                         const ShellStep& step, std::uint64_t serial) {
+  const std::vector<const render::TriangleMesh*> shell{step.outer.get(), step.inner.get()};
+  std::shared_ptr<const SceneProps> last = scene_props();
+  auto props = std::make_shared<SceneProps>();
+  if (last && last->key == scene_props_key(desc, shell)) {
+    *props = *last;  // the same actors: only the camera and the serial are new
+    props->camera = desc.camera;
+  } else {
+    *props = make_scene_props(desc, shell);
+  }
+  props->serial = serial;
+  {
+    std::lock_guard lock(m_mutex);
+    m_props = std::move(props);
+  }
+  emit sceneReady(serial);
 }
 
 }  // namespace thaw::gui

@@ -4,7 +4,9 @@
 // (cached while the shell's keys do not change), then renders preview_passes() one after the
 // other, handing each image to the GUI thread by a queued signal. A new request cancels the
 // render in flight (RenderOptions::cancel: its remaining tiles are skipped) and restarts from the
-// quick pass; the GUI thread only ever takes a mutex for a copy. Knows nothing of the widgets.
+// quick pass; the GUI thread only ever takes a mutex for a copy. After a request's first image it
+// also makes what the 3D view draws of the frame's scene (scene_props.h; its actors are reused
+// while the scene's geometry and colours do not change). Knows nothing of the widgets.
 #include <QImage>
 #include <QObject>
 #include <atomic>
@@ -18,6 +20,7 @@
 
 #include "render/image/image.h"
 #include "src/gui/preview_scene.h"
+#include "src/gui/scene_props.h"
 
 namespace thaw::gui {
 
@@ -50,6 +53,8 @@ class PreviewRenderer : public QObject {
   std::uint64_t abandoned_passes() const { return m_abandoned; }
   /// The initial shell the worker last meshed (for the 3D view); null before the first.
   std::shared_ptr<const ShellStep> initial_shell() const;
+  /// What the 3D view draws of the latest served request's scene (null before the first).
+  std::shared_ptr<const SceneProps> scene_props() const;
   /// True while a request is pending or a pass is rendering.
   bool busy() const;
 
@@ -59,6 +64,8 @@ class PreviewRenderer : public QObject {
   void imageReady(const QImage& image, int pass, int passes, double seconds, quint64 serial);
   /// The initial shell of a new scenario was meshed (initial_shell() has it).
   void shellReady();
+  /// scene_props() was made for request `serial` (after its first image).
+  void sceneReady(quint64 serial);
   /// The request cannot be rendered (a scene problem build_scene found); one line.
   void failed(const QString& message);
 
@@ -66,6 +73,8 @@ class PreviewRenderer : public QObject {
   void loop();
   void serve(const PreviewRequest& request, std::chrono::steady_clock::time_point start,
              std::uint64_t serial);
+  void update_scene_props(const render::SceneDescription& desc, const ShellStep& step,
+                          std::uint64_t serial);
 
   mutable std::mutex m_mutex;
   std::condition_variable m_wake;
@@ -77,6 +86,7 @@ class PreviewRenderer : public QObject {
   std::atomic<std::uint64_t> m_abandoned{0};
   std::shared_ptr<const ShellStep> m_initial;
   std::string m_initial_key;
+  std::shared_ptr<const SceneProps> m_props;  // guarded by m_mutex
   std::thread m_thread;
 };
 

@@ -26,10 +26,10 @@ struct PreviewPass {
   bool one_shadow_ray = false;
 };
 
-/// The passes for a preview of `width` x `height` with up to `samples` per pixel: a half-size
-/// quick image (1 sample, no caustics, fewer levels and shadow rays; shown scaled to the preview
-/// size at once), the full size at the same quick settings, then the full size at the scene's
-/// own settings (adaptive up to `samples`, caustics).
+/// The passes for a preview of `width` x `height` with up to `samples` per pixel: the preview
+/// size at quick settings (1 sample, no caustics, fewer levels and shadow rays), then at the
+/// scene's own settings (adaptive up to `samples`, caustics). A preview larger than 320x240
+/// starts with a quick pass of 320x240's pixel count, shown scaled to the preview size.
 std::vector<PreviewPass> preview_passes(int width, int height, int samples);
 
 /// The frame scene of `step`; `camera_rows` are the rows the built-in camera frames (all of a

@@ -12,6 +12,8 @@
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "src/inspect/surface_actor.h"
@@ -36,6 +38,8 @@ ShellView::ShellView(QWidget* parent) : QVTKOpenGLNativeWidget(parent) {
   m_label = vtkSmartPointer<vtkTextActor>::New();
   m_label->GetTextProperty()->SetFontSize(14);
   m_label->GetTextProperty()->SetColor(0.95, 0.96, 0.98);
+  m_label->GetTextProperty()->SetBackgroundColor(0.10, 0.11, 0.14);  // legible over the floor
+  m_label->GetTextProperty()->SetBackgroundOpacity(0.7);
   m_label->SetDisplayPosition(8, 8);
   m_renderer->AddActor2D(m_label);
   window->AddRenderer(m_renderer);
@@ -83,7 +87,42 @@ void ShellView::settle() {
   renderWindow()->Render();
 }
 
-void ShellView::show_step(const ShellStep& step, bool frame, bool moving) {
+void ShellView::set_scene(const SceneProps& props) {
+  bool changed = false;
+  if (props.key != m_scene_key) {
+    for (const auto& a : m_scene) m_renderer->RemoveActor(a);
+    m_scene = props.actors;
+    for (const auto& a : m_scene) m_renderer->AddActor(a);
+    m_scene_key = props.key;
+    m_scene_objects = props.objects;
+    m_scene_lights = props.lights;
+    changed = true;
+  }
+  const ViewCamera now = camera();
+  const render::CameraDescription& c = props.camera;
+  auto near = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    double d = 0, n = 0;
+    for (int k = 0; k < 3; ++k) d += std::abs(a[k] - b[k]), n += std::abs(a[k]) + std::abs(b[k]);
+    return d <= 1e-9 * std::max(1.0, n);
+  };
+  // The view's own camera written back (an orbit) comes back unchanged: nothing to do then.
+  if (!m_scene_camera || !near(now.position, c.position) || !near(now.focal_point, c.look_at) ||
+      !near(now.view_up, c.up) || std::abs(now.vertical_fov_deg - c.vertical_fov_deg) > 1e-9) {
+    vtkCamera* cam = m_renderer->GetActiveCamera();
+    cam->SetPosition(c.position.data());
+    cam->SetFocalPoint(c.look_at.data());
+    cam->SetViewUp(c.up.data());
+    cam->SetViewAngle(c.vertical_fov_deg);
+    m_scene_camera = true;
+    changed = true;
+  }
+  if (!changed) return;
+  m_renderer->ResetCameraClippingRange();
+  renderWindow()->Render();
+}
+
+void ShellView::show_step(const ShellStep& step, const std::array<double, 3>& offset, bool frame,
+                          bool moving) {
   if (m_outer) m_renderer->RemoveActor(m_outer);
   if (m_inner) m_renderer->RemoveActor(m_inner);
   m_outer = m_inner = nullptr;
@@ -93,11 +132,13 @@ void ShellView::show_step(const ShellStep& step, bool frame, bool moving) {
   // back over a step only draws.
   if (step.inner_actor && !step.inner_view.triangles.empty()) {
     m_inner = step.inner_actor;
+    m_inner->SetPosition(offset[0], offset[1], offset[2]);
     m_renderer->AddActor(m_inner);
     m_triangles += static_cast<long>(step.inner_view.triangles.size());
   }
   if (step.outer_actor && !step.outer_view.triangles.empty()) {
     m_outer = step.outer_actor;
+    m_outer->SetPosition(offset[0], offset[1], offset[2]);
     m_outer->GetProperty()->SetEdgeVisibility(!moving);  // the look of surface_actor.h at rest
     m_renderer->AddActor(m_outer);
     m_triangles += static_cast<long>(step.outer_view.triangles.size());
@@ -107,13 +148,15 @@ void ShellView::show_step(const ShellStep& step, bool frame, bool moving) {
                 step.row.time_s, 1e3 * step.row.inner_radius_m, 1e3 * step.row.outer_radius_m,
                 m_triangles == 0 ? "   (no surface)" : "");
   m_label->SetInput(text);
-  if (frame) {
+  if (frame && !m_scene_camera) {
     vtkCamera* camera = m_renderer->GetActiveCamera();
-    camera->SetPosition(0.55, 0.38, 0.75);  // an oblique view from above, y up as in the scene
-    camera->SetFocalPoint(0, 0, 0);
+    camera->SetPosition(offset[0] + 0.55, offset[1] + 0.38, offset[2] + 0.75);  // oblique, y up
+    camera->SetFocalPoint(offset[0], offset[1], offset[2]);
     camera->SetViewUp(0, 1, 0);
     camera->SetViewAngle(30);
     m_renderer->ResetCamera();
+  } else {
+    m_renderer->ResetCameraClippingRange();
   }
   renderWindow()->Render();
 }

@@ -1,13 +1,18 @@
 #pragma once
-// The 3D view: one shell step's inner and outer surfaces drawn as `thaw inspect --screenshot`
-// draws them (src/inspect/surface_actor.h: translucent ice, blue water), in VTK's Qt widget,
-// orbited with the mouse. Showing a step replaces the two actors and keeps the camera, so
-// scrubbing through a run shows the shell shrinking in place.
+// The 3D view: the frame's scene in scene coordinates, in VTK's Qt widget, orbited with the
+// mouse: one shell step's inner and outer surfaces drawn as `thaw inspect --screenshot` draws
+// them (src/inspect/surface_actor.h: translucent ice, blue water) where the frames place them,
+// and the scene's other objects and lights (scene_props.h), seen through the frame's camera
+// until the user moves it. Showing a step replaces the shell's two actors and keeps the camera,
+// so scrubbing through a run shows the shell shrinking in place.
 #include <QVTKOpenGLNativeWidget.h>
 #include <vtkSmartPointer.h>
 
 #include <array>
+#include <string>
+#include <vector>
 
+#include "src/gui/scene_props.h"
 #include "src/gui/shell_step.h"
 
 class vtkRenderer;
@@ -20,11 +25,19 @@ class ShellView : public QVTKOpenGLNativeWidget {
   Q_OBJECT
  public:
   explicit ShellView(QWidget* parent = nullptr);
-  /// Shows `step`'s surfaces; the camera is framed on them when `frame` (a new scenario). While
-  /// `moving` (the time slider is dragged) the outer surface is drawn without its triangle
+  /// Shows `step`'s surfaces moved by `offset` (where the frame places the shell's core) [m];
+  /// the camera is framed on them when `frame` and no scene camera was set yet (set_scene).
+  /// While `moving` (the time slider is dragged) the outer surface is drawn without its triangle
   /// edges: with software OpenGL (llvmpipe) the edges' extra pass made each draw 2.5x slower
   /// (bench/gui/bench_gui); settle() draws them again once the slider rests.
-  void show_step(const ShellStep& step, bool frame, bool moving = false);
+  void show_step(const ShellStep& step, const std::array<double, 3>& offset, bool frame,
+                 bool moving = false);
+  /// Shows the scene's other objects and lights (their actors swapped when their key differs)
+  /// and, when it differs from the view's, the frame's camera; draws only if anything changed.
+  void set_scene(const SceneProps& props);
+  /// The scene objects and lights drawn (tests).
+  std::size_t scene_objects() const { return m_scene_objects; }
+  std::size_t scene_lights() const { return m_scene_lights; }
   /// Draws the shown step with its triangle edges (after a drag of the time slider).
   void settle();
   /// The view's camera in the meshes' frame (the shell's core at the origin) [m, degrees].
@@ -51,6 +64,10 @@ class ShellView : public QVTKOpenGLNativeWidget {
   vtkSmartPointer<vtkActor> m_outer, m_inner;
   vtkSmartPointer<vtkTextActor> m_label;
   long m_triangles = 0;
+  std::vector<vtkSmartPointer<vtkActor>> m_scene;
+  std::string m_scene_key;
+  std::size_t m_scene_objects = 0, m_scene_lights = 0;
+  bool m_scene_camera = false;
 };
 
 }  // namespace thaw::gui

@@ -90,13 +90,13 @@ double grey_spread(const QImage& image, const QRect& r) {
   return std::sqrt(std::max(0.0, s2 / n - mean * mean));
 }
 
-/// Waits for the preview's full-size pass (pass 1) of the current scenario.
+/// Waits for the first image of the current scenario at the preview's full size.
 bool wait_for_full_size(MainWindow& w, int timeout_ms = 60000) {
   QElapsedTimer t;
   t.start();
   while (t.elapsed() < timeout_ms) {
     QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
-    if (w.preview_pass() >= 1) return true;
+    if (w.preview_full_size()) return true;
     QTest::qWait(10);
   }
   return false;
@@ -205,22 +205,48 @@ class TestMainWindow : public QObject {
   void orbitingTheViewWritesTheCameraBack() {
     MainWindow w{ScenarioDocument()};
     w.show();
-    QTRY_VERIFY_WITH_TIMEOUT(w.shell_view().triangles() > 0, 120000);
+    QTRY_VERIFY_WITH_TIMEOUT(w.shell_view().triangles() > 0 && w.shell_view().scene_objects() > 0,
+                             120000);
     QVERIFY(!w.check().scenario->camera_set);
-    // As an orbit ends: the view looks from +x, slightly above, at the shell's core.
-    w.shell_view().set_camera({{0.2, 0.05, 0.0}, {0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, 30.0});
+    // As an orbit ends: the view (in scene coordinates) looks from +x, slightly above, at the
+    // shell's core, which the default places 3 cm above the floor at y = 0.
+    w.shell_view().set_camera({{0.2, 0.08, 0.0}, {0.0, 0.03, 0.0}, {0.0, 1.0, 0.0}, 30.0});
     w.shell_view().report_camera();
     QVERIFY2(w.check().ok(), w.check().message.c_str());
     const auto& sc = *w.check().scenario;
     QVERIFY(sc.camera_set);
-    // The default shell rests on the floor at y = 0 with its core 3 cm above it, centred at x = z =
-    // 0.
     const auto& cam = sc.scene.camera;
-    QVERIFY(std::abs(cam.position[0] - 0.2) < 1e-9 && std::abs(cam.position[2]) < 1e-9);
-    QVERIFY2(std::abs(cam.look_at[1] - 0.03) < 1e-3,
-             qPrintable(QString::number(cam.look_at[1])));  // mesh within 0.1 %
-    QVERIFY(std::abs(cam.position[1] - cam.look_at[1] - 0.05) < 1e-9);
+    QCOMPARE(cam.position, (thaw::render::Vec3d{0.2, 0.08, 0.0}));
+    QCOMPARE(cam.look_at, (thaw::render::Vec3d{0.0, 0.03, 0.0}));
     QCOMPARE(cam.vertical_fov_deg, 30.0);
+    // The preview renders from there: its next images come with that camera, and the view keeps
+    // it (the written-back camera does not move the view again).
+    QVERIFY(wait_for_full_size(w));
+    const auto v = w.shell_view().camera();
+    QCOMPARE(v.position, (std::array<double, 3>{0.2, 0.08, 0.0}));
+  }
+
+  // The 3D view shows the frame's scene, not only the shell: the default's floor and light, an
+  // object added in the Scene tab, and the camera set in the Scene tab.
+  void theViewShowsTheSceneAndItsCamera() {
+    MainWindow w{ScenarioDocument()};
+    w.show();
+    QTRY_VERIFY_WITH_TIMEOUT(w.shell_view().scene_objects() == 1, 120000);  // the floor plane
+    QCOMPARE(w.shell_view().scene_lights(), std::size_t{1});
+    // Until the scenario sets a camera the view looks through the built-in framing camera.
+    const auto framing = w.shell_view().camera();
+    QVERIFY(framing.vertical_fov_deg > 1.0);
+    QVERIFY(w.add_object("box"));
+    QTRY_VERIFY_WITH_TIMEOUT(w.shell_view().scene_objects() == 2, 60000);
+    QVERIFY(w.add_object("sphere"));
+    QTRY_VERIFY_WITH_TIMEOUT(w.shell_view().scene_objects() == 3, 60000);
+    QVERIFY(w.remove_object(1));
+    QTRY_VERIFY_WITH_TIMEOUT(w.shell_view().scene_objects() == 2, 60000);
+    // A camera typed into the Scene tab moves the view's camera.
+    type_into(w, "render.camera.position", "0.1, 0.3, 0.4");
+    QVERIFY2(w.check().ok(), w.check().message.c_str());
+    QTRY_VERIFY_WITH_TIMEOUT(
+        w.shell_view().camera().position == (std::array<double, 3>{0.1, 0.3, 0.4}), 60000);
   }
 
   void startAndCancelASimulation() {

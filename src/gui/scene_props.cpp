@@ -1,0 +1,346 @@
+#include "src/gui/scene_props.h"
+
+#include <vtkCellData.h>
+#include <vtkCubeSource.h>
+#include <vtkNew.h>
+#include <vtkPlaneSource.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkPolyDataNormals.h>
+#include <vtkProperty.h>
+#include <vtkSphereSource.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "render/geometry/obj_loader.h"
+#include "src/gui/shell_step.h"
+#include "src/inspect/vtk_polydata.h"
+
+namespace thaw::gui {
+namespace {
+
+using render::ObjectDescription;
+using render::RgbD;
+using render::Vec3d;
+
+/// Linear RGB as the display colour VTK takes (sRGB's gamma, roughly: the preview's PNGs are sRGB).
+RgbD display(const RgbD& c) {
+  RgbD d{};
+  for (int k = 0; k < 3; ++k) d[k] = std::pow(std::clamp(c[k], 0.0, 1.0), 1.0 / 2.2);
+  return d;
+}
+
+double dot(const Vec3d& a, const Vec3d& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+Vec3d cross(const Vec3d& a, const Vec3d& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+Vec3d scaled(const Vec3d& a, double s) {
+  return {a[0] * s, a[1] * s, a[2] * s};
+}
+Vec3d plus(const Vec3d& a, const Vec3d& b) {
+  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
+}
+Vec3d unit(const Vec3d& a) {
+  const double n = std::sqrt(dot(a, a));
+  return n > 0 ? scaled(a, 1.0 / n) : Vec3d{0.0, 1.0, 0.0};
+}
+
+const render::MaterialDescription* find_material(const render::SceneDescription& desc,
+                                                 const std::string& name) {
+  for (const auto& m : desc.materials)
+    if (m.name == name) return &m;
+  return nullptr;
+}
+
+/// The checker colour at `p` (render/material/texture.h: colour 0 where the sum of the cell
+/// indices is even).
+RgbD checker_at(const render::TextureDescription& t, const Vec3d& p) {
+  long sum = 0;
+  for (int k = 0; k < 3; ++k)
+    sum += static_cast<long>(std::floor((p[k] - t.checker_offset[k]) / t.checker_size));
+  return t.checker_colors[static_cast<std::size_t>(sum & 1L)];
+}
+
+RgbD mean_colour(const render::TextureDescription& t) {
+  if (t.kind == render::TextureDescription::Kind::solid) return t.color;
+  return scaled(plus(t.checker_colors[0], t.checker_colors[1]), 0.5);
+}
+
+vtkSmartPointer<vtkActor> actor_of(vtkPolyData* data, bool smooth) {
+  vtkNew<vtkPolyDataMapper> mapper;
+  if (smooth) {
+    vtkNew<vtkPolyDataNormals> normals;
+    normals->SetInputData(data);
+    normals->SplittingOff();
+    normals->ConsistencyOff();
+    normals->AutoOrientNormalsOff();
+    normals->Update();  // here, off the GUI thread
+    vtkNew<vtkPolyData> out;
+    out->ShallowCopy(normals->GetOutput());
+    mapper->SetInputData(out);
+  } else {
+    mapper->SetInputData(data);
+  }
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  return actor;
+}
+
+/// The look of an object: its material's colour (a checker's mean where cells are not drawn),
+/// metal shiny, emissive unlit; a dielectric translucent (water blue inside the puddle's medium).
+void set_look(vtkActor* actor, const render::SceneDescription& desc, const ObjectDescription& o,
+              const std::string& water_medium) {
+  vtkProperty* p = actor->GetProperty();
+  if (o.is_dielectric()) {
+    const bool water = !water_medium.empty() && o.inside == water_medium;
+    const RgbD c = water ? RgbD{0.16, 0.42, 0.80} : RgbD{0.80, 0.92, 1.00};
+    p->SetColor(c[0], c[1], c[2]);
+    p->SetOpacity(water ? 0.85 : 0.3);
+    p->SetSpecular(0.6);
+    p->SetSpecularPower(40);
+    return;
+  }
+  const render::MaterialDescription* m = find_material(desc, o.material);
+  if (!m) return;
+  using Kind = render::MaterialDescription::Kind;
+  const RgbD c = display(m->kind == Kind::emissive ? m->emission : mean_colour(m->texture));
+  p->SetColor(c[0], c[1], c[2]);
+  if (m->kind == Kind::emissive) {
+    p->SetAmbient(1.0);
+    p->SetDiffuse(0.0);
+  } else if (m->kind == Kind::metal || m->kind == Kind::phong) {
+    p->SetSpecular(m->kind == Kind::metal ? 0.8 : 0.4);
+    p->SetSpecularPower(m->kind == Kind::metal ? 60 : std::clamp(m->shininess, 1.0, 128.0));
+  }
+}
+
+/// An infinite plane as a square of `side` about `focus` projected onto it, in cells of the
+/// material's checker (coloured per cell) or one cell when solid.
+vtkSmartPointer<vtkPolyData> plane_data(const ObjectDescription& o, const Vec3d& focus, double side,
+                                        const render::MaterialDescription* m) {
+  const Vec3d n = unit(o.normal);
+  // The in-plane axes: the world axis least along n, made perpendicular (axis-aligned planes get
+  // axis-aligned cells, as the checker's).
+  int least = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::abs(n[k]) < std::abs(n[least]) - 1e-12) least = k;
+  Vec3d a{0.0, 0.0, 0.0};
+  a[least] = 1.0;
+  const Vec3d u = unit(plus(a, scaled(n, -dot(a, n))));
+  const Vec3d v = cross(n, u);
+  const bool checker = m && m->kind != render::MaterialDescription::Kind::emissive &&
+                       m->texture.kind == render::TextureDescription::Kind::checker;
+  constexpr int kMaxCells = 400;  // per side: 160,000 quads at most
+  int cells = 1;
+  double cell = side;
+  if (checker) {
+    cell = m->texture.checker_size;
+    cells = std::clamp(static_cast<int>(std::ceil(side / cell)), 1, kMaxCells);
+  }
+  const double half = 0.5 * cells * cell;
+  // The focus's foot on the plane, snapped to the cell grid along u and v.
+  const Vec3d foot = plus(focus, scaled(n, dot(plus(o.point, scaled(focus, -1.0)), n)));
+  const double fu = std::round(dot(foot, u) / cell) * cell - dot(o.point, u);
+  const double fv = std::round(dot(foot, v) / cell) * cell - dot(o.point, v);
+  const Vec3d centre = plus(o.point, plus(scaled(u, fu), scaled(v, fv)));
+  const Vec3d origin = plus(centre, plus(scaled(u, -half), scaled(v, -half)));
+  vtkNew<vtkPlaneSource> source;
+  source->SetOrigin(origin.data());
+  Vec3d p1 = plus(origin, scaled(u, 2 * half)), p2 = plus(origin, scaled(v, 2 * half));
+  source->SetPoint1(p1.data());
+  source->SetPoint2(p2.data());
+  source->SetResolution(cells, cells);
+  source->Update();
+  auto data = vtkSmartPointer<vtkPolyData>::New();
+  data->ShallowCopy(source->GetOutput());
+  if (checker) {
+    // vtkPlaneSource's cells run along point 1 (u) first, then point 2 (v).
+    vtkNew<vtkUnsignedCharArray> colours;
+    colours->SetNumberOfComponents(3);
+    colours->SetNumberOfTuples(static_cast<vtkIdType>(cells) * cells);
+    const Vec3d lift = scaled(n, 1e-6 * cell);  // off the plane, as a hit point's offset
+    for (int j = 0; j < cells; ++j)
+      for (int i = 0; i < cells; ++i) {
+        const Vec3d c = plus(plus(origin, lift),
+                             plus(scaled(u, (i + 0.5) * cell), scaled(v, (j + 0.5) * cell)));
+        const RgbD d = display(checker_at(m->texture, c));
+        const vtkIdType id = static_cast<vtkIdType>(j) * cells + i;
+        for (int k = 0; k < 3; ++k)
+          colours->SetComponent(id, k, std::round(255.0 * d[static_cast<std::size_t>(k)]));
+      }
+    data->GetCellData()->SetScalars(colours);
+  }
+  return data;
+}
+
+vtkSmartPointer<vtkPolyData> sphere_data(const Vec3d& centre, double radius) {
+  vtkNew<vtkSphereSource> s;
+  s->SetCenter(centre.data());
+  s->SetRadius(radius);
+  s->SetThetaResolution(40);
+  s->SetPhiResolution(24);
+  s->Update();
+  auto data = vtkSmartPointer<vtkPolyData>::New();
+  data->ShallowCopy(s->GetOutput());
+  return data;
+}
+
+vtkSmartPointer<vtkPolyData> mesh_data(const render::SceneDescription& desc,
+                                       const ObjectDescription& o) {
+  render::TriangleMesh mesh;
+  if (o.mesh) {
+    mesh = *o.mesh;
+  } else {
+    const auto path = o.mesh_file.is_absolute() ? o.mesh_file : desc.base_dir / o.mesh_file;
+    mesh = render::load_obj(path);
+  }
+  render::transform_mesh(mesh, o.scale, o.translate);
+  return inspect::to_polydata(to_view_mesh(mesh));
+}
+
+void append(std::string& key, const char* name, const Vec3d& v) {
+  char text[96];
+  std::snprintf(text, sizeof text, " %s %.17g %.17g %.17g", name, v[0], v[1], v[2]);
+  key += text;
+}
+void append(std::string& key, const char* name, double x) {
+  char text[48];
+  std::snprintf(text, sizeof text, " %s %.17g", name, x);
+  key += text;
+}
+
+bool skipped(const ObjectDescription& o, const std::vector<const render::TriangleMesh*>& skip) {
+  return o.mesh && std::find(skip.begin(), skip.end(), o.mesh.get()) != skip.end();
+}
+
+/// The shell's water medium: the inside of the skipped inner surface (the puddle shares it).
+std::string water_medium(const render::SceneDescription& desc,
+                         const std::vector<const render::TriangleMesh*>& skip) {
+  std::string name;
+  for (const auto& o : desc.objects)
+    if (skipped(o, skip) && o.is_dielectric()) name = o.inside;  // the inner surface comes last
+  return name;
+}
+
+}  // namespace
+
+std::string scene_props_key(const render::SceneDescription& desc,
+                            const std::vector<const render::TriangleMesh*>& skip) {
+  std::string key;
+  for (const auto& o : desc.objects) {
+    if (skipped(o, skip)) continue;
+    key += "\nobject " + std::to_string(static_cast<int>(o.shape)) + " " + o.material + " " +
+           o.inside + " " + o.mesh_file.string();
+    append(key, "c", o.center);
+    append(key, "r", o.radius);
+    append(key, "min", o.box_min);
+    append(key, "max", o.box_max);
+    append(key, "p", o.point);
+    append(key, "n", o.normal);
+    append(key, "s", o.scale);
+    append(key, "t", o.translate);
+    if (o.mesh) {  // in memory (the puddle): its size and extreme vertices
+      append(key, "tri", static_cast<double>(o.mesh->triangles.size()));
+      if (!o.mesh->positions.empty()) {
+        const auto& a = o.mesh->positions.front();
+        const auto& b = o.mesh->positions.back();
+        append(key, "v0", Vec3d{a.x, a.y, a.z});
+        append(key, "v1", Vec3d{b.x, b.y, b.z});
+      }
+    }
+  }
+  for (const auto& m : desc.materials) {
+    key += "\nmaterial " + m.name + " " + std::to_string(static_cast<int>(m.kind)) + " " +
+           std::to_string(static_cast<int>(m.texture.kind));
+    append(key, "c", m.texture.color);
+    append(key, "c0", m.texture.checker_colors[0]);
+    append(key, "c1", m.texture.checker_colors[1]);
+    append(key, "size", m.texture.checker_size);
+    append(key, "o", m.texture.checker_offset);
+    append(key, "e", m.emission);
+    append(key, "sh", m.shininess);
+  }
+  for (const auto& l : desc.lights) {
+    key += "\nlight " + std::to_string(static_cast<int>(l.kind));
+    append(key, "p", l.position);
+    append(key, "r", l.radius);
+    append(key, "c", l.color);
+  }
+  // Planes are drawn about the camera's focus, as large as its distance makes them.
+  append(key, "focus", desc.camera.look_at);
+  append(key, "eye", desc.camera.position);
+  return key;
+}
+
+SceneProps make_scene_props(const render::SceneDescription& desc,
+                            const std::vector<const render::TriangleMesh*>& skip) {
+  SceneProps props;
+  props.camera = desc.camera;
+  props.key = scene_props_key(desc, skip);
+  const Vec3d focus = desc.camera.look_at;
+  const Vec3d to_eye = plus(desc.camera.position, scaled(focus, -1.0));
+  const double distance = std::max(1e-3, std::sqrt(dot(to_eye, to_eye)));
+  const std::string water = water_medium(desc, skip);
+  for (const auto& o : desc.objects) {
+    if (skipped(o, skip)) continue;
+    vtkSmartPointer<vtkPolyData> data;
+    bool smooth = false;
+    switch (o.shape) {
+      case ObjectDescription::Shape::sphere:
+        data = sphere_data(o.center, o.radius);
+        break;
+      case ObjectDescription::Shape::box: {
+        vtkNew<vtkCubeSource> box;
+        box->SetBounds(o.box_min[0], o.box_max[0], o.box_min[1], o.box_max[1], o.box_min[2],
+                       o.box_max[2]);
+        box->Update();
+        data = vtkSmartPointer<vtkPolyData>::New();
+        data->ShallowCopy(box->GetOutput());
+        break;
+      }
+      case ObjectDescription::Shape::plane:
+        // Large against the camera's distance: the render's plane reaches the horizon.
+        data = plane_data(o, focus, 16.0 * distance,
+                          o.is_dielectric() ? nullptr : find_material(desc, o.material));
+        break;
+      case ObjectDescription::Shape::mesh:
+        data = mesh_data(desc, o);
+        smooth = o.smooth_normals || o.mesh != nullptr;
+        break;
+    }
+    vtkSmartPointer<vtkActor> actor = actor_of(data, smooth);
+    set_look(actor, desc, o, water);
+    if (data->GetCellData()->GetScalars()) {
+      actor->GetMapper()->SetScalarModeToUseCellData();
+      actor->GetMapper()->ScalarVisibilityOn();
+    } else {
+      actor->GetMapper()->ScalarVisibilityOff();
+    }
+    props.actors.push_back(actor);
+    ++props.objects;
+  }
+  for (const auto& l : desc.lights) {
+    // A point light as a small ball (3 % of the camera's distance), a sphere light as itself;
+    // both unlit in the light's colour.
+    const bool sphere = l.kind == render::LightDescription::Kind::sphere;
+    vtkSmartPointer<vtkActor> actor =
+        actor_of(sphere_data(l.position, sphere ? l.radius : 0.03 * distance), false);
+    actor->GetMapper()->ScalarVisibilityOff();
+    const RgbD c = display(l.color);
+    vtkProperty* p = actor->GetProperty();
+    p->SetColor(0.5 + 0.5 * c[0], 0.5 + 0.5 * c[1], 0.3 * c[2]);  // yellowish, as a lamp
+    p->SetAmbient(1.0);
+    p->SetDiffuse(0.0);
+    p->SetOpacity(sphere ? 0.6 : 1.0);
+    props.actors.push_back(actor);
+    ++props.lights;
+  }
+  return props;
+}
+
+}  // namespace thaw::gui
