@@ -80,13 +80,13 @@ struct EnthalpySolver::Impl {
   std::vector<unsigned char> type;
   std::vector<double> cg_r, cg_z, cg_p, cg_p2, cg_q, dtemp, diag, rhs;
   std::vector<double> partial_rz, partial_res, partial_pq, partial_newton;  ///< per-block partials
-  std::vector<double> partial_step, partial_most, partial_removed;          ///< per-step reductions
-  std::vector<long> partial_index;
   std::vector<double> area_g, area_w, area_share;  ///< update_surface_area's work arrays
   std::vector<char> open_prev, enclosed_prev, exposed, open_now, outside_now;
   std::vector<long> queue;  ///< the flood fill's breadth-first queue
 
-  double time = 0, dt = 0;
+  double time = 0;
+  double dt = 0;       ///< the step being taken [s]
+  double dt_next = 0;  ///< the next step's size [s]
   bool done = false, broke_through = false, melt_started = false, core_frozen = false;
   bool had_enclosed_liquid = false;
   double e0 = 0, heat_in = 0, drained = 0, reference = 0, initial_material = 0;
@@ -125,10 +125,9 @@ struct EnthalpySolver::Impl {
                     &cg_q, &dtemp, &diag,         &rhs,     &area_g, &area_w, &area_share})
       v->assign(static_cast<std::size_t>(n), 0.0);
     const auto blocks = static_cast<std::size_t>(block_count());
-    for (auto* v : {&partial_rz, &partial_res, &partial_pq, &partial_newton, &partial_step,
-                    &partial_most, &partial_removed})
+    for (auto* v : {&partial_rz, &partial_res, &partial_pq, &partial_newton})
       v->assign(blocks, 0.0);
-    partial_index.assign(blocks, -1);
+    block_sums.assign(blocks, BlockSums{});
     type.assign(static_cast<std::size_t>(n), kAir);
     for (auto* v : {&open_prev, &enclosed_prev, &exposed, &open_now, &outside_now})
       v->assign(static_cast<std::size_t>(n), 0);
@@ -143,7 +142,7 @@ struct EnthalpySolver::Impl {
     had_enclosed_liquid = enclosed_liquid_volume() > 0;
     update_surface_area(team);
     e0 = energy();
-    dt = p.fixed_step_s > 0 ? p.fixed_step_s : std::min(p.max_step_s, 0.05);
+    dt_next = p.fixed_step_s > 0 ? p.fixed_step_s : std::min(p.max_step_s, 0.05);
   }
 
   // --- geometry -------------------------------------------------------------------------------
@@ -216,11 +215,9 @@ struct EnthalpySolver::Impl {
   // --- per-step coefficients ------------------------------------------------------------------
   /// Cell c's conductances (to its +x, +y, +z neighbours) and boundary terms, frozen over one
   /// step at the step's initial state.
-  void build_coefficients(long c) {
+  void build_coefficients(long c, int i, int j, int k) {
     const long nxy = static_cast<long>(nx) * ny;
     {
-      const int i = static_cast<int>(c % nx), j = static_cast<int>((c / nx) % ny);
-      const int k = static_cast<int>(c / nxy);
       kx[c] = ky[c] = kz[c] = bq0[c] = bq1[c] = 0;
       if (m[c] == 0) return;
       const double kc = conductivity(h[c]);
@@ -266,25 +263,14 @@ struct EnthalpySolver::Impl {
     }
   }
 
-  /// Net heat rate into cell c at temperatures t [W].
-  double heat_rate(long c) const {
-    const long nxy = static_cast<long>(nx) * ny;
-    const int i = static_cast<int>(c % nx), j = static_cast<int>((c / nx) % ny);
-    const int k = static_cast<int>(c / nxy);
+  /// Net heat rate into cell c (at i, j, k) at temperatures t [W].
+  double heat_rate(long c, int i, int j, int k) const {
     const double tc = t[c];
-    double q = bq0[c] - bq1[c] * tc;
-    if (i + 1 < nx) q += kx[c] * (t[c + 1] - tc);
-    if (i > 0) q += kx[c - 1] * (t[c - 1] - tc);
-    if (j + 1 < ny) q += ky[c] * (t[c + nx] - tc);
-    if (j > 0) q += ky[c - nx] * (t[c - nx] - tc);
-    if (k + 1 < nz) q += kz[c] * (t[c + nxy] - tc);
-    if (k > 0) q += kz[c - nxy] * (t[c - nxy] - tc);
-    return q;
+    return neighbour_sum_of(
+        c, i, j, k, [&](long nb) { return t[nb] - tc; }, bq0[c] - bq1[c] * tc);
   }
-  double conductance_sum(long c) const {
+  double conductance_sum(long c, int i, int j, int k) const {
     const long nxy = static_cast<long>(nx) * ny;
-    const int i = static_cast<int>(c % nx), j = static_cast<int>((c / nx) % ny);
-    const int k = static_cast<int>(c / nxy);
     double g = bq1[c];
     if (i + 1 < nx) g += kx[c];
     if (i > 0) g += kx[c - 1];
@@ -294,28 +280,13 @@ struct EnthalpySolver::Impl {
     if (k > 0) g += kz[c - nxy];
     return g;
   }
-  /// sum over neighbours of K * v[nb] (v is zero outside the pure cells).
-  double neighbour_sum(long c, const std::vector<double>& v) const {
-    const long nxy = static_cast<long>(nx) * ny;
-    const int i = static_cast<int>(c % nx), j = static_cast<int>((c / nx) % ny);
-    const int k = static_cast<int>(c / nxy);
-    double q = 0;
-    if (i + 1 < nx) q += kx[c] * v[c + 1];
-    if (i > 0) q += kx[c - 1] * v[c - 1];
-    if (j + 1 < ny) q += ky[c] * v[c + nx];
-    if (j > 0) q += ky[c - nx] * v[c - nx];
-    if (k + 1 < nz) q += kz[c] * v[c + nxy];
-    if (k > 0) q += kz[c - nxy] * v[c - nxy];
-    return q;
-  }
-
-  /// sum over neighbours of K * v(nb), v a function of the neighbour's index.
+  /// q0 + the sum over neighbours of K * v(nb), v a function of the neighbour's index; cell c
+  /// is at (i, j, k). The terms are added in a fixed order (+x, -x, +y, -y, +z, -z): the same
+  /// bits wherever it is called.
   template <class V>
-  double neighbour_sum_of(long c, V&& v) const {
+  double neighbour_sum_of(long c, int i, int j, int k, V&& v, double q0 = 0) const {
     const long nxy = static_cast<long>(nx) * ny;
-    const int i = static_cast<int>(c % nx), j = static_cast<int>((c / nx) % ny);
-    const int k = static_cast<int>(c / nxy);
-    double q = 0;
+    double q = q0;
     if (i + 1 < nx) q += kx[c] * v(c + 1);
     if (i > 0) q += kx[c - 1] * v(c - 1);
     if (j + 1 < ny) q += ky[c] * v(c + nx);
@@ -327,10 +298,31 @@ struct EnthalpySolver::Impl {
 
   // --- one backward Euler step ----------------------------------------------------------------
   /// Residual of cell c's balance: M/dt (h - h_n) - heat rate [W].
-  double residual(long c) const { return m[c] * vol[c] / dt * (h[c] - hn[c]) - heat_rate(c); }
+  double residual(long c, int i, int j, int k) const {
+    return m[c] * vol[c] / dt * (h[c] - hn[c]) - heat_rate(c, i, j, k);
+  }
 
   long block_count() const { return (n + kBlock - 1) / kBlock; }
   long block_end(long bl) const { return std::min(n, (bl + 1) * kBlock); }
+  /// f(c, i, j, k) for the cells c of block bl in order, with their grid indices kept by
+  /// counting (three integer divisions per block instead of per cell).
+  template <class F>
+  void for_cells(long bl, F&& f) const {
+    long c = bl * kBlock;
+    const long end = block_end(bl), row = c / nx;
+    int i = static_cast<int>(c % nx), j = static_cast<int>(row % ny),
+        k = static_cast<int>(row / ny);
+    for (; c < end; ++c) {
+      f(c, i, j, k);
+      if (++i == nx) {
+        i = 0;
+        if (++j == ny) {
+          j = 0;
+          ++k;
+        }
+      }
+    }
+  }
   static double ordered_sum(const std::vector<double>& v) {
     double s = 0;
     for (double x : v) s += x;
@@ -381,20 +373,21 @@ struct EnthalpySolver::Impl {
       if (res <= tol || rz == 0 || it == kMaxCg) return it;
       const std::vector<double>& p_old = *po;
       std::vector<double>& p_new = *pn;
+      // z and the old p are zero outside the pure cells (start_cg, and p_new below), so the
+      // direction there is exactly 0: the same term the product needs from a non-pure neighbour.
       auto direction = [&](long c) { return cg_z[c] + beta * p_old[c]; };
       team.for_blocks([&](long bl) {
         double pq = 0;
-        for (long c = bl * kBlock; c < block_end(bl); ++c) {
+        for_cells(bl, [&](long c, int i, int j, int k) {
           if (!pure(c)) {
             p_new[c] = cg_q[c] = 0;
-            continue;
+            return;
           }
           const double pc = direction(c);
           p_new[c] = pc;
-          cg_q[c] = diag[c] * pc -
-                    neighbour_sum_of(c, [&](long nb) { return pure(nb) ? direction(nb) : 0.0; });
+          cg_q[c] = diag[c] * pc - neighbour_sum_of(c, i, j, k, direction);
           pq += pc * cg_q[c];
-        }
+        });
         partial_pq[static_cast<std::size_t>(bl)] = pq;
       });
       const double alpha = rz / ordered_sum(partial_pq);
@@ -421,11 +414,12 @@ struct EnthalpySolver::Impl {
 
   /// The previous Newton iteration's update of cell c from the temperature changes dtemp
   /// (zero outside the pure cells) and the right-hand side it was solved with.
-  void apply_update(long c) {
+  void apply_update(long c, int i, int j, int k) {
     if (type[c] == kAir) return;
     if (type[c] == kMushy) {
       // dT = 0 here: the cell's own balance gives its enthalpy change
-      h[c] += (rhs[c] + neighbour_sum(c, dtemp)) * dt / (m[c] * vol[c]);
+      h[c] += (rhs[c] + neighbour_sum_of(c, i, j, k, [&](long nb) { return dtemp[nb]; })) * dt /
+              (m[c] * vol[c]);
     } else if (type[c] == kIce) {
       h[c] = std::min(h[c] + ci * dtemp[c], 0.0);  // stop at the kink: melting starts next
     } else {
@@ -439,25 +433,25 @@ struct EnthalpySolver::Impl {
   /// own h, which the residuals read after the barrier.
   double prepare_newton_iteration(BlockTeam& team, bool apply) {
     team.for_blocks([&](long bl) {
-      for (long c = bl * kBlock; c < block_end(bl); ++c) {
-        if (apply) apply_update(c);
+      for_cells(bl, [&](long c, int i, int j, int k) {
+        if (apply) apply_update(c, i, j, k);
         t[c] = m[c] > 0 ? temperature(h[c]) : 0.0;
-      }
+      });
     });
     team.for_blocks([&](long bl) {
       double res = 0;
-      for (long c = bl * kBlock; c < block_end(bl); ++c) {
+      for_cells(bl, [&](long c, int i, int j, int k) {
         if (m[c] == 0) {
           type[c] = kAir;
           rhs[c] = 0;
-          continue;
+          return;
         }
         type[c] = h[c] < 0 ? kIce : (h[c] > latent ? kWater : kMushy);
         const double mv = m[c] * vol[c] / dt;
-        diag[c] = mv * (type[c] == kWater ? cw : ci) + conductance_sum(c);
-        rhs[c] = -residual(c);
+        diag[c] = mv * (type[c] == kWater ? cw : ci) + conductance_sum(c, i, j, k);
+        rhs[c] = -residual(c, i, j, k);
         res = std::max(res, std::abs(rhs[c]) / diag[c]);
-      }
+      });
       partial_newton[static_cast<std::size_t>(bl)] = res;
       start_cg(bl);
     });
@@ -485,71 +479,82 @@ struct EnthalpySolver::Impl {
     return false;
   }
 
-  // --- deterministic reductions inside a team -------------------------------------------------
-  /// Sum of f(c) over the cells, run by every thread of the team (f may also write cell c):
-  /// per-block partials added in block order by every thread, so every thread gets the same
-  /// bits, the same as sum_cells, for any thread count.
-  template <class F>
-  double team_sum(BlockTeam& team, F&& f) {
-    team.for_blocks([&](long bl) {
-      double sum = 0;
-      for (long c = bl * kBlock; c < block_end(bl); ++c) sum += f(c);
-      partial_step[static_cast<std::size_t>(bl)] = sum;
-    });
-    const double total = ordered_sum(partial_step);
-    team.sync();  // every thread has read the partials before the next reduction writes them
+  // --- the step's reductions ------------------------------------------------------------------
+  /// One block's share of a step's sums and maxima. Each field is written in one phase and read
+  /// by every thread right after that phase's barrier; its next write comes several barriers
+  /// later, after every thread has read it. Every thread adds the blocks' shares in block order,
+  /// so all get the same bits for any thread count.
+  struct BlockSums {
+    double energy_start = 0, heat = 0, drained = 0, most_drained = 0, removed = 0;
+    double energy_end = 0, enclosed = 0, wettest = 0, ice = 0, dtemp = 0, dmelt = 0;
+    long most_drained_cell = -1, wettest_cell = -1;
+  };
+  std::vector<BlockSums> block_sums;
+  template <class G>
+  double sum_blocks(G&& g) const {
+    double total = 0;
+    for (const BlockSums& b : block_sums) total += g(b);
     return total;
   }
-  /// Largest f(c) (at least 0) over the cells, as team_sum.
-  template <class F>
-  double team_max(BlockTeam& team, F&& f) {
-    team.for_blocks([&](long bl) {
-      double most = 0;
-      for (long c = bl * kBlock; c < block_end(bl); ++c) most = std::max(most, f(c));
-      partial_step[static_cast<std::size_t>(bl)] = most;
-    });
-    const double total = largest(partial_step);
-    team.sync();
-    return total;
+  template <class G>
+  double max_blocks(G&& g) const {
+    double most = 0;
+    for (const BlockSums& b : block_sums) most = std::max(most, g(b));
+    return most;
   }
-  /// The lowest-index cell with the largest f(c) above `floor` (-1 if none), as team_sum.
-  template <class F>
-  long team_argmax(BlockTeam& team, F&& f, double floor) {
-    team.for_blocks([&](long bl) {
-      double most = floor;
-      long arg = -1;
-      for (long c = bl * kBlock; c < block_end(bl); ++c) {
-        const double v = f(c);
-        if (v > most) {
-          most = v;
-          arg = c;
-        }
-      }
-      partial_step[static_cast<std::size_t>(bl)] = most;
-      partial_index[static_cast<std::size_t>(bl)] = arg;
-    });
-    double most = floor;
-    long arg = -1;
-    for (std::size_t bl = 0; bl < partial_index.size(); ++bl)
-      if (partial_index[bl] >= 0 && partial_step[bl] > most) {
-        most = partial_step[bl];
-        arg = partial_index[bl];
-      }
-    team.sync();
-    return arg;
+
+  /// Drains cell c if it is exposed and holds liquid; adds to the block's drained enthalpy, the
+  /// most drained cell (first among equals) and the removed ice remnants.
+  void drain_cell(long c, BlockSums& b) {
+    if (!(p.drain && exposed[c] && m[c] > 0 && h[c] > 0)) return;
+    const double e = m[c] * vol[c] * h[c];
+    b.drained += e;
+    if (e > b.most_drained) {
+      b.most_drained = e;
+      b.most_drained_cell = c;
+    }
+    const double f = liquid(h[c]);
+    m[c] = f >= 1 ? 0.0 : m[c] * (1 - f);
+    if (m[c] < kRemnantFraction) {
+      b.removed += m[c] * vol[c];
+      m[c] = 0;
+    }
+    h[c] = 0;
+  }
+  /// The enclosed liquid and the wettest enclosed cell (core_frozen), which depend on exposure.
+  void add_enclosed(long c, BlockSums& b) const {
+    b.enclosed += exposed[c] ? 0.0 : m[c] * vol[c] * liquid(h[c]);
+    const double wet = exposed[c] ? 0.0 : m[c] * liquid(h[c]);
+    if (wet > b.wettest) {
+      b.wettest = wet;
+      b.wettest_cell = c;
+    }
   }
 
   /// One step of size dt from the current state, run by every thread of the team (the same
-  /// decisions everywhere): coefficients, Newton, and the conservative final update; false
-  /// (state restored) if Newton failed. heat_step: the boundary heat of the step [J].
-  bool step(BlockTeam& team, double& heat_step) {
+  /// decisions everywhere): coefficients, Newton, the conservative final update, draining,
+  /// events; false (state restored) if Newton failed and the step can still shrink.
+  ///
+  /// The step's bookkeeping is fused into as few phases as possible (each phase ends with a
+  /// barrier, and on a shared machine each barrier can wait a time slice for a descheduled
+  /// thread): start (energy, coefficients), Newton, final update (with the openness the flood
+  /// fill needs), one serial part (flood fill, break-through), drain (with exposure, energies and
+  /// the end events' sums), one serial part (books, melt onset, the re-flood), and only when
+  /// something drained the exposure and surface-area phases; then the serial end of the step.
+  bool step(BlockTeam& team) {
     // build_coefficients reads the neighbours' h, which nothing writes in this phase
     team.for_blocks([&](long bl) {
-      for (long c = bl * kBlock; c < block_end(bl); ++c) {
+      double e = 0;
+      for_cells(bl, [&](long c, int i, int j, int k) {
+        t_start[c] = m[c] > 0 ? temperature(h[c]) : 0.0;
+        f_start[c] = liquid(h[c]);
+        e += m[c] * vol[c] * h[c];
         hn[c] = h[c];
-        build_coefficients(c);
-      }
+        build_coefficients(c, i, j, k);
+      });
+      block_sums[static_cast<std::size_t>(bl)].energy_start = e;
     });
+    const double e_before = sum_blocks([](const BlockSums& b) { return b.energy_start; });
     const bool ok = newton(team);
     if (!ok && dt > kMinStep_s) {
       team.for_blocks([&](long bl) {
@@ -559,16 +564,91 @@ struct EnthalpySolver::Impl {
     }
     if (!ok && team.leader()) ++stats.unconverged_steps;
     // Conservative final update: each cell's enthalpy from its balance at the final
-    // temperatures, so that the interior fluxes cancel exactly in the total. heat_rate reads
-    // the temperatures only, so each cell may overwrite its own h.
+    // temperatures (t is current: Newton's last iteration set it from h), so that the interior
+    // fluxes cancel exactly in the total. heat_rate reads the temperatures only, so each cell
+    // may overwrite its own h. Then the cell's openness for the flood fill.
     team.for_blocks([&](long bl) {
-      for (long c = bl * kBlock; c < block_end(bl); ++c) t[c] = m[c] > 0 ? temperature(h[c]) : 0.0;
+      double heat = 0;
+      for_cells(bl, [&](long c, int i, int j, int k) {
+        if (m[c] > 0) {
+          h[c] = hn[c] + dt * heat_rate(c, i, j, k) / (m[c] * vol[c]);
+          heat += bq0[c] - bq1[c] * t[c];
+        }
+        open_now[c] = ice_fraction(c) < 0.5;
+      });
+      block_sums[static_cast<std::size_t>(bl)].heat = heat;
     });
-    heat_step = dt * team_sum(team, [&](long c) {
-                  if (m[c] == 0) return 0.0;
-                  h[c] = hn[c] + dt * heat_rate(c) / (m[c] * vol[c]);
-                  return bq0[c] - bq1[c] * t[c];
-                });
+    const double heat_step = dt * sum_blocks([](const BlockSums& b) { return b.heat; });
+    team.serial([&] {
+      time = dt == step_remaining ? step_target : time + dt;
+      heat_in += heat_step;
+      fill_outside();
+      detect_break_through();
+    });
+    // exposure, draining (booked), openness for a re-flood, energies and the end events' sums
+    team.for_blocks([&](long bl) {
+      BlockSums& b = block_sums[static_cast<std::size_t>(bl)];
+      b.drained = b.most_drained = b.removed = b.energy_end = 0;
+      b.enclosed = b.wettest = b.ice = b.dtemp = b.dmelt = 0;
+      b.most_drained_cell = b.wettest_cell = -1;
+      for_cells(bl, [&](long c, int i, int j, int k) {
+        exposure(c, i, j, k);
+        drain_cell(c, b);
+        remember_openness(c);
+        open_now[c] = ice_fraction(c) < 0.5;
+        b.energy_end += m[c] * vol[c] * h[c];
+        add_enclosed(c, b);
+        b.ice += ice_fraction(c) * vol[c];
+        if (m[c] > 0) {
+          b.dtemp = std::max(b.dtemp, std::abs(temperature(h[c]) - t_start[c]));
+          b.dmelt = std::max(b.dmelt, std::abs(liquid(h[c]) - f_start[c]));
+        }
+      });
+    });
+    const double drained_step = sum_blocks([](const BlockSums& b) { return b.drained; });
+    team.serial([&] {
+      const double drained_before = drained;
+      drained += drained_step;
+      stats.removed_ice_m3 += sum_blocks([](const BlockSums& b) { return b.removed; });
+      double most = 0;
+      long most_cell = -1;
+      for (const BlockSums& b : block_sums)
+        if (b.most_drained_cell >= 0 && b.most_drained > most) {
+          most = b.most_drained;
+          most_cell = b.most_drained_cell;
+        }
+      if (!melt_started && most_cell >= 0) {
+        melt_started = true;
+        events.push_back({"melt_onset", time, centre(most_cell)});
+      }
+      const double e_end = sum_blocks([](const BlockSums& b) { return b.energy_end; });
+      const double err =
+          std::abs(e_end - e_before - heat_step + (drained - drained_before)) / reference;
+      stats.max_step_energy_error = std::max(stats.max_step_energy_error, err);
+      stats.steps++;
+      stats.min_step_s = stats.steps == 1 ? dt : std::min(stats.min_step_s, dt);
+      stats.max_step_s = std::max(stats.max_step_s, dt);
+      if (drained_step > 0) fill_outside();  // the drained cells opened: the next step's outside
+    });
+    if (drained_step > 0) {
+      // exposure as the next step sees it, and the surface areas that follow from it
+      team.for_blocks([&](long bl) {
+        for_cells(bl, [&](long c, int i, int j, int k) {
+          exposure(c, i, j, k);
+          area_gradient(c, i, j, k);
+        });
+      });
+      team.for_blocks([&](long bl) { for_cells(bl, [&](auto... a) { area_share_of(a...); }); });
+      team.for_blocks([&](long bl) {
+        BlockSums& b = block_sums[static_cast<std::size_t>(bl)];
+        b.enclosed = b.wettest = 0;
+        b.wettest_cell = -1;
+        for_cells(bl, [&](long c, int i, int j, int k) {
+          area_final(c, i, j, k);
+          add_enclosed(c, b);
+        });
+      });
+    }
     return true;
   }
 
@@ -578,21 +658,21 @@ struct EnthalpySolver::Impl {
   /// The fill itself is serial (on the leader; a breadth-first search over the open cells).
   void flood(BlockTeam& team) {
     team.for_blocks([&](long bl) {
-      for (long c = bl * kBlock; c < block_end(bl); ++c) {
-        open_now[c] = ice_fraction(c) < 0.5;
-        outside_now[c] = 0;
-      }
+      for (long c = bl * kBlock; c < block_end(bl); ++c) open_now[c] = ice_fraction(c) < 0.5;
     });
     team.serial([&] { fill_outside(); });
-    team.for_blocks([&](long bl) {
-      for (long c = bl * kBlock; c < block_end(bl); ++c) {
-        exposed[c] = outside_now[c];
-        if (!outside_now[c]) for_neighbours(c, [&](long nb) { exposed[c] |= outside_now[nb]; });
-      }
-    });
+    team.for_blocks([&](long bl) { for_cells(bl, [&](auto... a) { exposure(a...); }); });
   }
+  /// exposed[c]: outside, or next to a cell outside.
+  void exposure(long c, int i, int j, int k) {
+    exposed[c] = outside_now[c];
+    if (!outside_now[c])
+      for_neighbours(c, i, j, k, [&](long nb) { exposed[c] |= outside_now[nb]; });
+  }
+  /// outside_now from open_now (serial).
   void fill_outside() {
     const long nxy = static_cast<long>(nx) * ny;
+    std::fill(outside_now.begin(), outside_now.end(), 0);
     queue.clear();
     auto seed = [&](long c) {
       if (m[c] == 0 && !outside_now[c]) {
@@ -620,17 +700,22 @@ struct EnthalpySolver::Impl {
         }
       });
   }
+  /// f(nb) for the face neighbours of cell c (at i, j, k) in a fixed order.
   template <class F>
-  void for_neighbours(long c, F&& f) const {
+  void for_neighbours(long c, int i, int j, int k, F&& f) const {
     const long nxy = static_cast<long>(nx) * ny;
-    const int i = static_cast<int>(c % nx), j = static_cast<int>((c / nx) % ny),
-              k = static_cast<int>(c / nxy);
     if (i > 0) f(c - 1);
     if (i + 1 < nx) f(c + 1);
     if (j > 0) f(c - nx);
     if (j + 1 < ny) f(c + nx);
     if (k > 0) f(c - nxy);
     if (k + 1 < nz) f(c + nxy);
+  }
+  template <class F>
+  void for_neighbours(long c, F&& f) const {
+    const long nxy = static_cast<long>(nx) * ny;
+    for_neighbours(c, static_cast<int>(c % nx), static_cast<int>((c / nx) % ny),
+                   static_cast<int>(c / nxy), f);
   }
   void remember_openness(long c) {
     enclosed_prev[c] = open_now[c] && !outside_now[c];
@@ -661,61 +746,6 @@ struct EnthalpySolver::Impl {
     events.push_back({"break_through", time, centre(first >= 0 ? first : fallback)});
   }
 
-  /// Drains the liquid of exposed cells, books its enthalpy, records events.
-  void drain_and_detect(BlockTeam& team) {
-    flood(team);
-    team.serial([&] { detect_break_through(); });
-    // per block: drained enthalpy, the cell that drained most (first among equals) and the
-    // removed ice remnants
-    team.for_blocks([&](long bl) {
-      double drained_b = 0, most = 0, removed = 0;
-      long most_cell = -1;
-      for (long c = bl * kBlock; c < block_end(bl); ++c) {
-        if (p.drain && exposed[c] && m[c] > 0 && h[c] > 0) {
-          const double e = m[c] * vol[c] * h[c];
-          drained_b += e;
-          if (e > most) {
-            most = e;
-            most_cell = c;
-          }
-          const double f = liquid(h[c]);
-          m[c] = f >= 1 ? 0.0 : m[c] * (1 - f);
-          if (m[c] < kRemnantFraction) {
-            removed += m[c] * vol[c];
-            m[c] = 0;
-          }
-          h[c] = 0;
-        }
-        remember_openness(c);
-      }
-      const auto b = static_cast<std::size_t>(bl);
-      partial_step[b] = drained_b;
-      partial_most[b] = most;
-      partial_removed[b] = removed;
-      partial_index[b] = most_cell;
-    });
-    const double drained_step = ordered_sum(partial_step);
-    team.serial([&] {
-      drained += drained_step;
-      stats.removed_ice_m3 += ordered_sum(partial_removed);
-      double most = 0;
-      long most_cell = -1;
-      for (std::size_t b = 0; b < partial_index.size(); ++b)
-        if (partial_index[b] >= 0 && partial_most[b] > most) {
-          most = partial_most[b];
-          most_cell = partial_index[b];
-        }
-      if (!melt_started && most_cell >= 0) {
-        melt_started = true;
-        events.push_back({"melt_onset", time, centre(most_cell)});
-      }
-    });
-    if (drained_step > 0) {
-      flood(team);  // the drained cells opened: exposure as the next step sees it
-      update_surface_area(team);
-    }
-  }
-
   /// Material | air area per cell, |grad m| V (mirrored at the grid's walls and the axis), with
   /// the share computed in air cells handed to their material neighbours by fraction.
   ///
@@ -732,62 +762,67 @@ struct EnthalpySolver::Impl {
   /// material cells' shares (with the air neighbours' areas and the remnant rule below); the
   /// areas of the exposed cells (with the shares of their unexposed neighbours).
   void update_surface_area(BlockTeam& team) {
-    team.for_blocks([&](long bl) {
-      for (long c = bl * kBlock; c < block_end(bl); ++c) {
-        area_g[c] = gradient_area(c);
-        double sum = 0;
-        if (m[c] == 0) for_neighbours(c, [&](long nb) { sum += m[nb]; });
-        area_w[c] = sum;
-      }
+    team.for_blocks([&](long bl) { for_cells(bl, [&](auto... a) { area_gradient(a...); }); });
+    team.for_blocks([&](long bl) { for_cells(bl, [&](auto... a) { area_share_of(a...); }); });
+    team.for_blocks([&](long bl) { for_cells(bl, [&](auto... a) { area_final(a...); }); });
+  }
+  /// Phase 1: the gradient area of every cell, and for air cells the material around them.
+  void area_gradient(long c, int i, int j, int k) {
+    area_g[c] = gradient_area(c, i, j, k);
+    double sum = 0;
+    if (m[c] == 0) for_neighbours(c, i, j, k, [&](long nb) { sum += m[nb]; });
+    area_w[c] = sum;
+  }
+  /// Phase 2: a material cell's own share (reads area_g of air cells only, writes it for
+  /// material cells only), and what it hands to its exposed neighbours.
+  void area_share_of(long c, int i, int j, int k) {
+    area_share[c] = 0;
+    if (m[c] == 0) {
+      surface_area[c] = 0;
+      return;
+    }
+    double a = area_g[c];
+    for_neighbours(c, i, j, k, [&](long nb) {
+      if (m[nb] == 0 && area_w[nb] > 0) a += area_g[nb] * m[c] / area_w[nb];
     });
-    // reads area_g of air cells only, writes it for material cells only
-    team.for_blocks([&](long bl) {
-      for (long c = bl * kBlock; c < block_end(bl); ++c) {
-        area_share[c] = 0;
-        if (m[c] == 0) {
-          surface_area[c] = 0;
-          continue;
-        }
-        double a = area_g[c];
-        for_neighbours(c, [&](long nb) {
-          if (m[nb] == 0 && area_w[nb] > 0) a += area_g[nb] * m[c] / area_w[nb];
-        });
-        area_g[c] = remnant_area(c, a);  // now the material cell's own share
-        // Only cells open to the outside air take surface heat (their melt drains): a share
-        // that the smoothed gradient put one cell deeper goes to its exposed neighbours, evenly.
-        if (exposed[c] || area_g[c] == 0) continue;
-        int count = 0;
-        for_neighbours(c, [&](long nb) { count += m[nb] > 0 && exposed[nb]; });
-        if (count > 0) area_share[c] = area_g[c] / count;
-      }
+    area_g[c] = remnant_area(c, i, j, k, a);  // now the material cell's own share
+    // Only cells open to the outside air take surface heat (their melt drains): a share that
+    // the smoothed gradient put one cell deeper goes to its exposed neighbours, evenly.
+    if (exposed[c] || area_g[c] == 0) return;
+    int count = 0;
+    for_neighbours(c, i, j, k, [&](long nb) { count += m[nb] > 0 && exposed[nb]; });
+    if (count > 0) area_share[c] = area_g[c] / count;
+  }
+  /// Phase 3: the exposed cells' areas with the shares handed to them.
+  void area_final(long c, int i, int j, int k) {
+    if (m[c] == 0) return;
+    if (!exposed[c]) {
+      surface_area[c] = area_share[c] > 0 ? 0.0 : area_g[c];  // no exposed neighbour: keep it
+      return;
+    }
+    double a = area_g[c];
+    for_neighbours(c, i, j, k, [&](long nb) {
+      if (!exposed[nb]) a += area_share[nb];
     });
-    team.for_blocks([&](long bl) {
-      for (long c = bl * kBlock; c < block_end(bl); ++c) {
-        if (m[c] == 0) continue;
-        if (!exposed[c]) {
-          surface_area[c] = area_share[c] > 0 ? 0.0 : area_g[c];  // no exposed neighbour: keep it
-          continue;
-        }
-        double a = area_g[c];
-        for_neighbours(c, [&](long nb) {
-          if (!exposed[nb]) a += area_share[nb];
-        });
-        surface_area[c] = a;
-      }
-    });
+    surface_area[c] = a;
   }
 
-  /// |grad m| V of cell c: the mean of Youngs' and the central-difference gradient (above).
-  double gradient_area(long c) const {
-    const long nxy = static_cast<long>(nx) * ny;
-    const int i = static_cast<int>(c % nx), j = static_cast<int>((c / nx) % ny),
-              k = static_cast<int>(c / nxy);
-    auto at = [&](int ii, int jj, int kk) {
-      ii = std::clamp(ii, 0, nx - 1);
-      jj = std::clamp(jj, 0, ny - 1);
-      kk = std::clamp(kk, 0, nz - 1);
-      return m[ii + static_cast<long>(nx) * (jj + static_cast<long>(ny) * kk)];
-    };
+  /// |grad m| V of cell c (at i, j, k): the mean of Youngs' and the central-difference gradient
+  /// (above); the fractions beyond the grid's walls mirror the cells inside.
+  double gradient_area(long c, int i, int j, int k) const {
+    const bool three = nz > 1;
+    const long sy = nx, sz = static_cast<long>(nx) * ny;
+    if (i > 0 && i + 1 < nx && j > 0 && j + 1 < ny && (!three || (k > 0 && k + 1 < nz)))
+      return gradient_area_at(c, [&](int a, int b, int d) { return m[c + a + sy * b + sz * d]; });
+    return gradient_area_at(c, [&](int a, int b, int d) {
+      const int ii = std::clamp(i + a, 0, nx - 1), jj = std::clamp(j + b, 0, ny - 1),
+                kk = std::clamp(k + d, 0, nz - 1);
+      return m[ii + sy * jj + sz * kk];
+    });
+  }
+  /// The same with at(di, dj, dk) the material fraction of the cell at that offset.
+  template <class At>
+  double gradient_area_at(long c, At&& at) const {
     const bool three = nz > 1;
     const int kw = three ? 1 : 0;
     // Youngs' gradient ...
@@ -795,15 +830,15 @@ struct EnthalpySolver::Impl {
     for (int a = -1; a <= 1; ++a)
       for (int b = -kw; b <= kw; ++b) {
         const double w = (2 - std::abs(a)) * (three ? 2 - std::abs(b) : 2);
-        gx += w * (at(i + 1, j + a, k + b) - at(i - 1, j + a, k + b));
-        gy += w * (at(i + a, j + 1, k + b) - at(i + a, j - 1, k + b));
-        if (three) gz += w * (at(i + a, j + b, k + 1) - at(i + a, j + b, k - 1));
+        gx += w * (at(1, a, b) - at(-1, a, b));
+        gy += w * (at(a, 1, b) - at(a, -1, b));
+        if (three) gz += w * (at(a, b, 1) - at(a, b, -1));
       }
     const double norm = three ? 16 * 2 * s : 8 * 2 * s;
     const double youngs = std::sqrt(gx * gx + gy * gy + gz * gz) / norm;
     // ... and the plain central differences
-    const double cx = at(i + 1, j, k) - at(i - 1, j, k), cy = at(i, j + 1, k) - at(i, j - 1, k),
-                 cz = three ? at(i, j, k + 1) - at(i, j, k - 1) : 0.0;
+    const double cx = at(1, 0, 0) - at(-1, 0, 0), cy = at(0, 1, 0) - at(0, -1, 0),
+                 cz = three ? at(0, 0, 1) - at(0, 0, -1) : 0.0;
     const double central = std::sqrt(cx * cx + cy * cy + cz * cz) / (2 * s);
     return 0.5 * (youngs + central) * vol[c];
   }
@@ -815,8 +850,8 @@ struct EnthalpySolver::Impl {
   /// minutes as sub-cell dust. Such a cell gets at least the area of the most compact body of
   /// its volume: a sphere in 3D, (36 pi)^(1/3) m^(2/3) dx^2, a torus of round cross-section in
   /// (r, y), 2 sqrt(pi m) V / dx; at most 2 V / dx (a plate's two faces).
-  double remnant_area(long c, double a) const {
-    if (m[c] >= 0.5 || backed_by_bulk(c)) return a;
+  double remnant_area(long c, int i, int j, int k, double a) const {
+    if (m[c] >= 0.5 || backed_by_bulk(c, i, j, k)) return a;
     const double compact = nz > 1 ? std::cbrt(36 * std::numbers::pi) * std::pow(m[c], 2.0 / 3)
                                   : 2 * std::sqrt(std::numbers::pi * m[c]);
     return std::max(a, std::min(compact, 2.0) * vol[c] / s);
@@ -824,10 +859,8 @@ struct EnthalpySolver::Impl {
 
   /// A cell at least half full within two cells along any axis: cell c is part of a resolved
   /// body's (smeared) surface rather than a sub-cell remnant.
-  bool backed_by_bulk(long c) const {
+  bool backed_by_bulk(long c, int i, int j, int k) const {
     const long nxy = static_cast<long>(nx) * ny;
-    const int i = static_cast<int>(c % nx), j = static_cast<int>((c / nx) % ny),
-              k = static_cast<int>(c / nxy);
     for (int d = 1; d <= 2; ++d) {
       if ((i - d >= 0 && m[c - d] >= 0.5) || (i + d < nx && m[c + d] >= 0.5)) return true;
       if ((j - d >= 0 && m[c - d * nx] >= 0.5) || (j + d < ny && m[c + d * nx] >= 0.5)) return true;
@@ -841,27 +874,43 @@ struct EnthalpySolver::Impl {
     return sum_cells(n, [&](long c) { return ice_fraction(c) * vol[c]; });
   }
 
-  void check_end_events(BlockTeam& team) {
-    const double enclosed =
-        team_sum(team, [&](long c) { return exposed[c] ? 0.0 : m[c] * vol[c] * liquid(h[c]); });
-    const long wettest =
-        enclosed > 0 ? team_argmax(
-                           team, [&](long c) { return exposed[c] ? 0.0 : m[c] * liquid(h[c]); }, -1)
-                     : -1;
-    const double ice = team_sum(team, [&](long c) { return ice_fraction(c) * vol[c]; });
-    team.serial([&] {
-      if (had_enclosed_liquid && !broke_through && !core_frozen && enclosed == 0) {
-        core_frozen = true;
-        events.push_back({"core_frozen", time, centre(last_liquid_cell)});
-      }
-      if (wettest >= 0) last_liquid_cell = wettest;
-      if (ice <= kGoneFraction * initial_material) {
-        done = true;
-        long last = n - 1;
-        while (last > 0 && m[last] == 0) --last;
-        events.push_back({"fully_melted", time, centre(last)});
-      }
-    });
+  /// The serial end of an accepted step: core_frozen (at the last enclosed liquid's cell),
+  /// fully_melted, and the next step size.
+  void end_of_step(double step_dt, double saved) {
+    const double enclosed = sum_blocks([](const BlockSums& b) { return b.enclosed; });
+    const double ice = sum_blocks([](const BlockSums& b) { return b.ice; });
+    if (had_enclosed_liquid && !broke_through && !core_frozen && enclosed == 0) {
+      core_frozen = true;
+      events.push_back({"core_frozen", time, centre(last_liquid_cell)});
+    }
+    if (enclosed > 0) {  // the lowest-index cell with the most enclosed liquid
+      double most = -1;
+      for (const BlockSums& b : block_sums)
+        if (b.wettest_cell >= 0 && b.wettest > most) {
+          most = b.wettest;
+          last_liquid_cell = b.wettest_cell;
+        }
+    }
+    if (ice <= kGoneFraction * initial_material) {
+      done = true;
+      long last = n - 1;
+      while (last > 0 && m[last] == 0) --last;
+      events.push_back({"fully_melted", time, centre(last)});
+    }
+    if (p.fixed_step_s > 0) {
+      dt_next = p.fixed_step_s;
+      return;
+    }
+    const double dtemp_max = max_blocks([](const BlockSums& b) { return b.dtemp; });
+    const double dmelt_max = max_blocks([](const BlockSums& b) { return b.dmelt; });
+    double factor = 2.0;
+    if (dtemp_max > 0) factor = std::min(factor, 0.9 * p.step_temperature_change_k / dtemp_max);
+    if (dmelt_max > 0) factor = std::min(factor, 0.9 * p.step_melt_fraction / dmelt_max);
+    factor = std::max(0.3, factor);
+    // a step shortened to land on the target keeps the previous size unless it must shrink
+    dt_next = step_dt < saved ? std::min(saved, step_dt * factor)
+                              : std::min(p.max_step_s, step_dt * factor);
+    if (step_dt < saved && factor >= 1) dt_next = saved;
   }
   long last_liquid_cell = 0;
 
@@ -880,67 +929,33 @@ struct EnthalpySolver::Impl {
     return time;
   }
 
-  /// Run by every thread of the team: the shared state (time, dt, done) is written by the
-  /// leader only and read by all after a barrier, so every thread takes the same decisions.
+  /// Run by every thread of the team: the shared state (time, dt_next, done) is written by the
+  /// leader only, in serial parts, and read by all after their barrier, so every thread takes
+  /// the same decisions. dt (the step being taken) is written by the leader at the top of the
+  /// loop and read by the others only after the step's first barrier.
   void advance_team(BlockTeam& team, double target) {
     while (!done && time < target) {
       const double remaining = target - time;
-      double step_dt = std::min(dt, remaining);
+      double step_dt = std::min(dt_next, remaining);
       // avoid a sliver step before the target
       if (remaining - step_dt < 1e-3 * step_dt) step_dt = remaining;
-      const double saved = dt;
-      team.sync();  // everyone has read time and dt
-      if (team.leader()) dt = step_dt;
-      // (dt is read only after the next phase's barrier)
-      const double e_before = team_sum(team, [&](long c) {
-        t_start[c] = m[c] > 0 ? temperature(h[c]) : 0.0;
-        f_start[c] = liquid(h[c]);
-        return m[c] * vol[c] * h[c];
-      });
-      double heat_step = 0;
-      if (!step(team, heat_step)) {
+      const double saved = dt_next;
+      if (team.leader()) {
+        dt = step_dt;
+        step_remaining = remaining;
+        step_target = target;
+      }
+      if (!step(team)) {
         team.serial([&] {
           ++stats.rejected_steps;
-          dt = std::max(0.5 * step_dt, 0.99 * kMinStep_s);
+          dt_next = std::max(0.5 * step_dt, 0.99 * kMinStep_s);
         });
         continue;
       }
-      const double drained_before = drained;
-      team.serial([&] {
-        time = step_dt == remaining ? target : time + step_dt;
-        heat_in += heat_step;
-      });
-      drain_and_detect(team);
-      const double e_drained = team_sum(team, [&](long c) { return m[c] * vol[c] * h[c]; });
-      if (team.leader()) {
-        const double err =
-            std::abs(e_drained - e_before - heat_step + (drained - drained_before)) / reference;
-        stats.max_step_energy_error = std::max(stats.max_step_energy_error, err);
-        stats.steps++;
-        stats.min_step_s = stats.steps == 1 ? step_dt : std::min(stats.min_step_s, step_dt);
-        stats.max_step_s = std::max(stats.max_step_s, step_dt);
-      }
-      check_end_events(team);
-      if (p.fixed_step_s > 0) {
-        team.serial([&] { dt = p.fixed_step_s; });
-        continue;
-      }
-      const double dtemp_max = team_max(
-          team, [&](long c) { return m[c] > 0 ? std::abs(temperature(h[c]) - t_start[c]) : 0.0; });
-      const double dmelt_max = team_max(
-          team, [&](long c) { return m[c] > 0 ? std::abs(liquid(h[c]) - f_start[c]) : 0.0; });
-      team.serial([&] {
-        double factor = 2.0;
-        if (dtemp_max > 0) factor = std::min(factor, 0.9 * p.step_temperature_change_k / dtemp_max);
-        if (dmelt_max > 0) factor = std::min(factor, 0.9 * p.step_melt_fraction / dmelt_max);
-        factor = std::max(0.3, factor);
-        // a step shortened to land on the target keeps the previous size unless it must shrink
-        dt = step_dt < saved ? std::min(saved, step_dt * factor)
-                             : std::min(p.max_step_s, step_dt * factor);
-        if (step_dt < saved && factor >= 1) dt = saved;
-      });
+      team.serial([&] { end_of_step(step_dt, saved); });
     }
   }
+  double step_remaining = 0, step_target = 0;  ///< for landing exactly on the target time
 
   GridSnapshot snapshot() const {
     GridSnapshot out;
