@@ -3,6 +3,7 @@
 #include <openvdb/openvdb.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <mutex>
 #include <vector>
@@ -38,15 +39,43 @@ openvdb::FloatGrid::Ptr float_grid(const sim::GridField& f, const std::vector<fl
 
 }  // namespace
 
+sim::GridField revolved_field(const sim::GridField& a) {
+  if (a.geometry != sim::GridField::Geometry::axisymmetric) return a;
+  THAW_CHECK(a.cells[2] == 1, "an axisymmetric field is one cell deep");
+  const int nr = a.cells[0], ny = a.cells[1];
+  const double h = a.spacing_m;
+  sim::GridField f;
+  f.geometry = sim::GridField::Geometry::cartesian3d;
+  f.cells = {2 * nr, ny, 2 * nr};
+  f.origin_m = {-nr * h, a.origin_m[1], -nr * h};
+  f.spacing_m = h;
+  f.time_s = a.time_s;
+  const std::size_t n = f.cell_count();
+  f.temperature_c.resize(n), f.ice_fraction.resize(n), f.water_fraction.resize(n);
+  for (int k = 0; k < 2 * nr; ++k)
+    for (int i = 0; i < 2 * nr; ++i) {
+      // The centre's distance from the axis, in cells: hypot of (i + 1/2 - nr, k + 1/2 - nr).
+      const double r = std::hypot(i + 0.5 - nr, k + 0.5 - nr);
+      const int ring = std::min(nr - 1, static_cast<int>(r));
+      for (int j = 0; j < ny; ++j) {
+        const std::size_t to = f.index(i, j, k), from = a.index(ring, j, 0);
+        f.temperature_c[to] = a.temperature_c[from];
+        f.ice_fraction[to] = a.ice_fraction[from];
+        f.water_fraction[to] = a.water_fraction[from];
+      }
+    }
+  return f;
+}
+
 std::string vdb_file_name(long step) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "fields_%06ld.vdb", step);
   return buf;
 }
 
-void write_field_vdb(const fs::path& path, const sim::GridField& f,
+void write_field_vdb(const fs::path& path, const sim::GridField& field,
                      const std::array<double, 3>& offset_m) {
-  THAW_CHECK(f.geometry == sim::GridField::Geometry::cartesian3d, "OpenVDB: a 3D field");
+  const sim::GridField f = revolved_field(field);
   static std::once_flag once;
   std::call_once(once, [] { openvdb::initialize(); });
   const double h = f.spacing_m;
@@ -94,7 +123,6 @@ long write_vdb_sequence(const fs::path& simdir, const fs::path& out_dir,
   long written = 0;
   for (const auto& [step, file] : grids) {
     const sim::GridField f = sim::read_grid_field(file);
-    if (f.geometry != sim::GridField::Geometry::cartesian3d) return 0;
     if (written == 0) ensure_directory(out_dir);
     write_field_vdb(out_dir / vdb_file_name(step), f, offset_of(step));
     ++written;

@@ -505,7 +505,7 @@ bool render_stage(Run& r, const mesh::MeshManifest& meshes,
           ++rendered_here;
           return std::string();
         },
-        [&](long n) { progress.set_done(done_before + n); });
+        [&](long n, long) { progress.set_done(done_before + n); });
     progress.finish();
     clock.timing().items_done = static_cast<int>(leader ? todo.size() : rendered_here);
     clock.timing().skipped = todo.empty();
@@ -565,7 +565,7 @@ void film_stage(Run& r, long frame_count) {
   }
 }
 
-/// 5. Inspect: the radius plot, the ParaView series, the Blender OBJ sequence and (3D runs) the
+/// 5. Inspect: the radius plot, the ParaView series, the Blender OBJ sequence and (grid runs) the
 /// OpenVDB volumes, the surfaces placed where the film shows them (the leader).
 void inspect_stage(Run& r, const mesh::MeshManifest& meshes) {
   const RunScenario& sc = r.sc;
@@ -585,7 +585,8 @@ void inspect_stage(Run& r, const mesh::MeshManifest& meshes) {
     for (double v : sc.shell.center) inspect_hash.add(v);
     inspect_hash.add(sc.shell.floor_y);
 #if THAW_OPENVDB
-    inspect_hash.add("openvdb");  // a build with OpenVDB adds the volumes to an older run's
+    // A build with OpenVDB adds the volumes to an older run's (/2: axisymmetric runs' too).
+    inspect_hash.add("openvdb/2");
 #endif
     StageClock clock(report, "inspect");
     const bool up_to_date = manifest.begin_stage("inspect", inspect_hash.hex()) &&
@@ -609,7 +610,8 @@ void inspect_stage(Run& r, const mesh::MeshManifest& meshes) {
       if (inspect::write_field_series(simdir, out / "fields.pvd") > 0)
         report.fields_pvd = out / "fields.pvd";
 #if THAW_OPENVDB
-      // 3D runs: the fields as OpenVDB volumes, placed like the OBJ sequence.
+      // Grid runs: the fields as OpenVDB volumes (axisymmetric ones revolved), placed like the
+      // OBJ sequence.
       if (write_vdb_sequence(simdir, out / "handoff" / "vdb",
                              [&](long step) { return offset_of_step.at(step); }) > 0)
         report.handoff_vdb = out / "handoff" / "vdb";

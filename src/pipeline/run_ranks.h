@@ -24,13 +24,14 @@ class RunRanks {
   /// Calls work(item) exactly once for each of `items` over all ranks, one item at a time to
   /// whichever rank is free next (dynamic: frames differ in cost), and returns on the leader the
   /// text each call returned, by position in `items` (other ranks: empty texts). On the leader,
-  /// done(n) is called as the n-th item finishes anywhere. If work throws on some rank, no further
+  /// done(n, position) is called as the n-th item finishes anywhere, `position` being that item's
+  /// index in `items` (never concurrently). If work throws on some rank, no further
   /// items are handed out and every rank then throws thaw::UserError with that rank's message
   /// (the first failure); items finished before stay finished. Every rank must call farm with
   /// equal items.
   virtual std::vector<std::string> farm(const std::vector<long>& items,
                                         const std::function<std::string(long)>& work,
-                                        const std::function<void(long)>& done);
+                                        const std::function<void(long, long)>& done);
   /// The first non-empty of every rank's `error` (in rank order), on every rank: how ranks that
   /// each ran the same step agree whether it failed.
   virtual std::string first_error(const std::string& error) { return error; }

@@ -66,7 +66,7 @@ class MpiRanks final : public RunRanks {
 
   std::vector<std::string> farm(const std::vector<long>& items,
                                 const std::function<std::string(long)>& work,
-                                const std::function<void(long)>& done) override {
+                                const std::function<void(long, long)>& done) override {
     if (m_size == 1) return RunRanks::farm(items, work, done);
     std::vector<std::string> results(items.size());
     std::string error = leader() ? lead(items, work, done, results) : follow(work);
@@ -111,11 +111,11 @@ class MpiRanks final : public RunRanks {
   }
 
   std::string lead(const std::vector<long>& items, const std::function<std::string(long)>& work,
-                   const std::function<void(long)>& done, std::vector<std::string>& results) {
+                   const std::function<void(long, long)>& done, std::vector<std::string>& results) {
     std::atomic<std::size_t> next{0};
     std::atomic<long> finished{0};
     std::atomic<bool> failed{false};
-    std::mutex mutex;
+    std::mutex mutex, done_mutex;
     std::string first_error;
     const auto fail = [&](const std::string& e) {
       std::lock_guard<std::mutex> lock(mutex);
@@ -127,9 +127,10 @@ class MpiRanks final : public RunRanks {
       const std::size_t i = next++;
       return i < items.size() ? static_cast<long>(i) : -1;
     };
-    const auto finish = [&] {
+    const auto finish = [&](long index) {
+      std::lock_guard<std::mutex> lock(done_mutex);  // done() is never called concurrently
       const long n = ++finished;
-      if (done) done(n);
+      if (done) done(n, index);
     };
     const auto dispatch = [&] {
       // The index each worker is busy with: its "done" message carries that item's text.
@@ -150,7 +151,7 @@ class MpiRanks final : public RunRanks {
         long& index = busy[static_cast<std::size_t>(status.MPI_SOURCE)];
         if (message[0] == 'D') {
           results[static_cast<std::size_t>(index)] = message.substr(1);
-          finish();
+          finish(index);
         }
         if (message[0] == 'E') fail(message.substr(1));
         index = take();
@@ -165,7 +166,7 @@ class MpiRanks final : public RunRanks {
         auto [e, text] = attempt(work, items[static_cast<std::size_t>(index)]);
         if (e.empty()) {
           results[static_cast<std::size_t>(index)] = std::move(text);
-          finish();
+          finish(index);
         } else {
           fail(e);
         }

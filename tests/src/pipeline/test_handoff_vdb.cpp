@@ -89,7 +89,7 @@ TEST_F(HandoffVdb, GridsValuesAndTransformReadBackByOpenVdb) {
     EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
 }
 
-TEST_F(HandoffVdb, SequenceOfA3dRunAndNothingForAxisymmetricRuns) {
+TEST_F(HandoffVdb, SequenceOfA3dRunAndOfARevolvedAxisymmetricRun) {
   sim::GridField f = analytic_field();
   fs::create_directories(m_dir / "sim" / "fields");
   sim::write_grid_field(m_dir / "sim" / "fields" / "step_000000.grid", f);
@@ -107,13 +107,66 @@ TEST_F(HandoffVdb, SequenceOfA3dRunAndNothingForAxisymmetricRuns) {
 
   sim::GridField a = analytic_field();
   a.geometry = sim::GridField::Geometry::axisymmetric;
-  a.cells = {5, 12, 1};
+  a.cells = {5, 4, 1};
+  a.origin_m = {0, 0.02, 0};
+  a.temperature_c.resize(a.cell_count()), a.ice_fraction.resize(a.cell_count());
+  a.water_fraction.resize(a.cell_count());
   fs::create_directories(m_dir / "axi" / "fields");
   sim::write_grid_field(m_dir / "axi" / "fields" / "step_000000.grid", a);
-  EXPECT_EQ(write_vdb_sequence(m_dir / "axi", m_dir / "axi_vdb", offset_of), 0);
-  EXPECT_FALSE(fs::exists(m_dir / "axi_vdb"));
-  // A 1D run has no fields: nothing.
+  EXPECT_EQ(write_vdb_sequence(m_dir / "axi", m_dir / "axi_vdb", offset_of), 1);
+  openvdb::io::File revolved((m_dir / "axi_vdb" / "fields_000000.vdb").string());
+  revolved.open();
+  const auto t = openvdb::gridPtrCast<openvdb::FloatGrid>(revolved.readGrid("temperature_c"));
+  EXPECT_EQ(t->activeVoxelCount(), 10u * 4u * 10u);  // 2 nr x ny x 2 nr, every cell
+  // The cell beside the axis (x = z = h/2, ring 0) and one on the x axis in ring 3.
+  EXPECT_EQ(t->tree().getValue(openvdb::Coord(5, 2, 5)), a.temperature_c[a.index(0, 2, 0)]);
+  EXPECT_EQ(t->tree().getValue(openvdb::Coord(8, 1, 5)), a.temperature_c[a.index(3, 1, 0)]);
+  EXPECT_NEAR(t->indexToWorld(openvdb::Coord(5, 0, 5))[0], 0.5 * a.spacing_m, 1e-12);
+  revolved.close();
+  // A 1D run has no fields: nothing.  // A 1D run has no fields: nothing.
   EXPECT_EQ(write_vdb_sequence(m_dir / "nothing", m_dir / "none_vdb", offset_of), 0);
+}
+
+// Revolving an (r, y) field about y: every cell takes its centre's ring, so the result is
+// symmetric under x -> -x, z -> -z and x <-> z, constant along y as the field is, and the
+// corners beyond the outermost ring take that ring (the solver's outer air).
+TEST(RevolvedField, EveryCellTakesTheRingItsCentreLiesIn) {
+  sim::GridField a;
+  a.geometry = sim::GridField::Geometry::axisymmetric;
+  a.cells = {4, 3, 1};
+  a.origin_m = {0, -0.01, 0};
+  a.spacing_m = 0.5e-3;
+  a.time_s = 9;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 4; ++i) {
+      a.temperature_c.push_back(static_cast<float>(10 * i + j));
+      a.ice_fraction.push_back(i < 2 ? 1.0f : 0.0f);
+      a.water_fraction.push_back(i == 2 ? 0.5f : 0.0f);
+    }
+  const sim::GridField f = revolved_field(a);
+  EXPECT_EQ(f.geometry, sim::GridField::Geometry::cartesian3d);
+  EXPECT_EQ(f.cells, (std::array<int, 3>{8, 3, 8}));
+  EXPECT_EQ(f.origin_m, (std::array<double, 3>{-2e-3, -0.01, -2e-3}));
+  EXPECT_EQ(f.spacing_m, a.spacing_m);
+  EXPECT_EQ(f.time_s, 9);
+  for (int k = 0; k < 8; ++k)
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 8; ++i) {
+        const double x = f.origin_m[0] + (i + 0.5) * f.spacing_m;
+        const double z = f.origin_m[2] + (k + 0.5) * f.spacing_m;
+        const int ring = std::min(3, static_cast<int>(std::hypot(x, z) / a.spacing_m));
+        EXPECT_EQ(f.temperature_c[f.index(i, j, k)], a.temperature_c[a.index(ring, j, 0)]);
+        EXPECT_EQ(f.ice_fraction[f.index(i, j, k)], a.ice_fraction[a.index(ring, j, 0)]);
+        EXPECT_EQ(f.water_fraction[f.index(i, j, k)], a.water_fraction[a.index(ring, j, 0)]);
+        EXPECT_EQ(f.temperature_c[f.index(i, j, k)], f.temperature_c[f.index(7 - i, j, k)]);
+        EXPECT_EQ(f.temperature_c[f.index(i, j, k)], f.temperature_c[f.index(k, j, i)]);
+      }
+  // Ice (rings 0-1: r < 1 mm) fills the cells whose centres are within 1 mm of the axis.
+  EXPECT_EQ(f.ice_fraction[f.index(3, 0, 3)], 1.0f);  // centre at r = 0.35 mm
+  EXPECT_EQ(f.ice_fraction[f.index(0, 0, 0)], 0.0f);  // corner, r = 2.47 mm: the outer ring
+  EXPECT_EQ(f.temperature_c[f.index(0, 2, 0)], 32.0f);
+  // A cartesian field passes through unchanged.
+  EXPECT_EQ(revolved_field(f).temperature_c, f.temperature_c);
 }
 
 TEST_F(HandoffVdb, UnwritableFolderIsAUserError) {
