@@ -28,39 +28,80 @@ void row_bytes(const void* samples, const PngLayout& l, int y, std::uint8_t* out
   }
 }
 
-std::uint8_t paeth(int a, int b, int c) {
-  // PNG specification 9.4: the neighbour closest to a + b - c, ties in the order a, b, c.
-  const int p = a + b - c;
-  const int pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
-  if (pa <= pb && pa <= pc) return static_cast<std::uint8_t>(a);
-  return static_cast<std::uint8_t>(pb <= pc ? b : c);
+/// PNG's Paeth predictor (specification 9.4): the neighbour closest to a + b - c, ties in the
+/// order a, b, c. Written with selects only, so the row loops below vectorise.
+inline int paeth(int a, int b, int c) {
+  const int pa = std::abs(b - c), pb = std::abs(a - c), pc = std::abs(a + b - 2 * c);
+  const int bc = pb <= pc ? b : c;
+  return (pa <= pb && pa <= pc) ? a : bc;
 }
 
-/// Filters `row` (prior row `up`, zeros above the image) with each of the five PNG filters and
-/// writes the one with the smallest sum of |signed byte| (PNG specification 12.8) to `out`:
-/// filter type byte, then the filtered row.
+/// The five filtered values (none, sub, up, average, Paeth) of byte x with left a, up b, up-left c.
+struct Filtered {
+  int v[5];
+};
+inline Filtered filter_byte(int x, int a, int b, int c) {
+  return {{x, x - a, x - b, x - ((a + b) >> 1), x - paeth(a, b, c)}};
+}
+inline std::uint32_t abs_signed_byte(int v) {
+  return static_cast<std::uint32_t>(std::abs(static_cast<int>(static_cast<std::int8_t>(v))));
+}
+
+/// Filters `row` (prior row `up`, zeros above the image) with the one of the five PNG filters
+/// whose filtered bytes have the smallest sum of |signed byte| (PNG specification 12.8; the first
+/// of equals) and writes it to `out`: filter type byte, then the filtered row. Two passes: the
+/// five sums without storing anything, then the chosen filter's bytes.
 void filter_row(const std::uint8_t* row, const std::uint8_t* up, std::size_t n, std::size_t bpp,
-                std::array<std::vector<std::uint8_t>, 5>& scratch, std::uint8_t* out) {
-  for (auto& s : scratch) s.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const int x = row[i], a = i >= bpp ? row[i - bpp] : 0, b = up[i],
-              c = i >= bpp ? up[i - bpp] : 0;
-    scratch[0][i] = static_cast<std::uint8_t>(x);
-    scratch[1][i] = static_cast<std::uint8_t>(x - a);
-    scratch[2][i] = static_cast<std::uint8_t>(x - b);
-    scratch[3][i] = static_cast<std::uint8_t>(x - ((a + b) >> 1));
-    scratch[4][i] = static_cast<std::uint8_t>(x - paeth(a, b, c));
+                std::uint8_t* out) {
+  const std::size_t head = std::min(bpp, n);  // the first pixel: no left neighbours (a = c = 0)
+  std::uint64_t cost[5] = {0, 0, 0, 0, 0};
+  for (std::size_t i = 0; i < head; ++i) {
+    const Filtered f = filter_byte(row[i], 0, up[i], 0);
+    for (int k = 0; k < 5; ++k) cost[k] += abs_signed_byte(f.v[k]);
+  }
+  // 32-bit sums over chunks of 2^20 bytes (at most 128 x 2^20 = 2^27 each), which vectorise.
+  for (std::size_t start = head; start < n; start += std::size_t(1) << 20) {
+    const std::size_t end = std::min(n, start + (std::size_t(1) << 20));
+    std::uint32_t c0 = 0, c1 = 0, c2 = 0, c3 = 0, c4 = 0;
+    for (std::size_t i = start; i < end; ++i) {
+      const Filtered f = filter_byte(row[i], row[i - bpp], up[i], up[i - bpp]);
+      c0 += abs_signed_byte(f.v[0]);
+      c1 += abs_signed_byte(f.v[1]);
+      c2 += abs_signed_byte(f.v[2]);
+      c3 += abs_signed_byte(f.v[3]);
+      c4 += abs_signed_byte(f.v[4]);
+    }
+    cost[0] += c0, cost[1] += c1, cost[2] += c2, cost[3] += c3, cost[4] += c4;
   }
   int best = 0;
-  std::uint64_t best_cost = ~std::uint64_t{0};
-  for (int f = 0; f < 5; ++f) {
-    std::uint64_t cost = 0;
-    for (std::size_t i = 0; i < n; ++i)
-      cost += static_cast<std::uint64_t>(std::abs(static_cast<std::int8_t>(scratch[f][i])));
-    if (cost < best_cost) best_cost = cost, best = f;
-  }
+  for (int f = 1; f < 5; ++f)
+    if (cost[f] < cost[best]) best = f;
   out[0] = static_cast<std::uint8_t>(best);
-  std::memcpy(out + 1, scratch[best].data(), n);
+  std::uint8_t* o = out + 1;
+  for (std::size_t i = 0; i < head; ++i)
+    o[i] = static_cast<std::uint8_t>(filter_byte(row[i], 0, up[i], 0).v[best]);
+  // One loop per filter, so that each vectorises.
+  const auto write = [&](auto&& filter) {
+    for (std::size_t i = head; i < n; ++i)
+      o[i] = static_cast<std::uint8_t>(filter(row[i], row[i - bpp], up[i], up[i - bpp]));
+  };
+  switch (best) {
+    case 0:
+      std::memcpy(o + head, row + head, n - head);
+      break;
+    case 1:
+      write([](int x, int a, int, int) { return x - a; });
+      break;
+    case 2:
+      write([](int x, int, int b, int) { return x - b; });
+      break;
+    case 3:
+      write([](int x, int a, int b, int) { return x - ((a + b) >> 1); });
+      break;
+    default:
+      write([](int x, int a, int b, int c) { return x - paeth(a, b, c); });
+      break;
+  }
 }
 
 struct Band {
@@ -78,12 +119,10 @@ void compress_band(const void* samples, const PngLayout& l, bool last, Band& ban
   const std::size_t bpp = std::size_t(l.channels) * (l.bit_depth / 8);
   const std::size_t n = std::size_t(l.width) * bpp;
   std::vector<std::uint8_t> prev(n, 0), cur(n), filtered(std::size_t(band.rows) * (n + 1));
-  std::array<std::vector<std::uint8_t>, 5> scratch;
   if (band.first_row > 0) row_bytes(samples, l, band.first_row - 1, prev.data());
   for (int r = 0; r < band.rows; ++r) {
     row_bytes(samples, l, band.first_row + r, cur.data());
-    filter_row(cur.data(), prev.data(), n, bpp, scratch,
-               filtered.data() + std::size_t(r) * (n + 1));
+    filter_row(cur.data(), prev.data(), n, bpp, filtered.data() + std::size_t(r) * (n + 1));
     std::swap(prev, cur);
   }
   band.filtered_bytes = filtered.size();

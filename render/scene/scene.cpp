@@ -389,7 +389,7 @@ class SceneBuilder {
     b.extend(c - Vec3{r, r, r});
     b.extend(c + Vec3{r, r, r});
     m_bounds.push_back(b);
-    m_prims.push_back({c, Vec3{r, 0, 0}, Vec3{}, PrimitiveKind::sphere, id, 0});
+    m_prims.push_back({c, Vec3{r, 1.0f / r, 0}, Vec3{}, PrimitiveKind::sphere, id, 0});
     ++m_s.m_stats.spheres;
   }
 
@@ -758,14 +758,14 @@ SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {
     }
     case PrimitiveKind::sphere: {
       const Vec3 c = pr.a;
-      const float r = pr.b.x;
+      const float r = pr.b.x, inv_r = pr.b.y;
       Vec3 d = ray.at(hit.t) - c;
       const float dl = length(d);
       d = dl > 0.0f ? d * (r / dl) : Vec3{0, r, 0};
       si.p = c + d;  // reprojected onto the sphere (pbrt-v4 Sphere::Intersect)
       si.p_error = (abs(d) + abs(c)) * gamma_bound(6);
-      si.ng = si.ns = d / r;
-      si.curvature = 1.0f / r;
+      si.ng = si.ns = d * inv_r;  // = d / r (Vec3's operator/ multiplies by 1 / r)
+      si.curvature = inv_r;
       break;
     }
     case PrimitiveKind::box: {

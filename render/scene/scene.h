@@ -23,7 +23,8 @@ namespace thaw::render {
 enum class PrimitiveKind : std::uint32_t { triangle = 0, sphere = 1, box = 2 };
 
 /// One BVH primitive, stored in leaf order. Triangle: vertices a, b, c. Sphere: centre a,
-/// radius b.x. Box: corners a (min) and b (max).
+/// radius b.x and 1 / radius in b.y (the hit's normal and curvature, no division per hit). Box:
+/// corners a (min) and b (max).
 struct Primitive {
   Vec3 a, b, c;
   PrimitiveKind kind;
