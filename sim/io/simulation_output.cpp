@@ -64,6 +64,7 @@ void write_grid_outputs(const std::filesystem::path& dir, const SimulationResult
       {"cg_iterations", s.cg_iterations},
       {"cell_updates", s.cell_updates},
       {"loose_steps", s.loose_steps},
+      {"stagnant_steps", s.stagnant_steps},
       {"unconverged_steps", s.unconverged_steps},
       {"removed_ice_m3", s.removed_ice_m3},
       {"min_step_s", s.min_step_s},
