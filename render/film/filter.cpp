@@ -88,6 +88,11 @@ Filter::Filter(FilterKind kind, double radius)
   }
   for (float& c : m_cdf) c = static_cast<float>(c / abs_sum);
   m_cdf.back() = 1.0f;
+  m_guide.resize(kGuideCells);
+  for (int g = 0; g < kGuideCells; ++g)
+    m_guide[static_cast<std::size_t>(g)] = static_cast<int>(
+        std::upper_bound(m_cdf.begin(), m_cdf.end(), float(g) / float(kGuideCells)) -
+        m_cdf.begin());
   m_abs_integral = static_cast<float>(abs_sum);
   // The signed integral of f1 itself, by Simpson on a fine grid (not of the table), so weights
   // average to 1 for the true filter.
@@ -115,9 +120,13 @@ float Filter::evaluate_1d(float x) const {
 }
 
 float Filter::sample_1d(float u, float& ratio) const {
-  // Invert the piecewise-linear CDF: bin by binary search, then uniform inside the bin.
-  const auto it = std::upper_bound(m_cdf.begin(), m_cdf.end(), u);
-  const int bin = std::clamp(static_cast<int>(it - m_cdf.begin()) - 1, 0, kBins - 1);
+  // Invert the piecewise-linear CDF: the first cdf[i] > u from the guide table's start (u >= g /
+  // kGuideCells, so upper_bound(u) is at or after it; cdf[kBins] = 1 > u ends the scan), the
+  // bin before it, then uniform inside the bin.
+  const int cell = std::clamp(static_cast<int>(u * float(kGuideCells)), 0, kGuideCells - 1);
+  int i = m_guide[static_cast<std::size_t>(cell)];
+  while (i < kBins && m_cdf[static_cast<std::size_t>(i)] <= u) ++i;
+  const int bin = std::clamp(i - 1, 0, kBins - 1);
   const float c0 = m_cdf[static_cast<std::size_t>(bin)],
               c1 = m_cdf[static_cast<std::size_t>(bin + 1)];
   const float frac = c1 > c0 ? std::clamp((u - c0) / (c1 - c0), 0.0f, 1.0f) : 0.5f;

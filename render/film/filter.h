@@ -53,6 +53,11 @@ class Filter {
   /// piecewise-constant |f1| over kBins equal bins of [-r, r], its CDF (cdf[0] = 0, cdf[n] = 1),
   /// and integral of f1 / integral of the tabulated |f1|: weight = sign * ... / this.
   std::vector<float> m_abs, m_cdf;
+  /// m_guide[g] = the first i with m_cdf[i] > g / kGuideCells: where the search for a u in
+  /// [g, g + 1) / kGuideCells starts (a guide table, Devroye 1986 sec. III.2.4; the result is
+  /// std::upper_bound's, found by a short forward scan instead of eight unpredictable branches)
+  static constexpr int kGuideCells = 256;
+  std::vector<int> m_guide;
   float m_abs_integral = 0, m_signed_integral = 0;
   /// gaussian: exp(-r^2 / (2 s^2)), the value subtracted so that f1(r) = 0
   double m_gaussian_floor = 0;
