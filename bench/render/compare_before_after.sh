@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # RGB-path cost before/after a change (issue 5: spectral rendering must leave non-dispersive
-# scenes no more than 10 % slower): renders S1 analytic and mesh (1280x1280) and S4 (2000x2000) with two thaw
+# scenes no more than 10 % slower): renders S1 analytic and mesh (1280x1280), S4 (2000x2000) and S3
+# without dispersion (1000x1000, 1 spp, as compare_povray.sh; issue 10's Whitted table) with two thaw
 # binaries, interleaved run by run so that machine load affects both alike; reports the median
 # wall and CPU (user + sys) time of each and their ratios, and checks the images are identical.
 # usage: bench/render/compare_before_after.sh BEFORE_THAW AFTER_THAW [RUNS]
@@ -13,7 +14,8 @@ echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(n
 echo
 echo "| scene | size | before wall [s] | after wall [s] | after/before (wall) | before CPU [s] | after CPU [s] | after/before (CPU) | identical |"
 echo "|---|---|---|---|---|---|---|---|---|"
-for spec in s1_ice_shell:1280x1280 s1_ice_shell_mesh:1280x1280 s4_spheres16:2000x2000; do
+for spec in s1_ice_shell:1280x1280 s1_ice_shell_mesh:1280x1280 s4_spheres16:2000x2000 \
+            s3_dispersion_nodisp:1000x1000; do
   scene=${spec%%:*}; size=${spec#*:}
   : > "$out/$scene.times"
   for ((i = 0; i < runs; ++i)); do

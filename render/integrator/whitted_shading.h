@@ -221,7 +221,9 @@ class WhittedShading {
     if (!is_black(f.r) && self().weight(br, path) >= m_min_weight) {
       const Vec3 dir = reflection_direction(d, fi.ns, fi.ng);
       const Ray next{offset_ray_origin(si.p, si.p_error, fi.ng, dir), dir};
-      const ConeBend bend(*this, 1.0f, 2.0f * normal_spread(si, d, cos_i));
+      const ConeBend bend(*this, [&] {
+        return SpreadChange{1.0f, 2.0f * normal_spread(si, d, cos_i)};
+      });
       result += trace(next, depth + 1, br, fi.from, path) * f.r;
     }
     const Reflectance t = Reflectance(1.0f) - f.r;
@@ -240,8 +242,11 @@ class WhittedShading {
         // Snell's law differentiated: d(theta_t) / d(theta_i) = cos_i / (eta cos_t); a tilt of
         // the normal by delta turns the refracted ray by delta (1 - cos_i / (eta cos_t)) towards
         // it: a convex surface into a denser medium (ratio < 1) focuses.
-        const float ratio = std::abs(cos_i) / (f.eta * std::max(std::abs(dot(dir, fi.ns)), 1e-3f));
-        const ConeBend bend(*this, ratio, -(1.0f - ratio) * normal_spread(si, d, cos_i));
+        const ConeBend bend(*this, [&] {
+          const float ratio =
+              std::abs(cos_i) / (f.eta * std::max(std::abs(dot(dir, fi.ns)), 1e-3f));
+          return SpreadChange{ratio, -(1.0f - ratio) * normal_spread(si, d, cos_i)};
+        });
         result += trace(next, depth + 1, bt, fi.to, path) * t;
       }
     }
@@ -260,8 +265,9 @@ class WhittedShading {
     const Vec3 ns = face_forward(si.ns, ng);
     const Vec3 dir = reflection_direction(ray.direction, ns, ng);
     const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
-    const ConeBend bend(*this, 1.0f,
-                        2.0f * normal_spread(si, ray.direction, dot(ray.direction, ns)));
+    const ConeBend bend(*this, [&] {
+      return SpreadChange{1.0f, 2.0f * normal_spread(si, ray.direction, dot(ray.direction, ns))};
+    });
     return Radiance(tint * trace(next, depth + 1, b, medium, path));
   }
 
@@ -344,15 +350,25 @@ class WhittedShading {
     return convex * si.curvature * std::abs(m_cone.width) / std::max(std::abs(cos_i), 1e-3f);
   }
 
+  /// How a curved specular hit changes the cone's spread: spread' = spread * scale + bend.
+  struct SpreadChange {
+    float scale, bend;
+  };
+
   /// The ray cone of the rays leaving a curved specular hit, for as long as this object lives:
   /// spread' = spread * scale + bend, signed (a focusing cone's width passes through 0 and
-  /// changes sign; the footprint uses |width|), within +-1 rad.
+  /// changes sign; the footprint uses |width|), within +-1 rad. `change()` gives the
+  /// SpreadChange; it is evaluated only while there is a cone (never at 1 sample per pixel, where
+  /// textures are point-sampled: its divisions would be wasted on every mirror and glass hit).
   class ConeBend {
    public:
-    ConeBend(WhittedShading& shading, float scale, float bend)
+    template <class Change>
+    ConeBend(WhittedShading& shading, Change&& change)
         : m_shading(shading), m_saved(shading.m_cone.spread) {
-      if (shading.m_cone.width != 0.0f || m_saved != 0.0f)
-        shading.m_cone.spread = std::clamp(m_saved * scale + bend, -1.0f, 1.0f);
+      if (shading.m_cone.width != 0.0f || m_saved != 0.0f) {
+        const SpreadChange c = change();
+        shading.m_cone.spread = std::clamp(m_saved * c.scale + c.bend, -1.0f, 1.0f);
+      }
     }
     ~ConeBend() { m_shading.m_cone.spread = m_saved; }
     ConeBend(const ConeBend&) = delete;
