@@ -97,4 +97,12 @@ check_bad grid_unknown_kind "shape.outer" "unknown kind 'cube'" "${grid/kind = \
 check_bad grid_negative_size "shape.outer.size_m" "positive" "${grid/\[0.04, 0.04, 0.04\]/[0.04, -0.04, 0.04]}"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n' > "$work/open.obj"
 check_bad grid_open_obj "open.obj" "at least 4 triangles" "${grid/kind = \"box\", size_m = \[0.04, 0.04, 0.04\]/kind = \"obj\", file = \"$work/open.obj\", scale = 0.05}"
+check_bad grid_cavity_outside "shape.cavity" "strictly inside" "${grid/cavity = \{ kind = \"box\", size_m = \[0.024, 0.024, 0.024\] \}/cavity = { kind = \"sphere\", radius_m = 0.005, center_m = [0.1, 0.0, 0.0] \}}"
+check_bad grid_zero_size "shape.cavity.radius_m" "must be positive (got 0)" "${grid/cavity = \{ kind = \"box\", size_m = \[0.024, 0.024, 0.024\] \}/cavity = { kind = \"sphere\", radius_m = 0.0 \}}"
+# a cube with one face missing (open) and two tetrahedra sharing an edge (non-manifold)
+printf 'v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\nf 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\n' > "$work/open_cube.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 -1 0\nv 0 0 -1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 1 2 5\nf 1 6 2\nf 1 5 6\nf 2 6 5\n' > "$work/two_tets.obj"
+solid=${grid/cavity = \{ kind = \"box\", size_m = \[0.024, 0.024, 0.024\] \}/}
+check_bad grid_open_cube_obj "open_cube.obj" "not closed" "${solid/kind = \"box\", size_m = \[0.04, 0.04, 0.04\]/kind = \"obj\", file = \"$work/open_cube.obj\", scale = 0.02}"
+check_bad grid_non_manifold_obj "two_tets.obj" "not manifold" "${solid/kind = \"box\", size_m = \[0.04, 0.04, 0.04\]/kind = \"obj\", file = \"$work/two_tets.obj\", scale = 0.02}"
 exit $fail
