@@ -87,6 +87,7 @@ struct EnthalpySolver::Impl {
   std::vector<double> area_y;  ///< area of a y face (per i) [m^2]
   double area_z = 0;           ///< area of a z face [m^2]
   std::vector<double> m, h, hn, t, t_start, f_start;
+  std::vector<double> rate;  ///< each cell's rate of temperature change in the last step [K/s]
   std::vector<double> kx, ky, kz;    ///< face conductances to the +x, +y, +z neighbour [W/K]
   std::vector<double> bq0, bq1;      ///< boundary heat into the cell: bq0 - bq1 T [W]
   std::vector<double> surface_area;  ///< material | air area assigned to the cell [m^2]
@@ -133,9 +134,10 @@ struct EnthalpySolver::Impl {
       if (m[c] == 0) h[c] = 0;
     }
     // every work array once, here: a step allocates nothing
-    for (auto* v : {&hn,   &t,     &t_start,      &f_start, &kx,     &ky,     &kz,
-                    &bq0,  &bq1,   &surface_area, &cg_r,    &cg_z,   &cg_p,   &cg_p2,
-                    &cg_q, &dtemp, &diag,         &rhs,     &area_g, &area_w, &area_share})
+    for (auto* v :
+         {&rate, &hn,           &t,      &t_start,   &f_start, &kx,    &ky,   &kz,    &bq0,
+          &bq1,  &surface_area, &cg_r,   &cg_z,      &cg_p,    &cg_p2, &cg_q, &dtemp, &diag,
+          &rhs,  &area_g,       &area_w, &area_share})
       v->assign(static_cast<std::size_t>(n), 0.0);
     const auto blocks = static_cast<std::size_t>(block_count());
     for (auto* v : {&partial_rz, &partial_res, &partial_pq, &partial_newton})
@@ -449,6 +451,19 @@ struct EnthalpySolver::Impl {
     }
   }
 
+  /// Newton's start for cell c: a pure phase continues its last step's rate of temperature
+  /// change (stopping at the kink, as an update does); a melting cell starts where it is. Only
+  /// the start moves, not the solution: it saves about one Newton iteration per step (the
+  /// first residual is what the rate's change leaves, not the whole step's change).
+  void predict(long c) {
+    if (m[c] == 0 || rate[c] == 0) return;
+    if (h[c] < 0) {
+      h[c] = std::min(h[c] + ci * rate[c] * dt, 0.0);
+    } else if (h[c] > latent) {
+      h[c] = std::max(h[c] + cw * rate[c] * dt, latent);
+    }
+  }
+
   /// Applies the previous Newton iteration's update (if any), then temperatures, cell types,
   /// the CG diagonal and the residual; returns the largest residual as a temperature [K].
   /// apply_update reads the neighbours' dtemp, which nothing writes here, and writes only its
@@ -456,7 +471,11 @@ struct EnthalpySolver::Impl {
   double prepare_newton_iteration(BlockTeam& team, bool apply) {
     team.for_blocks([&](long bl) {
       for_cells(bl, [&](long c, int i, int j, int k) {
-        if (apply) apply_update(c, i, j, k);
+        if (apply) {
+          apply_update(c, i, j, k);
+        } else {
+          predict(c);
+        }
         t[c] = m[c] > 0 ? temperature(h[c]) : 0.0;
       });
     });
@@ -627,6 +646,7 @@ struct EnthalpySolver::Impl {
         b.energy_end += m[c] * vol[c] * h[c];
         add_enclosed(c, b);
         b.ice += ice_fraction(c) * vol[c];
+        rate[c] = m[c] > 0 ? (temperature(h[c]) - t_start[c]) / dt : 0.0;
         if (m[c] > 0) {
           b.dtemp = std::max(b.dtemp, std::abs(temperature(h[c]) - t_start[c]));
           b.dmelt = std::max(b.dmelt, std::abs(liquid(h[c]) - f_start[c]));
