@@ -29,10 +29,18 @@ struct Texture {
   Rgb eval(const Vec3& p) const {
     if (kind == Kind::solid) return color0;
     const float inv = 1.0f / size;
-    const auto ix = static_cast<long long>(std::floor((p.x - offset.x) * inv));
-    const auto iy = static_cast<long long>(std::floor((p.y - offset.y) * inv));
-    const auto iz = static_cast<long long>(std::floor((p.z - offset.z) * inv));
+    const long long ix = floor_to_integer((p.x - offset.x) * inv);
+    const long long iy = floor_to_integer((p.y - offset.y) * inv);
+    const long long iz = floor_to_integer((p.z - offset.z) * inv);
     return ((ix + iy + iz) & 1) == 0 ? color0 : color1;
+  }
+
+  /// floor(v) as an integer, for |v| < 2^63 (what the checker's cast of std::floor needed too),
+  /// without a libm call: the truncation, one less where it rounded up (negative non-integers).
+  /// Exact: a truncated float is an integer float represents, so the comparison is exact.
+  static long long floor_to_integer(float v) {
+    const auto i = static_cast<long long>(v);
+    return static_cast<float>(i) > v ? i - 1 : i;
   }
 
   /// The mean colour over a footprint centred at p whose half-extent along each axis is

@@ -1,9 +1,13 @@
-// Tests render/material/texture.h: the 3D checker parity and offset convention of POV-Ray.
+// Tests render/material/texture.h: the 3D checker parity and offset convention of POV-Ray, its
+// libm-free floor.
 #include "render/material/texture.h"
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 namespace thaw::render {
 namespace {
@@ -21,6 +25,20 @@ TEST(Texture, CheckerParityAndOffset) {
   EXPECT_EQ(t.eval({-0.1f, -1.0f, 0.1f}), t.color0);
   t.kind = Texture::Kind::solid;
   EXPECT_EQ(t.eval({0.1f, -1.0f, 0.1f}), t.color0);
+}
+
+TEST(Texture, FloorToIntegerIsStdFloor) {
+  // The checker's floor without libm must agree with std::floor for every float it can meet:
+  // integers, halves, values next to integers on both sides, negatives, tiny and huge (2^24 up,
+  // where every float is an integer) magnitudes, and a sweep of bit patterns.
+  std::vector<float> v = {0.0f,    -0.0f,       0.5f,         -0.5f, 1.0f,   -1.0f,   1e-30f,
+                          -1e-30f, 16777216.0f, -16777217.0f, 3e17f, -3e17f, 4.5e18f, -4.5e18f};
+  for (float x = -40.0f; x <= 40.0f; x += 1.0f)
+    for (float y : {x, std::nextafter(x, -1e9f), std::nextafter(x, 1e9f)}) v.push_back(y);
+  for (std::uint32_t bits = 0; bits < 0x5e000000u; bits += 0x00012345u)  // |v| < 2^61
+    for (std::uint32_t sign : {0u, 0x80000000u}) v.push_back(std::bit_cast<float>(bits | sign));
+  for (const float x : v)
+    ASSERT_EQ(Texture::floor_to_integer(x), static_cast<long long>(std::floor(x))) << x;
 }
 
 TEST(Texture, SquareWaveMeanIsTheBoxAverage) {
