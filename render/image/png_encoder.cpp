@@ -30,18 +30,24 @@ void row_bytes(const void* samples, const PngLayout& l, int y, std::uint8_t* out
 
 /// PNG's Paeth predictor (specification 9.4): the neighbour closest to a + b - c, ties in the
 /// order a, b, c. Written with selects only, so the row loops below vectorise.
+/// Every intermediate fits 16 bits (bytes 0..255: |a + b - 2c| <= 510), so the loops vectorise
+/// with 16-bit lanes.
 inline int paeth(int a, int b, int c) {
-  const int pa = std::abs(b - c), pb = std::abs(a - c), pc = std::abs(a + b - 2 * c);
-  const int bc = pb <= pc ? b : c;
-  return (pa <= pb && pa <= pc) ? a : bc;
+  const auto pa = static_cast<std::int16_t>(std::abs(b - c));
+  const auto pb = static_cast<std::int16_t>(std::abs(a - c));
+  const auto pc = static_cast<std::int16_t>(std::abs(a + b - 2 * c));
+  const auto bc = static_cast<std::int16_t>(pb <= pc ? b : c);
+  return static_cast<std::int16_t>((pa <= pb && pa <= pc) ? a : bc);
 }
 
 /// The five filtered values (none, sub, up, average, Paeth) of byte x with left a, up b, up-left c.
 struct Filtered {
-  int v[5];
+  std::int16_t v[5];
 };
 inline Filtered filter_byte(int x, int a, int b, int c) {
-  return {{x, x - a, x - b, x - ((a + b) >> 1), x - paeth(a, b, c)}};
+  return {{static_cast<std::int16_t>(x), static_cast<std::int16_t>(x - a),
+           static_cast<std::int16_t>(x - b), static_cast<std::int16_t>(x - ((a + b) >> 1)),
+           static_cast<std::int16_t>(x - paeth(a, b, c))}};
 }
 inline std::uint32_t abs_signed_byte(int v) {
   return static_cast<std::uint32_t>(std::abs(static_cast<int>(static_cast<std::int8_t>(v))));
