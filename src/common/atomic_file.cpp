@@ -3,12 +3,15 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
 #include <cstring>
+#include <mutex>
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include "src/common/error.h"
@@ -43,7 +46,44 @@ long temporary_owner(const std::string& name) {
   return std::strtol(tail.c_str(), nullptr, 10);
 }
 
+// The live staging folders of this process, (temporary, final), for final_name().
+std::mutex g_staging_mutex;
+std::vector<std::pair<fs::path, fs::path>>& live_stagings() {
+  static std::vector<std::pair<fs::path, fs::path>> list;
+  return list;
+}
+
+void remember_staging(const fs::path& temp, const fs::path& final_dir) {
+  const std::lock_guard<std::mutex> lock(g_staging_mutex);
+  live_stagings().emplace_back(temp, final_dir);
+}
+
+void forget_staging(const fs::path& temp) {
+  const std::lock_guard<std::mutex> lock(g_staging_mutex);
+  std::erase_if(live_stagings(), [&](const auto& e) { return e.first == temp; });
+}
+
+// An error about `path` (being written), named as it will be once committed.
+UserError write_error(const fs::path& path, const std::string& problem) {
+  return UserError(final_name(path).string(), "", problem);
+}
+
 }  // namespace
+
+fs::path final_name(const fs::path& path) {
+  const std::lock_guard<std::mutex> lock(g_staging_mutex);
+  fs::path p = path;
+  // Innermost first: a staging folder may be created inside another one's temporary.
+  for (auto it = live_stagings().rbegin(); it != live_stagings().rend(); ++it) {
+    const auto [temp_end, path_end] =
+        std::mismatch(it->first.begin(), it->first.end(), p.begin(), p.end());
+    if (temp_end != it->first.end()) continue;
+    fs::path renamed = it->second;
+    for (auto c = path_end; c != p.end(); ++c) renamed /= *c;
+    p = renamed;
+  }
+  return p;
+}
 
 int remove_stale_temporaries(const fs::path& dir) {
   std::error_code ec;
@@ -64,9 +104,9 @@ void ensure_directory(const fs::path& dir) {
   if (dir.empty()) return;
   std::error_code ec;
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
-    throw UserError(dir.string(), "", "exists and is not a directory");
+    throw write_error(dir, "exists and is not a directory");
   fs::create_directories(dir, ec);
-  if (ec) throw UserError(dir.string(), "", "cannot create directory: " + ec.message());
+  if (ec) throw write_error(dir, "cannot create directory: " + ec.message());
 }
 
 void write_file_atomic(const fs::path& path, std::string_view contents) {
@@ -78,8 +118,7 @@ void write_file_atomic(const fs::path& path, std::string_view contents) {
 AtomicOutputFile::AtomicOutputFile(fs::path path, bool binary)
     : m_path(std::move(path)), m_temp(temporary_sibling(m_path)) {
   m_stream.open(m_temp, binary ? std::ios::out | std::ios::binary : std::ios::out);
-  if (!m_stream)
-    throw UserError(m_path.string(), "", std::string("cannot write: ") + std::strerror(errno));
+  if (!m_stream) throw write_error(m_path, std::string("cannot write: ") + std::strerror(errno));
 }
 
 AtomicOutputFile::~AtomicOutputFile() {
@@ -98,15 +137,14 @@ void AtomicOutputFile::commit() {
     std::error_code ec;
     fs::remove(m_temp, ec);
     m_committed = true;
-    throw UserError(m_path.string(), "", "write failed (disk full or I/O error)");
+    throw write_error(m_path, "write failed (disk full or I/O error)");
   }
   std::error_code ec;
   fs::rename(m_temp, m_path, ec);
   m_committed = true;
   if (ec) {
     fs::remove(m_temp, ec);
-    throw UserError(m_path.string(), "",
-                    "cannot rename temporary file into place: " + ec.message());
+    throw write_error(m_path, "cannot rename temporary file into place: " + ec.message());
   }
 }
 
@@ -118,9 +156,11 @@ StagingDirectory::StagingDirectory(fs::path final_dir)
     throw UserError(m_final.string(), "", "exists and is not a directory");
   fs::create_directories(m_temp, ec);
   if (ec) throw UserError(m_final.string(), "", "cannot create output directory: " + ec.message());
+  remember_staging(m_temp, m_final);
 }
 
 StagingDirectory::~StagingDirectory() {
+  forget_staging(m_temp);
   if (!m_committed) {
     std::error_code ec;
     fs::remove_all(m_temp, ec);

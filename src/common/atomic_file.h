@@ -20,6 +20,10 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
 /// were removed.
 int remove_stale_temporaries(const std::filesystem::path& dir);
 
+/// The name `path` will have once the staging folders (StagingDirectory) of this process holding
+/// it are committed: what messages name, never a temporary. Other paths are returned as they are.
+std::filesystem::path final_name(const std::filesystem::path& path);
+
 /// Creates `dir` (and parents) or throws UserError naming it if that is impossible or it is a file.
 void ensure_directory(const std::filesystem::path& dir);
 

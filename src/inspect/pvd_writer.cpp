@@ -124,13 +124,13 @@ void write_vtp(const fs::path& path, const TriangleMesh& mesh,
   std::error_code ec;
   if (ok != 1 || writer->GetErrorCode() != 0) {
     fs::remove(temp, ec);
-    throw UserError(path.string(), "",
+    throw UserError(final_name(path).string(), "",
                     "cannot write VTK PolyData (disk full or not writable)" + messages.suffix());
   }
   fs::rename(temp, path, ec);
   if (ec) {
     fs::remove(temp, ec);
-    throw UserError(path.string(), "", "cannot rename into place: " + ec.message());
+    throw UserError(final_name(path).string(), "", "cannot rename into place: " + ec.message());
   }
 }
 
@@ -138,7 +138,7 @@ PvdWriter::PvdWriter(fs::path pvd_path) : m_pvd(std::move(pvd_path)) {
   if (m_pvd.filename().empty()) throw UserError(m_pvd.string(), "", "not a file name");
   m_data_dir = m_pvd.parent_path() / (m_pvd.stem().string() + "_vtp");
   ensure_directory(m_pvd.parent_path());
-  ensure_directory(m_data_dir);
+  m_staging.emplace(m_data_dir);
 }
 
 void PvdWriter::add(long step, double time_s, SurfacePart part, const TriangleMesh* mesh,
@@ -146,7 +146,7 @@ void PvdWriter::add(long step, double time_s, SurfacePart part, const TriangleMe
   const int p = static_cast<int>(part);
   char name[64];
   std::snprintf(name, sizeof name, "step_%06ld_%s.vtp", step, part_name(p));
-  write_vtp(m_data_dir / name, mesh ? *mesh : TriangleMesh{},
+  write_vtp((m_staging ? m_staging->path() : m_data_dir) / name, mesh ? *mesh : TriangleMesh{},
             mesh ? scalars : std::vector<PointScalars>{});
   const std::string rel = m_data_dir.filename().string() + "/" + name;
   // Replace an earlier entry for the same time and part (a re-meshed step), else append.
@@ -161,7 +161,11 @@ void PvdWriter::add(long step, double time_s, SurfacePart part, const TriangleMe
   });
 }
 
-void PvdWriter::commit() const {
+void PvdWriter::commit() {
+  if (m_staging) {
+    m_staging->commit();
+    m_staging.reset();
+  }
   std::string xml =
       "<?xml version=\"1.0\"?>\n"
       "<!-- thaw: inner (part 0) = water|ice front, outer (part 1) = ice|air surface;\n"

@@ -1,10 +1,10 @@
 #pragma once
 // ParaView time series: a .pvd collection (plain XML, written by hand) referencing one .vtp per
 // step and surface, the inner (water|ice) and outer (ice|air) surfaces as separate parts, the
-// timestep being the simulated time in seconds. Every .vtp is written atomically (temporary name +
-// rename) as it is added; the .pvd only by commit(), once every data set is on disk, so an
-// interrupted or failed export (disk full) leaves no .pvd at all rather than a partial
-// collection. Needs no display.
+// timestep being the simulated time in seconds. The .vtp files are written into a staged folder
+// as they are added, which replaces `<stem>_vtp/` by commit(), before the .pvd is written; so an
+// interrupted or failed export (disk full) leaves neither a .pvd nor a partial folder of data
+// sets. Needs no display.
 #include <array>
 #include <filesystem>
 #include <functional>
@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "src/common/atomic_file.h"
 #include "src/common/progress.h"
 #include "src/inspect/triangle_mesh.h"
 
@@ -29,7 +30,7 @@ enum class SurfacePart { inner = 0, outer = 1 };
 class PvdWriter {
  public:
   /// `pvd_path`: the collection file; the .vtp files go in the folder `<stem>_vtp/` beside it
-  /// (created). Throws thaw::UserError if that folder cannot be created.
+  /// (staged until commit()). Throws thaw::UserError if that folder cannot be created.
   explicit PvdWriter(std::filesystem::path pvd_path);
 
   /// Writes step `step`'s `part` surface (nullptr: vanished, written as an empty data set so the
@@ -39,8 +40,10 @@ class PvdWriter {
   void add(long step, double time_s, SurfacePart part, const TriangleMesh* mesh,
            const std::vector<PointScalars>& scalars = {});
 
-  /// Writes the .pvd (atomically) referencing every data set added; throws thaw::UserError.
-  void commit() const;
+  /// Puts the data sets in place (`<stem>_vtp/`, replaced as a whole the first time) and writes the
+  /// .pvd (atomically) referencing every data set added; throws thaw::UserError. Data sets added
+  /// after a commit are written in place and need another commit.
+  void commit();
 
   const std::filesystem::path& pvd_path() const { return m_pvd; }
   const std::filesystem::path& data_dir() const { return m_data_dir; }
@@ -54,6 +57,7 @@ class PvdWriter {
     std::string file;  // relative to the .pvd's folder, '/'-separated
   };
   std::filesystem::path m_pvd, m_data_dir;
+  std::optional<StagingDirectory> m_staging;  ///< until the first commit()
   std::vector<Entry> m_entries;
 };
 

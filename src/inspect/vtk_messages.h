@@ -1,8 +1,9 @@
 #pragma once
 // VTK's own messages (vtkOutputWindow: ERR/WARN lines with colours and source locations) never
 // reach the terminal: while a VtkMessages object lives, they are collected, and suffix() gives the
-// last error as "; VTK: ..." for the thaw::UserError that reports the failure, so a failure is
-// one thaw line. Outside such a scope they are dropped. VTK-free header.
+// first message's reason (its source location and pipeline dump left out) as "; VTK: ..." for the
+// thaw::UserError that reports the failure, so a failure is one short thaw line. Outside such a
+// scope they are dropped. VTK-free header.
 #include <string>
 
 namespace thaw::inspect {
@@ -14,7 +15,7 @@ class VtkMessages {
   VtkMessages(const VtkMessages&) = delete;
   VtkMessages& operator=(const VtkMessages&) = delete;
 
-  /// "" if VTK reported nothing, else "; VTK: <last error or warning, one line>".
+  /// "" if VTK reported nothing, else "; VTK: <the first error or warning's reason, one line>".
   std::string suffix() const;
 };
 

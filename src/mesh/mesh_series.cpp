@@ -45,6 +45,9 @@ struct Task {
 // What a task reports back (written by exactly one thread, read after the loop).
 struct TaskResult {
   std::string error;  // "" if fine
+  /// The surface could not be written (disk full ...): the UserError's problem, "" if written.
+  /// Not a meshing failure: its message names the file and gives no meshing hint.
+  std::string write_problem;
   long triangles = 0;
   double volume_m3 = 0;
   // Containment of the inner mesh in the outer one, through f(x) = dist(x, C) to the convex core
@@ -82,6 +85,7 @@ void measure(const ShellShape& shape, const TriangleMesh& m, TaskResult& r) {
 // A task's result as text, to pass between processes (17 digits: doubles read back exactly).
 std::string encode(const TaskResult& r) {
   if (!r.error.empty()) return "E" + r.error;
+  if (!r.write_problem.empty()) return "W" + r.write_problem;
   char buf[128];
   std::snprintf(buf, sizeof buf, "%ld %.17g %.17g %.17g", r.triangles, r.volume_m3,
                 r.max_core_distance, r.min_face_core_distance);
@@ -92,6 +96,10 @@ TaskResult decode(const std::string& text) {
   TaskResult r;
   if (text.empty() || text[0] == 'E') {
     r.error = text.empty() ? "no result" : text.substr(1);
+    return r;
+  }
+  if (text[0] == 'W') {
+    r.write_problem = text.substr(1);
     return r;
   }
   char* end = nullptr;
@@ -407,6 +415,8 @@ TaskResult write_surface(const Task& t, const FormPlan& plan, std::size_t k, con
                   t.inner ? "inner (water|ice)" : "outer (ice|air)",
                   sim::to_string(t.shape.geometry), t.shape.radius_m);
     write_obj(out_dir / surface_file_name(rec.step, t.inner), mesh, comment);
+  } catch (const UserError& e) {  // only writing throws these here
+    r.write_problem = e.problem();
   } catch (const std::exception& e) {
     r.error = e.what();
   } catch (...) {
@@ -424,7 +434,11 @@ std::vector<TaskResult> write_surfaces(const std::vector<Task>& tasks, const For
   const std::vector<std::string> texts = farm.run(
       static_cast<long>(tasks.size()), options.jobs,
       [&](long k) -> std::string {
-        if (interrupt_requested()) return encode(TaskResult{"interrupted"});
+        if (interrupt_requested()) {
+          TaskResult skipped;
+          skipped.error = "interrupted";  // thrown after the loop
+          return encode(skipped);
+        }
         const auto i = static_cast<std::size_t>(k);
         return encode(write_surface(tasks[i], plan, i, m, manifest, options, out_dir));
       },
@@ -442,6 +456,9 @@ void record_surfaces(const std::vector<Task>& tasks, const std::vector<TaskResul
   for (std::size_t k = 0; k < tasks.size(); ++k) {
     const Task& t = tasks[k];
     StepRecord& rec = manifest.steps[t.step_index];
+    if (!results[k].write_problem.empty())
+      throw UserError((final_dir / surface_file_name(rec.step, t.inner)).string(), "",
+                      results[k].write_problem);
     if (!results[k].error.empty())
       throw UserError(
           (final_dir / surface_file_name(rec.step, t.inner)).string(), "",

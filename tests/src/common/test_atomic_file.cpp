@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "src/common/error.h"
+#include "tests/src/common/file_size_limit.h"
 
 namespace thaw {
 namespace {
@@ -74,6 +75,33 @@ TEST(StagingDirectory, ReplacesOnlyOnCommit) {
   EXPECT_FALSE(fs::exists(out / "f.txt"));
   EXPECT_EQ(read(out / "g.txt"), "3");
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
+  fs::remove_all(dir);
+}
+
+// Issue 12: a write that fails inside a staged folder (disk full) names the file as it would be
+// once committed, never the temporary folder.
+TEST(StagingDirectory, ErrorsNameTheFinalPathNotTheTemporary) {
+  const fs::path dir = scratch("final_name");
+  {
+    StagingDirectory staging(dir / "out");
+    EXPECT_EQ(final_name(staging.path() / "sub" / "a.txt"), dir / "out" / "sub" / "a.txt");
+    EXPECT_EQ(final_name(staging.path()), dir / "out");
+    EXPECT_EQ(final_name(dir / "elsewhere.txt"), dir / "elsewhere.txt");
+    {
+      StagingDirectory inner(staging.path() / "mesh");  // staged inside a staged folder
+      EXPECT_EQ(final_name(inner.path() / "m.obj"), dir / "out" / "mesh" / "m.obj");
+    }
+    const testing::FileSizeLimit full_disk(16);
+    try {
+      write_file_atomic(staging.path() / "big.txt", std::string(1000, 'x'));
+      FAIL() << "no error";
+    } catch (const UserError& e) {
+      EXPECT_EQ(e.file(), (dir / "out" / "big.txt").string());
+      EXPECT_EQ(e.problem(), "write failed (disk full or I/O error)");
+    }
+  }
+  EXPECT_EQ(final_name(dir / ("out.tmp-" + std::to_string(::getpid()) + "-0") / "x"),
+            dir / ("out.tmp-" + std::to_string(::getpid()) + "-0") / "x");  // none live now
   fs::remove_all(dir);
 }
 

@@ -16,6 +16,7 @@
 
 #include "sim/io/grid_field.h"
 #include "src/common/error.h"
+#include "tests/src/common/file_size_limit.h"
 #include "tests/src/inspect/test_meshes.h"
 
 namespace thaw::inspect {
@@ -216,9 +217,31 @@ TEST(PvdWriter, VtkWriteFailureIsOneUserErrorWithoutVtkOutput) {
   }
   const std::string err = ::testing::internal::GetCapturedStderr();
   EXPECT_EQ(err, "");
-  // VTK did complain; its reason is in the one thaw line, on one line.
+  // VTK did complain; its reason is in the one thaw line, on one line, without VTK's source
+  // location and pipeline dump.
   EXPECT_NE(what.find("; VTK: "), std::string::npos) << what;
   EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  for (const char* noise : {"ERROR: In", ".cxx", "vtkInformation", "Debug: Off", "(0x"})
+    EXPECT_EQ(what.find(noise), std::string::npos) << noise << " in " << what;
+}
+
+// Issue 12: a series export on a full disk leaves neither a .pvd nor a partial folder of data
+// sets (nor temporaries) and says so in one line naming the file.
+TEST(PvdWriter, FullDiskLeavesNoPartialSeries) {
+  testing::ScratchDir dir("pvd");
+  testing::write_sphere_simulation(dir.path() / "sim", 3);
+  const fs::path out = dir.path() / "out";
+  fs::create_directories(out);
+  std::string what;
+  try {
+    const ::thaw::testing::FileSizeLimit full_disk(2000);  // below one .vtp of these spheres
+    write_pvd_series(dir.path() / "sim", out / "series.pvd");
+  } catch (const UserError& e) {
+    what = e.what();
+  }
+  EXPECT_NE(what.find((out / "series_vtp" / "step_").string()), std::string::npos) << what;
+  EXPECT_EQ(what.find(".tmp-"), std::string::npos) << what;
+  EXPECT_TRUE(fs::is_empty(out)) << fs::directory_iterator(out)->path();
 }
 
 TEST(PvdWriter, UnwritableOutputIsUserError) {

@@ -17,6 +17,7 @@
 
 #include "src/common/error.h"
 #include "src/common/interrupt.h"
+#include "tests/src/common/file_size_limit.h"
 
 namespace thaw::mesh {
 namespace {
@@ -239,6 +240,22 @@ TEST(MeshSeries, BadInputThrowsUserErrorAndKeepsOldOutput) {
   bad.angle_deg = 45;
   EXPECT_THROW(mesh_simulation_folder(dir, bad), UserError);
   EXPECT_EQ(read_text(dir / "mesh/manifest.json"), before);
+}
+
+// Issue 12: a full disk is not a meshing failure: the message names the surface's file (not the
+// staged temporary) and gives no meshing hint; nothing is left in SIMDIR/mesh.
+TEST(MeshSeries, FullDiskNamesTheFileWithoutAMeshingHint) {
+  const fs::path dir = fresh_copy("sphere", "full_disk");
+  try {
+    const testing::FileSizeLimit full_disk(4096);  // each surface's OBJ is larger
+    mesh_simulation_folder(dir, coarse(1));
+    FAIL() << "no error";
+  } catch (const UserError& e) {
+    EXPECT_EQ(e.file().rfind((dir / "mesh" / "step_").string(), 0), 0u) << e.what();
+    EXPECT_EQ(e.problem(), "write failed (disk full or I/O error)") << e.what();
+    EXPECT_EQ(std::string(e.what()).find(".tmp-"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir / "mesh"));
 }
 
 }  // namespace
