@@ -16,6 +16,7 @@
 
 #include "src/cli/app.h"
 #include "src/cli/commands.h"
+#include "src/common/interrupt.h"
 
 namespace {
 
@@ -39,6 +40,7 @@ int exec_full(char** argv) {
     return 3;
   }
   const std::string full = (self.parent_path() / "libexec" / "thaw-full").string();
+  thaw::hold_interrupt_signals();  // until thaw-full has its handlers (interrupt.h)
   ::execv(full.c_str(), argv);
   std::fprintf(stderr, "thaw: internal error: cannot start %s: %s\n", full.c_str(),
                std::strerror(errno));

@@ -22,8 +22,15 @@ class Interrupted : public std::runtime_error {
 /// The exit code of an interrupted command (128 + SIGINT, as shells report Ctrl-C).
 inline constexpr int kInterruptedExitCode = 130;
 
-/// Installs the SIGINT and SIGTERM handlers (once, at program start).
+/// Installs the SIGINT and SIGTERM handlers (once, at program start), then lets through the
+/// signals hold_interrupt_signals() held back: one that arrived meanwhile reaches the handler.
 void install_interrupt_handlers();
+
+/// Blocks SIGINT and SIGTERM (they stay pending, not lost) until install_interrupt_handlers().
+/// The block survives execve(2): the `thaw` launcher calls this before handing over to
+/// thaw-full, whose ~115 libraries take a moment to load, so a signal in that moment still ends
+/// the command cleanly (message, exit 130) instead of killing it by the default action.
+void hold_interrupt_signals();
 
 /// True once SIGINT or SIGTERM arrived (or request_interrupt() was called). Lock-free: may be
 /// polled from OpenMP workers, which then skip their remaining work items.

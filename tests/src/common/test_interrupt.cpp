@@ -43,6 +43,23 @@ TEST_F(Interrupt, SignalsSetTheFlagInsteadOfEndingTheProcess) {
   signal(SIGTERM, SIG_DFL);
 }
 
+// Issue 12: a signal that arrives while thaw-full is still loading its libraries (held back by
+// the launcher, across execve) reaches the handler once it is installed, instead of ending the
+// process by the default action (exit 143 without a message).
+TEST_F(Interrupt, SignalHeldBeforeTheHandlersReachesThemOnceInstalled) {
+  for (const int s : {SIGINT, SIGTERM}) {
+    clear_interrupt_request();
+    signal(s, SIG_DFL);  // as in a freshly executed program
+    hold_interrupt_signals();
+    ASSERT_EQ(::raise(s), 0);  // pending, not delivered (the default action would end the test)
+    EXPECT_FALSE(interrupt_requested()) << s;
+    install_interrupt_handlers();
+    EXPECT_TRUE(interrupt_requested()) << s;
+  }
+  signal(SIGINT, SIG_DFL);
+  signal(SIGTERM, SIG_DFL);
+}
+
 TEST_F(Interrupt, InterruptibleCallbackThrowsBeforeReporting) {
   int calls = 0;
   const ProgressCallback cb = interruptible([&](std::int64_t, std::int64_t) { ++calls; });
