@@ -22,7 +22,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 
+#include "render/light/environment_lighting.h"
 #include "render/light/light_sampling.h"
 #include "render/material/fresnel.h"
 #include "render/photon/caustic_map.h"
@@ -94,7 +96,9 @@ class WhittedShading {
         m_caustics(caustics && !caustics->empty() ? caustics : nullptr),
         m_max_depth(scene.settings().max_depth),
         m_min_weight(static_cast<float>(scene.settings().min_weight)),
-        m_pixel_spread(texture_cone_spread(scene)) {}
+        m_pixel_spread(texture_cone_spread(scene)) {
+    if (scene.environment().light_surfaces) m_environment_occluders.emplace(scene);
+  }
 
   /// Spread angle [rad] of the ray cone of one camera sample (0: textures point-sampled): the
   /// angle of a pixel, so that texture detail finer than a pixel is averaged away before the film
@@ -290,6 +294,13 @@ class WhittedShading {
       const Rgb e = m_caustics->irradiance(si.p, ng);
       if (!e.is_black()) result += albedo * self().illuminant(e, path) * mat.kd;
     }
+    // The environment's irradiance ([environment] light_surfaces; environment_lighting.h), in the
+    // same units: its sphere-light caps taken out, opaque occluders found by rays.
+    if (m_environment_occluders) {
+      const Rgb e = environment_irradiance(m_scene, *m_environment_occluders, si.p, si.p_error, ng,
+                                           ns, si.object, depth, m_camera_sample, m_rays);
+      if (!e.is_black()) result += albedo * self().illuminant(e, path) * mat.kd;
+    }
     if (mat.kind != Material::Kind::phong || depth >= m_max_depth) return result;
     if (mat.reflectance > 0.0f && self().weight(beta, path) * mat.reflectance >= m_min_weight) {
       const Vec3 dir = reflection_direction(d, ns, ng);
@@ -429,6 +440,8 @@ class WhittedShading {
 
   const Scene& m_scene;
   const photon::CausticMap* m_caustics;
+  /// what may hide the environment from diffuse surfaces (only with light_surfaces)
+  std::optional<EnvironmentOccluders> m_environment_occluders;
   int m_max_depth;
   float m_min_weight;
   std::uint64_t m_rays = 0, m_mismatches = 0;

@@ -3,18 +3,42 @@
 // sky (a gradient from the horizon to the zenith above, a ground colour below, joined smoothly
 // across the horizon) or a lat-long HDR image (latlong_map.h, turned about +y), so that ice and
 // water refract and reflect a surround with light and dark parts, which is what makes transparent
-// bodies read as transparent. Seen only by rays that escape (camera, reflected, refracted): it is
-// not sampled as a light (Whitted transport; the scene's lights and ambient term light diffuse
-// surfaces). Knows nothing about scenes or rays beyond a direction.
+// bodies read as transparent. A sky may carry rectangular panels (soft boxes, windows) that the
+// ice reflects and refracts. Seen by rays that escape (camera, reflected, refracted); with
+// `light_surfaces` it also lights matte and phong surfaces through its irradiance (irradiance_sh.h;
+// occlusion: environment_lighting.h). Knows nothing about scenes or rays beyond a direction.
 #include <algorithm>
 #include <cmath>
 #include <memory>
 
+#include <vector>
+
+#include "render/light/irradiance_sh.h"
 #include "render/light/latlong_map.h"
 #include "render/math/color.h"
 #include "render/math/vec3.h"
 
 namespace thaw::render {
+
+/// A rectangle of uniform radiance in the sky, as seen from the scene (a soft box, a window): the
+/// directions d with c = dot(d, centre) > 0 whose gnomonic coordinates x = dot(d, right) / c,
+/// y = dot(d, top) / c lie within +-half_width, +-half_height (tangents of the half-angles),
+/// with a linear ramp `edge` wide (tangent units) centred on each border: no aliasing seam.
+struct EnvironmentPanel {
+  Vec3 centre, right, top;
+  float half_width = 0.1f, half_height = 0.1f, edge = 0.01f;
+  Rgb radiance;
+
+  /// The panel's share of direction d: 1 inside, 0 outside, a ramp across the border.
+  float coverage(const Vec3& d) const {
+    const float c = dot(d, centre);
+    if (c <= 0.0f) return 0.0f;
+    const float x = std::abs(dot(d, right)) / c, y = std::abs(dot(d, top)) / c;
+    const float fx = std::clamp((half_width - x) / edge + 0.5f, 0.0f, 1.0f);
+    const float fy = std::clamp((half_height - y) / edge + 0.5f, 0.0f, 1.0f);
+    return fx * fy;
+  }
+};
 
 struct Environment {
   enum class Kind { constant, sky, latlong };
@@ -34,6 +58,14 @@ struct Environment {
   std::shared_ptr<const LatLongMap> map;
   float map_scale = 1.0f;
   float map_cos = 1.0f, map_sin = 0.0f;
+  /// sky: panels added over the gradient
+  std::vector<EnvironmentPanel> panels;
+  /// whether the environment lights matte and phong surfaces (environment_lighting.h), with
+  /// `occlusion_samples` rays per shading point and camera sample where something opaque may hide
+  /// part of it, and the unoccluded irradiance from `irradiance_sh` (set by build_scene)
+  bool light_surfaces = false;
+  int occlusion_samples = 16;
+  IrradianceSH irradiance_sh;
 
   /// Radiance arriving from unit direction `d` (of light travelling along -d).
   Rgb radiance(const Vec3& d) const {
@@ -43,6 +75,16 @@ struct Environment {
       const Vec3 m{map_cos * d.x - map_sin * d.z, d.y, map_sin * d.x + map_cos * d.z};
       return map->radiance(m) * map_scale;
     }
+    Rgb l = sky_gradient(d);
+    for (const EnvironmentPanel& p : panels) {
+      const float c = p.coverage(d);
+      if (c > 0.0f) l += p.radiance * c;
+    }
+    return l;
+  }
+
+  /// sky: the gradient without panels.
+  Rgb sky_gradient(const Vec3& d) const {
     const float s = dot(d, up);  // sin(elevation)
     if (s >= 0.0f) {
       const float t = std::pow(std::min(s, 1.0f), exponent);

@@ -62,6 +62,92 @@ Rgb LatLongMap::radiance(const Vec3& d) const {
   return lerp(lerp(texel(i0, j0), texel(i1, j0), tx), lerp(texel(i0, j1), texel(i1, j1), tx), ty);
 }
 
+namespace {
+
+/// The RGBE scanlines of a Radiance file whose header stb_image has accepted (Ward 1991,
+/// "Real pixels"; the format as Radiance's own freadcolrs reads it): `file` at the start of the
+/// file. Skips the header (lines up to the empty one, then the resolution line), then reads
+/// h scanlines of w texels, each either "new" run-length encoded (2, 2, w >> 8, w & 255, then
+/// the four byte planes in runs: a count above 128 repeats the next byte count - 128 times,
+/// otherwise count literal bytes follow) or flat (4 bytes per texel). Converted as stb_image
+/// does (mantissa * 2^(e - 136), 0 for e = 0), so texels are those of stbi_loadf. Unlike
+/// stb_image, which feeds zeros past the end of the file (black texels for a truncated flat
+/// file, an endless loop on a truncated run-length encoded one), the end of the file is an
+/// error here, as is a run that overflows its scanline.
+bool read_rgbe_texels(std::FILE* file, int w, int h, std::vector<Rgb>& texels,
+                      std::string& problem) {
+  bool ended = false;
+  auto byte = [&]() -> int {
+    const int c = std::getc(file);
+    if (c == EOF) ended = true;
+    return c == EOF ? 0 : c;
+  };
+  auto truncated = [&]() {
+    problem = "is truncated (the file ends before its " + std::to_string(w) + " x " +
+              std::to_string(h) + " texels)";
+    return false;
+  };
+  // Header lines up to the empty one, then the resolution line.
+  bool line_empty = true, resolution = false;
+  for (;;) {
+    const int c = byte();
+    if (ended) return truncated();
+    if (c != '\n') {
+      line_empty = false;
+      continue;
+    }
+    if (resolution) break;
+    if (line_empty) resolution = true;
+    line_empty = true;
+  }
+  texels.assign(static_cast<std::size_t>(w) * h, Rgb{});
+  std::vector<unsigned char> line(static_cast<std::size_t>(w) * 4);
+  for (int j = 0; j < h; ++j) {
+    unsigned char head[4];
+    for (unsigned char& c : head) c = static_cast<unsigned char>(byte());
+    if (ended) return truncated();
+    const bool rle = w >= 8 && w < 32768 && head[0] == 2 && head[1] == 2 && !(head[2] & 0x80);
+    if (rle) {
+      if (((head[2] << 8) | head[3]) != w) {
+        problem = "is a damaged Radiance HDR image (scanline " + std::to_string(j) +
+                  " says it is " + std::to_string((head[2] << 8) | head[3]) + " texels wide)";
+        return false;
+      }
+      for (int k = 0; k < 4; ++k) {
+        for (int i = 0; i < w;) {
+          int count = byte();
+          const bool run = count > 128;
+          if (run) count -= 128;
+          if (ended) return truncated();
+          if (count == 0 || count > w - i) {
+            problem = "is a damaged Radiance HDR image (bad run length in scanline " +
+                      std::to_string(j) + ")";
+            return false;
+          }
+          const int value = run ? byte() : 0;
+          for (int n = 0; n < count; ++n, ++i)
+            line[4 * i + k] = static_cast<unsigned char>(run ? value : byte());
+          if (ended) return truncated();
+        }
+      }
+    } else {
+      std::copy(head, head + 4, line.begin());
+      for (std::size_t n = 4; n < line.size(); ++n) line[n] = static_cast<unsigned char>(byte());
+      if (ended) return truncated();
+    }
+    for (int i = 0; i < w; ++i) {
+      const unsigned char* t = &line[4 * i];
+      Rgb& out = texels[static_cast<std::size_t>(j) * w + i];
+      if (t[3] == 0) continue;
+      const float f = std::ldexp(1.0f, int(t[3]) - (128 + 8));
+      out = Rgb{float(t[0]) * f, float(t[1]) * f, float(t[2]) * f};
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
 std::optional<LatLongMap> load_latlong_hdr(const std::string& path, std::string& problem) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
@@ -90,22 +176,11 @@ std::optional<LatLongMap> load_latlong_hdr(const std::string& path, std::string&
               std::to_string(kMaxLatLongWidth) + " x " + std::to_string(kMaxLatLongWidth / 2);
     return std::nullopt;
   }
-  std::unique_ptr<float, void (*)(void*)> data(
-      stbi_loadf_from_file(file.get(), &w, &h, &channels, 3), &stbi_image_free);
-  if (!data) {
-    problem = std::string("is a damaged Radiance HDR image (") + stbi_failure_reason() + ")";
-    return std::nullopt;
-  }
-  std::vector<Rgb> texels(static_cast<std::size_t>(w) * h);
-  for (std::size_t k = 0; k < texels.size(); ++k) {
-    const float* p = data.get() + 3 * k;
-    if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) || p[0] < 0 ||
-        p[1] < 0 || p[2] < 0) {
-      problem = "has a negative or non-finite texel";
-      return std::nullopt;
-    }
-    texels[k] = Rgb{p[0], p[1], p[2]};
-  }
+  // The texels by our own reader (RGBE texels are finite and non-negative by construction:
+  // at most 255 * 2^119).
+  std::vector<Rgb> texels;
+  std::rewind(file.get());
+  if (!read_rgbe_texels(file.get(), w, h, texels, problem)) return std::nullopt;
   return LatLongMap(w, h, std::move(texels));
 }
 

@@ -273,6 +273,10 @@ class SceneBuilder {
       m_s.m_environment.ground = to_rgb(e.ground) * scale;
       m_s.m_environment.up = normalize(to_vec3(e.up));
       m_s.m_environment.exponent = static_cast<float>(e.exponent);
+      for (const PanelDescription& pd : e.panels) {
+        m_s.m_environment.panels.push_back(panel(pd));
+        m_s.m_environment.panels.back().radiance *= scale;
+      }
     } else if (m_desc.environment.kind == EnvironmentDescription::Kind::latlong) {
       const EnvironmentDescription& e = m_desc.environment;
       std::shared_ptr<const LatLongMap> map = e.map;
@@ -293,6 +297,28 @@ class SceneBuilder {
       m_s.m_environment.map_cos = static_cast<float>(std::cos(angle));
       m_s.m_environment.map_sin = static_cast<float>(std::sin(angle));
     }
+    Environment& env = m_s.m_environment;
+    env.light_surfaces = m_desc.environment.light_surfaces;
+    env.occlusion_samples = m_desc.environment.occlusion_samples;
+    if (env.light_surfaces)
+      env.irradiance_sh = IrradianceSH::project([&env](const Vec3& d) { return env.radiance(d); });
+  }
+
+  /// A sky panel in the scene's frame: its centre, the horizontal `right` (perpendicular to the
+  /// sky's up; any perpendicular at the zenith) and `top`, half-sizes and border in tangents.
+  EnvironmentPanel panel(const PanelDescription& pd) const {
+    constexpr double kDeg = std::numbers::pi / 180.0;
+    EnvironmentPanel p;
+    p.centre = normalize(to_vec3(pd.direction));
+    Vec3 right = cross(p.centre, m_s.m_environment.up);
+    if (length(right) < 1e-3f) right = cross(p.centre, Vec3{1.0f, 0.0f, 0.0f});
+    p.right = normalize(right);
+    p.top = cross(p.right, p.centre);
+    p.half_width = static_cast<float>(std::tan(0.5 * pd.width_deg * kDeg));
+    p.half_height = static_cast<float>(std::tan(0.5 * pd.height_deg * kDeg));
+    p.edge = std::max(static_cast<float>(std::tan(pd.edge_deg * kDeg)), 1e-6f);
+    p.radiance = to_rgb(pd.color) * static_cast<float>(pd.intensity);
+    return p;
   }
 
   /// Vacuum and the described media; decides whether the render is spectral.

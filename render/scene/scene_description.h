@@ -96,6 +96,20 @@ struct CausticSettings {
 class LatLongMap;
 
 /// [environment]: what rays that leave the scene see (render/light/environment.h).
+/// [[environment.panels]]: a rectangle of uniform radiance in the sky (a soft box, a window).
+struct PanelDescription {
+  /// unit vector towards the panel's centre
+  Vec3d direction{0.0, 1.0, 0.0};
+  /// full angular width and height [degrees] seen from the scene, (0, 170); the width runs
+  /// horizontally (perpendicular to the sky's up and the direction)
+  double width_deg = 20.0, height_deg = 20.0;
+  /// radiance = color * intensity (linear RGB)
+  RgbD color{1.0, 1.0, 1.0};
+  double intensity = 1.0;
+  /// width of the soft border [degrees], [0, 30]
+  double edge_deg = 1.0;
+};
+
 struct EnvironmentDescription {
   enum class Kind { constant, sky, latlong };
   /// constant: [image] background everywhere
@@ -113,6 +127,13 @@ struct EnvironmentDescription {
   std::shared_ptr<const LatLongMap> map;
   /// latlong: turn of the image about +y [degrees], right-handed, [-360, 360]
   double rotation_deg = 0.0;
+  /// sky: panels over the gradient
+  std::vector<PanelDescription> panels;
+  /// whether the environment lights matte and phong surfaces (render/light/environment_lighting.h)
+  bool light_surfaces = false;
+  /// shadow rays per shading point and camera sample where an opaque object may hide the sky,
+  /// 1..1024 (8x in partly hidden places, at most 64)
+  int occlusion_samples = 16;
 };
 
 struct CameraDescription {

@@ -173,6 +173,9 @@ MaterialDescription parse_material(const std::string& name, const TomlTable& m) 
 void parse_environment(const TomlTable& env, SceneDescription& s) {
   EnvironmentDescription& e = s.environment;
   const std::string kind = env.get_string("kind", "constant");
+  e.light_surfaces = env.get_bool("light_surfaces", false);
+  e.occlusion_samples =
+      int_key(env, "occlusion_samples", e.occlusion_samples, environment_samples_problem);
   if (kind == "constant") {
     e.kind = EnvironmentDescription::Kind::constant;
     return;
@@ -185,6 +188,18 @@ void parse_environment(const TomlTable& env, SceneDescription& s) {
     if (env.has("up")) e.up = unit_vec3(env, "up");
     e.exponent = checked(env, "exponent", env.get_double("exponent", e.exponent),
                          environment_exponent_problem);
+    for (const TomlTable& t : env.array_of_tables("panels")) {
+      PanelDescription panel;
+      panel.direction = unit_vec3(t, "direction");
+      panel.width_deg = checked(t, "width_deg", t.get_double("width_deg"), panel_size_problem);
+      panel.height_deg = checked(t, "height_deg", t.get_double("height_deg"), panel_size_problem);
+      panel.edge_deg =
+          checked(t, "edge_deg", t.get_double("edge_deg", panel.edge_deg), panel_edge_problem);
+      panel.color = color3(t, "color", panel.color);
+      panel.intensity = checked(t, "intensity", t.get_double("intensity", panel.intensity),
+                                environment_intensity_problem);
+      e.panels.push_back(panel);
+    }
   } else if (kind == "latlong") {
     e.kind = EnvironmentDescription::Kind::latlong;
     e.file = env.get_string("file");

@@ -168,6 +168,19 @@ std::optional<std::string> environment_rotation_problem(double degrees) {
   return real_between(degrees, -360.0, 360.0, " degrees");
 }
 
+std::optional<std::string> environment_samples_problem(long long samples) {
+  return int_between(samples, 1, kMaxLightSamples);
+}
+
+std::optional<std::string> panel_size_problem(double degrees) {
+  if (degrees > 0.0 && degrees < 170.0) return std::nullopt;
+  return "must be in (0, 170) degrees (got " + num(degrees) + ")";
+}
+
+std::optional<std::string> panel_edge_problem(double degrees) {
+  return real_between(degrees, 0.0, 30.0, " degrees");
+}
+
 std::optional<std::string> placement_problem(double reach, double detail) {
   // Spacing of floats at `reach`: 2^(e - 23) for reach in [2^e, 2^(e+1)) (24-bit significand),
   // so every reach below detail / kMinResolvedParts * 2^23 passes.
@@ -264,6 +277,22 @@ std::optional<SceneProblem> find_scene_problem(const SceneDescription& s) {
   if (s.environment.kind == EnvironmentDescription::Kind::latlong)
     if (auto p = environment_rotation_problem(s.environment.rotation_deg))
       return SceneProblem{"environment.rotation_deg", *p};
+  if (auto p = environment_samples_problem(s.environment.occlusion_samples))
+    return SceneProblem{"environment.occlusion_samples", *p};
+  for (std::size_t i = 0; i < s.environment.panels.size(); ++i) {
+    const PanelDescription& panel = s.environment.panels[i];
+    const std::string key = "environment.panels[" + std::to_string(i) + "].";
+    const double len = std::sqrt(panel.direction[0] * panel.direction[0] +
+                                 panel.direction[1] * panel.direction[1] +
+                                 panel.direction[2] * panel.direction[2]);
+    if (!(std::abs(len - 1.0) <= 1e-6))
+      return SceneProblem{key + "direction", "must be a unit vector"};
+    if (auto p = panel_size_problem(panel.width_deg)) return SceneProblem{key + "width_deg", *p};
+    if (auto p = panel_size_problem(panel.height_deg)) return SceneProblem{key + "height_deg", *p};
+    if (auto p = panel_edge_problem(panel.edge_deg)) return SceneProblem{key + "edge_deg", *p};
+    if (auto p = environment_intensity_problem(panel.intensity))
+      return SceneProblem{key + "intensity", *p};
+  }
   if (auto p = camera_problem(s.camera)) return SceneProblem{"camera." + p->key, p->problem};
   for (std::size_t i = 0; i < s.lights.size(); ++i)
     if (auto p = light_problem(s.lights[i]))

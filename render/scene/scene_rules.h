@@ -69,6 +69,12 @@ std::optional<std::string> environment_intensity_problem(double intensity);
 std::optional<std::string> environment_exponent_problem(double exponent);
 /// rotation_deg of a lat-long map: [-360, 360]
 std::optional<std::string> environment_rotation_problem(double degrees);
+/// occlusion_samples of an environment lighting surfaces: 1..1024
+std::optional<std::string> environment_samples_problem(long long samples);
+/// width_deg / height_deg of a sky panel: (0, 170)
+std::optional<std::string> panel_size_problem(double degrees);
+/// edge_deg of a sky panel: [0, 30]
+std::optional<std::string> panel_edge_problem(double degrees);
 
 /// An object with detail `detail` (scene units; see kMinResolvedParts) whose coordinates reach
 /// `reach` from the origin: a problem when single precision there is coarser than

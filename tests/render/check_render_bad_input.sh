@@ -69,6 +69,8 @@ printf '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 2\n%s' "$(head -c 16 /dev/
 expect_bad env_square "twice as wide as high" "$(env env_square "file = \"$work/square.hdr\"")"
 expect_bad env_intensity "environment.intensity" "$(env env_intensity "file = \"$src/data/environments/studio.hdr\"\nintensity = -1.0")"
 expect_bad env_rotation "environment.rotation_deg" "$(env env_rotation "file = \"$src/data/environments/studio.hdr\"\nrotation_deg = 1000.0")"
+head -c 9000 "$src/data/environments/studio.hdr" >"$work/cut.hdr"
+expect_bad env_truncated "environment.file.*cut.hdr' is truncated" "$(env env_truncated "file = \"$work/cut.hdr\"")"
 OUT="$work/out.jpg" expect_bad bad_extension "unsupported output format" "$good"
 OUT="$work/no/such/dir/out.png" expect_bad missing_out_dir "does not exist" "$good"
 

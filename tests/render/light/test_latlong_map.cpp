@@ -1,8 +1,8 @@
 // Tests render/light/latlong_map.h: the direction <-> (u, v) conventions (the image's centre
 // faces -z, the top row is the zenith), a known texel seen in its direction, bilinear lookups,
 // and reading Radiance files: flat and run-length encoded (the shipped studio map), and every
-// bad file named (missing, not HDR, not 2:1, no size line). (stb_image reads a truncated file's
-// missing texels as black: not detected.)
+// bad file named (missing, not HDR, not 2:1, no size line, truncated: flat or run-length encoded,
+// by one byte or by half, which stb_image alone would read with black texels).
 #include "render/light/latlong_map.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <numbers>
 
 #include "tests/render/test_util.h"
@@ -134,6 +135,22 @@ TEST(LatLongMap, BadFilesAreNamed) {
   std::ofstream(headless) << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n";
   EXPECT_FALSE(load_latlong_hdr(headless, problem));
   EXPECT_NE(problem.find("damaged"), std::string::npos) << problem;
+  // Truncated copies of a flat file and of the run-length encoded studio map: the whole file
+  // loads, every shorter one is refused (by one byte: the last texel's exponent; by half).
+  const std::string flat = (dir / "flat.hdr").string();
+  ASSERT_TRUE(test::write_flat_hdr(flat, 8, 4, [](int, int) { return RgbD{1, 1, 1}; }));
+  for (const std::string& source :
+       {flat, std::string(THAW_SOURCE_DIR "/data/environments/studio.hdr")}) {
+    std::ifstream in(source, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_TRUE(load_latlong_hdr(source, problem)) << problem;
+    for (const std::size_t cut : {std::size_t{1}, bytes.size() / 2}) {
+      const std::string cut_path = (dir / "cut.hdr").string();
+      std::ofstream(cut_path, std::ios::binary) << bytes.substr(0, bytes.size() - cut);
+      EXPECT_FALSE(load_latlong_hdr(cut_path, problem)) << source << " cut by " << cut;
+      EXPECT_NE(problem.find("is truncated"), std::string::npos) << problem;
+    }
+  }
   std::filesystem::remove_all(dir);
 }
 

@@ -352,6 +352,63 @@ TEST(SceneParser, BadEnvironmentIsAnError) {
                "between 0 and");
   expect_error("[camera]", with(studio + "zenith = [1.0, 1.0, 1.0]"), "environment.zenith",
                "unknown key");
+  // Lighting surfaces and sky panels (issue 10).
+  expect_error("[camera]", with("kind = \"sky\"\nlight_surfaces = true\nocclusion_samples = 0"),
+               "environment.occlusion_samples", "");
+  expect_error("[camera]", with("light_surfaces = \"yes\""), "environment.light_surfaces", "");
+  const std::string panel = "kind = \"sky\"\n[[environment.panels]]\n";
+  expect_error("[camera]",
+               with(panel + "direction = [0.0, 1.0, 0.0]\nwidth_deg = 200.0\nheight_deg = 10.0"),
+               "width_deg", "(0, 170)");
+  expect_error("[camera]",
+               with(panel + "direction = [0.0, 2.0, 0.0]\nwidth_deg = 20.0\nheight_deg = 10.0"),
+               "direction", "unit vector");
+  expect_error(
+      "[camera]",
+      with(panel +
+           "direction = [0.0, 1.0, 0.0]\nwidth_deg = 20.0\nheight_deg = 10.0\nedge_deg = -1.0"),
+      "edge_deg", "");
+  expect_error(
+      "[camera]",
+      with(panel + "direction = [0.0, 1.0, 0.0]\nwidth_deg = 20.0\nheight_deg = 10.0\nsize = 3.0"),
+      "size", "unknown key");
+  std::string no_width = kExample;  // width_deg is required (no line to name: it is missing)
+  no_width.replace(no_width.find("[camera]"), 8,
+                   with(panel + "direction = [0.0, 1.0, 0.0]\nheight_deg = 10.0"));
+  try {
+    parse_scene_string(no_width, "bad.toml");
+    FAIL() << "no error without width_deg";
+  } catch (const UserError& e) {
+    EXPECT_NE(e.where().find("width_deg"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SceneParser, SkyPanelsAndSurfaceLighting) {
+  const SceneDescription s = parse_scene_string(
+      "[environment]\nkind = \"sky\"\nlight_surfaces = true\nocclusion_samples = 8\n"
+      "[[environment.panels]]\ndirection = [0.0, 0.6, -0.8]\nwidth_deg = 30.0\n"
+      "height_deg = 12.0\ncolor = [1.0, 0.5, 0.25]\nintensity = 4.0\nedge_deg = 2.0\n"
+      "[camera]\nposition = [0.0, 0.0, 5.0]\nlook_at = [0.0, 0.0, 0.0]\nvertical_fov_deg = "
+      "40.0\n",
+      "p.toml");
+  EXPECT_TRUE(s.environment.light_surfaces);
+  EXPECT_EQ(s.environment.occlusion_samples, 8);
+  ASSERT_EQ(s.environment.panels.size(), 1u);
+  EXPECT_EQ(s.environment.panels[0].width_deg, 30.0);
+  EXPECT_EQ(s.environment.panels[0].height_deg, 12.0);
+  EXPECT_EQ(s.environment.panels[0].edge_deg, 2.0);
+  EXPECT_EQ(s.environment.panels[0].intensity, 4.0);
+  EXPECT_EQ(s.environment.panels[0].color[1], 0.5);
+  // Built: the panel's centre direction sees color * intensity (the sky's intensity is 1).
+  const Scene scene = build_scene(s);
+  const Rgb centre = scene.environment().radiance(normalize(Vec3{0.0f, 0.6f, -0.8f}));
+  const Rgb sky = scene.environment().sky_gradient(normalize(Vec3{0.0f, 0.6f, -0.8f}));
+  EXPECT_NEAR(centre.r - sky.r, 4.0f, 1e-5f);
+  EXPECT_NEAR(centre.b - sky.b, 1.0f, 1e-5f);
+  // 20 degrees to the side (beyond the 15 degree half-width plus the 1 degree half-border): sky.
+  const float a = 20.0f * 3.14159265f / 180.0f;
+  const Vec3 side = normalize(Vec3{std::sin(a), 0.6f * std::cos(a), -0.8f * std::cos(a)});
+  EXPECT_EQ(scene.environment().radiance(side), scene.environment().sky_gradient(side));
 }
 
 TEST(SceneParser, MissingCameraIsAnError) {
