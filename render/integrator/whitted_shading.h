@@ -23,11 +23,13 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "render/light/environment_lighting.h"
 #include "render/light/light_sampling.h"
 #include "render/material/fresnel.h"
 #include "render/photon/caustic_map.h"
+#include "render/photon/photon_tracer.h"
 #include "render/scene/scene.h"
 
 namespace thaw::render {
@@ -98,6 +100,12 @@ class WhittedShading {
         m_min_weight(static_cast<float>(scene.settings().min_weight)),
         m_pixel_spread(texture_cone_spread(scene)) {
     if (scene.environment().light_surfaces) m_environment_occluders.emplace(scene);
+    for (const SceneObject& o : scene.objects())
+      if (o.dielectric && o.index_matched) m_interfaces_stop_shadow_rays = false;
+    for (const PointLight& l : scene.lights())
+      m_point_light_medium.push_back(photon::medium_at(scene, l.position));
+    for (const SphereLight& l : scene.sphere_lights())
+      m_sphere_light_medium.push_back(photon::medium_at(scene, l.center));
   }
 
   /// Spread angle [rad] of the ray cone of one camera sample (0: textures point-sampled): the
@@ -286,7 +294,7 @@ class WhittedShading {
     const Vec3 ns = face_forward(si.ns, ng);
     const Radiance albedo = self().reflectance(texture_colour(mat.texture, si, d), path);
     Radiance result = albedo * self().ambient(path) * mat.ka;
-    add_direct_light(result, si, ng, ns, d, albedo, mat, depth, path);
+    add_direct_light(result, si, ng, ns, d, albedo, mat, depth, medium, path);
     // Caustic irradiance E: the light that reached this point through dielectrics, which the
     // shadow rays above do not see (they stop at dielectrics), in the units of direct light;
     // spectral scenes uplift it as a light's colour (docs/render.md "Caustics").
@@ -396,12 +404,20 @@ class WhittedShading {
   /// rays stop at every dielectric that is not index-matched, for point and sphere lights alike:
   /// the light that passes through dielectrics is the caustic term, which the photon map
   /// (traced from both kinds of light) supplies in diffuse(); nothing is counted twice.
+  /// A hit reached in `medium` sees no light in another medium: its shadow rays (which stop at
+  /// every dielectric that is not index-matched) would all end at the interface between the two,
+  /// so they are not cast (the floor under the default film's puddle: 4 shadow rays per hit, all
+  /// blocked by the water's surface; the result is the same).
   template <class Radiance, class Path>
   void add_direct_light(Radiance& result, const SurfaceInteraction& si, const Vec3& ng,
                         const Vec3& ns, const Vec3& d, const Radiance& albedo, const Material& mat,
-                        int depth, const Path& path) {
+                        int depth, std::uint32_t medium, const Path& path) {
+    const auto reaches = [&](std::uint32_t light_medium) {
+      return light_medium == medium || !m_interfaces_stop_shadow_rays;
+    };
     const auto& lights = m_scene.lights();
     for (std::size_t i = 0; i < lights.size(); ++i) {
+      if (!reaches(m_point_light_medium[i])) continue;
       const PointLight& light = lights[i];
       Vec3 l;
       float cos_l, dist2;
@@ -416,7 +432,7 @@ class WhittedShading {
         if (s > 0.0f) result += li * (mat.ks * std::pow(s, mat.shininess));
       }
     }
-    if (m_scene.sphere_lights().empty()) return;
+    if (std::none_of(m_sphere_light_medium.begin(), m_sphere_light_medium.end(), reaches)) return;
     // Sphere lights (render/light/light_sampling.h): the exact unoccluded irradiance times the
     // visible share of the camera sample's stratified shadow samples; the highlight per sample.
     const auto& spheres = m_scene.sphere_lights();
@@ -445,6 +461,10 @@ class WhittedShading {
   int m_max_depth;
   float m_min_weight;
   std::uint64_t m_rays = 0, m_mismatches = 0;
+  /// no object is index-matched: every dielectric interface stops shadow rays
+  bool m_interfaces_stop_shadow_rays = true;
+  /// the medium each point light and sphere light is in (photon::medium_at)
+  std::vector<std::uint32_t> m_point_light_medium, m_sphere_light_medium;
   /// the camera sample being traced (set_camera_sample()); no sampler: pixel (0, 0), sample 0
   CameraSampleContext m_camera_sample{};
   /// A ray cone (Amanatides 1984; Akenine-Moeller et al. 2019, Ray Tracing Gems ch. 20): width

@@ -98,17 +98,21 @@ float PhotonTracer::absorption_per_m(std::uint32_t m, double lambda_nm) const {
   return m_alpha[m].empty() ? 0.0f : lookup(m_alpha[m], lambda_nm);
 }
 
-std::uint32_t PhotonTracer::medium_at(const Vec3& p) const {
+std::uint32_t medium_at(const Scene& scene, const Vec3& p) {
   Ray ray{p, Vec3{0.0f, 1.0f, 0.0f}};
   for (int i = 0; i < 1024; ++i) {
     Hit hit;
-    if (!m_scene.intersect(ray, hit)) break;
-    const SurfaceInteraction si = m_scene.interaction(ray, hit);
-    const SceneObject& obj = m_scene.objects()[si.object];
+    if (!scene.intersect(ray, hit)) break;
+    const SurfaceInteraction si = scene.interaction(ray, hit);
+    const SceneObject& obj = scene.objects()[si.object];
     if (obj.dielectric) return dot(ray.direction, si.ng) > 0.0f ? obj.inside : obj.outside;
     ray.origin = offset_ray_origin(si.p, si.p_error, si.ng, ray.direction);  // past opaque ones
   }
-  return m_scene.camera_medium();
+  return scene.camera_medium();
+}
+
+std::uint32_t PhotonTracer::medium_at(const Vec3& p) const {
+  return photon::medium_at(m_scene, p);
 }
 
 std::uint32_t PhotonTracer::trace(const Ray& start, std::uint32_t medium, double lambda_nm,

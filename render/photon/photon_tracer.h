@@ -74,6 +74,10 @@ using PathEvents = std::vector<PathEvent>;
 /// light's RGB colour and use n_d (exact, no wavelength-sampling noise), in spectral scenes too.
 bool photons_carry_wavelengths(const Scene& scene);
 
+/// The medium containing point `p` of `scene` (found by following a ray upward through the
+/// interfaces, past opaque objects); the camera's medium when no interface encloses it.
+std::uint32_t medium_at(const Scene& scene, const Vec3& p);
+
 class PhotonTracer {
  public:
   /// Precomputes n(lambda) and alpha(lambda) of every medium at 1 nm steps when photons carry
@@ -89,8 +93,7 @@ class PhotonTracer {
   std::uint32_t trace(const Ray& ray, std::uint32_t medium, double lambda_nm, PathEvents& events,
                       std::uint64_t photon_index = 0) const;
 
-  /// The medium containing point `p` (found by following a ray upward through the interfaces);
-  /// the camera's medium when no interface encloses it.
+  /// The medium containing point `p` (photon::medium_at).
   std::uint32_t medium_at(const Vec3& p) const;
 
   /// Index of refraction of medium `m` at `lambda_nm` as the tracer uses it.
