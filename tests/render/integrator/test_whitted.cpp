@@ -737,5 +737,63 @@ TEST(Whitted, RgbAbsorptionIsBeerLambertPerChannel) {
   EXPECT_EQ(clear, Rgb(1.0f, 1.0f, 1.0f));
 }
 
+// A matte floor inside a closed dielectric body (a water box standing on it) under a light
+// outside, seen from above against a black sky: every shadow ray ends at the box's surface, so
+// the floor there gets no direct light and the integrator casts none (whitted_shading.h
+// add_direct_light: a hit in another medium than the light's); the centre pixel is exactly 0
+// (no ambient, no caustics; the top face reflects the black sky, beside the light). With the box
+// index-matched (ior 1, as the vacuum outside) shadow rays pass and the floor is lit as without
+// the box: albedo I cos / d^2 = 0.5 * 100 * 5 / 26^1.5 at the point the centre pixel sees (the
+// light at (1, 5, 0)), to float rounding (1e-4). Point and sphere lights (unshadowed, a sphere
+// light gives its centre's point-light irradiance), RGB.
+TEST(Whitted, FloorInsideADielectricBodySeesNoLightUnlessIndexMatched) {
+  for (const bool sphere : {false, true})
+    for (const bool matched : {false, true}) {
+      const std::string text = std::string(R"(
+[image]
+width = 9
+height = 9
+background = [0.0, 0.0, 0.0]
+[caustics]
+enabled = false
+[camera]
+position = [0.0, 2.0, 0.0]
+look_at = [0.0, 0.0, 0.0]
+up = [0.0, 0.0, -1.0]
+vertical_fov_deg = 20.0
+[[lights]]
+position = [1.0, 5.0, 0.0]
+intensity = 100.0
+falloff = "inverse_square"
+)") + (sphere ? "kind = \"sphere\"\nradius = 0.2\nsamples = 4\n" : "") +
+                               R"(
+[media.water]
+ior = )" + (matched ? "1.0" : "1.33") +
+                               R"(
+[materials.grey]
+kind = "matte"
+color = [0.5, 0.5, 0.5]
+[[objects]]
+shape = "box"
+min = [-1.0, -0.1, -1.0]
+max = [1.0, 0.5, 1.0]
+inside = "water"
+outside = "vacuum"
+[[objects]]
+shape = "plane"
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 1.0, 0.0]
+material = "grey"
+)";
+      const Scene scene = build_scene(parse_scene_string(text, "inside.toml"));
+      const Rgb centre = render(scene, RenderOptions{}).image.at(4, 4);
+      if (matched)
+        EXPECT_NEAR(centre.g, 0.5 * 100.0 * 5.0 / std::pow(26.0, 1.5), 1e-4)
+            << "sphere light: " << sphere;
+      else
+        EXPECT_EQ(centre.g, 0.0f) << "sphere light: " << sphere;
+    }
+}
+
 }  // namespace
 }  // namespace thaw::render
