@@ -447,8 +447,11 @@ void MainWindow::show_step(int index) {
   m_view->show_step(step, shell_offset_of(step), false, /*moving=*/true);
   m_plot->set_marker(step.row.time_s);
   if (m_slider->value() != index) m_slider->setValue(index);
-  m_pass = -1;             // the image shown is of another step now
-  m_scrub_timer->start();  // the preview follows once the slider rests
+  m_pass = -1;  // the image shown is of another step now
+  // The preview follows once the slider rests; meanwhile no pass takes the cores from the 3D
+  // view's draws (at load, a pass in flight made every move slower than the rest interval).
+  m_renderer->cancel();
+  m_scrub_timer->start();
 }
 
 bool MainWindow::apply_edit(const std::string& key, const TomlValue& value) {

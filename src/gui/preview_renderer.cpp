@@ -56,6 +56,12 @@ std::uint64_t PreviewRenderer::request(PreviewRequest request) {
   return serial;
 }
 
+void PreviewRenderer::cancel() {
+  std::lock_guard lock(m_mutex);
+  m_pending.reset();
+  m_cancel = true;
+}
+
 std::shared_ptr<const ShellStep> PreviewRenderer::initial_shell() const {
   std::lock_guard lock(m_mutex);
   return m_initial;
@@ -166,7 +172,7 @@ void PreviewRenderer::update_scene_props(const render::SceneDescription& desc,
     *props = *last;  // the same actors: only the camera and the serial are new
     props->camera = desc.camera;
   } else {
-    *props = make_scene_props(desc, shell);
+    *props = make_scene_props(desc, shell, last.get());
   }
   props->serial = serial;
   {

@@ -49,6 +49,10 @@ class PreviewRenderer : public QObject {
   /// Replaces whatever is pending or rendering by `request` (GUI thread; returns at once).
   /// Returns its serial number, which its images carry.
   std::uint64_t request(PreviewRequest request);
+  /// Stops the pass in flight at its next tile and drops the pending request (GUI thread; the
+  /// time slider moves: the 3D view's draws then have the cores, and the preview of the step
+  /// is requested once the slider rests).
+  void cancel();
   /// Passes started and then abandoned because a newer request came (stale previews cancelled).
   std::uint64_t abandoned_passes() const { return m_abandoned; }
   /// The initial shell the worker last meshed (for the 3D view); null before the first.

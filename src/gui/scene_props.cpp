@@ -1,15 +1,18 @@
 #include "src/gui/scene_props.h"
 
-#include <vtkCellData.h>
+#include <vtkCellArray.h>
 #include <vtkCubeSource.h>
+#include <vtkFloatArray.h>
+#include <vtkImageData.h>
 #include <vtkNew.h>
-#include <vtkPlaneSource.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkPolyDataNormals.h>
 #include <vtkProperty.h>
 #include <vtkSphereSource.h>
-#include <vtkUnsignedCharArray.h>
+#include <vtkTexture.h>
 
 #include <algorithm>
 #include <cmath>
@@ -119,10 +122,17 @@ void set_look(vtkActor* actor, const render::SceneDescription& desc, const Objec
   }
 }
 
-/// An infinite plane as a square of `side` about `focus` projected onto it, in cells of the
-/// material's checker (coloured per cell) or one cell when solid.
-vtkSmartPointer<vtkPolyData> plane_data(const ObjectDescription& o, const Vec3d& focus, double side,
-                                        const render::MaterialDescription* m) {
+/// An infinite plane as a square of `side` about `focus` projected onto it (one quad); a
+/// checker material's cells as a repeated texture (two cells by two per repeat), mipmapped so the
+/// cells far away blend as the render's filtered checker does rather than flicker. The cells run
+/// along the plane's in-plane axes: exactly the render's 3D checker on axis-aligned planes.
+struct PlaneLook {
+  vtkSmartPointer<vtkPolyData> data;
+  vtkSmartPointer<vtkTexture> texture;
+};
+
+PlaneLook plane_look(const ObjectDescription& o, const Vec3d& focus, double side,
+                     const render::MaterialDescription* m) {
   const Vec3d n = unit(o.normal);
   // The in-plane axes: the world axis least along n, made perpendicular (axis-aligned planes get
   // axis-aligned cells, as the checker's).
@@ -130,52 +140,69 @@ vtkSmartPointer<vtkPolyData> plane_data(const ObjectDescription& o, const Vec3d&
   for (int k = 1; k < 3; ++k)
     if (std::abs(n[k]) < std::abs(n[least]) - 1e-12) least = k;
   Vec3d a{0.0, 0.0, 0.0};
-  a[least] = 1.0;
+  a[static_cast<std::size_t>(least)] = 1.0;
   const Vec3d u = unit(plus(a, scaled(n, -dot(a, n))));
   const Vec3d v = cross(n, u);
   const bool checker = m && m->kind != render::MaterialDescription::Kind::emissive &&
                        m->texture.kind == render::TextureDescription::Kind::checker;
-  constexpr int kMaxCells = 400;  // per side: 160,000 quads at most
-  int cells = 1;
-  double cell = side;
-  if (checker) {
-    cell = m->texture.checker_size;
-    cells = std::clamp(static_cast<int>(std::ceil(side / cell)), 1, kMaxCells);
-  }
-  const double half = 0.5 * cells * cell;
-  // The focus's foot on the plane, snapped to the cell grid along u and v.
+  // Whole pairs of cells per side (one texture repeat each); the square is centred on the
+  // focus's foot on the plane, snapped to the cell grid.
+  const double cell = checker ? m->texture.checker_size : side;
+  const int pairs = checker ? std::max(1, static_cast<int>(std::ceil(side / (2 * cell)))) : 1;
+  const double half = checker ? pairs * cell : 0.5 * side;
   const Vec3d foot = plus(focus, scaled(n, dot(plus(o.point, scaled(focus, -1.0)), n)));
-  const double fu = std::round(dot(foot, u) / cell) * cell - dot(o.point, u);
-  const double fv = std::round(dot(foot, v) / cell) * cell - dot(o.point, v);
+  const double fu = std::round((dot(foot, u) - dot(o.point, u)) / cell) * cell;
+  const double fv = std::round((dot(foot, v) - dot(o.point, v)) / cell) * cell;
   const Vec3d centre = plus(o.point, plus(scaled(u, fu), scaled(v, fv)));
   const Vec3d origin = plus(centre, plus(scaled(u, -half), scaled(v, -half)));
-  vtkNew<vtkPlaneSource> source;
-  source->SetOrigin(origin.data());
-  Vec3d p1 = plus(origin, scaled(u, 2 * half)), p2 = plus(origin, scaled(v, 2 * half));
-  source->SetPoint1(p1.data());
-  source->SetPoint2(p2.data());
-  source->SetResolution(cells, cells);
-  source->Update();
-  auto data = vtkSmartPointer<vtkPolyData>::New();
-  data->ShallowCopy(source->GetOutput());
-  if (checker) {
-    // vtkPlaneSource's cells run along point 1 (u) first, then point 2 (v).
-    vtkNew<vtkUnsignedCharArray> colours;
-    colours->SetNumberOfComponents(3);
-    colours->SetNumberOfTuples(static_cast<vtkIdType>(cells) * cells);
-    const Vec3d lift = scaled(n, 1e-6 * cell);  // off the plane, as a hit point's offset
-    for (int j = 0; j < cells; ++j)
-      for (int i = 0; i < cells; ++i) {
-        const Vec3d c = plus(plus(origin, lift),
-                             plus(scaled(u, (i + 0.5) * cell), scaled(v, (j + 0.5) * cell)));
-        const RgbD d = display(checker_at(m->texture, c));
-        const vtkIdType id = static_cast<vtkIdType>(j) * cells + i;
-        for (int k = 0; k < 3; ++k)
-          colours->SetComponent(id, k, std::round(255.0 * d[static_cast<std::size_t>(k)]));
-      }
-    data->GetCellData()->SetScalars(colours);
-  }
-  return data;
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(origin.data());
+  points->InsertNextPoint(plus(origin, scaled(u, 2 * half)).data());
+  points->InsertNextPoint(plus(origin, plus(scaled(u, 2 * half), scaled(v, 2 * half))).data());
+  points->InsertNextPoint(plus(origin, scaled(v, 2 * half)).data());
+  vtkNew<vtkCellArray> quad;
+  const vtkIdType ids[4] = {0, 1, 2, 3};
+  quad->InsertNextCell(4, ids);
+  PlaneLook look;
+  look.data = vtkSmartPointer<vtkPolyData>::New();
+  look.data->SetPoints(points);
+  look.data->SetPolys(quad);
+  vtkNew<vtkFloatArray> normals;
+  normals->SetNumberOfComponents(3);
+  for (int k = 0; k < 4; ++k) normals->InsertNextTuple3(n[0], n[1], n[2]);
+  look.data->GetPointData()->SetNormals(normals);
+  if (!checker) return look;
+  vtkNew<vtkFloatArray> tcoords;
+  tcoords->SetNumberOfComponents(2);
+  const float r = static_cast<float>(pairs);
+  tcoords->InsertNextTuple2(0, 0);
+  tcoords->InsertNextTuple2(r, 0);
+  tcoords->InsertNextTuple2(r, r);
+  tcoords->InsertNextTuple2(0, r);
+  look.data->GetPointData()->SetTCoords(tcoords);
+  // The texture: 2 x 2 cells of 32 x 32 texels (so linear filtering keeps the cells' edges
+  // sharp up close). Which colour the first cell has: the render's checker at its centre.
+  const Vec3d lift = scaled(n, 1e-6 * cell);  // off the plane, as a hit point's offset
+  const Vec3d first = plus(plus(origin, lift), plus(scaled(u, 0.5 * cell), scaled(v, 0.5 * cell)));
+  const RgbD c00 = display(checker_at(m->texture, first));
+  const RgbD c10 = display(checker_at(m->texture, plus(first, scaled(u, cell))));
+  constexpr int kTexels = 32;
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(2 * kTexels, 2 * kTexels, 1);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  for (int y = 0; y < 2 * kTexels; ++y)
+    for (int x = 0; x < 2 * kTexels; ++x) {
+      const RgbD& c = ((x / kTexels + y / kTexels) % 2 == 0) ? c00 : c10;
+      auto* px = static_cast<unsigned char*>(image->GetScalarPointer(x, y, 0));
+      for (int k = 0; k < 3; ++k)
+        px[k] = static_cast<unsigned char>(std::lround(255.0 * c[static_cast<std::size_t>(k)]));
+    }
+  look.texture = vtkSmartPointer<vtkTexture>::New();
+  look.texture->SetInputData(image);
+  look.texture->RepeatOn();
+  look.texture->InterpolateOn();
+  look.texture->MipmapOn();
+  return look;
 }
 
 vtkSmartPointer<vtkPolyData> sphere_data(const Vec3d& centre, double radius) {
@@ -229,66 +256,100 @@ std::string water_medium(const render::SceneDescription& desc,
 
 }  // namespace
 
+namespace {
+
+/// What one object's actor depends on: its shape and placement, its material's look, and for a
+/// plane the camera it is drawn about.
+std::string object_key(const render::SceneDescription& desc, const ObjectDescription& o) {
+  std::string key = "object " + std::to_string(static_cast<int>(o.shape)) + " " + o.material + " " +
+                    o.inside + " " + o.mesh_file.string();
+  append(key, "c", o.center);
+  append(key, "r", o.radius);
+  append(key, "min", o.box_min);
+  append(key, "max", o.box_max);
+  append(key, "p", o.point);
+  append(key, "n", o.normal);
+  append(key, "s", o.scale);
+  append(key, "t", o.translate);
+  if (o.mesh) {  // in memory (the puddle): its size and extreme vertices
+    append(key, "tri", static_cast<double>(o.mesh->triangles.size()));
+    if (!o.mesh->positions.empty()) {
+      const auto& a = o.mesh->positions.front();
+      const auto& b = o.mesh->positions.back();
+      append(key, "v0", Vec3d{a.x, a.y, a.z});
+      append(key, "v1", Vec3d{b.x, b.y, b.z});
+    }
+  }
+  if (const render::MaterialDescription* m = find_material(desc, o.material)) {
+    key += " material " + std::to_string(static_cast<int>(m->kind)) + " " +
+           std::to_string(static_cast<int>(m->texture.kind));
+    append(key, "c", m->texture.color);
+    append(key, "c0", m->texture.checker_colors[0]);
+    append(key, "c1", m->texture.checker_colors[1]);
+    append(key, "size", m->texture.checker_size);
+    append(key, "o", m->texture.checker_offset);
+    append(key, "e", m->emission);
+    append(key, "sh", m->shininess);
+  }
+  if (o.shape == ObjectDescription::Shape::plane) {  // drawn about the camera's focus
+    append(key, "focus", desc.camera.look_at);
+    append(key, "eye", desc.camera.position);
+  }
+  return key;
+}
+
+std::string light_key(const render::SceneDescription& desc, const render::LightDescription& l) {
+  std::string key = "light " + std::to_string(static_cast<int>(l.kind));
+  append(key, "p", l.position);
+  append(key, "r", l.radius);
+  append(key, "c", l.color);
+  if (l.kind == render::LightDescription::Kind::point) {  // sized by the camera's distance
+    append(key, "focus", desc.camera.look_at);
+    append(key, "eye", desc.camera.position);
+  }
+  return key;
+}
+
+}  // namespace
+
 std::string scene_props_key(const render::SceneDescription& desc,
                             const std::vector<const render::TriangleMesh*>& skip) {
   std::string key;
-  for (const auto& o : desc.objects) {
-    if (skipped(o, skip)) continue;
-    key += "\nobject " + std::to_string(static_cast<int>(o.shape)) + " " + o.material + " " +
-           o.inside + " " + o.mesh_file.string();
-    append(key, "c", o.center);
-    append(key, "r", o.radius);
-    append(key, "min", o.box_min);
-    append(key, "max", o.box_max);
-    append(key, "p", o.point);
-    append(key, "n", o.normal);
-    append(key, "s", o.scale);
-    append(key, "t", o.translate);
-    if (o.mesh) {  // in memory (the puddle): its size and extreme vertices
-      append(key, "tri", static_cast<double>(o.mesh->triangles.size()));
-      if (!o.mesh->positions.empty()) {
-        const auto& a = o.mesh->positions.front();
-        const auto& b = o.mesh->positions.back();
-        append(key, "v0", Vec3d{a.x, a.y, a.z});
-        append(key, "v1", Vec3d{b.x, b.y, b.z});
-      }
-    }
-  }
-  for (const auto& m : desc.materials) {
-    key += "\nmaterial " + m.name + " " + std::to_string(static_cast<int>(m.kind)) + " " +
-           std::to_string(static_cast<int>(m.texture.kind));
-    append(key, "c", m.texture.color);
-    append(key, "c0", m.texture.checker_colors[0]);
-    append(key, "c1", m.texture.checker_colors[1]);
-    append(key, "size", m.texture.checker_size);
-    append(key, "o", m.texture.checker_offset);
-    append(key, "e", m.emission);
-    append(key, "sh", m.shininess);
-  }
-  for (const auto& l : desc.lights) {
-    key += "\nlight " + std::to_string(static_cast<int>(l.kind));
-    append(key, "p", l.position);
-    append(key, "r", l.radius);
-    append(key, "c", l.color);
-  }
-  // Planes are drawn about the camera's focus, as large as its distance makes them.
-  append(key, "focus", desc.camera.look_at);
-  append(key, "eye", desc.camera.position);
+  for (const auto& o : desc.objects)
+    if (!skipped(o, skip)) key += object_key(desc, o) + "\n";
+  for (const auto& l : desc.lights) key += light_key(desc, l) + "\n";
   return key;
 }
 
 SceneProps make_scene_props(const render::SceneDescription& desc,
-                            const std::vector<const render::TriangleMesh*>& skip) {
+                            const std::vector<const render::TriangleMesh*>& skip,
+                            const SceneProps* previous) {
   SceneProps props;
   props.camera = desc.camera;
   props.key = scene_props_key(desc, skip);
+  // An actor whose key is unchanged is taken over as it is (its triangles and texture uploaded
+  // once): after a slider move only the puddle's actor is new.
+  auto reuse = [&](const std::string& key) -> vtkSmartPointer<vtkActor> {
+    if (!previous) return nullptr;
+    for (std::size_t k = 0; k < previous->actor_keys.size(); ++k)
+      if (previous->actor_keys[k] == key) return previous->actors[k];
+    return nullptr;
+  };
   const Vec3d focus = desc.camera.look_at;
   const Vec3d to_eye = plus(desc.camera.position, scaled(focus, -1.0));
   const double distance = std::max(1e-3, std::sqrt(dot(to_eye, to_eye)));
   const std::string water = water_medium(desc, skip);
   for (const auto& o : desc.objects) {
     if (skipped(o, skip)) continue;
+    const std::string key = object_key(desc, o);
+    ++props.objects;
+    props.actor_keys.push_back(key);
+    if (auto actor = reuse(key)) {
+      props.actors.push_back(actor);
+      continue;
+    }
     vtkSmartPointer<vtkPolyData> data;
+    vtkSmartPointer<vtkTexture> texture;
     bool smooth = false;
     switch (o.shape) {
       case ObjectDescription::Shape::sphere:
@@ -303,11 +364,14 @@ SceneProps make_scene_props(const render::SceneDescription& desc,
         data->ShallowCopy(box->GetOutput());
         break;
       }
-      case ObjectDescription::Shape::plane:
+      case ObjectDescription::Shape::plane: {
         // Large against the camera's distance: the render's plane reaches the horizon.
-        data = plane_data(o, focus, 16.0 * distance,
-                          o.is_dielectric() ? nullptr : find_material(desc, o.material));
+        PlaneLook look = plane_look(o, focus, 16.0 * distance,
+                                    o.is_dielectric() ? nullptr : find_material(desc, o.material));
+        data = look.data;
+        texture = look.texture;
         break;
+      }
       case ObjectDescription::Shape::mesh:
         data = mesh_data(desc, o);
         smooth = o.smooth_normals || o.mesh != nullptr;
@@ -315,18 +379,23 @@ SceneProps make_scene_props(const render::SceneDescription& desc,
     }
     vtkSmartPointer<vtkActor> actor = actor_of(data, smooth);
     set_look(actor, desc, o, water);
-    if (data->GetCellData()->GetScalars()) {
-      actor->GetMapper()->SetScalarModeToUseCellData();
-      actor->GetMapper()->ScalarVisibilityOn();
-    } else {
-      actor->GetMapper()->ScalarVisibilityOff();
+    actor->GetMapper()->ScalarVisibilityOff();
+    if (texture) {
+      actor->SetTexture(texture);
+      actor->GetProperty()->SetColor(1.0, 1.0, 1.0);  // the texture's colours as they are
     }
     props.actors.push_back(actor);
-    ++props.objects;
   }
   for (const auto& l : desc.lights) {
     // A point light as a small ball (3 % of the camera's distance), a sphere light as itself;
     // both unlit in the light's colour.
+    const std::string key = light_key(desc, l);
+    ++props.lights;
+    props.actor_keys.push_back(key);
+    if (auto actor = reuse(key)) {
+      props.actors.push_back(actor);
+      continue;
+    }
     const bool sphere = l.kind == render::LightDescription::Kind::sphere;
     vtkSmartPointer<vtkActor> actor =
         actor_of(sphere_data(l.position, sphere ? l.radius : 0.03 * distance), false);
@@ -338,7 +407,6 @@ SceneProps make_scene_props(const render::SceneDescription& desc,
     p->SetDiffuse(0.0);
     p->SetOpacity(sphere ? 0.6 : 1.0);
     props.actors.push_back(actor);
-    ++props.lights;
   }
   return props;
 }

@@ -20,6 +20,8 @@ namespace thaw::gui {
 struct SceneProps {
   /// objects first (in the description's order, the shell's two surfaces left out), then lights
   std::vector<vtkSmartPointer<vtkActor>> actors;
+  /// what each actor was made from: an actor of an equal key draws the same
+  std::vector<std::string> actor_keys;
   std::size_t objects = 0, lights = 0;
   /// the frame's camera (scene units, degrees)
   render::CameraDescription camera;
@@ -37,8 +39,10 @@ std::string scene_props_key(const render::SceneDescription& desc,
 /// The actors of `desc`'s objects and lights, leaving out the objects whose in-memory mesh is
 /// among `skip` (the shell's surfaces, which the view draws from the step). An infinite plane is
 /// drawn as a square about the point the camera looks at, large against the camera's distance.
-/// Reads mesh files (relative to desc.base_dir); throws thaw::UserError if one cannot be read.
+/// Actors of `previous` whose key is unchanged are taken over. Reads mesh files (relative to
+/// desc.base_dir); throws thaw::UserError if one cannot be read.
 SceneProps make_scene_props(const render::SceneDescription& desc,
-                            const std::vector<const render::TriangleMesh*>& skip);
+                            const std::vector<const render::TriangleMesh*>& skip,
+                            const SceneProps* previous = nullptr);
 
 }  // namespace thaw::gui

@@ -11,6 +11,7 @@
 #include <vtkRenderer.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
+#include <vtkTexture.h>
 
 #include <algorithm>
 #include <cmath>
@@ -44,13 +45,24 @@ ShellView::ShellView(QWidget* parent) : QVTKOpenGLNativeWidget(parent) {
   m_renderer->AddActor2D(m_label);
   window->AddRenderer(m_renderer);
   setMinimumSize(240, 180);
-  // An orbit, pan or zoom with the mouse ends with EndInteractionEvent on the interactor.
+  // An orbit, pan or zoom with the mouse starts and ends with Start/EndInteractionEvent on the
+  // interactor: drawn quick while it lasts, then at rest, and the camera reported.
+  vtkNew<vtkCallbackCommand> on_start;
+  on_start->SetClientData(this);
+  on_start->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
+    static_cast<ShellView*>(self)->set_quick(true);
+  });
   vtkNew<vtkCallbackCommand> on_end;
   on_end->SetClientData(this);
   on_end->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
-    static_cast<ShellView*>(self)->report_camera();
+    auto* view = static_cast<ShellView*>(self);
+    view->settle();
+    view->report_camera();
   });
-  if (interactor()) interactor()->AddObserver(vtkCommand::EndInteractionEvent, on_end);
+  if (interactor()) {
+    interactor()->AddObserver(vtkCommand::StartInteractionEvent, on_start);
+    interactor()->AddObserver(vtkCommand::EndInteractionEvent, on_end);
+  }
 }
 
 ShellView::ViewCamera ShellView::camera() const {
@@ -81,9 +93,16 @@ bool ShellView::edges_shown() const {
   return m_outer && m_outer->GetProperty()->GetEdgeVisibility();
 }
 
+void ShellView::set_quick(bool quick) {
+  m_quick = quick;
+  if (m_outer) m_outer->GetProperty()->SetEdgeVisibility(!quick);  // the look of surface_actor.h
+  for (const auto& actor : m_scene)
+    if (vtkTexture* texture = actor->GetTexture()) texture->SetInterpolate(!quick);
+}
+
 void ShellView::settle() {
-  if (!m_outer || m_outer->GetProperty()->GetEdgeVisibility()) return;
-  m_outer->GetProperty()->EdgeVisibilityOn();
+  if (!m_quick) return;
+  set_quick(false);
   renderWindow()->Render();
 }
 
@@ -93,6 +112,7 @@ void ShellView::set_scene(const SceneProps& props) {
     for (const auto& a : m_scene) m_renderer->RemoveActor(a);
     m_scene = props.actors;
     for (const auto& a : m_scene) m_renderer->AddActor(a);
+    set_quick(m_quick);
     m_scene_key = props.key;
     m_scene_objects = props.objects;
     m_scene_lights = props.lights;
@@ -139,10 +159,10 @@ void ShellView::show_step(const ShellStep& step, const std::array<double, 3>& of
   if (step.outer_actor && !step.outer_view.triangles.empty()) {
     m_outer = step.outer_actor;
     m_outer->SetPosition(offset[0], offset[1], offset[2]);
-    m_outer->GetProperty()->SetEdgeVisibility(!moving);  // the look of surface_actor.h at rest
     m_renderer->AddActor(m_outer);
     m_triangles += static_cast<long>(step.outer_view.triangles.size());
   }
+  set_quick(moving || m_quick);
   char text[160];
   std::snprintf(text, sizeof text, "t = %.0f s   water radius %.1f mm   ice radius %.1f mm%s",
                 step.row.time_s, 1e3 * step.row.inner_radius_m, 1e3 * step.row.outer_radius_m,

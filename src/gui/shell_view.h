@@ -27,9 +27,8 @@ class ShellView : public QVTKOpenGLNativeWidget {
   explicit ShellView(QWidget* parent = nullptr);
   /// Shows `step`'s surfaces moved by `offset` (where the frame places the shell's core) [m];
   /// the camera is framed on them when `frame` and no scene camera was set yet (set_scene).
-  /// While `moving` (the time slider is dragged) the outer surface is drawn without its triangle
-  /// edges: with software OpenGL (llvmpipe) the edges' extra pass made each draw 2.5x slower
-  /// (bench/gui/bench_gui); settle() draws them again once the slider rests.
+  /// While `moving` (the time slider is dragged) the view is drawn quick (set_quick) until
+  /// settle().
   void show_step(const ShellStep& step, const std::array<double, 3>& offset, bool frame,
                  bool moving = false);
   /// Shows the scene's other objects and lights (their actors swapped when their key differs)
@@ -38,7 +37,12 @@ class ShellView : public QVTKOpenGLNativeWidget {
   /// The scene objects and lights drawn (tests).
   std::size_t scene_objects() const { return m_scene_objects; }
   std::size_t scene_lights() const { return m_scene_lights; }
-  /// Draws the shown step with its triangle edges (after a drag of the time slider).
+  /// Quick drawing, while the slider is dragged or the view orbited: the outer surface without its
+  /// triangle edges (with software OpenGL, llvmpipe, their extra pass made each draw 2.5x
+  /// slower) and the floor's checker texture without filtering (trilinear mipmapping tripled the
+  /// draw's CPU time: bench/gui/bench_gui). Takes effect at the next draw.
+  void set_quick(bool quick);
+  /// Draws the view at rest again (edges, filtered textures) if it was quick.
   void settle();
   /// The view's camera in the meshes' frame (the shell's core at the origin) [m, degrees].
   struct ViewCamera {
@@ -68,6 +72,7 @@ class ShellView : public QVTKOpenGLNativeWidget {
   std::string m_scene_key;
   std::size_t m_scene_objects = 0, m_scene_lights = 0;
   bool m_scene_camera = false;
+  bool m_quick = false;
 };
 
 }  // namespace thaw::gui
