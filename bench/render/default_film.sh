@@ -8,7 +8,8 @@
 # The machine is shared: the load is printed at the start and the end of every measurement; CPU
 # seconds (user + sys) are less sensitive to it than wall seconds.
 # SCENARIO=file runs that scenario instead of the built-in default (e.g. an older binary's
-# `thaw run --print-default`, so that two binaries render the same film).
+# `thaw run --print-default`, so that two binaries render the same film). With BEFORE and FILM=1
+# the two films' frames are compared byte by byte (a speed-up that must not change the picture).
 # usage: bench/render/default_film.sh [OUT_DIR]   (THAW=path/to/thaw, BEFORE=path/to/thaw,
 #        FRAME=25 the frame timed alone, RUNS=3 runs of the frame per binary, FILM=1: also the
 #        film, SCENARIO=file)
@@ -73,4 +74,13 @@ if [ "$film" = 1 ]; then
       grep -E '^  (simulate|mesh|render|film|inspect) |total:|frames,' | sed 's/^thaw run: /  /'
   done
   echo "load at end: $(load)"
+  if [ -n "$before" ]; then
+    # An optimisation that should not change the picture: compare every frame of the two films.
+    same=0 total=0
+    for f in "$out/film_before/frames/"*.png; do
+      total=$((total + 1))
+      cmp -s "$f" "$out/film_after/frames/$(basename "$f")" && same=$((same + 1))
+    done
+    echo "frames byte-identical before/after: $same of $total"
+  fi
 fi
