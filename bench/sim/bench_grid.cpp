@@ -1,8 +1,10 @@
 // Cost of the grid (axisymmetric / 3D) Stefan solver on the shipped hollow cube
 // (data/scenarios/hollow_cube.toml: one simulated hour or until the ice is gone).
 // Target (issue 11): at most 30 s on 2 cores at default resolution. Prints, per run: cells,
-// threads, wall and CPU time, steps, Newton iterations, and cell updates per second (cells x
-// Newton iterations / wall time); then 2 threads against 1 and the cost per halving of the cell.
+// threads, wall and CPU time, steps, Newton and CG iterations, cell updates per CPU second
+// (cells x Newton iterations / CPU time) and CG cell sweeps per CPU second (cells x CG
+// iterations / CPU time); then 2 threads against 1 (wall and CPU, same process) and the cost
+// per halving of the cell (CPU). On a shared machine quote CPU times and same-run ratios.
 // Usage: bench_grid [scenario.toml [THREADS]] (default: the shipped hollow cube); with THREADS,
 // only the default resolution on that many threads (for farm-bench pairs: 2 threads vs 1 as
 // whole processes, alternating, so a drifting machine load affects both alike).
@@ -21,7 +23,7 @@
 namespace {
 
 struct Run {
-  double wall_s = 0, cpu_s = 0, updates_per_s = 0;
+  double wall_s = 0, cpu_s = 0;
   long steps = 0;
 };
 
@@ -37,13 +39,13 @@ Run run(thaw::sim::Scenario sc, int threads, double cell) {
   const auto& s = r.grid_statistics;
   const auto& f = r.fields.front();
   out.steps = s.steps;
-  out.updates_per_s = static_cast<double>(s.cell_updates) / out.wall_s;
+  const double cells = static_cast<double>(f.cells[0]) * f.cells[1] * f.cells[2];
   std::printf(
-      "cell %.3g mm  grid %dx%dx%d  threads %d  wall %.2f s  cpu %.2f s  steps %ld  newton %ld  cg "
-      "%ld  "
-      "%.3g cell updates/s  simulated %.0f s\n",
+      "cell %.3g mm  grid %dx%dx%d  threads %d  wall %.2f s  cpu %.2f s  steps %ld  newton %ld  "
+      "cg %ld  %.3g cell updates/cpu s  %.3g cg cell sweeps/cpu s  simulated %.0f s\n",
       cell * 1e3, f.cells[0], f.cells[1], f.cells[2], threads, out.wall_s, out.cpu_s, s.steps,
-      s.newton_iterations, s.cg_iterations, out.updates_per_s, r.snapshots.back().time_s);
+      s.newton_iterations, s.cg_iterations, static_cast<double>(s.cell_updates) / out.cpu_s,
+      cells * static_cast<double>(s.cg_iterations) / out.cpu_s, r.snapshots.back().time_s);
   std::fflush(stdout);
   return out;
 }
@@ -67,8 +69,8 @@ int main(int argc, char** argv) {
   double load[3] = {0, 0, 0};
   if (getloadavg(load, 3) > 0)
     std::printf("load average at the end: %.2f %.2f %.2f\n", load[0], load[1], load[2]);
-  std::printf("halving the cell (1 thread): wall %.2fx (cells 8x, steps %.2fx)\n",
-              one.wall_s / coarse.wall_s,
+  std::printf("halving the cell (1 thread): CPU %.2fx, wall %.2fx (steps %.2fx)\n",
+              one.cpu_s / coarse.cpu_s, one.wall_s / coarse.wall_s,
               static_cast<double>(one.steps) / static_cast<double>(coarse.steps));
   return 0;
 }

@@ -368,19 +368,17 @@ struct EnthalpySolver::Impl {
   }
 
   /// Conjugate gradients with a Jacobi preconditioner on the pure cells' temperature changes:
-  /// (diag_c) x_c - sum K x_nb = b_c. Every thread of the team runs this; returns iterations.
+  /// (diag_c) x_c - sum K x_nb = b_c. Run by the team's leader; returns iterations.
   ///
-  /// Two barriers per iteration: the direction update p = z + beta p is fused into the matrix
+  /// Two phases per iteration: the direction update p = z + beta p is fused into the matrix
   /// product by double-buffering p (each cell recomputes its neighbours' new p from z and the
   /// old p: the same operations, so the same bits). Every reduction goes over fixed blocks whose
-  /// partials every thread adds in the same order, so all threads take the same decisions and
-  /// the result does not depend on the thread count. Each partial array is written only after
-  /// a barrier that follows every read of its previous values.
+  /// partials the leader adds in block order, so the result does not depend on the thread
+  /// count.
   int conjugate_gradients(BlockTeam& team, double tol) {
     std::vector<double>& x = dtemp;
     // x = 0, r = b, z = r / diag, p = 0 and the partials of r.z and of the residual were set by
-    // prepare_newton_iteration (start_cg), one barrier earlier.
-    // every thread holds its own copies of these scalars, equal bit for bit
+    // prepare_newton_iteration (start_cg), one phase earlier.
     double rz = ordered_sum(partial_rz), res = largest(partial_res), beta = 0;
     std::vector<double>* po = &cg_p;
     std::vector<double>* pn = &cg_p2;
@@ -499,8 +497,8 @@ struct EnthalpySolver::Impl {
     return largest(partial_newton);
   }
 
-  /// Semismooth Newton on the backward Euler balance, run by every thread of the team (the
-  /// same decisions everywhere); true when converged.
+  /// Semismooth Newton on the backward Euler balance, run by the team's leader; true when
+  /// converged.
   bool newton(BlockTeam& team) {
     double best = std::numeric_limits<double>::infinity();
     for (int it = 0; it < kMaxNewton; ++it) {
@@ -527,10 +525,9 @@ struct EnthalpySolver::Impl {
   }
 
   // --- the step's reductions ------------------------------------------------------------------
-  /// One block's share of a step's sums and maxima. Each field is written in one phase and read
-  /// by every thread right after that phase's barrier; its next write comes several barriers
-  /// later, after every thread has read it. Every thread adds the blocks' shares in block order,
-  /// so all get the same bits for any thread count.
+  /// One block's share of a step's sums and maxima, written in one phase and read by the leader
+  /// after it, which adds the blocks' shares in block order: the same bits for any thread
+  /// count.
   struct BlockSums {
     double energy_start = 0, heat = 0, drained = 0, most_drained = 0, removed = 0;
     double energy_end = 0, enclosed = 0, wettest = 0, ice = 0, dtemp = 0, dmelt = 0;
@@ -578,9 +575,9 @@ struct EnthalpySolver::Impl {
     }
   }
 
-  /// One step of size dt from the current state, run by every thread of the team (the same
-  /// decisions everywhere): coefficients, Newton, the conservative final update, draining,
-  /// events; false (state restored) if Newton failed and the step can still shrink.
+  /// One step of size dt from the current state, run by the team's leader: coefficients, Newton,
+  /// the conservative final update, draining, events; false (state restored) if Newton failed and
+  /// the step can still shrink.
   ///
   /// The step's bookkeeping is fused into as few phases as possible (each phase ends with a
   /// barrier, and on a shared machine each barrier can wait a time slice for a descheduled
@@ -962,25 +959,26 @@ struct EnthalpySolver::Impl {
   }
   long last_liquid_cell = 0;
 
-  /// The steps to t_target in one OpenMP parallel region: the threads sleep at the team's
-  /// barriers while the leader does the serial bookkeeping (events, the flood fill), instead of
-  /// spinning in OpenMP's barriers between regions.
+  /// The steps to t_target in one OpenMP parallel region: the leader runs them, the other
+  /// threads help with each phase's blocks and sleep while the leader does the serial
+  /// bookkeeping (events, the flood fill), instead of spinning in OpenMP's barriers.
   double advance_to(double target) {
     TeamShared shared;
 #pragma omp parallel if (n > kParallelCells)
     {
-#pragma omp single
-      shared.barrier.reset(omp_get_num_threads());
       BlockTeam team(shared, omp_get_thread_num(), block_count());
-      advance_team(team, target);
+      if (team.leader()) {
+        advance_team(team, target);
+        team.finish();
+      } else {
+        team.serve();
+      }
     }
     return time;
   }
 
-  /// Run by every thread of the team: the shared state (time, dt_next, done) is written by the
-  /// leader only, in serial parts, and read by all after their barrier, so every thread takes
-  /// the same decisions. dt (the step being taken) is written by the leader at the top of the
-  /// loop and read by the others only after the step's first barrier.
+  /// Run by the team's leader; the helpers only run the blocks of the phases it posts (posting
+  /// a phase publishes everything the leader wrote before).
   void advance_team(BlockTeam& team, double target) {
     while (!done && time < target) {
       const double remaining = target - time;

@@ -23,9 +23,10 @@
 //  * The material | air surface area in each cell comes from the gradient of the material
 //    fraction (|grad m| V, the mean of Youngs' and the plain central differences), so the heated
 //    area of a round body is not the stair-step area of its cells.
-// A step runs in one OpenMP parallel region whose threads meet at sleeping barriers
-// (block_team.h). Deterministic for any thread count: every loop writes its own cells, and every
-// sum goes over fixed blocks in a fixed order. Knows nothing of files, TOML or shapes.
+// The steps run in one OpenMP parallel region: a leader runs the control flow and posts each
+// phase, the other threads help with its blocks (block_team.h). Deterministic for any thread
+// count: every loop writes its own cells, and every sum goes over fixed blocks in a fixed order.
+// Knows nothing of files, TOML or shapes.
 #include <array>
 #include <memory>
 #include <string>

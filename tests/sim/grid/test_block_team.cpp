@@ -1,5 +1,6 @@
 // The grid solver's thread team (sim/grid/block_team.h): every block is done exactly once per
-// phase, whatever the thread count, and a phase sees everything the previous one wrote.
+// phase, whatever the thread count, a phase sees everything the previous one wrote, and the
+// helpers return once the leader has finished.
 #include "sim/grid/block_team.h"
 
 #include <gtest/gtest.h>
@@ -20,18 +21,21 @@ TEST(BlockTeam, EveryBlockOncePerPhaseAndPhasesAreOrdered) {
     TeamShared shared;
 #pragma omp parallel num_threads(threads)
     {
-#pragma omp single
-      shared.barrier.reset(omp_get_num_threads());
       BlockTeam team(shared, omp_get_thread_num(), blocks);
-      for (int phase = 0; phase < phases; ++phase) {
-        // each block reads its neighbour's value from the previous phase: wrong if a phase
-        // started before the previous one ended everywhere
-        team.for_blocks([&](long b) {
-          ++count[static_cast<std::size_t>(b)];
-          if (value[static_cast<std::size_t>((b + 1) % blocks)] != phase)
-            ordered[static_cast<std::size_t>(omp_get_thread_num())] = 0;
-        });
-        team.for_blocks([&](long b) { value[static_cast<std::size_t>(b)] = phase + 1; });
+      if (!team.leader()) {
+        team.serve();
+      } else {
+        for (int phase = 0; phase < phases; ++phase) {
+          // each block reads its neighbour's value from the previous phase: wrong if a phase
+          // started before the previous one ended everywhere
+          team.for_blocks([&](long b) {
+            ++count[static_cast<std::size_t>(b)];
+            if (value[static_cast<std::size_t>((b + 1) % blocks)] != phase)
+              ordered[static_cast<std::size_t>(omp_get_thread_num())] = 0;
+          });
+          team.for_blocks([&](long b) { value[static_cast<std::size_t>(b)] = phase + 1; });
+        }
+        team.finish();
       }
     }
     for (long b = 0; b < blocks; ++b)
