@@ -267,6 +267,15 @@ KeyForm* ScenePanel::object_form(int k) {
     f->add_vector("Translate [m]", key + ".translate", doc(key + ".translate", V3{0, 0, 0}));
   }
   const ScenarioDocument& d = m_window.document();
+  // Opaque (a material) or a dielectric (transparent: the media inside and outside, e.g. a
+  // Sellmeier glass of the Media list; spheres, boxes and closed meshes only, as the parser says).
+  auto* surface = new QComboBox;
+  surface->setObjectName(QString::fromStdString(key + ".surface"));
+  surface->addItems({"opaque (material)", "dielectric (media)"});
+  surface->setCurrentIndex(d.has(key + ".material") ? 0 : 1);
+  connect(surface, QOverload<int>::of(&QComboBox::currentIndexChanged), this,
+          [this, key](int index) { set_object_surface(key, index == 1); });
+  f->layout()->addWidget(surface);
   if (d.has(key + ".material")) {
     QStringList names;
     for (const std::string& n : d.table_keys("render.materials"))
@@ -301,6 +310,13 @@ KeyForm* ScenePanel::material_form(int k) {
     f->add_number("Checker size [m]", key + ".checker.size", doc(key + ".checker.size", 0.02));
   } else {
     f->add_vector("Colour", key + ".color", doc(key + ".color", V3{0.8, 0.8, 0.8}), true);
+  }
+  if (d.string_or(key + ".kind", "matte") == "phong") {  // docs/render.md's defaults
+    f->add_number("ka", key + ".ka", doc(key + ".ka", 0.1));
+    f->add_number("kd", key + ".kd", doc(key + ".kd", 0.9));
+    f->add_number("ks", key + ".ks", doc(key + ".ks", 0.0));
+    f->add_number("Shininess", key + ".shininess", doc(key + ".shininess", 32.0));
+    f->add_number("Reflectance", key + ".reflectance", doc(key + ".reflectance", 0.0));
   }
   auto* texture = new QPushButton(d.has(key + ".checker") ? "Make solid" : "Make checker");
   connect(texture, &QPushButton::clicked, this, [this, key] {
@@ -380,6 +396,35 @@ KeyForm* ScenePanel::medium_form(int k) {
   }
   f->add_number("Absorption [1/m]", key + ".absorption_per_m", doc(key + ".absorption_per_m", 0.0));
   return f;
+}
+
+void ScenePanel::set_object_surface(const std::string& key, bool dielectric) {
+  const ScenarioCheck& c = m_window.check();
+  const std::string outside = c.ok() ? c.scenario->shell.outside_medium : std::string("vacuum");
+  m_window.modify([key, dielectric, outside](ScenarioDocument& d) {
+    if (dielectric) {
+      std::vector<std::string> media = d.table_keys("render.media");
+      if (media.empty()) {  // a glass to start from (Schott N-BK7, the library's preset)
+        d.set("render.media.glass.preset", std::string("n-bk7"));
+        media.push_back("glass");
+      }
+      d.remove(key + ".material");
+      d.set(key + ".inside", media.front());
+      d.set(key + ".outside", outside);
+    } else {
+      std::vector<std::string> materials = d.table_keys("render.materials");
+      if (materials.empty()) {
+        d.set("render.materials.grey.kind", std::string("matte"));
+        d.set("render.materials.grey.color", V3{0.7, 0.7, 0.7});
+        materials.push_back("grey");
+      }
+      d.remove(key + ".inside");
+      d.remove(key + ".outside");
+      d.set(key + ".material", materials.front());
+    }
+  });
+  m_objects.signature.clear();  // the form's fields depend on the surface
+  QTimer::singleShot(0, this, [this] { refresh(); });
 }
 
 void ScenePanel::camera_edit(const std::string& key, const TomlValue& value) {

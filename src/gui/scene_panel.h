@@ -45,6 +45,9 @@ class ScenePanel : public QWidget {
   KeyForm* medium_form(int k);
   ValueGetter doc(const std::string& key, TomlValue fallback) const;
   void camera_edit(const std::string& key, const TomlValue& value);
+  /// Makes object `key` ("render.objects[k]") a dielectric (inside: the first medium, a glass
+  /// added if there is none; outside: the shell's outside medium) or opaque (the first material).
+  void set_object_surface(const std::string& key, bool dielectric);
 
   MainWindow& m_window;
   KeyForm* m_view_form = nullptr;

@@ -4,8 +4,11 @@
 // screenshot of the default with its panels and a non-empty render.
 #include <QVTKOpenGLNativeWidget.h>
 #include <QApplication>
+#include <QComboBox>
 #include <QLabel>
 #include <QLineEdit>
+#include <QListWidget>
+#include <QPointer>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QSignalSpy>
@@ -200,6 +203,40 @@ class TestMainWindow : public QObject {
       d.set("render.media.ice.sellmeier.C", std::array<double, 3>{0.01, 0.0, 0.0});
     });
     QVERIFY2(w.check().ok(), w.check().message.c_str());
+  }
+
+  // The report's "transparent" material: an object's surface switched to a dielectric between
+  // media in its Scene form (and back to an opaque material).
+  void anObjectTurnsDielectricAndBack() {
+    MainWindow w{ScenarioDocument()};
+    w.show();
+    QVERIFY(w.select_tab("scene"));
+    QVERIFY(w.add_object("sphere"));
+    const std::size_t k = w.document().array_size("render.objects") - 1;
+    const std::string key = "render.objects[" + std::to_string(k) + "]";
+    auto* list = w.findChild<QListWidget*>("objects_list");
+    QVERIFY(list);
+    list->setCurrentRow(static_cast<int>(k));  // its form, as a click on it shows
+    auto* surface = w.findChild<QComboBox*>(QString::fromStdString(key + ".surface"));
+    QVERIFY(surface);
+    QCOMPARE(surface->currentIndex(), 0);
+    surface->setCurrentIndex(1);
+    QVERIFY2(w.check().ok(), w.check().message.c_str());
+    const auto& dielectric = w.check().scenario->scene.objects.back();
+    QVERIFY(dielectric.is_dielectric());
+    QCOMPARE(dielectric.inside, w.document().table_keys("render.media").front());
+    QCOMPARE(dielectric.outside, w.check().scenario->shell.outside_medium);
+    // The form of the object is made anew (the old one deleted): it now edits its media.
+    const QPointer<QComboBox> old_surface(surface);
+    QTRY_VERIFY_WITH_TIMEOUT(old_surface.isNull(), 5000);
+    QVERIFY(w.findChild<QComboBox*>(QString::fromStdString(key + ".inside")));
+    auto* back = w.findChild<QComboBox*>(QString::fromStdString(key + ".surface"));
+    QVERIFY(back);
+    QCOMPARE(back->currentIndex(), 1);
+    back->setCurrentIndex(0);
+    QVERIFY2(w.check().ok(), w.check().message.c_str());
+    QVERIFY(!w.check().scenario->scene.objects.back().is_dielectric());
+    QVERIFY(!w.document().has(key + ".inside"));
   }
 
   void orbitingTheViewWritesTheCameraBack() {
