@@ -94,7 +94,8 @@ std::string encode_png(const Image& image, double exposure, int bits) {
   const auto n = static_cast<std::int64_t>(image.pixels().size());
   const PngLayout layout{image.width(), image.height(), 3, bits};
   if (bits == 16) {
-    std::vector<std::uint16_t> rgb(std::size_t(n) * 3);
+    // Unset until the loop below writes every sample (in parallel: no serial zeroing first).
+    std::vector<std::uint16_t, UninitialisedAllocator<std::uint16_t>> rgb(std::size_t(n) * 3);
 #pragma omp parallel for schedule(static)
     for (std::int64_t i = 0; i < n; ++i) {
       const Rgb& c = image.pixels()[static_cast<std::size_t>(i)];
@@ -105,7 +106,7 @@ std::string encode_png(const Image& image, double exposure, int bits) {
     return encode_png_samples(rgb.data(), layout);
   }
   const SrgbEncoder& encode = srgb_encoder();
-  std::vector<std::uint8_t> rgb(std::size_t(n) * 3);
+  std::vector<std::uint8_t, UninitialisedAllocator<std::uint8_t>> rgb(std::size_t(n) * 3);
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     const Rgb& c = image.pixels()[static_cast<std::size_t>(i)];

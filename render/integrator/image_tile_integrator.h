@@ -56,7 +56,9 @@ RenderResult render_image_tiles(const Scene& scene, const RenderOptions& options
   const int tiles_x = (w + tile - 1) / tile, tiles_y = (h + tile - 1) / tile;
   const int tiles = tiles_x * tiles_y;
   RenderResult result;
-  result.image = Image(w, h);
+  // Every tile writes each of its pixels once (black when skipped), in parallel: no serial
+  // zeroing of the image first.
+  result.image = Image(w, h, Image::ForOverwrite{});
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   std::atomic<std::int64_t> tiles_done{0};
   RenderStats counts;
@@ -71,11 +73,14 @@ RenderResult render_image_tiles(const Scene& scene, const RenderOptions& options
     for (int t = 0; t < tiles; ++t) {
       // After SIGINT/SIGTERM the remaining tiles are skipped; the caller checks and writes nothing.
       // Cancelled (RenderOptions::cancel): skipped too; the caller discards the image.
-      if (interrupt_requested() ||
-          (options.cancel && options.cancel->load(std::memory_order_relaxed)))
-        continue;
       const int x0 = (t % tiles_x) * tile, y0 = (t / tiles_x) * tile;
       const int x1 = std::min(x0 + tile, w), y1 = std::min(y0 + tile, h);
+      if (interrupt_requested() ||
+          (options.cancel && options.cancel->load(std::memory_order_relaxed))) {
+        for (int y = y0; y < y1; ++y)
+          for (int x = x0; x < x1; ++x) result.image.at(x, y) = Rgb{};
+        continue;
+      }
       for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; ++x) {
           Pcg32 rng(std::uint64_t(y) * std::uint64_t(w) + std::uint64_t(x), options.seed);

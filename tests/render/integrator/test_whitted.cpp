@@ -111,8 +111,8 @@ TEST(Whitted, OccluderCastsShadow) {
 
 TEST(Whitted, CancelledRenderSkipsItsTiles) {
   // RenderOptions::cancel (thaw gui's preview, restarted by an edit): set before the render, no
-  // tile is traced, so every pixel keeps the image's initial black although the background is
-  // blue; unset, the same scene shows the background.
+  // tile is traced, so every pixel is black (a skipped tile is written black: the image is not
+  // zeroed beforehand) although the background is blue; unset, the same scene shows the background.
   SceneDescription d = base_scene(32, 32);
   d.image.background = {0.3, 0.6, 0.9};
   const Scene scene = build_scene(d);
