@@ -4,6 +4,9 @@
 // outward-oriented surface), smooth normals, a similarity transform. Filled from an OBJ file
 // (render/geometry/obj_loader.h) or directly by code (the pipeline's in-memory shell meshes).
 // Knows nothing about materials, the BVH or files.
+// Why not the file type (src/meshio/triangle_mesh.h): the renderer works in single precision with
+// 32-bit indices (half the memory of a two-million-triangle mesh, the BVH's own precision) and
+// unit normals; from_file_mesh below is the one conversion from the file type.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -11,6 +14,7 @@
 #include <vector>
 
 #include "render/math/vec3.h"
+#include "src/meshio/triangle_mesh.h"
 
 namespace thaw::render {
 
@@ -26,6 +30,12 @@ struct TriangleMesh {
 
   bool has_normals() const { return !normal_indices.empty(); }
 };
+
+/// The renderer's mesh from a mesh file's (src/meshio): positions and normals rounded to float,
+/// normals made unit, 32-bit indices. Throws thaw::UserError naming `source` beyond 2^32 - 1
+/// vertices or normals, on a zero-length normal, or a coordinate finite in double but not in
+/// float (validate_mesh).
+TriangleMesh from_file_mesh(const meshio::TriangleMesh& file, const std::string& source);
 
 /// First structural problem of the mesh (index out of range, non-finite coordinate or normal,
 /// no triangles), or nullopt if it is usable.

@@ -32,22 +32,8 @@ sim::InterfaceRecord initial_row(const sim::Scenario& s) {
 }
 
 render::TriangleMesh to_render_mesh(const mesh::TriangleMesh& m) {
-  render::TriangleMesh r;
-  r.positions.reserve(m.vertices.size());
-  for (const auto& v : m.vertices)
-    r.positions.emplace_back(static_cast<float>(v[0]), static_cast<float>(v[1]),
-                             static_cast<float>(v[2]));
-  r.triangles.reserve(m.faces.size());
-  for (const auto& f : m.faces)
-    r.triangles.push_back({static_cast<std::uint32_t>(f[0]), static_cast<std::uint32_t>(f[1]),
-                           static_cast<std::uint32_t>(f[2])});
-  if (m.normals.size() == m.vertices.size()) {
-    for (const auto& n : m.normals)
-      r.normals.emplace_back(static_cast<float>(n[0]), static_cast<float>(n[1]),
-                             static_cast<float>(n[2]));
-    r.normal_indices = r.triangles;
-  }
-  return r;
+  // Through the file type: the one conversion of each side (mesh and render triangle_mesh.h).
+  return render::from_file_mesh(mesh::to_file_mesh(m), "the mesher's surface");
 }
 
 inspect::TriangleMesh to_view_mesh(const render::TriangleMesh& m) {

@@ -169,13 +169,8 @@ std::optional<TriangleMesh> load_cached_form(const fs::path& file, const std::st
   if (first_line != "# " + description) return std::nullopt;
   try {
     const meshio::TriangleMesh read = meshio::read_obj(file);
-    if (!read.normal_triangles.empty()) return std::nullopt;
-    TriangleMesh m;
-    m.vertices = read.vertices;
-    m.faces.reserve(read.triangles.size());
-    for (const auto& t : read.triangles)
-      m.faces.push_back({static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
-    return m;
+    if (!read.normal_triangles.empty()) return std::nullopt;  // kept without normals
+    return from_file_mesh(read);
   } catch (const UserError&) {
     return std::nullopt;  // damaged: mesh it again
   }

@@ -3,8 +3,39 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
+#include <limits>
+
+#include "src/common/check.h"
 
 namespace thaw::mesh {
+
+meshio::TriangleMesh to_file_mesh(const TriangleMesh& mesh) {
+  const bool normals = !mesh.normals.empty();
+  THAW_CHECK(!normals || mesh.normals.size() == mesh.vertices.size(), "one normal per vertex");
+  meshio::TriangleMesh file;
+  file.vertices = mesh.vertices;
+  file.triangles.reserve(mesh.faces.size());
+  for (const auto& f : mesh.faces) file.triangles.push_back({f[0], f[1], f[2]});
+  if (normals) {
+    file.normals = mesh.normals;
+    file.normal_triangles = file.triangles;
+  }
+  return file;
+}
+
+TriangleMesh from_file_mesh(const meshio::TriangleMesh& file) {
+  THAW_CHECK(file.vertices.size() <= static_cast<std::size_t>(std::numeric_limits<int>::max()),
+             "vertex indices fit in int");
+  TriangleMesh mesh;
+  mesh.vertices = file.vertices;
+  mesh.faces.reserve(file.triangles.size());
+  for (const auto& t : file.triangles)
+    mesh.faces.push_back({static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
+  if (file.normals.size() == file.vertices.size() && file.normal_triangles == file.triangles)
+    mesh.normals = file.normals;
+  return mesh;
+}
 
 double enclosed_volume(const TriangleMesh& m) {
   double six_v = 0;

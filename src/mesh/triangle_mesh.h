@@ -1,8 +1,14 @@
 #pragma once
 // An indexed triangle mesh in memory: what the mesher produces and the OBJ writer, the tests and
 // the pipeline consume. Plain data, no CGAL; knows nothing about how it was made.
+// Why not the file type (src/meshio/triangle_mesh.h): the mesher's algorithms (CGAL output, grid
+// marching tetrahedra, remeshing, Taubin smoothing) keep one unit normal per vertex and int
+// indices; the file type keeps what an OBJ file says (normals with their own indices, 64-bit
+// indices). to_file_mesh / from_file_mesh below are the one conversion between the two.
 #include <array>
 #include <vector>
+
+#include "src/meshio/triangle_mesh.h"
 
 namespace thaw::mesh {
 
@@ -14,6 +20,15 @@ struct TriangleMesh {
   /// Empty, or #V unit outward vertex normals (gradient of the implicit function).
   std::vector<std::array<double, 3>> normals;
 };
+
+/// The mesh as thaw's mesh files hold it: the same vertices and triangles; vertex normals, if
+/// any, indexed like the vertices.
+meshio::TriangleMesh to_file_mesh(const TriangleMesh& mesh);
+
+/// The mesher's mesh from a file's: vertices and triangles as they are; the normals only when
+/// the file indexes them like the vertices (as to_file_mesh writes them), else none. THAW_CHECK
+/// that the vertex count fits int indices (the reader has checked every index against it).
+TriangleMesh from_file_mesh(const meshio::TriangleMesh& file);
 
 /// Volume enclosed by a closed, outward-oriented mesh [m^3]: sum of signed tetrahedra
 /// (origin, a, b, c) / 6 (divergence theorem).

@@ -1,10 +1,12 @@
-// Tests render/geometry/triangle_mesh.h: closedness, orientation, volume, smooth normals.
+// Tests render/geometry/triangle_mesh.h: closedness, orientation, volume, smooth normals, the
+// conversion from the mesh files' type.
 #include "render/geometry/triangle_mesh.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "src/common/error.h"
 #include "tests/render/test_util.h"
 
 namespace thaw::render {
@@ -79,6 +81,36 @@ TEST(TriangleMesh, TransformScalesThenTranslates) {
   m.positions = {{1, 2, 3}};
   transform_mesh(m, 2.0, {1.0, 0.0, -1.0});
   EXPECT_EQ(m.positions[0], (Vec3{3, 4, 5}));
+}
+
+// The one conversion from the file type: positions rounded to the nearest float, normals made
+// unit, indices kept; what single precision cannot hold is a UserError naming the source.
+TEST(TriangleMesh, FromFileMeshRoundsToFloatAndNormalisesNormals) {
+  meshio::TriangleMesh file;
+  file.vertices = {{0.1, 0, 0}, {1, 0, 0}, {0, 1, 1e-30}};
+  file.triangles = {{0, 1, 2}};
+  file.normals = {{0, 0, 2}};
+  file.normal_triangles = {{0, 0, 0}};
+  const TriangleMesh m = from_file_mesh(file, "f.obj");
+  ASSERT_EQ(m.positions.size(), 3u);
+  EXPECT_EQ(m.positions[0].x, 0.1f);
+  EXPECT_EQ(m.positions[2].z, 1e-30f);
+  EXPECT_EQ(m.triangles[0], (std::array<std::uint32_t, 3>{0, 1, 2}));
+  ASSERT_EQ(m.normals.size(), 1u);
+  EXPECT_EQ(m.normals[0].z, 1.0f);
+  EXPECT_EQ(m.normal_indices[0], (std::array<std::uint32_t, 3>{0, 0, 0}));
+
+  meshio::TriangleMesh zero_normal = file;
+  zero_normal.normals = {{0, 0, 0}};
+  EXPECT_THROW(from_file_mesh(zero_normal, "f.obj"), UserError);
+  meshio::TriangleMesh beyond_float = file;
+  beyond_float.vertices[1][0] = 1e39;  // finite in double, infinite in float
+  try {
+    from_file_mesh(beyond_float, "f.obj");
+    FAIL() << "no error";
+  } catch (const UserError& e) {
+    EXPECT_EQ(e.file(), "f.obj");
+  }
 }
 
 }  // namespace
