@@ -487,6 +487,15 @@ class TestMainWindow : public QObject {
         blue += qBlue(p) > qRed(p) + 60;
       }
     QVERIFY2(blue > 500, qPrintable(QString::number(blue)));
+    // ... and the scene around it: the default floor's red checker cells (red clearly above
+    // blue), which the shell alone does not have.
+    long red = 0;
+    for (int y = varea.top(); y <= varea.bottom(); y += 2)
+      for (int x = varea.left(); x <= varea.right(); x += 2) {
+        const QRgb p = shot.pixel(x, y);
+        red += qRed(p) > qBlue(p) + 60;
+      }
+    QVERIFY2(red > 2000, qPrintable(QString::number(red)));
   }
 };
 
