@@ -2,7 +2,9 @@
 // saving and reloading; a bad value's message and blocked saving; an added object changing the
 // preview; a stale preview cancelled by an edit; cancelling and resuming "Render film"; the
 // screenshot of the default with its panels and a non-empty render.
+#include <QVTKInteractor.h>
 #include <QVTKOpenGLNativeWidget.h>
+#include <vtkCommand.h>
 #include <QApplication>
 #include <QComboBox>
 #include <QLabel>
@@ -247,8 +249,13 @@ class TestMainWindow : public QObject {
     QVERIFY(!w.check().scenario->camera_set);
     // As an orbit ends: the view (in scene coordinates) looks from +x, slightly above, at the
     // shell's core, which the default places 3 cm above the floor at y = 0.
+    // The interactor's events around a mouse drag: drawn quick (no edges) while it lasts.
+    QVERIFY(w.shell_view().edges_shown());
+    w.shell_view().interactor()->InvokeEvent(vtkCommand::StartInteractionEvent);
+    QVERIFY(!w.shell_view().edges_shown());
     w.shell_view().set_camera({{0.2, 0.08, 0.0}, {0.0, 0.03, 0.0}, {0.0, 1.0, 0.0}, 30.0});
-    w.shell_view().report_camera();
+    w.shell_view().interactor()->InvokeEvent(vtkCommand::EndInteractionEvent);
+    QVERIFY(w.shell_view().edges_shown());
     QVERIFY2(w.check().ok(), w.check().message.c_str());
     const auto& sc = *w.check().scenario;
     QVERIFY(sc.camera_set);
