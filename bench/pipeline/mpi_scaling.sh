@@ -3,7 +3,9 @@
 # own wall times (as thaw run reports them: process start-up and MPI's initialisation excluded)
 # in three configurations, interleaved run by run so that each sees the same load:
 #   A  1 process x 1 thread      (1 core)
-#   B  mpirun -np 2, 1 thread per rank (2 cores)
+#   B  mpirun --bind-to none -np 2, 1 thread per rank (2 cores; Open MPI would pin each rank to
+#      one core, which on a machine shared with other work leaves a rank on the busier core while
+#      A and C move to whichever core is free: unbound, all three meet the same scheduler)
 #   C  1 process x 2 threads     (2 cores, OpenMP)
 # Parallel efficiency (the figure issue 13 asks for) = A / (2 B): the speed-up of 2 ranks over one
 # process on one core, per core. B against C compares MPI with OpenMP on the same 2 cores.
@@ -37,7 +39,7 @@ stage_seconds() {  # stage log
 launcher() {  # A | B | C: the command prefix and the threads per process
   case $1 in
     A) echo "1" ;;
-    B) echo "1 mpirun -np 2" ;;
+    B) echo "1 mpirun --bind-to none -np 2" ;;
     C) echo "2" ;;
   esac
 }
@@ -95,7 +97,11 @@ for s in "${stages[@]}"; do
   done
 done
 if [ -z "${SKIP_RENDER:-}" ]; then
-  echo "render CPU per frame, A (1 thread): $(ratio "$(column render,A 2 | stat median) / $frames") s (process start-up included)"
+  # Per-frame costs (the scaling model's c_mean and c_max) from the frames' item notes
+  # (run_items/render/frame_NNNNNN, second line "rank R wall_s W cpu_s C"), last run.
+  notes() { tail -q -n 1 "$work/$1/run_items/render/"frame_*; }
+  echo "per-frame CPU s, A (1 thread), last run: $(notes A | awk '{ s += $7; if ($7 > m) m = $7; if (!n++ || $7 < l) l = $7 } END { printf "mean %.3f, min %.3f, max %.3f, max/mean %.2f", s / n, l, m, m * n / s }')"
+  echo "B's split, last run: $(notes B | awk '{ f[$2]++; w[$2] += $5 } END { for (r in f) printf "rank %s %d frames %.2f s busy; ", r, f[r], w[r] }')"
   for w in min med; do
     echo "mesh + render, $w: efficiency A / (2 B) = $(ratio "(${v[mesh,A,$w]} + ${v[render,A,$w]}) / (2 * (${v[mesh,B,$w]} + ${v[render,B,$w]}))")"
   done

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -500,8 +501,17 @@ bool render_stage(Run& r, const mesh::MeshManifest& meshes,
     ranks.farm(
         todo,
         [&](long k) {
+          // What the frame cost, on its item's second line (bench/pipeline/mpi_scaling.sh reads
+          // it for the scaling model): wall and process CPU seconds, and which rank.
+          const auto start = std::chrono::steady_clock::now();
+          const std::clock_t cpu_start = std::clock();
           render_frame(r, framed, meshes, water, k);
-          manifest.mark_item_done("render", frame_name(k));
+          char note[128];
+          std::snprintf(
+              note, sizeof note, "rank %d wall_s %.3f cpu_s %.3f", ranks.rank(),
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+              static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC);
+          manifest.mark_item_done("render", frame_name(k), note);
           ++rendered_here;
           return std::string();
         },

@@ -85,11 +85,14 @@ bool RunManifest::item_done(const std::string& stage, const std::string& item) c
   return in && std::getline(in, hash) && hash == it->second.input_hash;
 }
 
-void RunManifest::mark_item_done(const std::string& stage, const std::string& item) {
+void RunManifest::mark_item_done(const std::string& stage, const std::string& item,
+                                 const std::string& note) {
   const auto it = m_stages.find(stage);
   THAW_CHECK(it != m_stages.end(), "mark_item_done before begin_stage");
+  THAW_CHECK(note.find('\n') == std::string::npos, "an item's note is one line");
   ensure_directory(item_file(stage, item).parent_path());
-  write_file_atomic(item_file(stage, item), it->second.input_hash + "\n");
+  write_file_atomic(item_file(stage, item),
+                    it->second.input_hash + "\n" + (note.empty() ? "" : note + "\n"));
 }
 
 void RunManifest::mark_stage_complete(const std::string& stage) {

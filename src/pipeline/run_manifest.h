@@ -24,8 +24,11 @@ class RunManifest {
   /// True if `stage` was completed under `input_hash` (changes nothing).
   bool is_complete(const std::string& stage, const std::string& input_hash) const;
   bool item_done(const std::string& stage, const std::string& item) const;
-  /// Records an item as done (after its output was renamed into place): writes its item file.
-  void mark_item_done(const std::string& stage, const std::string& item);
+  /// Records an item as done (after its output was renamed into place): writes its item file,
+  /// the stage's input hash on the first line and, if given, `note` (one line, for people and
+  /// benchmarks: what the item cost, say) on the second.
+  void mark_item_done(const std::string& stage, const std::string& item,
+                      const std::string& note = "");
   /// Records the stage as complete and saves.
   void mark_stage_complete(const std::string& stage);
   /// Forgets everything (--force): saves and removes the item files.

@@ -1,4 +1,5 @@
-// `thaw run` on the tiny 3D cube (tests/src/pipeline/data/tiny_cube.toml) writes one OpenVDB file
+// `thaw run` on the tiny 3D cube (tests/src/pipeline/data/tiny_cube.toml) and the tiny
+// axisymmetric cylinder (tiny_cylinder.toml, its (r, y) field revolved) writes one OpenVDB file
 // per step into DIR/handoff/vdb, placed where the hand-off meshes are: the world bounding box of
 // the step-0 outer OBJ (the ice fraction's 1/2 isosurface, in world space) against the box of
 // the cell faces of the voxels holding at least half ice. Across a face, the 1/2 crossing of the
@@ -6,7 +7,10 @@
 // (f - g) of a cell edge h beyond the first centre, so within h/2 of the cell face: each side
 // within h/2 (the mesher's Taubin smoothing does not shrink; measured 0.14-0.17 h here). A wrong
 // offset (the floor placement, ~ the cube's size) or a half-voxel error in the transform
-// (h/2 + the measured gap) exceeds it.
+// (h/2 + the measured gap) exceeds it. Revolved: the voxel beside the x (or z) axis at
+// x = (m + 1/2) h, z = h/2 lies in ring m (sqrt((m + 1/2)^2 + 1/4) < m + 1), so the last ring
+// holding half ice ends the voxels' box at that ring's outer face, as a cell face does in 3D;
+// the mesh's polygonal outline falls short of its circle by R (1 - cos(pi / n)), ~0.03 h here.
 #include <gtest/gtest.h>
 #include <openvdb/openvdb.h>
 
@@ -27,8 +31,10 @@ class ThawRunVdb : public TempDirTest {
   ThawRunVdb() : TempDirTest("thaw_test_vdb_run") {}
 };
 
-TEST_F(ThawRunVdb, VolumesOfEveryStepSitWithTheMeshes) {
-  const fs::path cube = fs::path(THAW_SOURCE_DIR) / "tests/src/pipeline/data/tiny_cube.toml";
+class ThawRunVdbOf : public ThawRunVdb, public ::testing::WithParamInterface<const char*> {};
+
+TEST_P(ThawRunVdbOf, VolumesOfEveryStepSitWithTheMeshes) {
+  const fs::path cube = fs::path(THAW_SOURCE_DIR) / "tests/src/pipeline/data" / GetParam();
   const fs::path out = m_dir / "out";
   for (const char* stage : {"simulate", "mesh", "inspect"}) {
     const auto r = run_process(
@@ -75,6 +81,9 @@ TEST_F(ThawRunVdb, VolumesOfEveryStepSitWithTheMeshes) {
     EXPECT_NEAR(mhi[c], hi[c], h / 2) << "axis " << c;
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(GridRuns, ThawRunVdbOf,
+                         ::testing::Values("tiny_cube.toml", "tiny_cylinder.toml"));
 
 }  // namespace
 }  // namespace thaw::pipeline

@@ -41,6 +41,21 @@ TEST(RunManifest, ResumesItemsUnderTheSameInputs) {
   EXPECT_TRUE(RunManifest(file).begin_stage("render", "h1"));
 }
 
+TEST(RunManifest, AnItemsNoteIsItsSecondLineAndDoesNotChangeWhetherItIsDone) {
+  const fs::path file = scratch_file("note.json");
+  fs::remove_all(file.parent_path() / "run_items");
+  RunManifest m(file);
+  m.begin_stage("render", "h1");
+  m.mark_item_done("render", "frame_000003", "rank 1 wall_s 0.500 cpu_s 0.980");
+  EXPECT_TRUE(RunManifest(file).item_done("render", "frame_000003"));
+  std::ifstream in(file.parent_path() / "run_items" / "render" / "frame_000003");
+  std::string hash, note, rest;
+  ASSERT_TRUE(std::getline(in, hash) && std::getline(in, note));
+  EXPECT_EQ(hash, "h1");
+  EXPECT_EQ(note, "rank 1 wall_s 0.500 cpu_s 0.980");
+  EXPECT_FALSE(std::getline(in, rest));
+}
+
 TEST(RunManifest, ChangedInputsForgetTheStage) {
   const fs::path file = scratch_file("changed.json");
   RunManifest m(file);
