@@ -100,8 +100,15 @@ if [ -z "${SKIP_RENDER:-}" ]; then
   # Per-frame costs (the scaling model's c_mean and c_max) from the frames' item notes
   # (run_items/render/frame_NNNNNN, second line "rank R wall_s W cpu_s C"), last run.
   notes() { tail -q -n 1 "$work/$1/run_items/render/"frame_*; }
-  echo "per-frame CPU s, A (1 thread), last run: $(notes A | awk '{ s += $7; if ($7 > m) m = $7; if (!n++ || $7 < l) l = $7 } END { printf "mean %.3f, min %.3f, max %.3f, max/mean %.2f", s / n, l, m, m * n / s }')"
-  echo "B's split, last run: $(notes B | awk '{ f[$2]++; w[$2] += $5 } END { for (r in f) printf "rank %s %d frames %.2f s busy; ", r, f[r], w[r] }')"
+  echo "per-frame CPU s, A (1 thread), last run: $(notes A | awk '{ s += $6; if ($6 > m) m = $6; if (!n++ || $6 < l) l = $6 } END { printf "mean %.3f, min %.3f, max %.3f, max/mean %.2f", s / n, l, m, m * n / s }')"
+  echo "B's split, last run: $(notes B | awk '{ f[$2]++; c[$2] += $6 } END { for (r in f) printf "rank %s: %d frames, %.2f s CPU; ", r, f[r], c[r] }')"
+  # The load-independent estimate of B's efficiency on an idle machine, from CPU seconds only:
+  # the work B adds to the frames (sum of A's frame CPU / sum of B's), times the balance of a
+  # dynamic hand-out of A's frame costs, in frame order, to 2 ranks (list scheduling: each frame
+  # to the rank free first; sum / (2 x the later rank's finish)).
+  work=$(ratio "$(notes A | awk '{ s += $6 } END { print s }') / $(notes B | awk '{ s += $6 } END { print s }')")
+  balance=$(notes A | awk '{ if (t0 <= t1) t0 += $6; else t1 += $6; s += $6 } END { printf "%.3f", s / (2 * (t0 > t1 ? t0 : t1)) }')
+  echo "render, idle-machine estimate from CPU seconds: work A/B $work x balance $balance = $(ratio "$work * $balance")"
   for w in min med; do
     echo "mesh + render, $w: efficiency A / (2 B) = $(ratio "(${v[mesh,A,$w]} + ${v[render,A,$w]}) / (2 * (${v[mesh,B,$w]} + ${v[render,B,$w]}))")"
   done
