@@ -106,9 +106,9 @@ if [ -z "${SKIP_RENDER:-}" ]; then
   # the work B adds to the frames (sum of A's frame CPU / sum of B's), times the balance of a
   # dynamic hand-out of A's frame costs, in frame order, to 2 ranks (list scheduling: each frame
   # to the rank free first; sum / (2 x the later rank's finish)).
-  work=$(ratio "$(notes A | awk '{ s += $6 } END { print s }') / $(notes B | awk '{ s += $6 } END { print s }')")
+  added=$(ratio "$(notes A | awk '{ s += $6 } END { print s }') / $(notes B | awk '{ s += $6 } END { print s }')")
   balance=$(notes A | awk '{ if (t0 <= t1) t0 += $6; else t1 += $6; s += $6 } END { printf "%.3f", s / (2 * (t0 > t1 ? t0 : t1)) }')
-  echo "render, idle-machine estimate from CPU seconds: work A/B $work x balance $balance = $(ratio "$work * $balance")"
+  echo "render, idle-machine estimate from CPU seconds: work A/B $added x balance $balance = $(ratio "$added * $balance")"
   for w in min med; do
     echo "mesh + render, $w: efficiency A / (2 B) = $(ratio "(${v[mesh,A,$w]} + ${v[render,A,$w]}) / (2 * (${v[mesh,B,$w]} + ${v[render,B,$w]}))")"
   done
