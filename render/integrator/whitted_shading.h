@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <optional>
 #include <vector>
 
@@ -98,7 +99,8 @@ class WhittedShading {
         m_caustics(caustics && !caustics->empty() ? caustics : nullptr),
         m_max_depth(scene.settings().max_depth),
         m_min_weight(static_cast<float>(scene.settings().min_weight)),
-        m_pixel_spread(texture_cone_spread(scene)) {
+        m_pixel_spread(texture_cone_spread(scene)),
+        m_haze_distance(scene.environment().haze_distance) {
     if (scene.environment().light_surfaces) m_environment_occluders.emplace(scene);
     for (const SceneObject& o : scene.objects())
       if (o.dielectric && o.index_matched) m_interfaces_stop_shadow_rays = false;
@@ -184,6 +186,13 @@ class WhittedShading {
     }
     if constexpr (Derived::kAbsorption) {
       if (absorbs) l *= segment;
+    }
+    if (m_haze_distance > 0.0f && medium == m_scene.camera_medium()) {
+      // Aerial perspective ([environment] haze_distance): the surface fades into the sky at the
+      // horizon, which the floor reaches at infinity: no step where sky and floor meet.
+      const float fade = std::exp(-hit.t / m_haze_distance);
+      l = l * fade + self().illuminant(m_scene.environment().haze_radiance(ray.direction), path) *
+                         (1.0f - fade);
     }
     m_cone = cone_at_origin;
     return l;
@@ -302,12 +311,14 @@ class WhittedShading {
       const Rgb e = m_caustics->irradiance(si.p, ng);
       if (!e.is_black()) result += albedo * self().illuminant(e, path) * mat.kd;
     }
-    // The environment's irradiance ([environment] light_surfaces; environment_lighting.h), in the
-    // same units: its sphere-light caps taken out, opaque occluders found by rays.
+    // The environment's irradiance ([environment] light_surfaces; environment_lighting.h): its
+    // sphere-light caps taken out, opaque occluders found by rays, reflected by the Lambertian
+    // BRDF albedo / pi (a white floor in a uniform surround of radiance L shows L: the furnace).
     if (m_environment_occluders) {
       const Rgb e = environment_irradiance(m_scene, *m_environment_occluders, si.p, si.p_error, ng,
                                            ns, si.object, depth, m_camera_sample, m_rays);
-      if (!e.is_black()) result += albedo * self().illuminant(e, path) * mat.kd;
+      if (!e.is_black())
+        result += albedo * self().illuminant(e, path) * (mat.kd * std::numbers::inv_pi_v<float>);
     }
     if (mat.kind != Material::Kind::phong || depth >= m_max_depth) return result;
     if (mat.reflectance > 0.0f && self().weight(beta, path) * mat.reflectance >= m_min_weight) {
@@ -473,6 +484,7 @@ class WhittedShading {
     float width = 0, spread = 0;
   };
   float m_pixel_spread = 0;
+  float m_haze_distance = 0;
   RayCone m_cone{};
 };
 

@@ -6,7 +6,8 @@
 // bodies read as transparent. A sky may carry rectangular panels (soft boxes, windows) that the
 // ice reflects and refracts. Seen by rays that escape (camera, reflected, refracted); with
 // `light_surfaces` it also lights matte and phong surfaces through its irradiance (irradiance_sh.h;
-// occlusion: environment_lighting.h). Knows nothing about scenes or rays beyond a direction.
+// occlusion: environment_lighting.h), and with `haze_distance` it is the colour far surfaces fade
+// into (haze_radiance). Knows nothing about scenes or rays beyond a direction.
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -64,6 +65,9 @@ struct Environment {
   /// `occlusion_samples` rays per shading point and camera sample where something opaque may hide
   /// part of it, and the unoccluded irradiance from `irradiance_sh` (set by build_scene)
   bool light_surfaces = false;
+  /// aerial perspective: distance [scene units] over which a surface seen through the camera's
+  /// medium fades to the sky at the horizon by exp(-t / haze_distance); 0 = none
+  float haze_distance = 0.0f;
   int occlusion_samples = 16;
   IrradianceSH irradiance_sh;
 
@@ -81,6 +85,18 @@ struct Environment {
       if (c > 0.0f) l += p.radiance * c;
     }
     return l;
+  }
+
+  /// The haze's radiance along unit direction d: the environment at the horizon below or above
+  /// d (panels left out), which is what an endless horizontal path through the haze shows, so a
+  /// surface far away fades exactly into the sky behind it at the horizon.
+  Rgb haze_radiance(const Vec3& d) const {
+    if (kind == Kind::constant) return background;
+    if (kind == Kind::sky) return horizon;  // the gradient at elevation 0, in every azimuth
+    const Vec3 h = d - up * dot(d, up);
+    const float len = length(h);
+    const Vec3 dir = len > 1e-6f ? h / len : Vec3{1.0f, 0.0f, 0.0f};
+    return radiance(dir);
   }
 
   /// sky: the gradient without panels.

@@ -1,8 +1,9 @@
 #pragma once
 // Light from the environment (sky, lat-long map) on matte and phong surfaces, for
 // `[environment] light_surfaces = true`: the irradiance E = integral of L_env(w) V(w) cos dw at a
-// shading point, in the units of direct light (a matte surface shows albedo * E, as under a
-// sphere light of the same radiance). Noise-free where nothing opaque can hide the sky:
+// shading point, which the integrator reflects with the Lambertian BRDF albedo / pi (a white
+// floor in a uniform surround of radiance L shows L: the white furnace). Noise-free where nothing
+// opaque can hide the sky:
 // - unoccluded, E comes from the environment's order-2 spherical harmonics (irradiance_sh.h);
 // - sphere lights are opaque: the solid angle of each is taken out analytically (its cap's
 //   exact irradiance per unit radiance, Snyder's form at the horizon, times the environment's

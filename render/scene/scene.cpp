@@ -300,6 +300,7 @@ class SceneBuilder {
     Environment& env = m_s.m_environment;
     env.light_surfaces = m_desc.environment.light_surfaces;
     env.occlusion_samples = m_desc.environment.occlusion_samples;
+    env.haze_distance = static_cast<float>(m_desc.environment.haze_distance);
     if (env.light_surfaces)
       env.irradiance_sh = IrradianceSH::project([&env](const Vec3& d) { return env.radiance(d); });
   }

@@ -134,6 +134,8 @@ struct EnvironmentDescription {
   /// shadow rays per shading point and camera sample where an opaque object may hide the sky,
   /// 1..1024 (8x in partly hidden places, at most 64)
   int occlusion_samples = 16;
+  /// aerial perspective distance [scene units], 0 (none) or (0, 1e9]
+  double haze_distance = 0.0;
 };
 
 struct CameraDescription {

@@ -176,6 +176,8 @@ void parse_environment(const TomlTable& env, SceneDescription& s) {
   e.light_surfaces = env.get_bool("light_surfaces", false);
   e.occlusion_samples =
       int_key(env, "occlusion_samples", e.occlusion_samples, environment_samples_problem);
+  e.haze_distance =
+      checked(env, "haze_distance", env.get_double("haze_distance", 0.0), environment_haze_problem);
   if (kind == "constant") {
     e.kind = EnvironmentDescription::Kind::constant;
     return;

@@ -172,6 +172,10 @@ std::optional<std::string> environment_samples_problem(long long samples) {
   return int_between(samples, 1, kMaxLightSamples);
 }
 
+std::optional<std::string> environment_haze_problem(double distance) {
+  return real_between(distance, 0.0, 1e9, "");
+}
+
 std::optional<std::string> panel_size_problem(double degrees) {
   if (degrees > 0.0 && degrees < 170.0) return std::nullopt;
   return "must be in (0, 170) degrees (got " + num(degrees) + ")";
@@ -279,6 +283,8 @@ std::optional<SceneProblem> find_scene_problem(const SceneDescription& s) {
       return SceneProblem{"environment.rotation_deg", *p};
   if (auto p = environment_samples_problem(s.environment.occlusion_samples))
     return SceneProblem{"environment.occlusion_samples", *p};
+  if (auto p = environment_haze_problem(s.environment.haze_distance))
+    return SceneProblem{"environment.haze_distance", *p};
   for (std::size_t i = 0; i < s.environment.panels.size(); ++i) {
     const PanelDescription& panel = s.environment.panels[i];
     const std::string key = "environment.panels[" + std::to_string(i) + "].";

@@ -71,6 +71,8 @@ std::optional<std::string> environment_exponent_problem(double exponent);
 std::optional<std::string> environment_rotation_problem(double degrees);
 /// occlusion_samples of an environment lighting surfaces: 1..1024
 std::optional<std::string> environment_samples_problem(long long samples);
+/// haze_distance of an environment: [0, 1e9] scene units (0 = no haze)
+std::optional<std::string> environment_haze_problem(double distance);
 /// width_deg / height_deg of a sky panel: (0, 170)
 std::optional<std::string> panel_size_problem(double degrees);
 /// edge_deg of a sky panel: [0, 30]

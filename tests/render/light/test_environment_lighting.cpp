@@ -2,7 +2,8 @@
 // receives pi L (no ray cast where nothing opaque can hide the sky); a sphere light takes its cap
 // out exactly (nothing counted twice); a dielectric ball lets the environment through; an opaque
 // ball hides its cap (cosine-weighted share sin^2(sigma) straight above), found by stratified
-// rays within the scrambled-net error bound; and a rendered matte floor shows albedo * pi L.
+// rays within the scrambled-net error bound; and a rendered matte floor shows albedo * L (the
+// white furnace: the Lambertian BRDF).
 #include "render/light/environment_lighting.h"
 
 #include <gtest/gtest.h>
@@ -138,7 +139,7 @@ TEST(EnvironmentLighting, FloorHidesTheLowerHalfFromAWall) {
   EXPECT_GT(rays, 0u);
 }
 
-TEST(EnvironmentLighting, RenderedMatteFloorShowsAlbedoTimesE) {
+TEST(EnvironmentLighting, RenderedMatteFloorShowsAlbedoTimesL) {
   SceneDescription d = floor_under_uniform_sky();
   d.camera.position = {0, 1, 0};
   d.camera.look_at = {0, 0, 0};
@@ -147,8 +148,27 @@ TEST(EnvironmentLighting, RenderedMatteFloorShowsAlbedoTimesE) {
   d.image.height = 8;
   const Scene scene = build_scene(d);
   const RenderResult r = render(scene, RenderOptions{});
-  // albedo 0.5 * pi L, in the units of direct light
-  EXPECT_NEAR(r.image.at(4, 4).g, 0.5 * std::numbers::pi * kL, 1e-4);
+  // The white furnace: the Lambertian BRDF albedo / pi under E = pi L shows albedo * L.
+  EXPECT_NEAR(r.image.at(4, 4).g, 0.5 * kL, 1e-5);
+}
+
+TEST(EnvironmentLighting, HazeFadesASurfaceIntoTheHorizonSky) {
+  // Aerial perspective: a surface 1 away behind haze of distance 2 keeps exp(-1/2) of its
+  // radiance (the furnace's albedo L) and takes the rest from the horizon sky (here L).
+  SceneDescription d = floor_under_uniform_sky();
+  d.camera.position = {0, 1, 0};
+  d.camera.look_at = {0, 0, 0};
+  d.camera.up = {0, 0, -1};
+  d.image.width = 8;
+  d.image.height = 8;
+  d.environment.haze_distance = 2.0;
+  const RenderResult r = render(build_scene(d), RenderOptions{});
+  // Pixel (4, 4)'s centre is half a pixel off the axis in x and y: tan(20 deg) / 8 each (the
+  // default 40 degree field over 8 pixels), so t = sqrt(1 + 2 (tan(20 deg) / 8)^2).
+  const double half_pixel = std::tan(20.0 * std::numbers::pi / 180.0) / 8.0;
+  const double t = std::sqrt(1.0 + 2.0 * half_pixel * half_pixel);
+  const double fade = std::exp(-t / 2.0);
+  EXPECT_NEAR(r.image.at(4, 4).g, 0.5 * kL * fade + kL * (1.0 - fade), 1e-5);
 }
 
 }  // namespace

@@ -356,6 +356,8 @@ TEST(SceneParser, BadEnvironmentIsAnError) {
   expect_error("[camera]", with("kind = \"sky\"\nlight_surfaces = true\nocclusion_samples = 0"),
                "environment.occlusion_samples", "");
   expect_error("[camera]", with("light_surfaces = \"yes\""), "environment.light_surfaces", "");
+  expect_error("[camera]", with("haze_distance = -1.0"), "environment.haze_distance",
+               "between 0 and");
   const std::string panel = "kind = \"sky\"\n[[environment.panels]]\n";
   expect_error("[camera]",
                with(panel + "direction = [0.0, 1.0, 0.0]\nwidth_deg = 200.0\nheight_deg = 10.0"),
