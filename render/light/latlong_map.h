@@ -6,7 +6,7 @@
 //   v = acos(d.y) / pi                    row: the top row is the zenith, the bottom the nadir
 // Texel (i, j) covers u in [i, i + 1) / width and v in [j, j + 1) / height; lookups interpolate
 // bilinearly between texel centres (wrapping in u, clamped in v). Knows nothing about scenes or
-// rays beyond a direction; reading files is load_latlong_hdr()'s job.
+// rays beyond a direction; reading files is load_latlong_map()'s job (Radiance .hdr, OpenEXR .exr).
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,5 +47,13 @@ inline constexpr int kMaxLatLongWidth = 16384;
 /// returns nullopt and sets `problem` ("no such file", "is not a Radiance HDR image", "is
 /// 300 x 200 texels; a lat-long map is twice as wide as high", ...).
 std::optional<LatLongMap> load_latlong_hdr(const std::string& path, std::string& problem);
+
+/// Reads an OpenEXR image (.exr: its R, G, B channels, half or float; a missing channel reads
+/// as 0) as a lat-long map (latlong_exr.cpp). On failure returns nullopt and sets `problem` (not
+/// 2:1, a negative or non-finite texel, or OpenEXR's own message for a damaged or truncated file).
+std::optional<LatLongMap> load_latlong_exr(const std::string& path, std::string& problem);
+
+/// By the file name's extension: ".exr" (any case) through OpenEXR, anything else as Radiance.
+std::optional<LatLongMap> load_latlong_map(const std::string& path, std::string& problem);
 
 }  // namespace thaw::render

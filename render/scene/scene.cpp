@@ -285,7 +285,7 @@ class SceneBuilder {
                                                ? std::filesystem::path(e.file)
                                                : m_desc.base_dir / e.file;
         std::string problem;
-        auto loaded = load_latlong_hdr(path.string(), problem);
+        auto loaded = load_latlong_map(path.string(), problem);
         if (!loaded)
           throw UserError(m_src, "environment.file", "'" + path.string() + "' " + problem);
         map = std::make_shared<const LatLongMap>(std::move(*loaded));

@@ -211,7 +211,7 @@ void parse_environment(const TomlTable& env, SceneDescription& s) {
                                            ? std::filesystem::path(e.file)
                                            : s.base_dir / e.file;
     std::string problem;
-    auto map = load_latlong_hdr(path.string(), problem);
+    auto map = load_latlong_map(path.string(), problem);
     if (!map) env.fail("file", "'" + path.string() + "' " + problem);
     e.map = std::make_shared<const LatLongMap>(std::move(*map));
   } else {

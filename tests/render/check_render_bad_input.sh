@@ -71,6 +71,9 @@ expect_bad env_intensity "environment.intensity" "$(env env_intensity "file = \"
 expect_bad env_rotation "environment.rotation_deg" "$(env env_rotation "file = \"$src/data/environments/studio.hdr\"\nrotation_deg = 1000.0")"
 head -c 9000 "$src/data/environments/studio.hdr" >"$work/cut.hdr"
 expect_bad env_truncated "environment.file.*cut.hdr' is truncated" "$(env env_truncated "file = \"$work/cut.hdr\"")"
+"$thaw" render "$good" --width 64 --height 32 -o "$work/map.exr" --quiet >/dev/null 2>&1
+head -c 2000 "$work/map.exr" >"$work/cut.exr"
+expect_bad env_truncated_exr "environment.file.*cut.exr' is not a readable OpenEXR image" "$(env env_truncated_exr "file = \"$work/cut.exr\"")"
 OUT="$work/out.jpg" expect_bad bad_extension "unsupported output format" "$good"
 OUT="$work/no/such/dir/out.png" expect_bad missing_out_dir "does not exist" "$good"
 

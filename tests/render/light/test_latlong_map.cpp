@@ -5,6 +5,7 @@
 // by one byte or by half, which stb_image alone would read with black texels).
 #include "render/light/latlong_map.h"
 
+#include <OpenEXR/ImfRgbaFile.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -151,6 +152,54 @@ TEST(LatLongMap, BadFilesAreNamed) {
       EXPECT_NE(problem.find("is truncated"), std::string::npos) << problem;
     }
   }
+  std::filesystem::remove_all(dir);
+}
+
+/// Writes a w x h OpenEXR RGBA (half) image whose texel (i, j) is f(i, j).
+template <class F>
+void write_exr(const std::string& path, int w, int h, F f) {
+  std::vector<Imf::Rgba> px(static_cast<std::size_t>(w) * h);
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      const RgbD c = f(i, j);
+      px[static_cast<std::size_t>(j) * w + i] = Imf::Rgba(float(c[0]), float(c[1]), float(c[2]));
+    }
+  Imf::RgbaOutputFile out(path.c_str(), w, h, Imf::WRITE_RGBA);
+  out.setFrameBuffer(px.data(), 1, static_cast<std::size_t>(w));
+  out.writePixels(h);
+}
+
+TEST(LatLongMap, ReadsOpenExrFilesAndNamesBadOnes) {
+  const auto dir = temp_dir();
+  const std::string path = (dir / "sky.EXR").string();  // the extension in any case
+  // Values exact in half precision.
+  write_exr(path, 8, 4, [](int i, int j) { return RgbD{0.25 * (i + 1), 0.5, 2.0 * j}; });
+  std::string problem;
+  const auto map = load_latlong_map(path, problem);
+  ASSERT_TRUE(map) << problem;
+  EXPECT_EQ(map->width(), 8);
+  EXPECT_EQ(map->texel(3, 0).r, 1.0f);
+  EXPECT_EQ(map->texel(3, 2).b, 4.0f);
+  EXPECT_EQ(map->texel(0, 1).g, 0.5f);
+  // Truncated by half: OpenEXR's own error, one line.
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string cut = (dir / "cut.exr").string();
+  std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  EXPECT_FALSE(load_latlong_map(cut, problem));
+  EXPECT_NE(problem.find("OpenEXR"), std::string::npos) << problem;
+  EXPECT_EQ(problem.find('\n'), std::string::npos) << problem;
+  const std::string square = (dir / "square.exr").string();
+  write_exr(square, 4, 4, [](int, int) { return RgbD{1, 1, 1}; });
+  EXPECT_FALSE(load_latlong_map(square, problem));
+  EXPECT_NE(problem.find("twice as wide as high"), std::string::npos) << problem;
+  const std::string negative = (dir / "negative.exr").string();
+  write_exr(negative, 4, 2, [](int i, int) { return RgbD{i == 3 ? -1.0 : 1.0, 1, 1}; });
+  EXPECT_FALSE(load_latlong_map(negative, problem));
+  EXPECT_NE(problem.find("negative or non-finite texel (column 3, row 0)"), std::string::npos)
+      << problem;
+  EXPECT_FALSE(load_latlong_map((dir / "none.exr").string(), problem));
+  EXPECT_EQ(problem, "no such file");
   std::filesystem::remove_all(dir);
 }
 
