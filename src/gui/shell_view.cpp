@@ -50,12 +50,15 @@ ShellView::ShellView(QWidget* parent) : QVTKOpenGLNativeWidget(parent) {
   vtkNew<vtkCallbackCommand> on_start;
   on_start->SetClientData(this);
   on_start->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
-    static_cast<ShellView*>(self)->set_quick(true);
+    auto* view = static_cast<ShellView*>(self);
+    view->m_interacting = true;
+    view->set_quick(true);
   });
   vtkNew<vtkCallbackCommand> on_end;
   on_end->SetClientData(this);
   on_end->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
     auto* view = static_cast<ShellView*>(self);
+    view->m_interacting = false;
     view->settle();
     view->report_camera();
   });
@@ -125,9 +128,12 @@ void ShellView::set_scene(const SceneProps& props) {
     for (int k = 0; k < 3; ++k) d += std::abs(a[k] - b[k]), n += std::abs(a[k]) + std::abs(b[k]);
     return d <= 1e-9 * std::max(1.0, n);
   };
-  // The view's own camera written back (an orbit) comes back unchanged: nothing to do then.
-  if (!m_scene_camera || !near(now.position, c.position) || !near(now.focal_point, c.look_at) ||
-      !near(now.view_up, c.up) || std::abs(now.vertical_fov_deg - c.vertical_fov_deg) > 1e-9) {
+  // The view's own camera written back (an orbit) comes back unchanged: nothing to do then; and
+  // the mouse's camera is not taken away while it drags (its end writes it back).
+  const bool same = near(now.position, c.position) && near(now.focal_point, c.look_at) &&
+                    near(now.view_up, c.up) &&
+                    std::abs(now.vertical_fov_deg - c.vertical_fov_deg) <= 1e-9;
+  if (!m_interacting && (!m_scene_camera || !same)) {
     vtkCamera* cam = m_renderer->GetActiveCamera();
     cam->SetPosition(c.position.data());
     cam->SetFocalPoint(c.look_at.data());

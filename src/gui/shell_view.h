@@ -73,6 +73,8 @@ class ShellView : public QVTKOpenGLNativeWidget {
   std::size_t m_scene_objects = 0, m_scene_lights = 0;
   bool m_scene_camera = false;
   bool m_quick = false;
+  /// between the interactor's start and end of an orbit, pan or zoom
+  bool m_interacting = false;
 };
 
 }  // namespace thaw::gui
