@@ -332,7 +332,11 @@ SceneProps make_scene_props(const render::SceneDescription& desc,
   auto reuse = [&](const std::string& key) -> vtkSmartPointer<vtkActor> {
     if (!previous) return nullptr;
     for (std::size_t k = 0; k < previous->actor_keys.size(); ++k)
-      if (previous->actor_keys[k] == key) return previous->actors[k];
+      if (previous->actor_keys[k] == key) {
+        props.textures.push_back(previous->textures[k]);
+        props.quick_colors.push_back(previous->quick_colors[k]);
+        return previous->actors[k];
+      }
     return nullptr;
   };
   const Vec3d focus = desc.camera.look_at;
@@ -348,6 +352,8 @@ SceneProps make_scene_props(const render::SceneDescription& desc,
       props.actors.push_back(actor);
       continue;
     }
+    const render::MaterialDescription* material =
+        o.is_dielectric() ? nullptr : find_material(desc, o.material);
     vtkSmartPointer<vtkPolyData> data;
     vtkSmartPointer<vtkTexture> texture;
     bool smooth = false;
@@ -380,6 +386,9 @@ SceneProps make_scene_props(const render::SceneDescription& desc,
     vtkSmartPointer<vtkActor> actor = actor_of(data, smooth);
     set_look(actor, desc, o, water);
     actor->GetMapper()->ScalarVisibilityOff();
+    props.textures.push_back(texture);
+    const RgbD mean = material ? display(mean_colour(material->texture)) : RgbD{1.0, 1.0, 1.0};
+    props.quick_colors.push_back(mean);
     if (texture) {
       actor->SetTexture(texture);
       actor->GetProperty()->SetColor(1.0, 1.0, 1.0);  // the texture's colours as they are
@@ -396,6 +405,8 @@ SceneProps make_scene_props(const render::SceneDescription& desc,
       props.actors.push_back(actor);
       continue;
     }
+    props.textures.push_back(nullptr);
+    props.quick_colors.push_back({1.0, 1.0, 1.0});
     const bool sphere = l.kind == render::LightDescription::Kind::sphere;
     vtkSmartPointer<vtkActor> actor =
         actor_of(sphere_data(l.position, sphere ? l.radius : 0.03 * distance), false);

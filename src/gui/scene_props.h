@@ -7,6 +7,9 @@
 // into the view by the GUI thread. Knows nothing of Qt or the widgets.
 #include <vtkActor.h>
 #include <vtkSmartPointer.h>
+#include <vtkTexture.h>
+
+#include <array>
 
 #include <cstdint>
 #include <memory>
@@ -22,6 +25,10 @@ struct SceneProps {
   std::vector<vtkSmartPointer<vtkActor>> actors;
   /// what each actor was made from: an actor of an equal key draws the same
   std::vector<std::string> actor_keys;
+  /// each actor's texture (null: none) and the colour drawn instead of it while the view is
+  /// drawn quick (the texture's mean)
+  std::vector<vtkSmartPointer<vtkTexture>> textures;
+  std::vector<std::array<double, 3>> quick_colors;
   std::size_t objects = 0, lights = 0;
   /// the frame's camera (scene units, degrees)
   render::CameraDescription camera;

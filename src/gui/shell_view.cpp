@@ -99,8 +99,14 @@ bool ShellView::edges_shown() const {
 void ShellView::set_quick(bool quick) {
   m_quick = quick;
   if (m_outer) m_outer->GetProperty()->SetEdgeVisibility(!quick);  // the look of surface_actor.h
-  for (const auto& actor : m_scene)
-    if (vtkTexture* texture = actor->GetTexture()) texture->SetInterpolate(!quick);
+  // A textured actor (the floor's checker) is drawn in its texture's mean colour while quick:
+  // llvmpipe's texture sampling was most of a draw's CPU time.
+  for (std::size_t k = 0; k < m_scene.size(); ++k) {
+    if (!m_scene_textures[k]) continue;
+    m_scene[k]->SetTexture(quick ? nullptr : m_scene_textures[k].Get());
+    const std::array<double, 3> c = quick ? m_quick_colors[k] : std::array<double, 3>{1, 1, 1};
+    m_scene[k]->GetProperty()->SetColor(c[0], c[1], c[2]);
+  }
 }
 
 void ShellView::settle() {
@@ -114,6 +120,8 @@ void ShellView::set_scene(const SceneProps& props) {
   if (props.key != m_scene_key) {
     for (const auto& a : m_scene) m_renderer->RemoveActor(a);
     m_scene = props.actors;
+    m_scene_textures = props.textures;
+    m_quick_colors = props.quick_colors;
     for (const auto& a : m_scene) m_renderer->AddActor(a);
     set_quick(m_quick);
     m_scene_key = props.key;

@@ -39,8 +39,8 @@ class ShellView : public QVTKOpenGLNativeWidget {
   std::size_t scene_lights() const { return m_scene_lights; }
   /// Quick drawing, while the slider is dragged or the view orbited: the outer surface without its
   /// triangle edges (with software OpenGL, llvmpipe, their extra pass made each draw 2.5x
-  /// slower) and the floor's checker texture without filtering (trilinear mipmapping tripled the
-  /// draw's CPU time: bench/gui/bench_gui). Takes effect at the next draw.
+  /// slower) and the floor in its checker's mean colour (llvmpipe's texture sampling was most of
+  /// a draw's CPU time: bench/gui/bench_gui). Takes effect at the next draw.
   void set_quick(bool quick);
   /// Draws the view at rest again (edges, filtered textures) if it was quick.
   void settle();
@@ -69,6 +69,8 @@ class ShellView : public QVTKOpenGLNativeWidget {
   vtkSmartPointer<vtkTextActor> m_label;
   long m_triangles = 0;
   std::vector<vtkSmartPointer<vtkActor>> m_scene;
+  std::vector<vtkSmartPointer<vtkTexture>> m_scene_textures;
+  std::vector<std::array<double, 3>> m_quick_colors;
   std::string m_scene_key;
   std::size_t m_scene_objects = 0, m_scene_lights = 0;
   bool m_scene_camera = false;
