@@ -194,8 +194,10 @@ TEST(PngEncoder, EachRowTakesTheFilterWithTheSmallestSumOfAbsoluteBytes) {
         std::array<std::uint64_t, 5> cost{};
         for (std::size_t i = 0; i < n; ++i) {
           const std::uint8_t* row = raw.data() + std::size_t(y) * n;
+          // the row above only where it exists (row - n before the first row is out of bounds)
+          const std::uint8_t* up = y > 0 ? row - n : nullptr;
           const int x = row[i], a = i >= bpp ? row[i - bpp] : 0;
-          const int b = y > 0 ? row[i - n] : 0, cc = y > 0 && i >= bpp ? row[i - n - bpp] : 0;
+          const int b = up ? up[i] : 0, cc = up && i >= bpp ? up[i - bpp] : 0;
           const int v[5] = {x, x - a, x - b, x - (a + b) / 2, x - paeth(a, b, cc)};
           for (int k = 0; k < 5; ++k) {
             f[k].push_back(static_cast<std::uint8_t>(v[k]));
