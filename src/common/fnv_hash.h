@@ -7,7 +7,7 @@
 
 namespace thaw {
 
-inline constexpr std::uint64_t kFnv1aOffset = 1469598103934665603ULL;
+inline constexpr std::uint64_t kFnv1aOffset = 14695981039346656037ULL;  // 0xcbf29ce484222325
 
 /// FNV-1a of `bytes`, continuing from `hash` (the offset basis for a fresh hash).
 constexpr std::uint64_t fnv1a_64(std::string_view bytes, std::uint64_t hash = kFnv1aOffset) {

@@ -1,23 +1,20 @@
 #pragma once
 // Content fingerprints for deciding what is up to date: 64-bit FNV-1a over bytes (Fowler, Noll,
-// Vo). Not cryptographic: it detects edits, it does not resist forgery.
+// Vo; src/common/fnv_hash.h). Not cryptographic: it detects edits, it does not resist forgery.
 #include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
+
+#include "src/common/fnv_hash.h"
 
 namespace thaw::pipeline {
 
 class ContentHash {
  public:
   ContentHash& add(std::string_view bytes) noexcept {
-    for (unsigned char c : bytes) {
-      m_state ^= c;
-      m_state *= 0x100000001b3ULL;
-    }
-    // A separator so ("ab","c") and ("a","bc") differ.
-    m_state ^= 0xff;
-    m_state *= 0x100000001b3ULL;
+    // A separator byte after each part so ("ab","c") and ("a","bc") differ.
+    m_state = fnv1a_64("\xff", fnv1a_64(bytes, m_state));
     return *this;
   }
   ContentHash& add(double v);
@@ -27,7 +24,7 @@ class ContentHash {
   std::string hex() const;
 
  private:
-  std::uint64_t m_state = 0xcbf29ce484222325ULL;
+  std::uint64_t m_state = kFnv1aOffset;
 };
 
 }  // namespace thaw::pipeline
