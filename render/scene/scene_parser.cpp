@@ -221,6 +221,151 @@ void parse_environment(const TomlTable& env, SceneDescription& s) {
       checked(env, "intensity", env.get_double("intensity", 1.0), environment_intensity_problem);
 }
 
+CausticSettings parse_caustics(const TomlTable& c) {
+  CausticSettings caustics;
+  caustics.enabled = c.get_bool("enabled", true);
+  if (c.has("photons"))
+    caustics.photons =
+        checked<long long>(c, "photons", c.get_int("photons"), caustic_photons_problem);
+  if (c.has("radius"))
+    caustics.radius = checked(c, "radius", c.get_double("radius"), caustic_radius_problem);
+  return caustics;
+}
+
+CameraDescription parse_camera(const TomlTable& cam) {
+  CameraDescription camera;
+  camera.position = cam.get_vec3("position");
+  camera.look_at = cam.get_vec3("look_at");
+  camera.up = cam.has("up") ? unit_vec3(cam, "up") : Vec3d{0.0, 1.0, 0.0};
+  camera.vertical_fov_deg =
+      checked(cam, "vertical_fov_deg", cam.get_double("vertical_fov_deg"), vertical_fov_problem);
+  camera.medium = cam.get_string("medium", "");
+  if (const auto problem = camera_problem(camera)) cam.fail(problem->key, problem->problem);
+  return camera;
+}
+
+LightDescription parse_light(const TomlTable& l) {
+  LightDescription light;
+  const std::string kind = l.get_string("kind", "point");
+  if (kind == "point") {
+    light.kind = LightDescription::Kind::point;
+  } else if (kind == "sphere") {
+    light.kind = LightDescription::Kind::sphere;
+    light.radius = checked(l, "radius", l.get_double("radius"), light_radius_problem);
+    light.samples = int_key(l, "samples", light.samples, light_samples_problem);
+  } else {
+    l.fail("kind", "unknown light kind '" + kind + "' (expected point or sphere)");
+  }
+  light.position = l.get_vec3("position");
+  light.color = color3(l, "color", light.color);
+  light.intensity = l.require_non_negative("intensity", l.get_double("intensity", 1.0));
+  const std::string falloff = l.get_string("falloff", "none");
+  if (falloff == "none")
+    light.falloff = LightDescription::Falloff::none;
+  else if (falloff == "inverse_square")
+    light.falloff = LightDescription::Falloff::inverse_square;
+  else
+    l.fail("falloff", "unknown falloff '" + falloff + "' (expected none or inverse_square)");
+  return light;
+}
+
+/// [media.NAME] tables into `s.media`; returns every medium name an object may use.
+std::set<std::string> parse_media(const TomlTable& root, SceneDescription& s) {
+  std::set<std::string> media{"vacuum"};
+  const auto med = root.optional_table("media");
+  if (!med) return media;
+  for (const std::string& name : med->keys()) {
+    const TomlTable m = med->table(name);
+    MediumDescription md;
+    md.name = name;
+    if (m.has("ior")) md.ior = checked(m, "ior", m.get_double("ior"), ior_problem);
+    if (name == "vacuum")
+      m.fail(m.has("ior") ? "ior" : "", "'vacuum' is predefined (n = 1) and cannot be redefined");
+    // Everything else a medium may say (preset, sellmeier, ..., absorption): render/media.
+    md.spec = media::resolve_preset(media::parse_medium_spec(m, name));
+    media.insert(name);
+    s.media.push_back(md);
+  }
+  return media;
+}
+
+/// [materials.NAME] tables into `s.materials`; returns their names.
+std::set<std::string> parse_materials(const TomlTable& root, SceneDescription& s) {
+  std::set<std::string> materials;
+  if (auto mats = root.optional_table("materials")) {
+    for (const std::string& name : mats->keys()) {
+      s.materials.push_back(parse_material(name, mats->table(name)));
+      materials.insert(name);
+    }
+  }
+  return materials;
+}
+
+/// An object's `shape` and the keys that place it.
+void parse_shape(const TomlTable& o, ObjectDescription& obj) {
+  const std::string shape = o.get_string("shape");
+  if (shape == "sphere") {
+    obj.shape = ObjectDescription::Shape::sphere;
+    obj.center = o.get_vec3("center");
+    obj.radius = o.get_double("radius");
+  } else if (shape == "box") {
+    obj.shape = ObjectDescription::Shape::box;
+    obj.box_min = o.get_vec3("min");
+    obj.box_max = o.get_vec3("max");
+  } else if (shape == "plane") {
+    obj.shape = ObjectDescription::Shape::plane;
+    obj.point = o.get_vec3("point");
+    obj.normal = unit_vec3(o, "normal");
+  } else if (shape == "mesh") {
+    obj.shape = ObjectDescription::Shape::mesh;
+    const std::string file = o.get_string("file");
+    if (file.empty()) o.fail("file", "must name an OBJ file");
+    obj.mesh_file = file;
+    obj.scale = o.get_double("scale", 1.0);
+    obj.translate = o.get_vec3("translate", {0.0, 0.0, 0.0});
+    obj.smooth_normals = o.get_bool("smooth_normals", false);
+  } else {
+    o.fail("shape", "unknown shape '" + shape + "' (expected mesh, sphere, box or plane)");
+  }
+  if (const auto problem = object_problem(obj)) o.fail(problem->key, problem->problem);
+}
+
+/// An object is opaque (`material`) or a dielectric interface (`inside`, `outside`).
+void parse_surface(const TomlTable& o, const std::set<std::string>& materials,
+                   const std::set<std::string>& media, ObjectDescription& obj) {
+  const bool has_material = o.has("material");
+  const bool has_media = o.has("inside") || o.has("outside");
+  if (has_material && has_media)
+    o.fail("material",
+           "an object is either opaque (material) or a dielectric interface (inside, outside), "
+           "not both");
+  if (has_material) {
+    obj.material = o.get_string("material");
+    if (!materials.count(obj.material))
+      o.fail("material", "unknown material '" + obj.material + "'");
+  } else if (has_media) {
+    obj.inside = o.get_string("inside");
+    obj.outside = o.get_string("outside");
+    if (!media.count(obj.inside)) o.fail("inside", "unknown medium '" + obj.inside + "'");
+    if (!media.count(obj.outside)) o.fail("outside", "unknown medium '" + obj.outside + "'");
+    if (obj.inside == obj.outside) o.fail("outside", "inside and outside must be different media");
+    if (obj.shape == ObjectDescription::Shape::plane)
+      o.fail("inside",
+             "a plane is not closed and cannot be a dielectric interface; give it a material");
+  } else {
+    o.fail("shape", "object needs either material = \"...\" or inside/outside media");
+  }
+}
+
+ObjectDescription parse_object(const TomlTable& o, const std::set<std::string>& materials,
+                               const std::set<std::string>& media) {
+  ObjectDescription obj;
+  obj.label = o.has("name") ? o.get_string("name") : o.path();
+  parse_shape(o, obj);
+  parse_surface(o, materials, media, obj);
+  return obj;
+}
+
 }  // namespace
 
 SceneDescription parse_scene_string(const std::string& text, const std::string& source_name,
@@ -236,138 +381,24 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
   SceneDescription s;
   s.source_name = root.source_name();
   s.base_dir = base_dir;
-
   if (auto img = root.optional_table("image")) s.image = parse_image(*img, s.image);
-  if (auto c = root.optional_table("caustics")) {
-    s.caustics.enabled = c->get_bool("enabled", true);
-    if (c->has("photons"))
-      s.caustics.photons =
-          checked<long long>(*c, "photons", c->get_int("photons"), caustic_photons_problem);
-    if (c->has("radius"))
-      s.caustics.radius = checked(*c, "radius", c->get_double("radius"), caustic_radius_problem);
-  }
+  if (auto c = root.optional_table("caustics")) s.caustics = parse_caustics(*c);
   if (auto env = root.optional_table("environment")) parse_environment(*env, s);
-  if (auto cam = root.optional_table("camera")) {
-    s.camera.position = cam->get_vec3("position");
-    s.camera.look_at = cam->get_vec3("look_at");
-    s.camera.up = cam->has("up") ? unit_vec3(*cam, "up") : Vec3d{0.0, 1.0, 0.0};
-    s.camera.vertical_fov_deg = checked(*cam, "vertical_fov_deg",
-                                        cam->get_double("vertical_fov_deg"), vertical_fov_problem);
-    s.camera.medium = cam->get_string("medium", "");
-    if (const auto problem = camera_problem(s.camera)) cam->fail(problem->key, problem->problem);
-  } else if (!camera_optional) {
+  if (auto cam = root.optional_table("camera"))
+    s.camera = parse_camera(*cam);
+  else if (!camera_optional)
     root.fail("camera", "required table [camera] is missing");
-  }
   if (auto amb = root.optional_table("ambient")) {
     s.ambient.color = color3(*amb, "color", s.ambient.color);
     s.ambient.intensity = amb->require_non_negative("intensity", amb->get_double("intensity", 0.0));
   }
-  for (const TomlTable& l : root.array_of_tables("lights")) {
-    LightDescription light;
-    const std::string kind = l.get_string("kind", "point");
-    if (kind == "point") {
-      light.kind = LightDescription::Kind::point;
-    } else if (kind == "sphere") {
-      light.kind = LightDescription::Kind::sphere;
-      light.radius = checked(l, "radius", l.get_double("radius"), light_radius_problem);
-      light.samples = int_key(l, "samples", light.samples, light_samples_problem);
-    } else {
-      l.fail("kind", "unknown light kind '" + kind + "' (expected point or sphere)");
-    }
-    light.position = l.get_vec3("position");
-    light.color = color3(l, "color", light.color);
-    light.intensity = l.require_non_negative("intensity", l.get_double("intensity", 1.0));
-    const std::string falloff = l.get_string("falloff", "none");
-    if (falloff == "none")
-      light.falloff = LightDescription::Falloff::none;
-    else if (falloff == "inverse_square")
-      light.falloff = LightDescription::Falloff::inverse_square;
-    else
-      l.fail("falloff", "unknown falloff '" + falloff + "' (expected none or inverse_square)");
-    s.lights.push_back(light);
-  }
-  std::set<std::string> media{"vacuum"};
-  if (auto med = root.optional_table("media")) {
-    for (const std::string& name : med->keys()) {
-      const TomlTable m = med->table(name);
-      MediumDescription md;
-      md.name = name;
-      if (m.has("ior")) {
-        md.ior = checked(m, "ior", m.get_double("ior"), ior_problem);
-      }
-      if (name == "vacuum")
-        m.fail(m.has("ior") ? "ior" : "", "'vacuum' is predefined (n = 1) and cannot be redefined");
-      // Everything else a medium may say (preset, sellmeier, ..., absorption): render/media.
-      md.spec = media::resolve_preset(media::parse_medium_spec(m, name));
-      media.insert(name);
-      s.media.push_back(md);
-    }
-  }
-  std::set<std::string> materials;
-  if (auto mats = root.optional_table("materials")) {
-    for (const std::string& name : mats->keys()) {
-      s.materials.push_back(parse_material(name, mats->table(name)));
-      materials.insert(name);
-    }
-  }
+  for (const TomlTable& l : root.array_of_tables("lights")) s.lights.push_back(parse_light(l));
+  const std::set<std::string> media = parse_media(root, s);
+  const std::set<std::string> materials = parse_materials(root, s);
   if (!s.camera.medium.empty() && !media.count(s.camera.medium))
     root.table("camera").fail("medium", "unknown medium '" + s.camera.medium + "'");
-
-  const auto objects = root.array_of_tables("objects");
-  for (std::size_t i = 0; i < objects.size(); ++i) {
-    const TomlTable& o = objects[i];
-    ObjectDescription obj;
-    obj.label = o.has("name") ? o.get_string("name") : o.path();
-    const std::string shape = o.get_string("shape");
-    if (shape == "sphere") {
-      obj.shape = ObjectDescription::Shape::sphere;
-      obj.center = o.get_vec3("center");
-      obj.radius = o.get_double("radius");
-    } else if (shape == "box") {
-      obj.shape = ObjectDescription::Shape::box;
-      obj.box_min = o.get_vec3("min");
-      obj.box_max = o.get_vec3("max");
-    } else if (shape == "plane") {
-      obj.shape = ObjectDescription::Shape::plane;
-      obj.point = o.get_vec3("point");
-      obj.normal = unit_vec3(o, "normal");
-    } else if (shape == "mesh") {
-      obj.shape = ObjectDescription::Shape::mesh;
-      const std::string file = o.get_string("file");
-      if (file.empty()) o.fail("file", "must name an OBJ file");
-      obj.mesh_file = file;
-      obj.scale = o.get_double("scale", 1.0);
-      obj.translate = o.get_vec3("translate", {0.0, 0.0, 0.0});
-      obj.smooth_normals = o.get_bool("smooth_normals", false);
-    } else {
-      o.fail("shape", "unknown shape '" + shape + "' (expected mesh, sphere, box or plane)");
-    }
-    if (const auto problem = object_problem(obj)) o.fail(problem->key, problem->problem);
-    const bool has_material = o.has("material");
-    const bool has_media = o.has("inside") || o.has("outside");
-    if (has_material && has_media)
-      o.fail("material",
-             "an object is either opaque (material) or a dielectric interface (inside, outside), "
-             "not both");
-    if (has_material) {
-      obj.material = o.get_string("material");
-      if (!materials.count(obj.material))
-        o.fail("material", "unknown material '" + obj.material + "'");
-    } else if (has_media) {
-      obj.inside = o.get_string("inside");
-      obj.outside = o.get_string("outside");
-      if (!media.count(obj.inside)) o.fail("inside", "unknown medium '" + obj.inside + "'");
-      if (!media.count(obj.outside)) o.fail("outside", "unknown medium '" + obj.outside + "'");
-      if (obj.inside == obj.outside)
-        o.fail("outside", "inside and outside must be different media");
-      if (obj.shape == ObjectDescription::Shape::plane)
-        o.fail("inside",
-               "a plane is not closed and cannot be a dielectric interface; give it a material");
-    } else {
-      o.fail("shape", "object needs either material = \"...\" or inside/outside media");
-    }
-    s.objects.push_back(std::move(obj));
-  }
+  for (const TomlTable& o : root.array_of_tables("objects"))
+    s.objects.push_back(parse_object(o, materials, media));
   return s;
 }
 
