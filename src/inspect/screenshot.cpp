@@ -10,6 +10,7 @@
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
 
@@ -74,6 +75,111 @@ void add_legend(vtkRenderer* renderer, const std::vector<ScreenshotPanel>& panel
   }
 }
 
+/// Centre and radius of a sphere about the box centre holding every vertex of every panel.
+struct Framing {
+  double center[3] = {0.5, 0.5, 0.5};
+  double radius = 1.0;
+};
+
+Framing frame_all(const std::vector<ScreenshotPanel>& panels) {
+  double lo[3], hi[3];
+  std::fill(lo, lo + 3, std::numeric_limits<double>::infinity());
+  std::fill(hi, hi + 3, -std::numeric_limits<double>::infinity());
+  bool any = false;
+  for (const ScreenshotPanel& p : panels)
+    for (const SceneSurface& s : p.surfaces)
+      for (const auto& v : s.mesh.vertices) {
+        any = true;
+        for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], v[c]), hi[c] = std::max(hi[c], v[c]);
+      }
+  Framing f;
+  if (!any) return f;
+  for (int c = 0; c < 3; ++c) f.center[c] = 0.5 * (lo[c] + hi[c]);
+  // A sphere rather than the box: frames any orientation of the view.
+  double radius = 0;
+  for (const ScreenshotPanel& p : panels)
+    for (const SceneSurface& s : p.surfaces)
+      for (const auto& v : s.mesh.vertices) {
+        const double d[3] = {v[0] - f.center[0], v[1] - f.center[1], v[2] - f.center[2]};
+        radius = std::max(radius, std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+      }
+  if (radius > 0) f.radius = radius;
+  return f;
+}
+
+/// One camera for every panel, framed on the union of all surfaces, so sizes compare directly.
+void aim_camera(vtkCamera* camera, const Framing& f) {
+  camera->SetFocalPoint(f.center);
+  // An oblique view from above and in front: shows depth without hiding the inner surface.
+  const double dir[3] = {0.55, -0.75, 0.38};
+  const double len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+  const double view_angle = 30.0;
+  // Distance at which the bounding sphere just fits the view angle, plus a margin for labels.
+  const double distance = 1.15 * f.radius / std::sin(0.5 * view_angle * M_PI / 180.0);
+  camera->SetPosition(f.center[0] + distance * dir[0] / len, f.center[1] + distance * dir[1] / len,
+                      f.center[2] + distance * dir[2] / len);
+  camera->SetViewUp(0, 0, 1);
+  camera->SetViewAngle(view_angle);
+  camera->SetClippingRange(std::max(1e-6, distance - 2 * f.radius), distance + 2 * f.radius);
+}
+
+const double kTextRgb[3] = {0.95, 0.96, 0.98};
+const double kDimRgb[3] = {0.70, 0.74, 0.80};
+
+/// Panel i's renderer: its surfaces (opaque first), its label, the legend on the last panel.
+vtkSmartPointer<vtkRenderer> panel_renderer(const std::vector<ScreenshotPanel>& panels,
+                                            std::size_t i, vtkCamera* camera, int panel_px,
+                                            double top, bool edges) {
+  const double n = static_cast<double>(panels.size());
+  auto renderer = vtkSmartPointer<vtkRenderer>::New();
+  renderer->SetViewport(static_cast<double>(i) / n, 0.0, static_cast<double>(i + 1) / n, top);
+  renderer->GradientBackgroundOn();
+  renderer->SetBackground(0.10, 0.11, 0.14);
+  renderer->SetBackground2(0.30, 0.33, 0.40);
+  renderer->SetUseDepthPeeling(1);
+  renderer->SetMaximumNumberOfPeels(12);
+  renderer->SetOcclusionRatio(0.0);
+  renderer->SetUseFXAA(true);
+  renderer->SetActiveCamera(camera);
+  renderer->AutomaticLightCreationOff();
+  vtkNew<vtkLightKit> lights;
+  lights->AddLightsToRenderer(renderer);
+  // Opaque surfaces first, then translucent ones (depth peeling sorts them anyway).
+  std::vector<const SceneSurface*> order;
+  for (const SceneSurface& s : panels[i].surfaces) order.push_back(&s);
+  std::stable_sort(order.begin(), order.end(), [](const SceneSurface* a, const SceneSurface* b) {
+    return (a->role == SurfaceRole::outer) < (b->role == SurfaceRole::outer);
+  });
+  for (const SceneSurface* s : order)
+    if (!s->mesh.triangles.empty()) renderer->AddActor(surface_actor(s->mesh, s->role, edges));
+  if (!panels[i].label.empty()) {
+    auto label = text(panels[i].label, std::max(12, panel_px / 36), kTextRgb, false);
+    label->GetTextProperty()->SetVerticalJustificationToTop();
+    place(label, 0.02, 0.98);
+    renderer->AddActor2D(label);
+  }
+  if (panels[i].surfaces.empty()) {
+    auto gone = text("(no surface left)", std::max(12, panel_px / 30), kDimRgb, false);
+    gone->GetTextProperty()->SetJustificationToCentered();
+    place(gone, 0.5, 0.5);
+    renderer->AddActor2D(gone);
+  }
+  if (i + 1 == panels.size()) add_legend(renderer, panels, std::max(12, panel_px / 34), panel_px);
+  return renderer;
+}
+
+/// The title band across the top of the window.
+vtkSmartPointer<vtkRenderer> title_band(const std::string& title, int title_px, double top) {
+  auto band = vtkSmartPointer<vtkRenderer>::New();
+  band->SetViewport(0.0, top, 1.0, 1.0);
+  band->SetBackground(0.06, 0.07, 0.09);
+  auto label = text(title, std::max(14, title_px / 2), kTextRgb, true);
+  label->GetTextProperty()->SetVerticalJustificationToCentered();
+  place(label, 0.01, 0.5);
+  band->AddActor2D(label);
+  return band;
+}
+
 }  // namespace
 
 void write_screenshot(const std::vector<ScreenshotPanel>& panels, const fs::path& out_png,
@@ -93,100 +199,12 @@ void write_screenshot(const std::vector<ScreenshotPanel>& panels, const fs::path
   window->SetMultiSamples(0);
   window->SetWindowName("thaw inspect");
 
-  // One camera for every panel, framed on the union of all surfaces, so sizes compare directly.
-  double bounds[6] = {
-      std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
-      std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
-      std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
-  bool any = false;
-  for (const ScreenshotPanel& p : panels)
-    for (const SceneSurface& s : p.surfaces)
-      for (const auto& v : s.mesh.vertices) {
-        any = true;
-        for (int c = 0; c < 3; ++c) {
-          bounds[2 * c] = std::min(bounds[2 * c], v[c]);
-          bounds[2 * c + 1] = std::max(bounds[2 * c + 1], v[c]);
-        }
-      }
-  if (!any) std::fill(bounds, bounds + 6, 0.0), bounds[1] = bounds[3] = bounds[5] = 1.0;
-  double center[3];
-  for (int c = 0; c < 3; ++c) center[c] = 0.5 * (bounds[2 * c] + bounds[2 * c + 1]);
-  // Radius of a sphere about the box centre holding every vertex: frames any orientation.
-  double radius = 0;
-  for (const ScreenshotPanel& p : panels)
-    for (const SceneSurface& s : p.surfaces)
-      for (const auto& v : s.mesh.vertices) {
-        const double d[3] = {v[0] - center[0], v[1] - center[1], v[2] - center[2]};
-        radius = std::max(radius, std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
-      }
-  if (radius <= 0) radius = 1;
   vtkNew<vtkCamera> camera;
-  camera->SetFocalPoint(center);
-  // An oblique view from above and in front: shows depth without hiding the inner surface.
-  const double dir[3] = {0.55, -0.75, 0.38};
-  const double len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-  const double view_angle = 30.0;
-  // Distance at which the bounding sphere just fits the view angle, plus a margin for labels.
-  const double distance = 1.15 * radius / std::sin(0.5 * view_angle * M_PI / 180.0);
-  camera->SetPosition(center[0] + distance * dir[0] / len, center[1] + distance * dir[1] / len,
-                      center[2] + distance * dir[2] / len);
-  camera->SetViewUp(0, 0, 1);
-  camera->SetViewAngle(view_angle);
-  camera->SetClippingRange(std::max(1e-6, distance - 2 * radius), distance + 2 * radius);
-
-  const double text_rgb[3] = {0.95, 0.96, 0.98};
-  const double dim_rgb[3] = {0.70, 0.74, 0.80};
+  aim_camera(camera, frame_all(panels));
   const double top = static_cast<double>(panel) / height;
-  for (int i = 0; i < n; ++i) {
-    vtkNew<vtkRenderer> renderer;
-    renderer->SetViewport(static_cast<double>(i) / n, 0.0, static_cast<double>(i + 1) / n, top);
-    renderer->GradientBackgroundOn();
-    renderer->SetBackground(0.10, 0.11, 0.14);
-    renderer->SetBackground2(0.30, 0.33, 0.40);
-    renderer->SetUseDepthPeeling(1);
-    renderer->SetMaximumNumberOfPeels(12);
-    renderer->SetOcclusionRatio(0.0);
-    renderer->SetUseFXAA(true);
-    renderer->SetActiveCamera(camera);
-    renderer->AutomaticLightCreationOff();
-    vtkNew<vtkLightKit> lights;
-    lights->AddLightsToRenderer(renderer);
-    // Opaque surfaces first, then translucent ones (depth peeling sorts them anyway).
-    std::vector<const SceneSurface*> order;
-    for (const SceneSurface& s : panels[i].surfaces) order.push_back(&s);
-    std::stable_sort(order.begin(), order.end(), [](const SceneSurface* a, const SceneSurface* b) {
-      return (a->role == SurfaceRole::outer) < (b->role == SurfaceRole::outer);
-    });
-    for (const SceneSurface* s : order) {
-      if (s->mesh.triangles.empty()) continue;
-      auto actor = surface_actor(s->mesh, s->role, options.edges);
-      renderer->AddActor(actor);
-    }
-    if (!panels[i].label.empty()) {
-      auto label = text(panels[i].label, std::max(12, panel / 36), text_rgb, false);
-      label->GetTextProperty()->SetVerticalJustificationToTop();
-      place(label, 0.02, 0.98);
-      renderer->AddActor2D(label);
-    }
-    if (panels[i].surfaces.empty()) {
-      auto gone = text("(no surface left)", std::max(12, panel / 30), dim_rgb, false);
-      gone->GetTextProperty()->SetJustificationToCentered();
-      place(gone, 0.5, 0.5);
-      renderer->AddActor2D(gone);
-    }
-    if (i + 1 == n) add_legend(renderer, panels, std::max(12, panel / 34), panel);
-    window->AddRenderer(renderer);
-  }
-  if (title_px > 0) {
-    vtkNew<vtkRenderer> band;
-    band->SetViewport(0.0, top, 1.0, 1.0);
-    band->SetBackground(0.06, 0.07, 0.09);
-    auto title = text(options.title, std::max(14, title_px / 2), text_rgb, true);
-    title->GetTextProperty()->SetVerticalJustificationToCentered();
-    place(title, 0.01, 0.5);
-    band->AddActor2D(title);
-    window->AddRenderer(band);
-  }
+  for (std::size_t i = 0; i < panels.size(); ++i)
+    window->AddRenderer(panel_renderer(panels, i, camera, panel, top, options.edges));
+  if (title_px > 0) window->AddRenderer(title_band(options.title, title_px, top));
   save_png(window, out_png);
 }
 
