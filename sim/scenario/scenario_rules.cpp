@@ -171,9 +171,8 @@ std::optional<ScenarioProblem> outside_range(const Scenario& s) {
   return std::nullopt;
 }
 
-}  // namespace
-
-std::optional<ScenarioProblem> find_scenario_problem(const Scenario& s) {
+/// Every number finite; the materials' properties positive.
+std::optional<ScenarioProblem> number_problem(const Scenario& s) {
   const Materials& m = s.materials;
   const double tm = m.melting_point_c;
   const std::pair<const char*, double> positive_materials[] = {
@@ -205,6 +204,11 @@ std::optional<ScenarioProblem> find_scenario_problem(const Scenario& s) {
   for (auto [key, v] : positive_materials)
     if (!(v > 0) || !std::isfinite(v))
       return ScenarioProblem{key, "must be positive (got " + num(v) + ")"};
+  return std::nullopt;
+}
+
+/// [simulation]: duration, output interval, cells, tolerance.
+std::optional<ScenarioProblem> simulation_problem(const Scenario& s) {
   if (!(s.duration_s > 0))
     return ScenarioProblem{"simulation.duration_s",
                            "must be positive (got " + num(s.duration_s) + ")"};
@@ -226,6 +230,11 @@ std::optional<ScenarioProblem> find_scenario_problem(const Scenario& s) {
   if (!(s.time_tolerance > 0 && s.time_tolerance <= 1e-2))
     return ScenarioProblem{"simulation.time_tolerance",
                            "must be in (0, 0.01] (got " + num(s.time_tolerance) + ")"};
+  return std::nullopt;
+}
+
+/// [shell]: radii, length and lateral size.
+std::optional<ScenarioProblem> shell_problem(const Scenario& s) {
   if (!(s.inner_radius_m >= 0))
     return ScenarioProblem{"shell.inner_radius_m",
                            "must not be negative (got " + num(s.inner_radius_m) + ")"};
@@ -241,6 +250,12 @@ std::optional<ScenarioProblem> find_scenario_problem(const Scenario& s) {
   if (!(s.lateral_size_m > 0))
     return ScenarioProblem{"shell.lateral_size_m",
                            "must be positive (got " + num(s.lateral_size_m) + ")"};
+  return std::nullopt;
+}
+
+/// Initial and boundary temperatures against the melting point, and the boundary kinds.
+std::optional<ScenarioProblem> temperature_problem(const Scenario& s) {
+  const double tm = s.materials.melting_point_c;
   if (s.inner_radius_m > 0 && s.water_initial_temperature_c < tm)
     return ScenarioProblem{"water.initial_temperature_c",
                            "(" + num(s.water_initial_temperature_c) +
@@ -265,23 +280,34 @@ std::optional<ScenarioProblem> find_scenario_problem(const Scenario& s) {
   if (s.outer_kind == OuterBoundary::convective && !(s.heat_transfer_coefficient_w_m2k > 0))
     return ScenarioProblem{"outer_boundary.heat_transfer_coefficient_w_m2k",
                            "must be positive (got " + num(s.heat_transfer_coefficient_w_m2k) + ")"};
-  if (auto p = outside_range(s)) return p;
-  if (s.inner_radius_m == s.outer_radius_m) {
-    // No ice yet: it must start freezing at once.
-    const bool water_at_melting = s.water_initial_temperature_c == tm;
-    const bool freezes =
-        (s.outer_kind == OuterBoundary::temperature && s.outer_temperature_c < tm) ||
-        (s.outer_kind == OuterBoundary::convective && s.outer_temperature_c < tm &&
-         water_at_melting) ||
-        (s.outer_kind == OuterBoundary::flux && s.flux_w_m2 < 0 && water_at_melting);
-    if (!freezes)
-      return ScenarioProblem{
-          "shell.outer_radius_m",
-          "equals inner_radius_m (no ice at t = 0), so the outer boundary must freeze "
-          "the water at once: "
-          "a held temperature below melting, or convective/flux cooling of water at the "
-          "melting point"};
-  }
+  return std::nullopt;
+}
+
+/// No ice at t = 0 (inner radius = outer radius): it must start freezing at once.
+std::optional<ScenarioProblem> empty_shell_problem(const Scenario& s) {
+  const double tm = s.materials.melting_point_c;
+  if (s.inner_radius_m != s.outer_radius_m) return std::nullopt;
+  const bool water_at_melting = s.water_initial_temperature_c == tm;
+  const bool freezes = (s.outer_kind == OuterBoundary::temperature && s.outer_temperature_c < tm) ||
+                       (s.outer_kind == OuterBoundary::convective && s.outer_temperature_c < tm &&
+                        water_at_melting) ||
+                       (s.outer_kind == OuterBoundary::flux && s.flux_w_m2 < 0 && water_at_melting);
+  if (!freezes)
+    return ScenarioProblem{
+        "shell.outer_radius_m",
+        "equals inner_radius_m (no ice at t = 0), so the outer boundary must freeze "
+        "the water at once: "
+        "a held temperature below melting, or convective/flux cooling of water at the "
+        "melting point"};
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<ScenarioProblem> find_scenario_problem(const Scenario& s) {
+  for (auto rule : {number_problem, simulation_problem, shell_problem, temperature_problem,
+                    outside_range, empty_shell_problem})
+    if (auto p = rule(s)) return p;
   // Grid runs ([shape]); the [shell] rules above pass on its unused defaults.
   if (auto p = find_grid_problem(s)) return ScenarioProblem{p->key, p->message};
   return std::nullopt;
