@@ -129,6 +129,112 @@ Materials parse_materials(const TomlTable& t, Materials m) {
   return m;
 }
 
+bool uses_outer_temperature(OuterBoundary kind) {
+  return kind == OuterBoundary::temperature || kind == OuterBoundary::convective;
+}
+
+/// [simulation]: the geometry, the times and the keys of the solver the geometry selects.
+void parse_simulation(const TomlTable& sim, Scenario& s) {
+  const std::string geometry = sim.get_string("geometry");
+  if (geometry == "axisymmetric")
+    s.grid = GridGeometry::axisymmetric;
+  else if (geometry == "3d")
+    s.grid = GridGeometry::cartesian3d;
+  else if (!parse_geometry(geometry, s.geometry))
+    sim.fail("geometry", "unknown geometry '" + geometry +
+                             "' (expected planar, cylinder, sphere, axisymmetric or 3d)");
+  const bool grid = s.grid != GridGeometry::none;
+  s.duration_s = sim.get_double("duration_s");
+  s.output_interval_s = sim.get_double("output_interval_s");
+  reject_unless(sim, "cells_per_phase", !grid,
+                "only used by the 1D geometries (grid runs: cell_size_m)");
+  reject_unless(sim, "time_tolerance", !grid,
+                "only used by the 1D geometries (grid runs: max_step_s)");
+  reject_unless(sim, "cell_size_m", grid, "only used with geometry = \"axisymmetric\" or \"3d\"");
+  reject_unless(sim, "max_step_s", grid, "only used with geometry = \"axisymmetric\" or \"3d\"");
+  const std::int64_t cells = sim.get_int("cells_per_phase", s.cells_per_phase);
+  if (auto problem = cells_per_phase_problem(cells)) sim.fail("cells_per_phase", *problem);
+  s.cells_per_phase = static_cast<int>(cells);
+  s.time_tolerance = sim.get_double("time_tolerance", s.time_tolerance);
+  if (grid) {
+    if (sim.has("cell_size_m"))
+      s.cell_size_m = sim.require_positive("cell_size_m", sim.get_double("cell_size_m"));
+    s.max_step_s = sim.require_positive("max_step_s", sim.get_double("max_step_s", s.max_step_s));
+  }
+}
+
+/// [shape] for grid runs, [shell] for the 1D geometries; the other table is an error.
+void parse_body(const TomlTable& root, Scenario& s) {
+  if (s.grid != GridGeometry::none) {
+    if (root.has("shell"))
+      root.fail("shell", "[shell] describes the 1D geometries; geometry = \"" +
+                             root.table("simulation").get_string("geometry") + "\" takes [shape]");
+    s.shape = parse_shape(root.table("shape"));
+    return;
+  }
+  if (root.has("shape"))
+    root.fail(
+        "shape",
+        "only used with geometry = \"axisymmetric\" or \"3d\" (the 1D geometries take [shell])");
+  const TomlTable shell = root.table("shell");
+  s.inner_radius_m = shell.get_double("inner_radius_m");
+  s.outer_radius_m = shell.get_double("outer_radius_m");
+  reject_unless(shell, "length_m", s.geometry == Geometry::cylinder,
+                "only used with geometry = \"cylinder\"");
+  reject_unless(shell, "lateral_size_m", s.geometry == Geometry::planar,
+                "only used with geometry = \"planar\"");
+  // Defaults sized to the shell so that a default capsule or slab looks like one.
+  s.length_m = shell.get_double("length_m", 2.0 * s.outer_radius_m);
+  s.lateral_size_m = shell.get_double("lateral_size_m", 4.0 * s.outer_radius_m);
+}
+
+/// [inner_boundary] (planar runs only): symmetry or a held temperature.
+void parse_inner_boundary(const TomlTable& root, Scenario& s) {
+  const auto inner = root.optional_table("inner_boundary");
+  if (!inner) return;
+  if (s.geometry != Geometry::planar)
+    root.fail("inner_boundary",
+              "only for geometry = \"planar\" (curved shells have a symmetric centre)");
+  const std::string kind = inner->get_string("kind");
+  if (kind == "symmetry") {
+    s.inner_kind = InnerBoundary::symmetry;
+  } else if (kind == "temperature") {
+    s.inner_kind = InnerBoundary::temperature;
+    s.inner_temperature_c = inner->get_double("temperature_c");
+  } else {
+    inner->fail("kind", "unknown inner boundary '" + kind + "' (expected symmetry or temperature)");
+  }
+  reject_unless(*inner, "temperature_c", s.inner_kind == InnerBoundary::temperature,
+                "only used with kind = \"temperature\"");
+}
+
+/// [outer_boundary]: its kind and exactly the keys that kind uses.
+void parse_outer_boundary(const TomlTable& outer, Scenario& s) {
+  const std::string kind = outer.get_string("kind");
+  if (kind == "temperature")
+    s.outer_kind = OuterBoundary::temperature;
+  else if (kind == "convective")
+    s.outer_kind = OuterBoundary::convective;
+  else if (kind == "flux")
+    s.outer_kind = OuterBoundary::flux;
+  else if (kind == "insulated")
+    s.outer_kind = OuterBoundary::insulated;
+  else
+    outer.fail("kind", "unknown outer boundary '" + kind +
+                           "' (expected temperature, convective, flux or insulated)");
+  const bool uses_t = uses_outer_temperature(s.outer_kind);
+  reject_unless(outer, "temperature_c", uses_t, "not used with kind = \"" + kind + "\"");
+  reject_unless(outer, "heat_transfer_coefficient_w_m2k", s.outer_kind == OuterBoundary::convective,
+                "only used with kind = \"convective\"");
+  reject_unless(outer, "flux_w_m2", s.outer_kind == OuterBoundary::flux,
+                "only used with kind = \"flux\"");
+  s.outer_temperature_c = uses_t ? outer.get_double("temperature_c") : s.materials.melting_point_c;
+  s.heat_transfer_coefficient_w_m2k = s.outer_kind == OuterBoundary::convective
+                                          ? outer.get_double("heat_transfer_coefficient_w_m2k")
+                                          : 0.0;
+  s.flux_w_m2 = s.outer_kind == OuterBoundary::flux ? outer.get_double("flux_w_m2") : 0.0;
+}
+
 }  // namespace
 
 Materials default_materials() {
@@ -175,106 +281,17 @@ Scenario parse_scenario(const TomlTable& root, const std::set<std::string>& fore
   s.source_name = root.source_name();
   s.materials = default_materials();
   check_schema(root, foreign_sections);
-
-  const TomlTable sim = root.table("simulation");
-  const std::string geometry = sim.get_string("geometry");
-  if (geometry == "axisymmetric")
-    s.grid = GridGeometry::axisymmetric;
-  else if (geometry == "3d")
-    s.grid = GridGeometry::cartesian3d;
-  else if (!parse_geometry(geometry, s.geometry))
-    sim.fail("geometry", "unknown geometry '" + geometry +
-                             "' (expected planar, cylinder, sphere, axisymmetric or 3d)");
-  const bool grid = s.grid != GridGeometry::none;
-  s.duration_s = sim.get_double("duration_s");
-  s.output_interval_s = sim.get_double("output_interval_s");
-  reject_unless(sim, "cells_per_phase", !grid,
-                "only used by the 1D geometries (grid runs: cell_size_m)");
-  reject_unless(sim, "time_tolerance", !grid,
-                "only used by the 1D geometries (grid runs: max_step_s)");
-  reject_unless(sim, "cell_size_m", grid, "only used with geometry = \"axisymmetric\" or \"3d\"");
-  reject_unless(sim, "max_step_s", grid, "only used with geometry = \"axisymmetric\" or \"3d\"");
-  const std::int64_t cells = sim.get_int("cells_per_phase", s.cells_per_phase);
-  if (cells < 4 || cells > 100000)
-    sim.fail("cells_per_phase", "must be between 4 and 100000 (got " + std::to_string(cells) + ")");
-  s.cells_per_phase = static_cast<int>(cells);
-  s.time_tolerance = sim.get_double("time_tolerance", s.time_tolerance);
-  if (grid) {
-    if (sim.has("cell_size_m"))
-      s.cell_size_m = sim.require_positive("cell_size_m", sim.get_double("cell_size_m"));
-    s.max_step_s = sim.require_positive("max_step_s", sim.get_double("max_step_s", s.max_step_s));
-    if (root.has("shell"))
-      root.fail("shell", "[shell] describes the 1D geometries; geometry = \"" + geometry +
-                             "\" takes [shape]");
-    s.shape = parse_shape(root.table("shape"));
-  } else {
-    if (root.has("shape"))
-      root.fail(
-          "shape",
-          "only used with geometry = \"axisymmetric\" or \"3d\" (the 1D geometries take [shell])");
-    const TomlTable shell = root.table("shell");
-    s.inner_radius_m = shell.get_double("inner_radius_m");
-    s.outer_radius_m = shell.get_double("outer_radius_m");
-    reject_unless(shell, "length_m", s.geometry == Geometry::cylinder,
-                  "only used with geometry = \"cylinder\"");
-    reject_unless(shell, "lateral_size_m", s.geometry == Geometry::planar,
-                  "only used with geometry = \"planar\"");
-    // Defaults sized to the shell so that a default capsule or slab looks like one.
-    s.length_m = shell.get_double("length_m", 2.0 * s.outer_radius_m);
-    s.lateral_size_m = shell.get_double("lateral_size_m", 4.0 * s.outer_radius_m);
-  }
-
-  if (!grid || s.shape.cavity || root.has("water"))
+  parse_simulation(root.table("simulation"), s);
+  parse_body(root, s);
+  if (s.grid == GridGeometry::none || s.shape.cavity || root.has("water"))
     s.water_initial_temperature_c = root.table("water").get_double("initial_temperature_c");
   s.ice_initial_temperature_c = root.table("ice").get_double("initial_temperature_c");
-
-  if (auto inner = root.optional_table("inner_boundary")) {
-    if (s.geometry != Geometry::planar)
-      root.fail("inner_boundary",
-                "only for geometry = \"planar\" (curved shells have a symmetric centre)");
-    const std::string kind = inner->get_string("kind");
-    if (kind == "symmetry") {
-      s.inner_kind = InnerBoundary::symmetry;
-    } else if (kind == "temperature") {
-      s.inner_kind = InnerBoundary::temperature;
-      s.inner_temperature_c = inner->get_double("temperature_c");
-    } else {
-      inner->fail("kind",
-                  "unknown inner boundary '" + kind + "' (expected symmetry or temperature)");
-    }
-    reject_unless(*inner, "temperature_c", s.inner_kind == InnerBoundary::temperature,
-                  "only used with kind = \"temperature\"");
-  }
-
-  const TomlTable outer = root.table("outer_boundary");
-  const std::string kind = outer.get_string("kind");
-  if (kind == "temperature")
-    s.outer_kind = OuterBoundary::temperature;
-  else if (kind == "convective")
-    s.outer_kind = OuterBoundary::convective;
-  else if (kind == "flux")
-    s.outer_kind = OuterBoundary::flux;
-  else if (kind == "insulated")
-    s.outer_kind = OuterBoundary::insulated;
-  else
-    outer.fail("kind", "unknown outer boundary '" + kind +
-                           "' (expected temperature, convective, flux or insulated)");
-  const bool uses_t =
-      s.outer_kind == OuterBoundary::temperature || s.outer_kind == OuterBoundary::convective;
-  reject_unless(outer, "temperature_c", uses_t, "not used with kind = \"" + kind + "\"");
-  reject_unless(outer, "heat_transfer_coefficient_w_m2k", s.outer_kind == OuterBoundary::convective,
-                "only used with kind = \"convective\"");
-  reject_unless(outer, "flux_w_m2", s.outer_kind == OuterBoundary::flux,
-                "only used with kind = \"flux\"");
-  s.outer_temperature_c = uses_t ? outer.get_double("temperature_c") : s.materials.melting_point_c;
-  s.heat_transfer_coefficient_w_m2k = s.outer_kind == OuterBoundary::convective
-                                          ? outer.get_double("heat_transfer_coefficient_w_m2k")
-                                          : 0.0;
-  s.flux_w_m2 = s.outer_kind == OuterBoundary::flux ? outer.get_double("flux_w_m2") : 0.0;
-
+  parse_inner_boundary(root, s);
+  parse_outer_boundary(root.table("outer_boundary"), s);
   if (auto mat = root.optional_table("materials")) s.materials = parse_materials(*mat, s.materials);
+  // Unset boundary temperatures follow the (possibly overridden) melting point.
   if (s.inner_kind == InnerBoundary::symmetry) s.inner_temperature_c = s.materials.melting_point_c;
-  if (!uses_t) s.outer_temperature_c = s.materials.melting_point_c;
+  if (!uses_outer_temperature(s.outer_kind)) s.outer_temperature_c = s.materials.melting_point_c;
 
   // check_schema() has already rejected every unknown key outside the foreign sections.
   if (foreign_sections.empty()) root.check_no_unknown_keys();

@@ -223,10 +223,8 @@ std::optional<ScenarioProblem> simulation_problem(const Scenario& s) {
   if (s.duration_s / s.output_interval_s > 1e6)
     return ScenarioProblem{"simulation.output_interval_s",
                            "gives more than 10^6 output rows; use a longer interval"};
-  if (s.cells_per_phase < 4 || s.cells_per_phase > 100000)
-    return ScenarioProblem{
-        "simulation.cells_per_phase",
-        "must be between 4 and 100000 (got " + std::to_string(s.cells_per_phase) + ")"};
+  if (auto problem = cells_per_phase_problem(s.cells_per_phase))
+    return ScenarioProblem{"simulation.cells_per_phase", *problem};
   if (!(s.time_tolerance > 0 && s.time_tolerance <= 1e-2))
     return ScenarioProblem{"simulation.time_tolerance",
                            "must be in (0, 0.01] (got " + num(s.time_tolerance) + ")"};
@@ -303,6 +301,12 @@ std::optional<ScenarioProblem> empty_shell_problem(const Scenario& s) {
 }
 
 }  // namespace
+
+std::optional<std::string> cells_per_phase_problem(std::int64_t cells) {
+  if (cells < 4 || cells > 100000)
+    return "must be between 4 and 100000 (got " + std::to_string(cells) + ")";
+  return std::nullopt;
+}
 
 std::optional<ScenarioProblem> find_scenario_problem(const Scenario& s) {
   for (auto rule : {number_problem, simulation_problem, shell_problem, temperature_problem,

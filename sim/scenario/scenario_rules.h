@@ -3,6 +3,7 @@
 // key's line, sim/scenario/scenario_file.h), scenarios built in code (validate_scenario, called
 // by the solvers) and the naming of the likely cause when a solver fails on a valid scenario.
 // Part of the sim core: knows nothing of TOML or JSON (ranges documented in docs/simulate.md).
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -18,6 +19,10 @@ struct ScenarioProblem {
 
 /// The first rule `scenario` breaks, or nullopt.
 std::optional<ScenarioProblem> find_scenario_problem(const Scenario& scenario);
+
+/// simulation.cells_per_phase: between 4 and 100000, checked on the file's 64-bit value before it
+/// is narrowed to int (the one place this limit is written).
+std::optional<std::string> cells_per_phase_problem(std::int64_t cells);
 
 /// Checks a scenario built in code (the parser applies the same rules with line numbers);
 /// throws thaw::UserError(source_name, key, problem); "" names scenario.source_name.
