@@ -95,50 +95,80 @@ void style_chart(vtkChartXY* chart, const std::string& title) {
   chart->GetLegend()->GetBrush()->SetColor(255, 255, 255, 230);
 }
 
+/// The plot's units, chosen from the data's extent.
+struct PlotUnits {
+  Unit time, length, volume;
+  double max_radius_m = 0, max_total_volume_m3 = 0;
+};
+
+PlotUnits plot_units(const std::vector<sim::InterfaceRecord>& rows, sim::Geometry geometry) {
+  PlotUnits u;
+  double max_v = 0;
+  for (const auto& r : rows) {
+    u.max_radius_m = std::max({u.max_radius_m, r.outer_radius_m, r.inner_radius_m});
+    max_v = std::max({max_v, r.liquid_volume_m3, r.ice_volume_m3});
+    u.max_total_volume_m3 = std::max(u.max_total_volume_m3, r.liquid_volume_m3 + r.ice_volume_m3);
+  }
+  u.time = time_unit(rows.back().time_s);
+  u.length = length_unit(u.max_radius_m);
+  u.volume = volume_unit(geometry, max_v);
+  return u;
+}
+
+void add_column(vtkTable* table, const char* name) {
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  table->AddColumn(a);
+}
+
+/// The rows in display units: radii (time, inner, outer) and volumes (time, water, ice, total).
+void fill_tables(const std::vector<sim::InterfaceRecord>& rows, const PlotUnits& u, bool planar,
+                 vtkTable* radii, vtkTable* volumes) {
+  add_column(radii, "time");
+  add_column(radii, planar ? "melt front (water|ice)" : "inner radius (water|ice)");
+  add_column(radii, planar ? "outer surface (ice|air)" : "outer radius (ice|air)");
+  add_column(volumes, "time");
+  add_column(volumes, "liquid water");
+  add_column(volumes, "ice");
+  add_column(volumes, "total");
+  const auto n = static_cast<vtkIdType>(rows.size());
+  radii->SetNumberOfRows(n);
+  volumes->SetNumberOfRows(n);
+  for (vtkIdType i = 0; i < n; ++i) {
+    const sim::InterfaceRecord& r = rows[static_cast<std::size_t>(i)];
+    const double t = r.time_s * u.time.scale;
+    radii->SetValue(i, 0, t);
+    radii->SetValue(i, 1, r.inner_radius_m * u.length.scale);
+    radii->SetValue(i, 2, r.outer_radius_m * u.length.scale);
+    volumes->SetValue(i, 0, t);
+    volumes->SetValue(i, 1, r.liquid_volume_m3 * u.volume.scale);
+    volumes->SetValue(i, 2, r.ice_volume_m3 * u.volume.scale);
+    volumes->SetValue(i, 3, (r.liquid_volume_m3 + r.ice_volume_m3) * u.volume.scale);
+  }
+}
+
+/// Fixed ranges: y from zero so the eye reads proportions, not just trends; x over the run.
+void fix_ranges(vtkChartXY* chart, double y_max, double t0, double t1) {
+  vtkAxis* y = chart->GetAxis(vtkAxis::LEFT);
+  chart->RecalculateBounds();
+  y->SetBehavior(vtkAxis::FIXED);
+  y->SetRange(0.0, y_max > 0 ? 1.08 * y_max : 1.0);
+  vtkAxis* x = chart->GetAxis(vtkAxis::BOTTOM);
+  x->SetBehavior(vtkAxis::FIXED);
+  x->SetRange(t0, t1 > t0 ? t1 : t0 + 1.0);
+}
+
 }  // namespace
 
 void write_radius_plot(const std::vector<sim::InterfaceRecord>& rows, const fs::path& out_png,
                        const PlotOptions& options) {
   if (rows.empty()) throw UserError(out_png.string(), "", "nothing to plot: no rows");
   const sim::Geometry geometry = options.geometry.value_or(sim::Geometry::sphere);
-  double max_r = 0, max_v = 0;
-  for (const auto& r : rows) {
-    max_r = std::max({max_r, r.outer_radius_m, r.inner_radius_m});
-    max_v = std::max({max_v, r.liquid_volume_m3, r.ice_volume_m3});
-  }
-  const Unit tu = time_unit(rows.back().time_s);
-  const Unit lu = length_unit(max_r);
-  const Unit vu = volume_unit(geometry, max_v);
   const bool planar = geometry == sim::Geometry::planar;
   const bool markers = rows.size() <= 40;  // few rows: show where the samples are
-
+  const PlotUnits u = plot_units(rows, geometry);
   vtkNew<vtkTable> radii, volumes;
-  auto column = [](vtkTable* table, const char* name) {
-    vtkNew<vtkDoubleArray> a;
-    a->SetName(name);
-    table->AddColumn(a);
-  };
-  column(radii, "time");
-  column(radii, planar ? "melt front (water|ice)" : "inner radius (water|ice)");
-  column(radii, planar ? "outer surface (ice|air)" : "outer radius (ice|air)");
-  column(volumes, "time");
-  column(volumes, "liquid water");
-  column(volumes, "ice");
-  column(volumes, "total");
-  const auto n = static_cast<vtkIdType>(rows.size());
-  radii->SetNumberOfRows(n);
-  volumes->SetNumberOfRows(n);
-  for (vtkIdType i = 0; i < n; ++i) {
-    const sim::InterfaceRecord& r = rows[static_cast<std::size_t>(i)];
-    const double t = r.time_s * tu.scale;
-    radii->SetValue(i, 0, t);
-    radii->SetValue(i, 1, r.inner_radius_m * lu.scale);
-    radii->SetValue(i, 2, r.outer_radius_m * lu.scale);
-    volumes->SetValue(i, 0, t);
-    volumes->SetValue(i, 1, r.liquid_volume_m3 * vu.scale);
-    volumes->SetValue(i, 2, r.ice_volume_m3 * vu.scale);
-    volumes->SetValue(i, 3, (r.liquid_volume_m3 + r.ice_volume_m3) * vu.scale);
-  }
+  fill_tables(rows, u, planar, radii, volumes);
 
   const DisplayLease display("--plot");
   vtkNew<vtkContextView> view;
@@ -152,41 +182,29 @@ void write_radius_plot(const std::vector<sim::InterfaceRecord>& rows, const fs::
   matrix->SetBorders(110, 70, 40, 30);
   matrix->SetGutter(vtkVector2f(30.0f, 110.0f));
   view->GetScene()->AddItem(matrix);
-
   auto* top = vtkChartXY::SafeDownCast(matrix->GetChart(vtkVector2i(0, 1)));
   auto* bottom = vtkChartXY::SafeDownCast(matrix->GetChart(vtkVector2i(0, 0)));
   if (top == nullptr || bottom == nullptr)
     throw std::logic_error("vtkChartMatrix gave no vtkChartXY");
 
+  const std::string time_title = "time [" + u.time.name + "]";
   style_chart(top, options.title + (planar ? ": front positions" : ": interface radii"));
   add_line(top, radii, 2, 90, 160, 200, markers);  // outer: ice blue
   add_line(top, radii, 1, 20, 70, 170, markers);   // inner: water blue
-  style_axis(top->GetAxis(vtkAxis::BOTTOM), "time [" + tu.name + "]");
-  style_axis(top->GetAxis(vtkAxis::LEFT), (planar ? "position [" : "radius [") + lu.name + "]");
+  style_axis(top->GetAxis(vtkAxis::BOTTOM), time_title);
+  style_axis(top->GetAxis(vtkAxis::LEFT),
+             (planar ? "position [" : "radius [") + u.length.name + "]");
 
   style_chart(bottom, "Volumes");
   add_line(bottom, volumes, 3, 140, 140, 140, markers);  // total: grey
   add_line(bottom, volumes, 2, 90, 160, 200, markers);   // ice
   add_line(bottom, volumes, 1, 20, 70, 170, markers);    // water
-  style_axis(bottom->GetAxis(vtkAxis::BOTTOM), "time [" + tu.name + "]");
-  style_axis(bottom->GetAxis(vtkAxis::LEFT), "volume [" + vu.name + "]");
+  style_axis(bottom->GetAxis(vtkAxis::BOTTOM), time_title);
+  style_axis(bottom->GetAxis(vtkAxis::LEFT), "volume [" + u.volume.name + "]");
 
-  // Radii and volumes start at zero so the eye reads proportions, not just trends.
-  for (vtkChartXY* chart : {top, bottom}) {
-    vtkAxis* y = chart->GetAxis(vtkAxis::LEFT);
-    chart->RecalculateBounds();
-    y->SetBehavior(vtkAxis::FIXED);
-    const double ymax = chart == top ? max_r * lu.scale : [&] {
-      double m = 0;
-      for (const auto& r : rows) m = std::max(m, (r.liquid_volume_m3 + r.ice_volume_m3));
-      return m * vu.scale;
-    }();
-    y->SetRange(0.0, ymax > 0 ? 1.08 * ymax : 1.0);
-    vtkAxis* x = chart->GetAxis(vtkAxis::BOTTOM);
-    x->SetBehavior(vtkAxis::FIXED);
-    const double t0 = rows.front().time_s * tu.scale, t1 = rows.back().time_s * tu.scale;
-    x->SetRange(t0, t1 > t0 ? t1 : t0 + 1.0);
-  }
+  const double t0 = rows.front().time_s * u.time.scale, t1 = rows.back().time_s * u.time.scale;
+  fix_ranges(top, u.max_radius_m * u.length.scale, t0, t1);
+  fix_ranges(bottom, u.max_total_volume_m3 * u.volume.scale, t0, t1);
   save_png(view->GetRenderWindow(), out_png);
 }
 
