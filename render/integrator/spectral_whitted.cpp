@@ -11,6 +11,7 @@
 #include "render/math/rng.h"
 #include "render/spectrum/colour.h"
 #include "render/spectrum/rgb_uplift.h"
+#include "src/common/fnv_hash.h"
 
 namespace thaw::render {
 
@@ -369,8 +370,8 @@ class SpectralTracer : public WhittedShading<SpectralTracer> {
   }
 
   static std::uint64_t mix(std::uint64_t h, std::uint64_t v) {
-    // FNV-1a over 64-bit words: order-sensitive, cheap; collisions only merge segments.
-    return (h ^ v) * 1099511628211ULL;
+    // FNV-1a's step over 64-bit words: order-sensitive, cheap; collisions only merge segments.
+    return fnv1a_64_step(h, v);
   }
   static std::uint64_t bits(float v) {
     std::uint32_t u;
@@ -399,7 +400,7 @@ class SpectralTracer : public WhittedShading<SpectralTracer> {
       return end;
     }
     Ray ray{offset_ray_origin(at.p, at.p_error, ng, dir), dir};
-    std::uint64_t h = 1469598103934665603ULL;
+    std::uint64_t h = kFnv1aOffset;
     for (int level = depth + 1; level <= m_max_depth; ++level) {
       ++m_rays;
       Hit hit;

@@ -3,9 +3,11 @@
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <string_view>
 
 #include "src/common/atomic_file.h"
 #include "src/common/check.h"
+#include "src/common/fnv_hash.h"
 #include "src/pipeline/content_hash.h"
 
 namespace thaw::pipeline {
@@ -23,11 +25,7 @@ ContentHash& ContentHash::add_file(const fs::path& file) {
   char buf[1 << 16];
   while (in) {
     in.read(buf, sizeof buf);
-    const auto n = in.gcount();
-    for (std::streamsize i = 0; i < n; ++i) {
-      m_state ^= static_cast<unsigned char>(buf[i]);
-      m_state *= 0x100000001b3ULL;
-    }
+    m_state = fnv1a_64(std::string_view(buf, static_cast<std::size_t>(in.gcount())), m_state);
   }
   return add(std::string_view("<eof>"));
 }

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -82,6 +84,31 @@ TEST(GridField, RoundTripIsBitExactForBothGeometries) {
   }
   // atomic write: nothing but the two files is left in the folder
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);
+}
+
+// The version-1 layout, byte for byte: 80 bytes of header and payload, then the checksum. The
+// expected checksum was computed outside thaw (FNV-1a with the format's starting state
+// 1469598103934665603, a digit short of FNV's offset basis, over these 80 bytes), so a change of
+// the hash or of its starting state, which would make every existing file unreadable, fails here.
+TEST(GridField, WritesTheVersion1LayoutAndChecksum) {
+  GridField f;
+  f.geometry = GridField::Geometry::cartesian3d;
+  f.cells = {1, 1, 1};
+  f.origin_m = {0.0, 0.0, 0.0};
+  f.spacing_m = 0.01;
+  f.time_s = 1.5;
+  f.temperature_c = {-1.0f};
+  f.ice_fraction = {0.25f};
+  f.water_fraction = {0.75f};
+  const fs::path file = fresh_dir("layout") / "one_cell.grid";
+  write_grid_field(file, f);
+  const std::string bytes = read_bytes(file);
+  ASSERT_EQ(bytes.size(), 88u);
+  EXPECT_EQ(bytes.substr(0, 8), "THAWGRID");
+  std::uint64_t checksum = 0;
+  std::memcpy(&checksum, bytes.data() + 80, sizeof checksum);
+  EXPECT_EQ(checksum, 0x029d73794a79ca9bULL);
+  EXPECT_EQ(read_grid_field(file).temperature_c, f.temperature_c);
 }
 
 TEST(GridField, IndexRunsFastestAlongTheFirstAxis) {

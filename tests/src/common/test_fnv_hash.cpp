@@ -13,6 +13,11 @@ TEST(Fnv1a64, MatchesThePublishedTestVectors) {
   EXPECT_EQ(fnv1a_64("foobar"), 0x85944171f73967e8ULL);
 }
 
+TEST(Fnv1a64, OneStepOverAnOctetIsFnv1aOfThatOctet) {
+  EXPECT_EQ(fnv1a_64_step(kFnv1aOffset, 'a'), fnv1a_64("a"));
+  EXPECT_EQ(fnv1a_64_step(fnv1a_64("fooba"), 'r'), fnv1a_64("foobar"));
+}
+
 TEST(Fnv1a64, ContinuesFromAGivenState) {
   EXPECT_EQ(fnv1a_64("bar", fnv1a_64("foo")), fnv1a_64("foobar"));
 }
