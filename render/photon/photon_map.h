@@ -18,7 +18,8 @@
 // ~25 degrees of n (cos > 0.9) and it lies within r_p / 4 of the tangent plane (a corner, the far
 // side of a thin wall, a ball resting on the floor).
 // Lookup: a bounding volume hierarchy over the photons' kernel balls (each photon's box is its
-// position +- r_p; nodes bound their photons' boxes; leaves of up to kLeafPhotons photons),
+// position +- r_p; nodes bound their photons' boxes; leaves of kLeafPhotons photons, the last
+// one possibly fewer),
 // collapsed to 4-wide nodes and 4-photon leaf blocks tested with SSE, descended only into nodes
 // whose box contains the query point, so a query examines about the
 // photons whose kernels reach it, whatever their radii (the "scatter" form of the estimate as a
@@ -63,6 +64,8 @@ class PhotonMap {
   float radius() const { return m_radius; }
   /// The photons with their kernels (inv_radius2 set), in the tree's fixed order.
   const std::vector<Photon>& photons() const { return m_photons; }
+  /// Leaf blocks of the lookup tree (every one full but the last: ceil(size / kLeafPhotons)).
+  std::size_t leaf_blocks() const { return m_blocks.size(); }
 
   /// Irradiance [power per area] at `p` on a surface with unit normal `n` (facing the side the
   /// light is wanted on).

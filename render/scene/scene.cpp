@@ -600,13 +600,25 @@ Scene build_scene(const SceneDescription& desc) {
 bool Scene::intersect(const Ray& ray, Hit& hit) const {
   float t_max = ray.t_max;
   bool found = false;
+  // Planes first: their hit bounds the tree's traversal (the floor culls every node beneath it,
+  // e.g. the puddle mesh's part sunk below the floor).
+  for (std::uint32_t k = 0; k < m_planes.size(); ++k) {
+    const SceneObject& o = m_objects[m_planes[k]];
+    float t;
+    if (intersect_plane(ray, o.plane_point, o.plane_normal, t_max, t)) {
+      t_max = t;
+      hit.t = t;
+      hit.prim = kPlaneBit | k;
+      found = true;
+    }
+  }
   if (!m_bvh.empty()) {
     const Bvh::RayData rd(ray);
     // The shear transform (3 divisions) serves triangles only: made at the first triangle leaf
     // the ray reaches (many rays reach none, e.g. those leaving a floor upwards).
     LazyShearedRay sr(ray);
     const Primitive* prims = m_primitives.data();
-    found = m_bvh.intersect(rd, t_max, [&](std::uint32_t first, std::uint32_t count, float& tm) {
+    found |= m_bvh.intersect(rd, t_max, [&](std::uint32_t first, std::uint32_t count, float& tm) {
       const std::uint32_t block = m_leaf_block[first];
       if (block != kNoBlock) {
         TriangleHit th;
@@ -655,16 +667,6 @@ bool Scene::intersect(const Ray& ray, Hit& hit) const {
       }
       return any;
     });
-  }
-  for (std::uint32_t k = 0; k < m_planes.size(); ++k) {
-    const SceneObject& o = m_objects[m_planes[k]];
-    float t;
-    if (intersect_plane(ray, o.plane_point, o.plane_normal, t_max, t)) {
-      t_max = t;
-      hit.t = t;
-      hit.prim = kPlaneBit | k;
-      found = true;
-    }
   }
   return found;
 }

@@ -131,6 +131,19 @@ TEST(PhotonMap, TreeLookupEqualsBruteForce) {
   }
 }
 
+// Every leaf block of the lookup tree is full but the last (its 4 lanes are tested together,
+// empty ones cost as much as photons), for any count: ceil(n / 4) blocks.
+TEST(PhotonMap, LeafBlocksAreFull) {
+  for (const int n : {1, 4, 5, 7, 8, 9, 31, 100, 1001}) {
+    std::vector<Photon> photons;
+    for (int i = 0; i < n; ++i)
+      photons.push_back(
+          {Vec3{float(i % 7) * 0.013f, 0, float(i) * 0.007f}, Vec3{0, 1, 0}, Rgb{1, 1, 1}});
+    const PhotonMap map(photons, 0.01f, 32.0);
+    EXPECT_EQ(map.leaf_blocks(), std::size_t((n + 3) / 4)) << n;
+  }
+}
+
 TEST(PhotonMap, EmptyMapIsDark) {
   const PhotonMap map({}, 0.1f, 32.0);
   EXPECT_TRUE(map.empty());
