@@ -42,7 +42,7 @@ bool FilmRunner::start(const pipeline::RunScenario& scenario, const std::string&
   m_cancel = false;
   m_dir = dir;
   m_thread = std::thread([this, scenario, text, dir] {
-    lower_thread_priority();
+    lower_thread_priority(kBackgroundNice);
     try {
       pipeline::RunOptions options;
       options.out_dir = dir;

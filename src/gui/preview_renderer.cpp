@@ -77,13 +77,17 @@ bool PreviewRenderer::busy() const {
   return m_pending.has_value() || m_rendering;
 }
 
-void lower_thread_priority() {
-  // Long background work yields to the GUI thread and the preview on a busy machine: nice 10 for
-  // this thread and the OpenMP workers it starts (Linux threads inherit it). Best effort.
-  (void)::setpriority(PRIO_PROCESS, static_cast<id_t>(::gettid()), 10);
+void lower_thread_priority(int nice) {
+  // This thread and the OpenMP workers it starts (Linux threads inherit it). Best effort.
+  (void)::setpriority(PRIO_PROCESS, static_cast<id_t>(::gettid()), nice);
 }
 
 void PreviewRenderer::loop() {
+  // Below the GUI thread and llvmpipe's rasterizer threads, which draw the 3D view for it: the
+  // render threads (OpenMP, started from here, inherit it) take the cores only when the window
+  // does not need them. Under Linux's autogroup scheduling (one group per session) this only
+  // orders the threads of this program: other programs' share is unchanged.
+  lower_thread_priority(kPreviewNice);
   for (;;) {
     PreviewRequest request;
     std::chrono::steady_clock::time_point start;

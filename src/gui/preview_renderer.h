@@ -33,9 +33,12 @@ struct PreviewRequest {
   int width = 320, height = 240, samples = 4;
 };
 
-/// Lowers the calling thread's scheduling priority (nice 10), so that a simulation run leaves the
-/// GUI thread and the preview responsive. (The preview itself keeps the normal priority.)
-void lower_thread_priority();
+/// Lowers the calling thread's scheduling priority to `nice`, so that the preview's renders, a
+/// simulation run and a film leave the GUI thread (and llvmpipe's threads drawing the 3D view for
+/// it) the cores whenever it needs them: the preview at kPreviewNice, the long runs (simulation,
+/// film) below it at kBackgroundNice.
+void lower_thread_priority(int nice);
+inline constexpr int kPreviewNice = 10, kBackgroundNice = 15;
 
 /// The linear image as 8-bit sRGB, scaled by 2^exposure (as the PNG writer does).
 QImage to_qimage(const render::Image& image, double exposure);

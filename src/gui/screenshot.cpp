@@ -25,7 +25,8 @@ void take_screenshot_when_ready(MainWindow& window, const std::filesystem::path&
                               !window.renderer().busy();
     const bool invalid = !window.check().ok();
     if (window.simulation_running()) return;
-    const bool view_done = window.renderer().initial_shell() != nullptr || invalid;
+    const bool view_done = (window.renderer().initial_shell() != nullptr || invalid) &&
+                           !window.shell_view().warming_up();
     if (!(preview_done || invalid) || !view_done) {
       if (clock->elapsed() > timeout_s * 1000) {
         poll->stop();

@@ -5,7 +5,12 @@
 #include <vtkCamera.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkLightKit.h>
+#include <vtkMapper.h>
 #include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkProp.h>
+#include <vtkPropCollection.h>
 #include <vtkProperty.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
@@ -13,6 +18,7 @@
 #include <vtkTextProperty.h>
 #include <vtkTexture.h>
 
+#include <QTimer>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -20,14 +26,43 @@
 #include "src/inspect/surface_actor.h"
 
 namespace thaw::gui {
+namespace {
+
+/// What decides the shaders and pipeline state an actor is drawn with (see Staged in the
+/// header): actors with equal looks draw with the programs the first of them compiled.
+std::string look_of(vtkProp* prop) {
+  auto* actor = vtkActor::SafeDownCast(prop);
+  if (!actor) return prop->GetClassName();
+  vtkProperty* p = actor->GetProperty();
+  vtkPolyData* data = actor->GetMapper()
+                          ? vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0))
+                          : nullptr;
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "actor texture %d tcoords %d normals %d translucent %d edges %d interpolation %d "
+                "culling %d unlit %d",
+                actor->GetTexture() != nullptr, data && data->GetPointData()->GetTCoords(),
+                data && data->GetPointData()->GetNormals(), p->GetOpacity() < 1.0,
+                p->GetEdgeVisibility(), p->GetInterpolation(), p->GetBackfaceCulling(),
+                p->GetDiffuse() == 0.0);
+  return text;
+}
+
+}  // namespace
 
 ShellView::ShellView(QWidget* parent) : QVTKOpenGLNativeWidget(parent) {
   vtkNew<vtkGenericOpenGLRenderWindow> window;
   window->SetAlphaBitPlanes(1);  // depth peeling for the translucent outer surface
   window->SetMultiSamples(0);
   setRenderWindow(window);
+  m_stage_timer = new QTimer(this);
+  m_stage_timer->setSingleShot(true);
+  m_stage_timer->setInterval(0);
+  connect(m_stage_timer, &QTimer::timeout, this, [this] { advance(); });
   m_renderer = vtkSmartPointer<vtkRenderer>::New();
-  m_renderer->GradientBackgroundOn();
+  // The first draw (the OpenGL context, Qt's compositing) clears to the plain background; the
+  // gradient and the label, each a shader of its own, come in the next turns (warm-up).
+  stage("gradient background", [this] { m_renderer->GradientBackgroundOn(); });
   m_renderer->SetBackground(0.10, 0.11, 0.14);
   m_renderer->SetBackground2(0.30, 0.33, 0.40);
   // No depth peeling (thaw inspect's pictures use it): with software OpenGL (Mesa llvmpipe, as
@@ -42,7 +77,7 @@ ShellView::ShellView(QWidget* parent) : QVTKOpenGLNativeWidget(parent) {
   m_label->GetTextProperty()->SetBackgroundColor(0.10, 0.11, 0.14);  // legible over the floor
   m_label->GetTextProperty()->SetBackgroundOpacity(0.7);
   m_label->SetDisplayPosition(8, 8);
-  m_renderer->AddActor2D(m_label);
+  add_prop(m_label);
   window->AddRenderer(m_renderer);
   setMinimumSize(240, 180);
   // An orbit, pan or zoom with the mouse starts and ends with Start/EndInteractionEvent on the
@@ -85,7 +120,7 @@ void ShellView::set_camera(const ViewCamera& v) {
   c->SetViewUp(v.view_up.data());
   c->SetViewAngle(v.vertical_fov_deg);
   m_renderer->ResetCameraClippingRange();
-  renderWindow()->Render();
+  draw();
 }
 
 void ShellView::report_camera() {
@@ -112,18 +147,18 @@ void ShellView::set_quick(bool quick) {
 void ShellView::settle() {
   if (!m_quick) return;
   set_quick(false);
-  renderWindow()->Render();
+  draw();
 }
 
 void ShellView::set_scene(const SceneProps& props) {
   bool changed = false;
   if (props.key != m_scene_key) {
-    for (const auto& a : m_scene) m_renderer->RemoveActor(a);
+    for (const auto& a : m_scene) remove_prop(a);
     m_scene = props.actors;
     m_scene_textures = props.textures;
     m_quick_colors = props.quick_colors;
-    for (const auto& a : m_scene) m_renderer->AddActor(a);
-    set_quick(m_quick);
+    set_quick(m_quick);  // before they are added: their look decides when
+    for (const auto& a : m_scene) add_prop(a);
     m_scene_key = props.key;
     m_scene_objects = props.objects;
     m_scene_lights = props.lights;
@@ -152,13 +187,13 @@ void ShellView::set_scene(const SceneProps& props) {
   }
   if (!changed) return;
   m_renderer->ResetCameraClippingRange();
-  renderWindow()->Render();
+  draw();
 }
 
 void ShellView::show_step(const ShellStep& step, const std::array<double, 3>& offset, bool frame,
                           bool moving) {
-  if (m_outer) m_renderer->RemoveActor(m_outer);
-  if (m_inner) m_renderer->RemoveActor(m_inner);
+  if (m_outer) remove_prop(m_outer);
+  if (m_inner) remove_prop(m_inner);
   m_outer = m_inner = nullptr;
   m_triangles = 0;
   // Opaque water first, then the translucent ice. The step's actors were built with their
@@ -167,16 +202,16 @@ void ShellView::show_step(const ShellStep& step, const std::array<double, 3>& of
   if (step.inner_actor && !step.inner_view.triangles.empty()) {
     m_inner = step.inner_actor;
     m_inner->SetPosition(offset[0], offset[1], offset[2]);
-    m_renderer->AddActor(m_inner);
     m_triangles += static_cast<long>(step.inner_view.triangles.size());
   }
   if (step.outer_actor && !step.outer_view.triangles.empty()) {
     m_outer = step.outer_actor;
     m_outer->SetPosition(offset[0], offset[1], offset[2]);
-    m_renderer->AddActor(m_outer);
     m_triangles += static_cast<long>(step.outer_view.triangles.size());
   }
   set_quick(moving || m_quick);
+  if (m_inner) add_prop(m_inner);
+  if (m_outer) add_prop(m_outer);
   char text[160];
   std::snprintf(text, sizeof text, "t = %.0f s   water radius %.1f mm   ice radius %.1f mm%s",
                 step.row.time_s, 1e3 * step.row.inner_radius_m, 1e3 * step.row.outer_radius_m,
@@ -192,7 +227,79 @@ void ShellView::show_step(const ShellStep& step, const std::array<double, 3>& of
   } else {
     m_renderer->ResetCameraClippingRange();
   }
+  draw();
+}
+
+void ShellView::paintGL() {
+  QVTKOpenGLNativeWidget::paintGL();
+  if (m_painted) return;
+  m_painted = true;  // the context exists: the warm-up's turns may begin
+  if (!m_staged.empty()) m_stage_timer->start();
+}
+
+std::size_t ShellView::drawn_props() const {
+  return static_cast<std::size_t>(m_renderer->GetViewProps()->GetNumberOfItems());
+}
+
+void ShellView::add_prop(vtkProp* prop) {
+  stage(
+      look_of(prop), [this, prop] { m_renderer->AddViewProp(prop); }, prop);
+  // A mipmapped texture (the floor's checker) is a turn of its own: generating its levels and
+  // its trilinear sampling cost llvmpipe 50-60 ms of CPU in the first draw, bilinear sampling
+  // 10 ms. It is drawn bilinear first (the cheap version), mipmapped a turn later.
+  auto* actor = vtkActor::SafeDownCast(prop);
+  vtkTexture* texture = actor ? actor->GetTexture() : nullptr;
+  if (texture && texture->GetMipmap() && m_looks.count("mipmapped texture") == 0) {
+    texture->MipmapOff();
+    vtkSmartPointer<vtkTexture> keep = texture;
+    // (if the actor is removed before that turn, its texture is mipmapped for a later return)
+    stage(
+        "mipmapped texture", [keep] { keep->MipmapOn(); }, prop, /*apply_when_removed=*/true);
+  }
+}
+
+void ShellView::stage(const std::string& look, std::function<void()> apply, vtkProp* prop,
+                      bool apply_when_removed) {
+  const bool known = m_looks.count(look) > 0;
+  if (known || (m_painted && m_new_looks == 0 && m_staged.empty())) {
+    if (!known) m_looks.insert(look), ++m_new_looks;
+    apply();
+    return;
+  }
+  m_staged.push_back({look, prop, std::move(apply), apply_when_removed});
+  if (m_painted) m_stage_timer->start();
+}
+
+void ShellView::remove_prop(vtkProp* prop) {
+  m_renderer->RemoveViewProp(prop);
+  for (auto it = m_staged.begin(); it != m_staged.end();) {
+    if (it->prop.Get() != prop) {
+      ++it;
+      continue;
+    }
+    if (it->apply_when_removed) it->apply();
+    it = m_staged.erase(it);
+  }
+}
+
+void ShellView::draw() {
+  m_most_new_looks = std::max(m_most_new_looks, m_new_looks);
+  m_new_looks = 0;
   renderWindow()->Render();
+  if (!m_staged.empty() && m_painted) m_stage_timer->start();
+}
+
+void ShellView::advance() {
+  while (!m_staged.empty()) {
+    Staged& next = m_staged.front();
+    const bool known = m_looks.count(next.look) > 0;
+    if (!known && m_new_looks > 0) break;
+    if (!known) m_looks.insert(next.look), ++m_new_looks;
+    std::function<void()> apply = std::move(next.apply);
+    m_staged.pop_front();
+    apply();
+  }
+  draw();
 }
 
 }  // namespace thaw::gui

@@ -9,6 +9,9 @@
 #include <vtkSmartPointer.h>
 
 #include <array>
+#include <deque>
+#include <functional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -17,7 +20,9 @@
 
 class vtkRenderer;
 class vtkActor;
+class vtkProp;
 class vtkTextActor;
+class QTimer;
 
 namespace thaw::gui {
 
@@ -58,12 +63,54 @@ class ShellView : public QVTKOpenGLNativeWidget {
   long triangles() const { return m_triangles; }
   /// Whether the outer surface is drawn with its triangle edges (false while the slider moves).
   bool edges_shown() const;
+  /// Whether some actors still wait for their turn to be drawn (warm-up, below). Never before
+  /// the first paint: the turns start with it (a platform without OpenGL never paints the view).
+  bool warming_up() const { return m_painted && !m_staged.empty(); }
+  /// The most looks first drawn in one draw (tests; warm-up, below).
+  int most_new_looks_per_draw() const { return m_most_new_looks; }
+  /// Actors (and the label) in the renderer now (tests).
+  std::size_t drawn_props() const;
 
  signals:
   /// The user orbited, panned or zoomed the view (the window writes it back as the scene camera).
   void cameraMoved();
 
+ protected:
+  /// Qt's paint; the first one (the OpenGL context made) lets the warm-up begin.
+  void paintGL() override;
+
  private:
+  // Warm-up. With software OpenGL (Mesa llvmpipe) the first draw of each new look (shader
+  // program and pipeline state: translucent, textured, with edges, the label, the gradient)
+  // compiles its shaders with LLVM, 10-40 ms of CPU on the GUI thread each; drawing the whole
+  // scene at once blocked the GUI thread for 0.3-0.9 s at start-up. So an actor of a look not
+  // drawn yet is added alone: at most one new look per draw, the others wait for the next
+  // event-loop turns (m_stage_timer), in order. Actors of looks drawn before are added at once,
+  // so a slider move swaps its two surfaces in one draw.
+  struct Staged {
+    std::string look;
+    vtkSmartPointer<vtkProp> prop;  // null for a setting of the renderer (gradient, label)
+    std::function<void()> apply;
+    /// applied when `prop` is removed before its turn (else dropped with it)
+    bool apply_when_removed = false;
+  };
+  /// Adds `prop` as stage() does.
+  void add_prop(vtkProp* prop);
+  /// Applies `apply` (adding `prop`, or a new look of the renderer itself) now if `look` was
+  /// drawn before or is the first new look since the last draw, else queues it.
+  void stage(const std::string& look, std::function<void()> apply, vtkProp* prop = nullptr,
+             bool apply_when_removed = false);
+  void remove_prop(vtkProp* prop);
+  /// Draws (every actor added so far) and starts the next warm-up turn if any waits.
+  void draw();
+  /// One warm-up turn: the queued additions up to the second new look, then a draw.
+  void advance();
+
+  std::deque<Staged> m_staged;
+  std::set<std::string> m_looks;
+  int m_new_looks = 0, m_most_new_looks = 0;
+  bool m_painted = false;
+  QTimer* m_stage_timer = nullptr;
   vtkSmartPointer<vtkRenderer> m_renderer;
   vtkSmartPointer<vtkActor> m_outer, m_inner;
   vtkSmartPointer<vtkTextActor> m_label;

@@ -66,7 +66,7 @@ mesh::MeshManifest SimulationRunner::mesh_cancellably(const std::filesystem::pat
 }
 
 void SimulationRunner::run(pipeline::RunScenario sc) {
-  lower_thread_priority();
+  lower_thread_priority(kBackgroundNice);
   try {
     if (!m_work.isValid()) throw UserError("", "", "no temporary folder for the simulation");
     auto run = std::make_shared<SimulationRun>();

@@ -293,6 +293,22 @@ class TestMainWindow : public QObject {
         w.shell_view().camera().position == (std::array<double, 3>{0.1, 0.3, 0.4}), 60000);
   }
 
+  // Start-up without a long block of the GUI thread: with software OpenGL the first draw of each
+  // look (translucent, textured, unlit, the label, the gradient) compiles its shaders, tens of
+  // ms each, so the view adds actors of new looks one per draw over several event-loop turns,
+  // and ends with all of them drawn.
+  void theViewWarmsUpOneNewLookPerDraw() {
+    MainWindow w{ScenarioDocument()};
+    w.show();
+    thaw::gui::ShellView& v = w.shell_view();
+    QTRY_VERIFY_WITH_TIMEOUT(
+        v.triangles() > 0 && v.scene_objects() > 0 && !v.warming_up() && w.preview_full_size(),
+        120000);
+    QCOMPARE(v.most_new_looks_per_draw(), 1);
+    // Everything is drawn: the shell's two surfaces, the scene's objects and lights, the label.
+    QCOMPARE(v.drawn_props(), 2 + v.scene_objects() + v.scene_lights() + 1);
+  }
+
   void startAndCancelASimulation() {
     ScenarioDocument doc;
     doc.set("film.frames", 400LL);  // long enough that the run is still going when cancelled
