@@ -19,6 +19,13 @@ constexpr float kPi = 3.14159265358979323846f;
 /// Photons of another surface: normals more than acos(0.9) = 26 degrees apart, or farther than
 /// r / 4 from the query's tangent plane.
 constexpr float kMinNormalCos = 0.9f, kMaxPlaneDistance = 0.25f;
+/// A subtree counts as lying on the query's surface only if its bound on (h / r)^2 is below
+/// the plane test's limit by this factor: far beyond the float rounding of the per-photon h
+/// (a few ulps of the photon's distance, < 1e-6 r), so that test would pass for every photon.
+constexpr float kSurfaceMargin = 0.999f;
+/// Relative bound on the rounding of the subtree's plane-distance bound (a sum of six products
+/// in float: < 8 ulps of the sum of their magnitudes).
+constexpr float kRoundingBound = 1e-6f;
 
 int cell_of(float x, float cell) {
   return static_cast<int>(std::floor(x / cell));
@@ -147,6 +154,8 @@ void PhotonMap::build(std::vector<Node>& nodes, std::uint32_t node, std::uint32_
   }
   nodes[node].lo = lo;
   nodes[node].hi = hi;
+  nodes[node].begin = begin;
+  nodes[node].end = end;
   if (end - begin <= kLeafPhotons) {
     nodes[node].first = begin;
     nodes[node].count = end - begin;
@@ -190,6 +199,28 @@ std::uint32_t PhotonMap::add_block(const Node& leaf) {
   return static_cast<std::uint32_t>(m_blocks.size() - 1);
 }
 
+void PhotonMap::describe(const Node& node, WideNode& w, int i) const {
+  const Photon& first = m_photons[node.begin];
+  Vec3 lo = first.position, hi = lo;
+  float max_inv = 0;
+  bool one_normal = true;
+  for (std::uint32_t k = node.begin; k < node.end; ++k) {
+    const Photon& ph = m_photons[k];
+    lo = min(lo, ph.position);
+    hi = max(hi, ph.position);
+    max_inv = std::max(max_inv, ph.inv_radius2);
+    one_normal = one_normal && ph.normal.x == first.normal.x && ph.normal.y == first.normal.y &&
+                 ph.normal.z == first.normal.z;
+  }
+  for (int a = 0; a < 3; ++a) {
+    w.pos_lo[a][i] = lo[a];
+    w.pos_hi[a][i] = hi[a];
+    w.normal[a][i] = one_normal ? first.normal[a] : 0.0f;
+  }
+  w.max_inv_r2[i] = max_inv;
+  if (one_normal) w.one_normal |= 1u << i;
+}
+
 void PhotonMap::collapse(const std::vector<Node>& nodes, std::uint32_t node, std::uint32_t wide) {
   // The node's children, and the children of interior children: up to four slots.
   std::uint32_t slots[4];
@@ -213,6 +244,7 @@ void PhotonMap::collapse(const std::vector<Node>& nodes, std::uint32_t node, std
       w.lo[a][i] = lo[a];
       w.hi[a][i] = hi[a];
     }
+    if (used) describe(nodes[slots[i]], w, i);
   }
   m_wide[wide] = w;
   for (int i = 0; i < n; ++i) {
@@ -238,13 +270,50 @@ Rgb PhotonMap::irradiance(const Vec3& p, const Vec3& n) const {
   int top = 0;
   std::uint32_t node = 0;
 #if defined(__SSE2__)
+  // Stack entries: a wide node, bit 31 set when its subtree lies on the query's surface (the
+  // normal and plane tests pass for all its photons: only u < 1 is left to test).
+  constexpr std::uint32_t kOnSurface = 1u << 31;
   const __m128 px = _mm_set1_ps(p.x), py = _mm_set1_ps(p.y), pz = _mm_set1_ps(p.z);
   const __m128 qx = _mm_set1_ps(n.x), qy = _mm_set1_ps(n.y), qz = _mm_set1_ps(n.z);
   const __m128 one = _mm_set1_ps(1.0f), min_cos = _mm_set1_ps(kMinNormalCos),
                max_h2 = _mm_set1_ps(kMaxPlaneDistance * kMaxPlaneDistance);
+  const __m128 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+  const __m128 aqx = _mm_and_ps(qx, abs_mask), aqy = _mm_and_ps(qy, abs_mask),
+               aqz = _mm_and_ps(qz, abs_mask);
+  const __m128 half = _mm_set1_ps(0.5f), rounding = _mm_set1_ps(kRoundingBound),
+               surface_h2 = _mm_set1_ps(kMaxPlaneDistance * kMaxPlaneDistance * kSurfaceMargin);
   __m128 sum_r = _mm_setzero_ps(), sum_g = _mm_setzero_ps(), sum_b = _mm_setzero_ps();
+  // The children of w (lanes) whose subtrees lie on the query's surface: their common normal
+  // passes the normal test (the per-photon expression, so the same float value), and the box of
+  // their positions lies within r_min / 4 of the tangent plane: |(c - p).n| + half extents
+  // projected on n, plus a bound on that sum's rounding, with the margin kSurfaceMargin.
+  const auto on_surface = [&](const WideNode& w) {
+    const __m128 lox = _mm_load_ps(w.pos_lo[0]), hix = _mm_load_ps(w.pos_hi[0]);
+    const __m128 loy = _mm_load_ps(w.pos_lo[1]), hiy = _mm_load_ps(w.pos_hi[1]);
+    const __m128 loz = _mm_load_ps(w.pos_lo[2]), hiz = _mm_load_ps(w.pos_hi[2]);
+    const __m128 cos_n = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_load_ps(w.normal[0]), qx),
+                                               _mm_mul_ps(_mm_load_ps(w.normal[1]), qy)),
+                                    _mm_mul_ps(_mm_load_ps(w.normal[2]), qz));
+    const __m128 dx = _mm_mul_ps(_mm_sub_ps(_mm_mul_ps(_mm_add_ps(lox, hix), half), px), qx);
+    const __m128 dy = _mm_mul_ps(_mm_sub_ps(_mm_mul_ps(_mm_add_ps(loy, hiy), half), py), qy);
+    const __m128 dz = _mm_mul_ps(_mm_sub_ps(_mm_mul_ps(_mm_add_ps(loz, hiz), half), pz), qz);
+    const __m128 extent =
+        _mm_mul_ps(half, _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_sub_ps(hix, lox), aqx),
+                                               _mm_mul_ps(_mm_sub_ps(hiy, loy), aqy)),
+                                    _mm_mul_ps(_mm_sub_ps(hiz, loz), aqz)));
+    const __m128 terms = _mm_add_ps(_mm_add_ps(_mm_and_ps(dx, abs_mask), _mm_and_ps(dy, abs_mask)),
+                                    _mm_add_ps(_mm_and_ps(dz, abs_mask), extent));
+    const __m128 hb =
+        _mm_add_ps(_mm_add_ps(_mm_and_ps(_mm_add_ps(_mm_add_ps(dx, dy), dz), abs_mask), extent),
+                   _mm_mul_ps(terms, rounding));
+    const __m128 ok = _mm_and_ps(
+        _mm_cmpge_ps(cos_n, min_cos),
+        _mm_cmple_ps(_mm_mul_ps(_mm_mul_ps(hb, hb), _mm_load_ps(w.max_inv_r2)), surface_h2));
+    return static_cast<unsigned>(_mm_movemask_ps(ok)) & w.one_normal;
+  };
   while (true) {
-    const WideNode& w = m_wide[node];
+    const bool surface = node & kOnSurface;
+    const WideNode& w = m_wide[node & ~kOnSurface];
     const __m128 in = _mm_and_ps(
         _mm_and_ps(_mm_and_ps(_mm_cmple_ps(_mm_load_ps(w.lo[0]), px),
                               _mm_cmple_ps(px, _mm_load_ps(w.hi[0]))),
@@ -252,11 +321,12 @@ Rgb PhotonMap::irradiance(const Vec3& p, const Vec3& n) const {
                               _mm_cmple_ps(py, _mm_load_ps(w.hi[1])))),
         _mm_and_ps(_mm_cmple_ps(_mm_load_ps(w.lo[2]), pz), _mm_cmple_ps(pz, _mm_load_ps(w.hi[2]))));
     auto mask = static_cast<unsigned>(_mm_movemask_ps(in));
+    const unsigned flat = surface ? 0xfu : (mask ? on_surface(w) : 0u);
     while (mask) {
       const int i = __builtin_ctz(mask);
       mask &= mask - 1;
       if (!(w.leaf_mask & (1u << i))) {
-        stack[top++] = w.child[i];
+        stack[top++] = w.child[i] | (flat & (1u << i) ? kOnSurface : 0u);
         continue;
       }
       const PhotonBlock& b = m_blocks[w.child[i]];
@@ -265,13 +335,16 @@ Rgb PhotonMap::irradiance(const Vec3& p, const Vec3& n) const {
       const __m128 inv = _mm_load_ps(b.inv_r2);
       const __m128 u = _mm_mul_ps(
           _mm_add_ps(_mm_add_ps(_mm_mul_ps(vx, vx), _mm_mul_ps(vy, vy)), _mm_mul_ps(vz, vz)), inv);
-      const __m128 cos_n = _mm_add_ps(
-          _mm_add_ps(_mm_mul_ps(_mm_load_ps(b.nx), qx), _mm_mul_ps(_mm_load_ps(b.ny), qy)),
-          _mm_mul_ps(_mm_load_ps(b.nz), qz));
-      const __m128 h =
-          _mm_add_ps(_mm_add_ps(_mm_mul_ps(vx, qx), _mm_mul_ps(vy, qy)), _mm_mul_ps(vz, qz));
-      const __m128 ok = _mm_and_ps(_mm_and_ps(_mm_cmplt_ps(u, one), _mm_cmpge_ps(cos_n, min_cos)),
-                                   _mm_cmple_ps(_mm_mul_ps(_mm_mul_ps(h, h), inv), max_h2));
+      __m128 ok = _mm_cmplt_ps(u, one);
+      if (!(flat & (1u << i))) {
+        const __m128 cos_n = _mm_add_ps(
+            _mm_add_ps(_mm_mul_ps(_mm_load_ps(b.nx), qx), _mm_mul_ps(_mm_load_ps(b.ny), qy)),
+            _mm_mul_ps(_mm_load_ps(b.nz), qz));
+        const __m128 h =
+            _mm_add_ps(_mm_add_ps(_mm_mul_ps(vx, qx), _mm_mul_ps(vy, qy)), _mm_mul_ps(vz, qz));
+        ok = _mm_and_ps(_mm_and_ps(ok, _mm_cmpge_ps(cos_n, min_cos)),
+                        _mm_cmple_ps(_mm_mul_ps(_mm_mul_ps(h, h), inv), max_h2));
+      }
       const __m128 wgt = _mm_and_ps(_mm_mul_ps(_mm_sub_ps(one, u), inv), ok);
       sum_r = _mm_add_ps(sum_r, _mm_mul_ps(wgt, _mm_load_ps(b.r)));
       sum_g = _mm_add_ps(sum_g, _mm_mul_ps(wgt, _mm_load_ps(b.g)));

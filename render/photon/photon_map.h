@@ -28,6 +28,11 @@
 // contributing photon on the default film (docs/benchmarks.md). The sum is taken in a fixed
 // order (the tree's, built from the input order), so results do not depend on threads. Built
 // once, immutable, thread-safe to query. Knows nothing about lights or tracing.
+// Subtrees on one surface: where a subtree's photons share one normal (bitwise) that passes the
+// normal test and its box of positions lies within r_min / 4 of the query's tangent plane (with a
+// margin far beyond float rounding), every photon in it passes both tests, so below it only the
+// kernel test u < 1 is evaluated: the same sum, a quarter fewer operations per photon (the
+// default film's floor photons all qualify at the root's children).
 #include <cstdint>
 #include <vector>
 
@@ -78,15 +83,23 @@ class PhotonMap {
   struct Node {
     Vec3 lo, hi;
     std::uint32_t first = 0, count = 0;
+    /// its photons: m_photons[begin, end)
+    std::uint32_t begin = 0, end = 0;
   };
   /// The traversal tree: the binary tree collapsed into 4-wide nodes, the children's boxes as
   /// structure of arrays (tested together with SSE, as render/accel/bvh.h does for rays).
   /// child[i]: a WideNode index, or for a leaf (leaf bit i set) a PhotonBlock index; unused
-  /// slots have an empty box.
+  /// slots have an empty box. Per child also what decides whether its subtree lies on one
+  /// surface (see above): its photons' box of positions, their largest 1 / r_p^2 and their
+  /// common normal (bit i of one_normal set when they have one).
   struct alignas(16) WideNode {
     float lo[3][4], hi[3][4];
+    float pos_lo[3][4], pos_hi[3][4];
+    float max_inv_r2[4];
+    float normal[3][4];
     std::uint32_t child[4];
     std::uint32_t leaf_mask = 0;
+    std::uint32_t one_normal = 0;
   };
   /// The (up to) 4 photons of a leaf as structure of arrays, tested together; unused lanes have
   /// zero power and inv_radius2 (they add 0).
@@ -99,6 +112,8 @@ class PhotonMap {
   void collapse(const std::vector<Node>& nodes, std::uint32_t node, std::uint32_t wide);
   /// A leaf's photons as a block; returns its index.
   std::uint32_t add_block(const Node& leaf);
+  /// Slot i of `w`: the positions' box, the largest 1 / r^2 and the common normal of `node`.
+  void describe(const Node& node, WideNode& w, int i) const;
 
   std::vector<Photon> m_photons;
   std::vector<WideNode> m_wide;

@@ -131,6 +131,39 @@ TEST(PhotonMap, TreeLookupEqualsBruteForce) {
   }
 }
 
+// Subtrees on one surface skip the normal and plane tests (photon_map.h): the sum must still be
+// the per-photon rule's, also for queries just inside and just outside the tangent-plane limit
+// r / 4 (where the shortcut must not be taken), tilted query normals (cos 0.95 and 0.85 against
+// the photons' normal) and photons of two normals mixed. Brute force as above; same tolerance.
+TEST(PhotonMap, SurfaceShortcutMatchesPerPhotonTests) {
+  const float r = 0.02f, h = 0.004f;
+  std::vector<Photon> photons = lattice(h, 0.3f, 1.0f);
+  const Vec3 tilted = normalize(Vec3{0.2f, 1, 0});
+  for (int i = 0; i < 400; ++i)
+    photons.push_back(
+        {Vec3{float(i % 20) * 0.01f, 0, float(i / 20) * 0.01f}, tilted, Rgb{0.5f, 0.5f, 0.5f}});
+  const PhotonMap map(photons, r, 32.0);
+  const float cos95 = 0.95f, cos85 = 0.85f;
+  const Vec3 normals[] = {{0, 1, 0},
+                          tilted,
+                          {std::sqrt(1 - cos95 * cos95), cos95, 0},
+                          {0, cos85, std::sqrt(1 - cos85 * cos85)}};
+  for (const Vec3& n : normals)
+    for (const float y : {0.0f, 0.1f, 0.2499f, 0.2501f, -0.2499f, 0.5f})
+      for (const Vec3 xz : {Vec3{0, 0, 0}, Vec3{0.0517f, 0, 0.0893f}, Vec3{-0.29f, 0, 0.1f}}) {
+        const Vec3 p{xz.x, y * r, xz.z};
+        double want = 0;
+        for (const Photon& ph : map.photons()) {
+          const Vec3 v = ph.position - p;
+          const double u = double(dot(v, v)) * ph.inv_radius2, hh = dot(v, n);
+          if (u < 1 && dot(ph.normal, n) >= 0.9f && hh * hh * ph.inv_radius2 <= 0.0625)
+            want += ph.power.r * (1 - u) * ph.inv_radius2 * 2 / M_PI;
+        }
+        EXPECT_NEAR(map.irradiance(p, n).r, want, 1e-5 * want + 1e-9)
+            << n.x << " " << n.y << " " << y << " " << xz.x;
+      }
+}
+
 // Every leaf block of the lookup tree is full but the last (its 4 lanes are tested together,
 // empty ones cost as much as photons), for any count: ceil(n / 4) blocks.
 TEST(PhotonMap, LeafBlocksAreFull) {
