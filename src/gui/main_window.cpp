@@ -61,8 +61,11 @@ MainWindow::MainWindow(ScenarioDocument document, QWidget* parent)
   m_view->setObjectName("shell_view");
   left->addWidget(m_preview);
   left->addWidget(m_view);
+  // The rendered preview (the frame as the film shows it) gets the larger part; a smaller 3D
+  // view is also fewer pixels for software OpenGL to draw.
   left->setStretchFactor(0, 3);
   left->setStretchFactor(1, 2);
+  left->setSizes({450, 300});
 
   m_tabs = new QTabWidget;
   m_tabs->setObjectName("tabs");
@@ -147,6 +150,20 @@ MainWindow::~MainWindow() {
 QWidget* MainWindow::make_render_tab() {
   auto* page = new QWidget;
   auto* v = new QVBoxLayout(page);
+  add_quality_rows(v);
+  add_film_rows(v);
+  auto* note = new QLabel(
+      "The preview renders the first film frame as <tt>thaw run</tt> would: a quick pass at the "
+      "preview size, then with the frame's anti-aliasing and caustics. Every edit restarts it. "
+      "The 3D view below shows the same scene through the same camera: orbit, pan or zoom it "
+      "and the camera is written back.");
+  note->setWordWrap(true);
+  v->addWidget(note);
+  v->addStretch(1);
+  return page;
+}
+
+void MainWindow::add_quality_rows(QVBoxLayout* v) {
   auto* form = new KeyForm;
   form->add_section("Quality of the film's frames ([render.image])");
   form->add_integer("Width [px]", "render.image.width",
@@ -176,7 +193,10 @@ QWidget* MainWindow::make_render_tab() {
   connect(render, &QPushButton::clicked, this, [this] { request_preview(true); });
   row->addWidget(render);
   v->addLayout(row);
-  // Render film: thaw run into a folder, then step through or play its frames here.
+}
+
+// Render film: thaw run into a folder, then step through or play its frames here.
+void MainWindow::add_film_rows(QVBoxLayout* v) {
   m_film = new FilmRunner(this);
   auto* frow = new QHBoxLayout;
   m_film_button = new QPushButton("Render film...");
@@ -194,6 +214,9 @@ QWidget* MainWindow::make_render_tab() {
   frow->addWidget(m_film_cancel);
   m_film_progress = new QProgressBar;
   m_film_progress->setObjectName("film_progress");
+  m_film_progress->setRange(0, 1);
+  m_film_progress->setValue(0);
+  m_film_progress->setFormat("no film rendered yet");
   frow->addWidget(m_film_progress, 1);
   v->addLayout(frow);
   auto* prow = new QHBoxLayout;
@@ -202,12 +225,19 @@ QWidget* MainWindow::make_render_tab() {
   m_frame_slider = new QSlider(Qt::Horizontal);
   m_frame_slider->setObjectName("frame_slider");
   m_frame_slider->setEnabled(false);
+  m_frame_label = new QLabel("frame -");
+  m_frame_label->setObjectName("frame_label");
   prow->addWidget(m_play_button);
   prow->addWidget(m_frame_slider, 1);
+  prow->addWidget(m_frame_label);
   v->addLayout(prow);
   m_film_status = new QLabel;
   m_film_status->setWordWrap(true);
   v->addWidget(m_film_status);
+  connect_film();
+}
+
+void MainWindow::connect_film() {
   m_film_poll = new QTimer(this);
   m_film_poll->setInterval(300);
   connect(m_film_poll, &QTimer::timeout, this,
@@ -229,25 +259,7 @@ QWidget* MainWindow::make_render_tab() {
         QFileDialog::getExistingDirectory(this, "Folder for the film (thaw run --out)");
     if (!dir.isEmpty()) start_film(dir.toStdString());
   });
-  connect(m_film, &FilmRunner::finished, this, [this](const QString& film) {
-    m_film_poll->stop();
-    m_film_button->setEnabled(true);
-    m_film_cancel->setEnabled(false);
-    m_frames.clear();
-    std::error_code ec;
-    const std::filesystem::path frames =
-        std::filesystem::path(film.toStdString()).parent_path() / "frames";
-    for (const auto& e : std::filesystem::directory_iterator(frames, ec))
-      if (e.path().extension() == ".png") m_frames.push_back(e.path());
-    std::sort(m_frames.begin(), m_frames.end());
-    m_film_progress->setValue(static_cast<int>(m_frames.size()));
-    m_film_status->setText("Film: " + film + ". Step through the frames or play them.");
-    m_frame_slider->setRange(0, std::max(0, static_cast<int>(m_frames.size()) - 1));
-    m_frame_slider->setEnabled(!m_frames.empty());
-    m_play_button->setEnabled(!m_frames.empty());
-    show_frame(0);
-    emit filmFinished();
-  });
+  connect(m_film, &FilmRunner::finished, this, &MainWindow::on_film_finished);
   connect(m_film, &FilmRunner::failed, this, [this](const QString& message) {
     m_film_poll->stop();
     m_film_button->setEnabled(true);
@@ -264,15 +276,26 @@ QWidget* MainWindow::make_render_tab() {
                                .arg(m_film->frames_done()));
     emit filmCancelled();
   });
-  auto* note = new QLabel(
-      "The preview renders the first film frame as <tt>thaw run</tt> would: a quick pass at the "
-      "preview size, then with the frame's anti-aliasing and caustics. Every edit restarts it. "
-      "The 3D view below shows the same scene through the same camera: orbit, pan or zoom it "
-      "and the camera is written back.");
-  note->setWordWrap(true);
-  v->addWidget(note);
-  v->addStretch(1);
-  return page;
+}
+
+void MainWindow::on_film_finished(const QString& film) {
+  m_film_poll->stop();
+  m_film_button->setEnabled(true);
+  m_film_cancel->setEnabled(false);
+  m_frames.clear();
+  std::error_code ec;
+  const std::filesystem::path frames =
+      std::filesystem::path(film.toStdString()).parent_path() / "frames";
+  for (const auto& e : std::filesystem::directory_iterator(frames, ec))
+    if (e.path().extension() == ".png") m_frames.push_back(e.path());
+  std::sort(m_frames.begin(), m_frames.end());
+  m_film_progress->setValue(static_cast<int>(m_frames.size()));
+  m_film_status->setText("Film: " + film + ". Step through the frames or play them.");
+  m_frame_slider->setRange(0, std::max(0, static_cast<int>(m_frames.size()) - 1));
+  m_frame_slider->setEnabled(!m_frames.empty());
+  m_play_button->setEnabled(!m_frames.empty());
+  show_frame(0);
+  emit filmFinished();
 }
 
 QWidget* MainWindow::make_scenario_tab() {
@@ -372,6 +395,11 @@ QWidget* MainWindow::make_simulation_tab() {
   m_slider->setObjectName("time_slider");
   m_slider->setEnabled(false);
   srow->addWidget(m_slider, 1);
+  m_time_label = new QLabel("-");
+  m_time_label->setObjectName("time_label");
+  m_time_label->setMinimumWidth(m_time_label->fontMetrics().horizontalAdvance("00.0 min"));
+  m_time_label->setAlignment(Qt::AlignRight | Qt::AlignVCenter);
+  srow->addWidget(m_time_label);
   v->addLayout(srow);
   connect(m_run_button, &QPushButton::clicked, this, [this] { start_simulation(); });
   connect(m_cancel_button, &QPushButton::clicked, this, [this] { cancel_simulation(); });
@@ -446,6 +474,7 @@ void MainWindow::show_step(int index) {
   const ShellStep& step = *m_run->steps[static_cast<std::size_t>(index)];
   m_view->show_step(step, shell_offset_of(step), false, /*moving=*/true);
   m_plot->set_marker(step.row.time_s);
+  m_time_label->setText(QString("%1 min").arg(step.row.time_s / 60.0, 0, 'f', 1));
   if (m_slider->value() != index) m_slider->setValue(index);
   m_pass = -1;  // the image shown is of another step now
   // The preview follows once the slider rests; meanwhile no pass takes the cores from the 3D
@@ -586,6 +615,7 @@ bool MainWindow::start_film(const std::filesystem::path& dir) {
   m_film_cancel->setEnabled(true);
   m_film_progress->setRange(0, static_cast<int>(pipeline::frame_times(*m_check.scenario).size()));
   m_film_progress->setValue(0);
+  m_film_progress->setFormat("%v / %m frames");
   m_film_status->setText("Running thaw run into " + QString::fromStdString(dir.string()) + "...");
   m_film_poll->start();
   return true;
@@ -609,6 +639,7 @@ void MainWindow::show_frame(int index) {
   m_image = frame;
   show_image();
   m_status->setText(QString("film frame %1/%2").arg(index + 1).arg(m_frames.size()));
+  m_frame_label->setText(QString("frame %1/%2").arg(index + 1).arg(m_frames.size()));
 }
 
 bool MainWindow::select_tab(const std::string& name) {

@@ -23,6 +23,7 @@ class QPushButton;
 class QProgressBar;
 class QSlider;
 class QTimer;
+class QVBoxLayout;
 
 namespace thaw::gui {
 
@@ -114,6 +115,12 @@ class MainWindow : public QMainWindow {
 
  private:
   QWidget* make_render_tab();
+  /// The Render tab's rows: the frames' quality and the preview's size; Render film.
+  void add_quality_rows(QVBoxLayout* v);
+  void add_film_rows(QVBoxLayout* v);
+  void connect_film();
+  /// A film's run ended: its frames are listed and the first one shown.
+  void on_film_finished(const QString& film);
   QWidget* make_scenario_tab();
   QWidget* make_simulation_tab();
   void recheck();
@@ -154,6 +161,8 @@ class MainWindow : public QMainWindow {
   int m_step = -1;
   RadiusPlot* m_plot = nullptr;
   QSlider* m_slider = nullptr;
+  /// the slider's step time
+  QLabel* m_time_label = nullptr;
   QProgressBar* m_sim_progress = nullptr;
   QPushButton* m_run_button = nullptr;
   QPushButton* m_cancel_button = nullptr;
@@ -166,6 +175,7 @@ class MainWindow : public QMainWindow {
   FilmRunner* m_film = nullptr;
   std::vector<std::filesystem::path> m_frames;
   QSlider* m_frame_slider = nullptr;
+  QLabel* m_frame_label = nullptr;
   QPushButton* m_film_button = nullptr;
   QPushButton* m_film_cancel = nullptr;
   QPushButton* m_play_button = nullptr;

@@ -359,6 +359,10 @@ class TestMainWindow : public QObject {
     while (last > 0 && !run->steps[static_cast<std::size_t>(last)]->outer) --last;
     QVERIFY(last > 0);
     slider->setValue(last);
+    // The step's time beside the slider.
+    QCOMPARE(
+        w.findChild<QLabel*>("time_label")->text(),
+        QString("%1 min").arg(run->rows[static_cast<std::size_t>(last)].time_s / 60.0, 0, 'f', 1));
     // While the slider moves the ice is drawn without its triangle edges; once it rests, with.
     QVERIFY(!w.shell_view().edges_shown());
     QTRY_VERIFY_WITH_TIMEOUT(w.shell_view().edges_shown(), 10000);
@@ -389,6 +393,7 @@ class TestMainWindow : public QObject {
     QVERIFY(slider && slider->isEnabled());
     slider->setValue(2);
     QCOMPARE(w.preview_image().size(), QSize(64, 48));  // the frame, not the 320x240 preview
+    QCOMPARE(w.findChild<QLabel*>("frame_label")->text(), QString("frame 3/3"));
   }
 
   // Cancel from the window uses the pipeline's interrupt: the run stops at a safe point with no
