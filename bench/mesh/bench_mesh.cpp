@@ -25,13 +25,16 @@
 
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <filesystem>
 #include <string>
 
 #include "src/common/atomic_file.h"
 #include "src/mesh/grid_mesher.h"
 #include "src/mesh/mesh_series.h"
+#include "src/mesh/obj_writer.h"
 #include "src/mesh/surface_mesher.h"
+#include "src/meshio/obj_reader.h"
 #include "tests/src/mesh/grid_field_samples.h"
 
 namespace {
@@ -58,6 +61,66 @@ void Sphere40k(benchmark::State& state) {
       static_cast<double>(triangles), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(Sphere40k)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+// The serial part of the default film's mesh stage (issue 13): its one CGAL form, the unit sphere
+// every one of its 103 surfaces is scaled from (relative distance bound 1e-3, the size bound
+// redundant: similar_surface.h), taken apart in thread CPU time (load-independent):
+//   form_ms        mesh_surface_unchecked: Mesh_3 and the extraction of the boundary, the part
+//                  no other rank can start before (it is what they copy)
+//   checks_ms      UncheckedSurface::check (closed, manifold, Euler, self-intersection,
+//                  orientation): run while the other ranks copy the form
+//   cache_write_ms the form written to the resume cache (17-digit OBJ), how the other ranks get it
+//   cache_read_ms  reading it back, on each other rank
+//   copy_write_ms  one surface: the form scaled, with its normals, written (103 of them)
+void DefaultFilmForm(benchmark::State& state) {
+  const mesh::ShellShape unit = sphere(1.0);
+  mesh::SurfaceCriteria c;
+  c.facet_angle_deg = 30;
+  c.facet_size_m = 2;
+  c.facet_distance_m = 1e-3;
+  mesh::MeshOptions o;
+  o.normals = false;
+  const fs::path file = fs::temp_directory_path() / "thaw_bench_mesh_form.obj";
+  const auto cpu_ms = [] {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+  };
+  double form_ms = 0, check_ms = 0, write_ms = 0, read_ms = 0, copy_ms = 0;
+  std::size_t triangles = 0;
+  for (auto _ : state) {
+    const double t0 = cpu_ms();
+    const mesh::UncheckedSurface form = mesh::mesh_surface_unchecked(unit, c, o);
+    const double t1 = cpu_ms();
+    benchmark::DoNotOptimize(form.check());
+    const double t2 = cpu_ms();
+    mesh::write_obj(file, form.mesh(), "form");
+    const double t3 = cpu_ms();
+    const mesh::TriangleMesh back = mesh::from_file_mesh(meshio::read_obj(file));
+    const double t4 = cpu_ms();
+    mesh::TriangleMesh copy = back;
+    for (auto& v : copy.vertices)
+      for (double& x : v) x *= 0.03;
+    for (const auto& v : copy.vertices) copy.normals.push_back(sphere(0.03).outward_normal(v));
+    mesh::write_obj(file, copy, "copy");
+    const double t5 = cpu_ms();
+    form_ms += t1 - t0;
+    check_ms += t2 - t1;
+    write_ms += t3 - t2;
+    read_ms += t4 - t3;
+    copy_ms += t5 - t4;
+    triangles = form.mesh().faces.size();
+  }
+  const double n = static_cast<double>(state.iterations());
+  state.counters["triangles"] = static_cast<double>(triangles);
+  state.counters["form_ms"] = form_ms / n;
+  state.counters["checks_ms"] = check_ms / n;
+  state.counters["cache_write_ms"] = write_ms / n;
+  state.counters["cache_read_ms"] = read_ms / n;
+  state.counters["copy_write_ms"] = copy_ms / n;
+  fs::remove(file);
+}
+BENCHMARK(DefaultFilmForm)->Unit(benchmark::kMillisecond)->Iterations(5);
 
 fs::path series_folder() {
   const fs::path dir = fs::temp_directory_path() / "thaw_bench_mesh_series";

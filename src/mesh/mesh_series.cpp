@@ -330,6 +330,9 @@ struct FormMeshes {
   std::vector<std::string> error;  // "" if fine
   std::vector<char> have;          // 1 once unit[k] is there
   long resumed = 0;                // taken from SIMDIR/mesh.partial/
+  /// Forms meshed by this process, with CGAL's surface for their checks (check_form), which run
+  /// after the form is shared: until then, unit[k] is not checked.
+  std::vector<std::optional<UncheckedSurface>> unchecked;
 };
 
 // Meshes kept by an earlier, interrupted run (read before meshing: a mesh made in this run is
@@ -344,11 +347,16 @@ void take_kept_forms(const FormPlan& plan, const fs::path& partial_dir, FormMesh
     }
 }
 
-// Meshes form k and keeps it for a resumed run; a failure is stored in m.error[k], never thrown.
+// Meshes form k and keeps it for a resumed run and the other processes, before its checks
+// (check_form, in write_surfaces: the form is the one serial step of a 1D series, so its checks
+// run while the surfaces are copied from it); a failure is stored in m.error[k], never thrown.
 void mesh_form(const FormPlan& plan, std::size_t k, const MeshOptions& unit_options,
                const fs::path& partial_dir, FormMeshes& m) {
   try {
-    m.unit[k] = mesh_surface(plan.forms[k].unit_shape, plan.forms[k].unit_criteria, unit_options);
+    UncheckedSurface surface =
+        mesh_surface_unchecked(plan.forms[k].unit_shape, plan.forms[k].unit_criteria, unit_options);
+    m.unit[k] = surface.mesh();
+    m.unchecked[k] = std::move(surface);
     store_cached_form(form_cache_file(partial_dir, plan.description[k]), plan.description[k],
                       m.unit[k]);
     m.have[k] = 1;
@@ -420,27 +428,57 @@ TaskResult write_surface(const Task& t, const FormPlan& plan, std::size_t k, con
   return r;
 }
 
-// Every surface written, spread over the farm in task order (the output is the same for any
-// thread count); on the leader the results, on the others empty ones.
+// The checks of mesh_surface (surface_mesher.h) on form k: "" or the problem. On CGAL's own
+// surface where this process meshed the form, otherwise (another process meshed it, or it was
+// kept by an interrupted run before its checks) on the mesh read back. A form that failed to
+// mesh has nothing to check: its surfaces carry that failure.
+std::string check_form(std::size_t k, FormMeshes& m) {
+  if (!m.error[k].empty() || !m.have[k] || interrupt_requested()) return "";
+  try {
+    std::string problem =
+        m.unchecked[k] ? m.unchecked[k]->check() : check_closed_manifold_outward(m.unit[k]);
+    m.unchecked[k].reset();  // CGAL's surface is large and needed no more
+    return problem;
+  } catch (const std::exception& e) {
+    return e.what();
+  } catch (...) {
+    return "unknown failure";
+  }
+}
+
+// Every form checked and every surface written, spread over the farm: first the forms' checks,
+// then the surfaces in task order (the output is the same for any thread count). On the leader
+// the surfaces' results, a surface of a form that failed its checks failing as mesh_surface's
+// MeshError made it fail (its file, written meanwhile, goes with the staged folder); on the
+// others empty ones.
 std::vector<TaskResult> write_surfaces(const std::vector<Task>& tasks, const FormPlan& plan,
-                                       const FormMeshes& m, const MeshManifest& manifest,
+                                       FormMeshes& m, const MeshManifest& manifest,
                                        const MeshOptions& options, const fs::path& out_dir,
                                        MeshFarm& farm, SeriesProgress& progress) {
+  const long checks = static_cast<long>(plan.forms.size());
   const std::vector<std::string> texts = farm.run(
-      static_cast<long>(tasks.size()), options.jobs,
-      [&](long k) -> std::string {
+      checks + static_cast<long>(tasks.size()), options.jobs,
+      [&](long item) -> std::string {
+        if (item < checks) return check_form(static_cast<std::size_t>(item), m);
         if (interrupt_requested()) {
           TaskResult skipped;
           skipped.error = "interrupted";  // thrown after the loop
           return encode(skipped);
         }
-        const auto i = static_cast<std::size_t>(k);
+        const auto i = static_cast<std::size_t>(item - checks);
         return encode(write_surface(tasks[i], plan, i, m, manifest, options, out_dir));
       },
       [&] { progress.one_done(); });
   std::vector<TaskResult> results;
-  if (farm.leader())
-    for (const std::string& text : texts) results.push_back(decode(text));
+  if (!farm.leader()) return results;
+  for (std::size_t i = 0; i < tasks.size(); ++i) {
+    const std::string& problem = texts[plan.form_of[i]];
+    if (!problem.empty()) {
+      results.emplace_back().error = problem;
+      continue;
+    }
+    results.push_back(decode(texts[static_cast<std::size_t>(checks) + i]));
+  }
   return results;
 }
 
@@ -523,10 +561,12 @@ MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& r
   manifest.distinct_meshes = static_cast<long>(plan.forms.size());
   FormMeshes meshes{std::vector<TriangleMesh>(plan.forms.size()),
                     std::vector<std::string>(plan.forms.size()),
-                    std::vector<char>(plan.forms.size(), 0)};
+                    std::vector<char>(plan.forms.size(), 0), 0,
+                    std::vector<std::optional<UncheckedSurface>>(plan.forms.size())};
   take_kept_forms(plan, partial_dir, meshes);
+  // Work items: the forms to mesh, each form's checks, each surface.
   SeriesProgress counter{progress, meshes.resumed,
-                         static_cast<std::int64_t>(plan.forms.size() + tasks.size())};
+                         static_cast<std::int64_t>(2 * plan.forms.size() + tasks.size())};
   counter.report();
   mesh_missing_forms(plan, unit_options, options.jobs, partial_dir, farm, counter, meshes);
   const std::vector<TaskResult> results =

@@ -129,8 +129,29 @@ TriangleMesh mesh_surface(const ShellShape& shape, const MeshOptions& options) {
   return mesh_surface(shape, criteria_for(shape, options), options);
 }
 
+struct UncheckedSurface::Cgal {
+  SurfaceMesh sm;
+};
+
+UncheckedSurface::UncheckedSurface(std::unique_ptr<Cgal> cgal, TriangleMesh mesh)
+    : m_cgal(std::move(cgal)), m_mesh(std::move(mesh)) {}
+UncheckedSurface::UncheckedSurface(UncheckedSurface&&) noexcept = default;
+UncheckedSurface& UncheckedSurface::operator=(UncheckedSurface&&) noexcept = default;
+UncheckedSurface::~UncheckedSurface() = default;
+
+std::string UncheckedSurface::check() const {
+  return mesh::check(m_cgal->sm);
+}
+
 TriangleMesh mesh_surface(const ShellShape& shape, const SurfaceCriteria& c,
                           const MeshOptions& options) {
+  UncheckedSurface surface = mesh_surface_unchecked(shape, c, options);
+  if (const std::string problem = surface.check(); !problem.empty()) throw MeshError(problem);
+  return surface.take_mesh();
+}
+
+UncheckedSurface mesh_surface_unchecked(const ShellShape& shape, const SurfaceCriteria& c,
+                                        const MeshOptions& options) {
   if (!(shape.radius_m > 0) || !std::isfinite(shape.radius_m) || !(shape.core_half_size_m >= 0))
     throw MeshError("surface radius must be finite and > 0");
   if (!(c.facet_size_m > 0) || !(c.facet_distance_m > 0))
@@ -156,7 +177,8 @@ TriangleMesh mesh_surface(const ShellShape& shape, const SurfaceCriteria& c,
   C3t3 c3t3 = CGAL::make_mesh_3<C3t3>(domain, criteria, params::no_perturb(), params::no_exude(),
                                       params::manifold());
 
-  SurfaceMesh sm;
+  auto cgal = std::make_unique<UncheckedSurface::Cgal>();
+  SurfaceMesh& sm = cgal->sm;
   if (!boundary_to_surface_mesh(c3t3, sm)) {
     // Not representable facet by facet (only a non-manifold complex does that): let CGAL's
     // general extraction try (it reorients and may duplicate vertices); check() judges the result.
@@ -165,7 +187,6 @@ TriangleMesh mesh_surface(const ShellShape& shape, const SurfaceCriteria& c,
   }
   if (sm.number_of_faces() > 0 && CGAL::is_closed(sm) && !PMP::is_outward_oriented(sm))
     PMP::reverse_face_orientations(sm);
-  if (const std::string problem = check(sm); !problem.empty()) throw MeshError(problem);
 
   TriangleMesh out;
   out.vertices.reserve(sm.number_of_vertices());
@@ -186,7 +207,7 @@ TriangleMesh mesh_surface(const ShellShape& shape, const SurfaceCriteria& c,
     out.normals.reserve(out.vertices.size());
     for (const auto& v : out.vertices) out.normals.push_back(shape.outward_normal(v));
   }
-  return out;
+  return UncheckedSurface(std::move(cgal), std::move(out));
 }
 
 }  // namespace thaw::mesh

@@ -242,6 +242,43 @@ TEST(MeshSeries, BadInputThrowsUserErrorAndKeepsOldOutput) {
   EXPECT_EQ(read_text(dir / "mesh/manifest.json"), before);
 }
 
+// A form is kept in mesh.partial/ (and shared with the other processes) before its checks run, so
+// a kept form is checked again when a run resumes from it: one damaged into inward-facing
+// triangles (still a readable OBJ) fails the run as a fresh mesh failing its checks would,
+// instead of becoming inside-out surfaces.
+TEST(MeshSeries, AKeptFormIsCheckedBeforeUse) {
+  const fs::path cut = fresh_copy("cylinder", "kept_form_checked");
+  MeshOptions o = coarse(1);
+  o.reuse_similar = false;
+  clear_interrupt_request();
+  EXPECT_THROW(mesh_simulation_folder(cut, o,
+                                      [](std::int64_t done, std::int64_t) {
+                                        if (done >= 1) request_interrupt();
+                                      }),
+               Interrupted);
+  clear_interrupt_request();
+  std::vector<fs::path> kept;
+  for (const auto& e : fs::directory_iterator(cut / "mesh.partial")) kept.push_back(e.path());
+  ASSERT_EQ(kept.size(), 1u);
+  std::istringstream in(read_text(kept[0]));
+  std::string out, line;
+  while (std::getline(in, line)) {
+    long a = 0, b = 0, c = 0;
+    if (std::sscanf(line.c_str(), "f %ld %ld %ld", &a, &b, &c) == 3)  // reversed winding
+      line = "f " + std::to_string(a) + " " + std::to_string(c) + " " + std::to_string(b);
+    out += line + "\n";
+  }
+  std::ofstream(kept[0], std::ios::binary) << out;
+  try {
+    mesh_simulation_folder(cut, o);
+    FAIL() << "an inside-out kept form was used";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("meshing failed: not outward oriented"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(fs::exists(cut / "mesh"));
+}
+
 // Issue 12: a full disk is not a meshing failure: the message names the surface's file (not the
 // staged temporary) and gives no meshing hint; nothing is left in SIMDIR/mesh.
 TEST(MeshSeries, FullDiskNamesTheFileWithoutAMeshingHint) {

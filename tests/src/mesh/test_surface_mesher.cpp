@@ -91,6 +91,22 @@ TEST(SurfaceMesher, DeterministicBytes) {
   EXPECT_EQ(format_obj(mesh_surface(capsule, coarse)), format_obj(mesh_surface(capsule, coarse)));
 }
 
+// The mesh stage shares a form before its checks (mesh_series.cpp): the unchecked surface must be
+// exactly mesh_surface's, and its check() the checks mesh_surface applies.
+TEST(SurfaceMesher, UncheckedSurfaceIsMeshSurfaceBeforeItsChecks) {
+  MeshOptions coarse;
+  coarse.edge_length_m = 0.01;
+  coarse.distance_m = 3e-4;
+  coarse.relative_distance = 0.03;
+  coarse.normals = true;
+  const ShellShape capsule = make(sim::Geometry::cylinder, 0.01, 0.02);
+  const UncheckedSurface unchecked =
+      mesh_surface_unchecked(capsule, criteria_for(capsule, coarse), coarse);
+  EXPECT_EQ(format_obj(unchecked.mesh()), format_obj(mesh_surface(capsule, coarse)));
+  EXPECT_EQ(unchecked.check(), "");
+  EXPECT_EQ(check_closed_manifold_outward(unchecked.mesh()), "");
+}
+
 TEST(SurfaceMesher, TriangleEstimateIsWithinAFactorOfTwo) {
   // criteria_for relies on estimate_triangles to respect max_triangles; it must stay close.
   MeshOptions coarse;
