@@ -12,7 +12,7 @@
 import os
 import sys
 
-from paraview.simple import (ColorBy, GetActiveViewOrCreate, GetAnimationScene, GetColorTransferFunction,
+from paraview.simple import (ColorBy, GetActiveViewOrCreate, GetAnimationScene, GetColorTransferFunction, GetScalarBar,
                              OpenDataFile, ResetCamera, SaveScreenshot, Show, Slice, UpdatePipeline)
 
 TEMPERATURE = "temperature_c"  # [C], written by src/inspect (field_probe: surfaces; field_export: fields)
@@ -54,6 +54,9 @@ def colour_by_temperature(display, view, association, value_range):
     if value_range:
         lut.RescaleTransferFunction(value_range[0], value_range[1])
     display.SetScalarBarVisibility(view, True)
+    bar = GetScalarBar(lut, view)
+    bar.Title = "temperature [C]"  # ParaView's default reads "temperature_c Magnitude"
+    bar.ComponentTitle = ""
 
 
 def open_run(run_dir, screenshot=None):
@@ -70,7 +73,9 @@ def open_run(run_dir, screenshot=None):
         colour_by_temperature(display, view, "POINTS", scale)
         print("meshes coloured by %s, %.3g to %.3g C" % (TEMPERATURE, scale[0], scale[1]))
     else:
-        ColorBy(display, None)  # solid colour
+        # Solid colour: no colour array. (ColorBy(display, None) fails in ParaView 5.11 when the
+        # display has no array yet: "invalid association string 'NONE'".)
+        display.ColorArrayName = ["POINTS", ""]
         display.DiffuseColor = ICE_BLUE
         display.Opacity = 0.6
         print("meshes in solid ice blue (no %s: a 1D run)" % TEMPERATURE)

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <vector>
 
 #include "src/common/atomic_file.h"
@@ -16,10 +17,12 @@
 namespace thaw::inspect {
 namespace fs = std::filesystem;
 
-void write_vti(const fs::path& path, const sim::GridField& f) {
+void write_vti(const fs::path& path, const sim::GridField& f,
+               const std::array<double, 3>& offset_m) {
   vtkNew<vtkImageData> image;
   image->SetDimensions(f.cells[0] + 1, f.cells[1] + 1, f.cells[2] + 1);  // points, not cells
-  image->SetOrigin(f.origin_m.data());
+  image->SetOrigin(f.origin_m[0] + offset_m[0], f.origin_m[1] + offset_m[1],
+                   f.origin_m[2] + offset_m[2]);
   image->SetSpacing(f.spacing_m, f.spacing_m, f.spacing_m);
   // VTK orders cells x fastest, then y, then z: the solver's index i + nx (j + ny k).
   const auto add = [&](const char* name, const std::vector<float>& values) {
@@ -33,27 +36,25 @@ void write_vti(const fs::path& path, const sim::GridField& f) {
   add("ice_fraction", f.ice_fraction);
   add("water_fraction", f.water_fraction);
   image->GetCellData()->SetActiveScalars("temperature_c");
-  const fs::path temp = temporary_sibling(path);
   vtkNew<vtkXMLImageDataWriter> writer;
   writer->SetInputData(image);
-  writer->SetFileName(temp.c_str());
-  writer->SetDataModeToAppended();
-  writer->EncodeAppendedDataOff();
+  // Each array inline (base64 in its DataArray element), no appended section: VTK reads an
+  // appended section (raw or base64) by stopping its expat parser at <AppendedData>, which
+  // expat's reparse deferral (expat 2.6, backported into Debian 12's security updates:
+  // 2.5.0-1+deb12u5) defeats. Debian 12's ParaView 5.11 then fails on such files with "not
+  // well-formed (invalid token)" (VTK issue 19258; seen with data/paraview/check_in_debian.sh).
+  // Written to memory, then to the file atomically: VTK 9.1's inline mode crashes when the disk
+  // fills mid-file (it frees position arrays only appended mode allocates).
+  writer->SetDataModeToBinary();
   writer->SetCompressorTypeToZLib();
-  std::error_code ec;
-  if (writer->Write() != 1 || writer->GetErrorCode() != 0) {
-    fs::remove(temp, ec);
-    throw UserError(path.string(), "", "cannot write VTK ImageData (disk full or not writable)");
-  }
-  fs::rename(temp, path, ec);
-  if (ec) {
-    fs::remove(temp, ec);
-    throw UserError(path.string(), "", "cannot rename into place: " + ec.message());
-  }
+  writer->WriteToOutputStringOn();
+  if (writer->Write() != 1 || writer->GetErrorCode() != 0)
+    throw UserError(path.string(), "", "cannot write VTK ImageData");
+  write_file_atomic(path, writer->GetOutputString());
 }
 
 long write_field_series(const fs::path& simdir, const fs::path& out_pvd,
-                        const ProgressCallback& progress) {
+                        const ProgressCallback& progress, const StepPlacement& placement) {
   std::vector<fs::path> grids;
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(simdir / "fields", ec))
@@ -72,7 +73,9 @@ long write_field_series(const fs::path& simdir, const fs::path& out_pvd,
   for (const fs::path& grid : grids) {
     const sim::GridField field = sim::read_grid_field(grid);
     const std::string name = grid.stem().string() + ".vti";
-    write_vti(data_dir / name, field);
+    // step_NNNNNN.grid: the step the placement is for.
+    const long step = std::strtol(grid.stem().string().c_str() + 5, nullptr, 10);
+    write_vti(data_dir / name, field, placement ? placement(step) : std::array<double, 3>{0, 0, 0});
     char time[40];
     std::snprintf(time, sizeof time, "%.17g", field.time_s);
     xml += "    <DataSet timestep=\"" + std::string(time) + "\" part=\"0\" file=\"" +

@@ -112,25 +112,25 @@ void write_vtp(const fs::path& path, const TriangleMesh& mesh,
       array->SetTuple(static_cast<vtkIdType>(i), normals[i].data());
     poly->GetPointData()->SetNormals(array);
   }
-  const fs::path temp = temporary_sibling(path);
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputData(poly);
-  writer->SetFileName(temp.c_str());
-  writer->SetDataModeToAppended();
-  writer->EncodeAppendedDataOff();
+  // Each array inline (base64 in its DataArray element), no appended section: VTK reads an
+  // appended section (raw or base64) by stopping its expat parser at <AppendedData>, which
+  // expat's reparse deferral (expat 2.6, backported into Debian 12's security updates:
+  // 2.5.0-1+deb12u5) defeats. Debian 12's ParaView 5.11 then fails on such files with "not
+  // well-formed (invalid token)" (VTK issue 19258; seen with data/paraview/check_in_debian.sh).
+  // Written to memory, then to the file atomically: VTK 9.1's inline mode crashes when the disk
+  // fills mid-file (it frees position arrays only appended mode allocates).
+  writer->SetDataModeToBinary();
   writer->SetCompressorTypeToZLib();
+  writer->WriteToOutputStringOn();
   const VtkMessages messages;  // VTK's own error lines go into the UserError, not to stderr
-  const int ok = writer->Write();
-  std::error_code ec;
-  if (ok != 1 || writer->GetErrorCode() != 0) {
-    fs::remove(temp, ec);
-    throw UserError(final_name(path).string(), "",
-                    "cannot write VTK PolyData (disk full or not writable)" + messages.suffix());
-  }
-  fs::rename(temp, path, ec);
-  if (ec) {
-    fs::remove(temp, ec);
-    throw UserError(final_name(path).string(), "", "cannot rename into place: " + ec.message());
+  if (writer->Write() != 1 || writer->GetErrorCode() != 0)
+    throw UserError(final_name(path).string(), "", "cannot write VTK PolyData" + messages.suffix());
+  try {
+    write_file_atomic(path, writer->GetOutputString());
+  } catch (const UserError& e) {  // named as the file will be, not as it is staged
+    throw UserError(final_name(path).string(), "", e.problem());
   }
 }
 

@@ -391,6 +391,18 @@ void mesh_stage(Run& r, const std::vector<sim::InterfaceRecord>& rows) {
         RanksMeshFarm farm(ranks);
         const mesh::MeshManifest meshes =
             mesh::mesh_simulation_folder(simdir, options, progress.callback(), farm);
+        // What this rank's farm phases cost (bench/pipeline/mpi_scaling.sh): beside the frames'
+        // notes, one file per rank, forgotten with the stage's items when its inputs change. A
+        // note only: failing to write it does not fail the stage.
+        char name[32];
+        std::snprintf(name, sizeof name, "costs_rank_%03d", ranks.rank());
+        const fs::path costs = r.out / "run_items" / "mesh" / name;
+        std::error_code ec;
+        fs::create_directories(costs.parent_path(), ec);
+        try {
+          write_file_atomic(costs, cost_note(farm.costs()) + "\n");
+        } catch (const UserError&) {
+        }
         if (!leader) return;
         progress.finish();
         manifest.mark_stage_complete("mesh");
@@ -591,7 +603,8 @@ void inspect_stage(Run& r, const mesh::MeshManifest& meshes) {
     report.pvd = out / "meshes.pvd";
     report.handoff_obj = out / "handoff" / "obj";
     ContentHash inspect_hash;
-    inspect_hash.add("inspect/4").add(mesh_hash.hex()).add(sc.shell.rest_on_floor ? "floor" : "");
+    // /5: .vtp/.vti arrays inline (Debian 12's ParaView cannot read appended data), fields placed.
+    inspect_hash.add("inspect/5").add(mesh_hash.hex()).add(sc.shell.rest_on_floor ? "floor" : "");
     for (double v : sc.shell.center) inspect_hash.add(v);
     inspect_hash.add(sc.shell.floor_y);
 #if THAW_OPENVDB
@@ -616,8 +629,9 @@ void inspect_stage(Run& r, const mesh::MeshManifest& meshes) {
                                 [&](long step) { return offset_of_step.at(step); });
       inspect::write_radius_plot(simdir, report.plot);
       write_world_obj_sequence(mesh_dir, meshes, offsets, report.handoff_obj);
-      // Grid runs: the solver's fields as a ParaView image series beside the meshes.
-      if (inspect::write_field_series(simdir, out / "fields.pvd") > 0)
+      // Grid runs: the solver's fields as a ParaView image series, placed like the meshes.
+      if (inspect::write_field_series(simdir, out / "fields.pvd", {},
+                                      [&](long step) { return offset_of_step.at(step); }) > 0)
         report.fields_pvd = out / "fields.pvd";
 #if THAW_OPENVDB
       // Grid runs: the fields as OpenVDB volumes (axisymmetric ones revolved), placed like the

@@ -3,6 +3,10 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <mutex>
 
 namespace thaw::pipeline {
 namespace {
@@ -25,7 +29,47 @@ std::vector<std::string> split(const std::string& joined) {
   return texts;
 }
 
+double cpu_s(clockid_t clock) {
+  timespec t{};
+  clock_gettime(clock, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 }  // namespace
+
+std::string cost_note(const std::vector<FarmCost>& costs) {
+  std::string note;
+  for (std::size_t k = 0; k < costs.size(); ++k) {
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "%sfarm %zu items %ld cpu_s %.4f wall_s %.4f work_cpu_s %.4f",
+                  k ? "; " : "", k, costs[k].items, costs[k].cpu_s, costs[k].wall_s,
+                  costs[k].work_cpu_s);
+    note += buf;
+  }
+  return note;
+}
+
+std::vector<std::string> RanksMeshFarm::run(long n, int threads,
+                                            const std::function<std::string(long)>& work,
+                                            const std::function<void()>& done) {
+  const double cpu0 = cpu_s(CLOCK_PROCESS_CPUTIME_ID);
+  const auto wall0 = std::chrono::steady_clock::now();
+  std::mutex mutex;
+  double work_cpu = 0;
+  const auto timed = [&](long k) {
+    const double t0 = cpu_s(CLOCK_THREAD_CPUTIME_ID);
+    std::string text = work(k);
+    const double spent = cpu_s(CLOCK_THREAD_CPUTIME_ID) - t0;
+    const std::lock_guard<std::mutex> lock(mutex);
+    work_cpu += spent;
+    return text;
+  };
+  std::vector<std::string> results = run_on_ranks(n, threads, timed, done);
+  m_costs.push_back(
+      {n, cpu_s(CLOCK_PROCESS_CPUTIME_ID) - cpu0,
+       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count(), work_cpu});
+  return results;
+}
 
 std::vector<Chunk> guided_chunks(long n, int ranks, int threads) {
   // Guided self-scheduling (Polychronopoulos & Kuck 1987): each chunk takes 1 / (2 R) of what is
@@ -43,9 +87,9 @@ std::vector<Chunk> guided_chunks(long n, int ranks, int threads) {
   return chunks;
 }
 
-std::vector<std::string> RanksMeshFarm::run(long n, int threads,
-                                            const std::function<std::string(long)>& work,
-                                            const std::function<void()>& done) {
+std::vector<std::string> RanksMeshFarm::run_on_ranks(long n, int threads,
+                                                     const std::function<std::string(long)>& work,
+                                                     const std::function<void()>& done) {
   if (m_ranks.size() == 1) return MeshFarm::run(n, threads, work, done);
   // Every hand-out is a round trip to the leader's dispatcher (a millisecond idle, tens under
   // load); a 1D series' surfaces take ~5 ms each, so one surface per hand-out lost a fifth of a

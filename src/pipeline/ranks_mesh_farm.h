@@ -18,6 +18,18 @@ struct Chunk {
 /// left and at least `threads`.
 std::vector<Chunk> guided_chunks(long n, int ranks, int threads);
 
+/// What this process spent in one run() of a farm: the stage's phases (a 1D series: its forms,
+/// then the checks and surfaces), for bench/pipeline/mpi_scaling.sh's load-independent estimate
+/// (each phase lasts, on an idle machine, about as long as its busiest rank's CPU seconds).
+struct FarmCost {
+  long items = 0;     ///< items of the whole run (all ranks)
+  double cpu_s = 0;   ///< this process's CPU seconds during the run (all its threads)
+  double wall_s = 0;  ///< wall seconds of the run on this process
+  /// CPU seconds of this process's threads inside the items' work (no waiting, polling or
+  /// hand-out): what the phase's items cost here, whatever the load.
+  double work_cpu_s = 0;
+};
+
 class RanksMeshFarm final : public mesh::MeshFarm {
  public:
   explicit RanksMeshFarm(RunRanks& ranks) : m_ranks(ranks) {}
@@ -25,9 +37,18 @@ class RanksMeshFarm final : public mesh::MeshFarm {
   std::string share(const std::string& text) override { return m_ranks.broadcast(text); }
   std::vector<std::string> run(long n, int threads, const std::function<std::string(long)>& work,
                                const std::function<void()>& done) override;
+  /// One entry per run(), in order.
+  const std::vector<FarmCost>& costs() const { return m_costs; }
 
  private:
+  std::vector<std::string> run_on_ranks(long n, int threads,
+                                        const std::function<std::string(long)>& work,
+                                        const std::function<void()>& done);
   RunRanks& m_ranks;
+  std::vector<FarmCost> m_costs;
 };
+
+/// costs as one line: "farm 0 items 1 cpu_s 0.1234 wall_s 0.1300; farm 1 items ...".
+std::string cost_note(const std::vector<FarmCost>& costs);
 
 }  // namespace thaw::pipeline

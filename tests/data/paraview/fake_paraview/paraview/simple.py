@@ -176,7 +176,19 @@ class SliceFilter(Source):
 
 
 class Display(Strict):
-    ALLOWED = ("DiffuseColor", "Opacity")
+    ALLOWED = ("DiffuseColor", "Opacity", "ColorArrayName")
+
+    def __setattr__(self, name, value):
+        if name == "ColorArrayName":  # [association, name]; name "" = no array (a solid colour)
+            association, array = value
+            if association not in ("POINTS", "CELLS"):
+                raise ValueError("association " + association)
+            if array == "":
+                object.__setattr__(self, "_colour", None)
+            else:
+                ColorBy(self, (association, array))
+            return
+        Strict.__setattr__(self, name, value)
 
     def __init__(self, source, view):
         self._source = source
@@ -264,8 +276,10 @@ def Show(source, view):
 
 def ColorBy(display, value):
     if value is None:
-        display._colour = None
-        return
+        # ParaView 5.11 (Debian 12) takes the association of the display's current colour array,
+        # and fails with "invalid association string 'NONE'" when it has none yet (seen in the
+        # real ParaView, data/paraview/check_in_debian.sh): set ColorArrayName = [assoc, ""].
+        raise ValueError("ColorBy(display, None) fails in ParaView 5.11 on an uncoloured display")
     association, name = value
     if association not in ("POINTS", "CELLS"):
         raise ValueError("association " + association)
@@ -285,6 +299,16 @@ def ColorBy(display, value):
 
 def GetColorTransferFunction(name):
     return RECORD["luts"].setdefault(name, Lut(name))
+
+
+class ScalarBar(Strict):
+    ALLOWED = ("Title", "ComponentTitle")
+
+
+def GetScalarBar(lut, view):
+    if not isinstance(lut, Lut):
+        raise TypeError("GetScalarBar takes a colour map")
+    return ScalarBar()
 
 
 def ResetCamera(view):
