@@ -21,7 +21,7 @@
 # Usage: [SCENARIO=file.toml] [RUNS=3] [SKIP_RENDER=1] [CONFIGS="A B C"] bench/pipeline/mpi_scaling.sh
 #        [BUILD_DIR] [extra thaw run args for the render stage, e.g. --frames 0:51:4]
 # Idle-machine figures for issue 13 (1 process x 1 thread against 2 ranks x 1 thread, the whole
-# default film, median of 5; about 13 minutes on the 2-core VM; nothing else may run):
+# default film, median of 5; about 9 minutes on the 2-core VM, ~100 s a run; nothing else may run):
 #   RUNS=5 CONFIGS="A B" bench/pipeline/mpi_scaling.sh build
 set -euo pipefail
 build=${1:-build}
