@@ -321,6 +321,66 @@ std::string scene_props_key(const render::SceneDescription& desc,
   return key;
 }
 
+namespace {
+
+/// An object's geometry as the view draws it: a plane as a square about the camera's focus, with
+/// its checker as a texture.
+struct ObjectGeometry {
+  vtkSmartPointer<vtkPolyData> data;
+  vtkSmartPointer<vtkTexture> texture;
+  bool smooth = false;
+};
+
+ObjectGeometry object_geometry(const render::SceneDescription& desc, const ObjectDescription& o,
+                               const Vec3d& focus, double distance) {
+  ObjectGeometry g;
+  switch (o.shape) {
+    case ObjectDescription::Shape::sphere:
+      g.data = sphere_data(o.center, o.radius);
+      break;
+    case ObjectDescription::Shape::box: {
+      vtkNew<vtkCubeSource> box;
+      box->SetBounds(o.box_min[0], o.box_max[0], o.box_min[1], o.box_max[1], o.box_min[2],
+                     o.box_max[2]);
+      box->Update();
+      g.data = vtkSmartPointer<vtkPolyData>::New();
+      g.data->ShallowCopy(box->GetOutput());
+      break;
+    }
+    case ObjectDescription::Shape::plane: {
+      // Large against the camera's distance: the render's plane reaches the horizon.
+      PlaneLook look = plane_look(o, focus, 16.0 * distance,
+                                  o.is_dielectric() ? nullptr : find_material(desc, o.material));
+      g.data = look.data;
+      g.texture = look.texture;
+      break;
+    }
+    case ObjectDescription::Shape::mesh:
+      g.data = mesh_data(desc, o);
+      g.smooth = o.smooth_normals || o.mesh != nullptr;
+      break;
+  }
+  return g;
+}
+
+/// A point light as a small ball (3 % of the camera's distance), a sphere light as itself; both
+/// unlit in the light's colour.
+vtkSmartPointer<vtkActor> light_actor(const render::LightDescription& l, double distance) {
+  const bool sphere = l.kind == render::LightDescription::Kind::sphere;
+  vtkSmartPointer<vtkActor> actor =
+      actor_of(sphere_data(l.position, sphere ? l.radius : 0.03 * distance), false);
+  actor->GetMapper()->ScalarVisibilityOff();
+  const RgbD c = display(l.color);
+  vtkProperty* p = actor->GetProperty();
+  p->SetColor(0.5 + 0.5 * c[0], 0.5 + 0.5 * c[1], 0.3 * c[2]);  // yellowish, as a lamp
+  p->SetAmbient(1.0);
+  p->SetDiffuse(0.0);
+  p->SetOpacity(sphere ? 0.6 : 1.0);
+  return actor;
+}
+
+}  // namespace
+
 SceneProps make_scene_props(const render::SceneDescription& desc,
                             const std::vector<const render::TriangleMesh*>& skip,
                             const SceneProps* previous) {
@@ -352,52 +412,22 @@ SceneProps make_scene_props(const render::SceneDescription& desc,
       props.actors.push_back(actor);
       continue;
     }
-    const render::MaterialDescription* material =
-        o.is_dielectric() ? nullptr : find_material(desc, o.material);
-    vtkSmartPointer<vtkPolyData> data;
-    vtkSmartPointer<vtkTexture> texture;
-    bool smooth = false;
-    switch (o.shape) {
-      case ObjectDescription::Shape::sphere:
-        data = sphere_data(o.center, o.radius);
-        break;
-      case ObjectDescription::Shape::box: {
-        vtkNew<vtkCubeSource> box;
-        box->SetBounds(o.box_min[0], o.box_max[0], o.box_min[1], o.box_max[1], o.box_min[2],
-                       o.box_max[2]);
-        box->Update();
-        data = vtkSmartPointer<vtkPolyData>::New();
-        data->ShallowCopy(box->GetOutput());
-        break;
-      }
-      case ObjectDescription::Shape::plane: {
-        // Large against the camera's distance: the render's plane reaches the horizon.
-        PlaneLook look = plane_look(o, focus, 16.0 * distance,
-                                    o.is_dielectric() ? nullptr : find_material(desc, o.material));
-        data = look.data;
-        texture = look.texture;
-        break;
-      }
-      case ObjectDescription::Shape::mesh:
-        data = mesh_data(desc, o);
-        smooth = o.smooth_normals || o.mesh != nullptr;
-        break;
-    }
-    vtkSmartPointer<vtkActor> actor = actor_of(data, smooth);
+    const ObjectGeometry g = object_geometry(desc, o, focus, distance);
+    vtkSmartPointer<vtkActor> actor = actor_of(g.data, g.smooth);
     set_look(actor, desc, o, water);
     actor->GetMapper()->ScalarVisibilityOff();
-    props.textures.push_back(texture);
+    props.textures.push_back(g.texture);
+    const render::MaterialDescription* material =
+        o.is_dielectric() ? nullptr : find_material(desc, o.material);
     const RgbD mean = material ? display(mean_colour(material->texture)) : RgbD{1.0, 1.0, 1.0};
     props.quick_colors.push_back(mean);
-    if (texture) {
-      actor->SetTexture(texture);
+    if (g.texture) {
+      actor->SetTexture(g.texture);
       actor->GetProperty()->SetColor(1.0, 1.0, 1.0);  // the texture's colours as they are
     }
     props.actors.push_back(actor);
   }
   for (const auto& l : desc.lights) {
-    // A point light as a small ball (3 % of the camera's distance), a sphere light as itself;
-    // both unlit in the light's colour.
     const std::string key = light_key(desc, l);
     ++props.lights;
     props.actor_keys.push_back(key);
@@ -407,17 +437,7 @@ SceneProps make_scene_props(const render::SceneDescription& desc,
     }
     props.textures.push_back(nullptr);
     props.quick_colors.push_back({1.0, 1.0, 1.0});
-    const bool sphere = l.kind == render::LightDescription::Kind::sphere;
-    vtkSmartPointer<vtkActor> actor =
-        actor_of(sphere_data(l.position, sphere ? l.radius : 0.03 * distance), false);
-    actor->GetMapper()->ScalarVisibilityOff();
-    const RgbD c = display(l.color);
-    vtkProperty* p = actor->GetProperty();
-    p->SetColor(0.5 + 0.5 * c[0], 0.5 + 0.5 * c[1], 0.3 * c[2]);  // yellowish, as a lamp
-    p->SetAmbient(1.0);
-    p->SetDiffuse(0.0);
-    p->SetOpacity(sphere ? 0.6 : 1.0);
-    props.actors.push_back(actor);
+    props.actors.push_back(light_actor(l, distance));
   }
   return props;
 }
