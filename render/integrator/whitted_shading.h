@@ -340,16 +340,18 @@ class WhittedShading {
     return result;
   }
 
-  /// A texture's colour at a hit seen along unit direction d: averaged over the ray cone's
-  /// footprint, an ellipse of minor half-axis w/2 and major half-axis w/(2 cos) along d's
-  /// projection on the surface. Anisotropic, as GPUs filter textures: up to 16 probes spaced
-  /// along the major axis, each a box of the minor axis's size (Texture::eval_filtered, closed
-  /// form), their mean. A single axis-aligned box around a rotated ellipse would leave the
-  /// checker's diagonals as converging stripes. Point-sampled without a cone. The cone's width
-  /// grows with the distance travelled from the camera, through reflections and refractions.
+  /// A texture's colour at a hit seen along unit direction d: its mean over the box bounding the
+  /// ray cone's footprint (Texture::eval_footprint, one closed-form lookup), an ellipse of minor
+  /// half-axis w and major half-axis w / cos along d's projection on the surface, w the cone's
+  /// width at the hit (one pixel there, or what reflections and refractions made of it). Half-axes
+  /// of one pixel, a footprint two pixels across: a box average's first zero falls on a checker
+  /// whose period is two pixels (cells of one pixel: the Nyquist limit of the pixel grid), so
+  /// checks fade to the mean colour where they shrink below a pixel instead of aliasing into
+  /// staircases and specks that the few samples of a flat-looking pixel cannot resolve.
+  /// Point-sampled without a cone.
   Rgb texture_colour(const Texture& texture, const SurfaceInteraction& si, const Vec3& d) const {
     if (texture.kind == Texture::Kind::solid || m_cone.width == 0.0f) return texture.eval(si.p);
-    const float half = 0.5f * std::abs(m_cone.width);
+    const float minor = std::abs(m_cone.width);
     const float cos_t = std::max(std::abs(dot(d, si.ng)), 1e-3f);
     Vec3 along = d - si.ng * dot(d, si.ng);
     const float len = length(along);
@@ -358,17 +360,8 @@ class WhittedShading {
                 ? along / len
                 : normalize(cross(si.ng, std::abs(si.ng.x) < 0.9f ? Vec3{1.0f, 0.0f, 0.0f}
                                                                   : Vec3{0.0f, 1.0f, 0.0f}));
-    const float major = half / cos_t;
-    const int probes = std::clamp(static_cast<int>(std::ceil(major / half)), 1, 16);
-    // Each probe covers its share of the major axis and the whole minor axis.
-    const Vec3 a = along * (major / float(probes)), b = cross(si.ng, along) * half;
-    const Vec3 extent{std::hypot(a.x, b.x), std::hypot(a.y, b.y), std::hypot(a.z, b.z)};
-    Rgb sum{0.0f, 0.0f, 0.0f};
-    for (int i = 0; i < probes; ++i) {
-      const float offset = (2.0f * (float(i) + 0.5f) / float(probes) - 1.0f) * major;
-      sum += texture.eval_filtered(si.p + along * offset, extent);
-    }
-    return sum * (1.0f / float(probes));
+    return texture.eval_footprint(
+        TextureFootprint{si.p, along, cross(si.ng, along), minor / cos_t, minor});
   }
 
   /// How much the surface normal turns across the cone's footprint at a hit [rad], signed:

@@ -1,13 +1,15 @@
 #pragma once
 // Surface colour as a function of position: solid, or a 3D checker (colour 0 where
 // floor((x-ox)/s) + floor((y-oy)/s) + floor((z-oz)/s) is even, as in POV-Ray's `checker`).
-// eval_filtered() averages the checker over a ray's footprint (an ellipse on the surface, boxed
-// per axis) in closed form: the checker is (1 + q)/2 colour 0 + (1 - q)/2 colour 1 with
-// q = s(x) s(y) s(z), s(t) = (-1)^floor(t) a square wave, and a square wave's box average is a
-// difference of its integral, a triangle wave (the closed-form box-filtered checkerboard of
-// Apodaca & Gritz 2000, "Advanced RenderMan", sec. 11.4; pbrt-v3 Checkerboard2DTexture "closed
-// form"). Far away, where the footprint spans many cells, it tends to the cells' mean colour: no
-// moire at the horizon. Knows nothing about rays.
+// eval_filtered() is the checker's exact mean over an axis-aligned box, in closed form: the
+// checker is (1 + q)/2 colour 0 + (1 - q)/2 colour 1 with q = s(x) s(y) s(z), s(t) = (-1)^floor(t)
+// a square wave; over a box the mean of the product is the product of the per-axis means, and a
+// square wave's box mean is a difference of its integral, a triangle wave (the box-filtered
+// checkerboard of Apodaca & Gritz 2000, "Advanced RenderMan", sec. 11.4; Quilez, "Filtering
+// checkerboards", iquilezles.org/articles/checkerfiltering). eval_footprint() averages it over the
+// box bounding a ray's footprint, an ellipse on the surface (TextureFootprint). Far away, where the
+// footprint spans many cells, both tend to the cells' mean colour: no moire at the horizon. Knows
+// nothing about rays, cameras or pixels.
 #include <algorithm>
 #include <cmath>
 
@@ -15,6 +17,14 @@
 #include "render/math/vec3.h"
 
 namespace thaw::render {
+
+/// The part of a surface one texture lookup stands for: an ellipse centred at `center` with
+/// half-axes `major` along the unit vector `major_axis` and `minor` along the unit vector
+/// `minor_axis` (both in the surface's plane, orthogonal) [scene units].
+struct TextureFootprint {
+  Vec3 center, major_axis, minor_axis;
+  float major = 0, minor = 0;
+};
 
 struct Texture {
   enum class Kind { solid, checker };
@@ -42,6 +52,11 @@ struct Texture {
     const auto i = static_cast<long long>(v);
     return static_cast<float>(i) > v ? i - 1 : i;
   }
+  /// The same for a double, as a double, for |v| < 2^62 (the triangle wave's argument).
+  static double floor_to_integer(double v) {
+    const auto i = static_cast<double>(static_cast<long long>(v));
+    return i > v ? i - 1.0 : i;
+  }
 
   /// The mean colour over a footprint centred at p whose half-extent along each axis is
   /// `half_extent` [scene units] (a box filter per axis); eval(p) where the extent is 0.
@@ -57,11 +72,33 @@ struct Texture {
 
   /// Mean of s(t) = (-1)^floor(t) over [t - h, t + h] [cells]: (S(t + h) - S(t - h)) / 2h with
   /// S the triangle wave S(t) = 1 - |(t mod 2) - 1|; s(t) itself for h below float resolution.
+  /// 0 beyond |t| + h = 2^52 (no cell is resolved there: the mean is at most 1/2h, or no double
+  /// lies inside a cell). No libm call (floor_to_integer).
   static double square_wave_mean(double t, double h) {
-    auto triangle = [](double u) { return 1.0 - std::abs(u - 2.0 * std::floor(u / 2.0) - 1.0); };
+    if (!(std::abs(t) + h < 0x1p52)) return 0.0;
+    auto triangle = [](double u) {
+      return 1.0 - std::abs(u - 2.0 * floor_to_integer(0.5 * u) - 1.0);
+    };
     if (!(h > 1e-7 * std::max(1.0, std::abs(t))))
-      return (static_cast<long long>(std::floor(t)) & 1) == 0 ? 1.0 : -1.0;
+      return (static_cast<long long>(floor_to_integer(t)) & 1) == 0 ? 1.0 : -1.0;
     return (triangle(t + h) - triangle(t - h)) / (2.0 * h);
+  }
+
+  /// The mean colour over footprint `f` (an ellipse on the surface) as the mean over the
+  /// axis-aligned box bounding it: half-extent per axis i sqrt((A a_i)^2 + (B b_i)^2) for
+  /// half-axes A, B along unit a, b (Quilez's box of the texture-space derivatives). One
+  /// closed-form lookup. Exact in kind where the ellipse's long axis follows a texture axis; seen
+  /// diagonally the box is as wide across the view as along it, so checks resolved across the
+  /// view but compressed below the footprint along it fade with those along it (a grazing floor
+  /// at 45 degrees to its rows turns flat where one along a row keeps its converging stripes).
+  /// Boxes along the long axis would keep them but leave a residual that varies from sample to
+  /// sample (speckle where the few samples of a pixel cannot average it; docs/benchmarks.md
+  /// "Checker footprint"). eval(center) where the footprint has no extent.
+  Rgb eval_footprint(const TextureFootprint& f) const {
+    if (kind == Kind::solid) return color0;
+    const Vec3 a = f.major_axis * f.major, b = f.minor_axis * f.minor;
+    const auto half = [](float u, float v) { return std::sqrt(u * u + v * v); };
+    return eval_filtered(f.center, Vec3{half(a.x, b.x), half(a.y, b.y), half(a.z, b.z)});
   }
 };
 

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "render/light/latlong_map.h"
@@ -645,6 +646,44 @@ TEST(Whitted, FilteredCheckerHasNoMoireAtTheHorizon) {
   };
   EXPECT_LT(worst_near_horizon(true), 0.05);
   EXPECT_GT(worst_near_horizon(false), 0.1);  // the aliasing the filter removes
+}
+
+TEST(Whitted, CheckerFadesToTheMeanAtTheNyquistLimit) {
+  // A checker floor seen head-on (camera 2 m above it, 10 degree field: every camera sample,
+  // up to 1.5 pixels beyond the image's corners, looks within 7.8 degrees of the normal,
+  // cos >= 0.990), unlit (ambient only: a pixel shows the
+  // texture). Cells one pixel wide are at the Nyquist limit of the pixel grid: each camera
+  // sample's footprint is two pixels across (half-axes w = the pixel's extent on the floor, w /
+  // cos along the view), so the box mean over it spans a whole period of the square wave per
+  // axis and q = s(x) s(z) averages to 0. Bound: off the centre w grows by 1/cos <= 1.01 and
+  // the major axis by 1/cos^2 <= 1.02, so each axis's half-extent h is within 1 + eps cells,
+  // eps = 0.02; |T(t + h) - T(t - h)| <= 2 (h - 1) (T, 1-Lipschitz, has period 2), so each
+  // axis's mean is within eps and q within eps^2. Compared pixel by pixel with a flat floor of
+  // the mean colour rendered with the same samples and filter weights (w <= 1.05: the tabulated
+  // filter's f / pdf): within 1.05 eps^2 / 2 < 3e-4. Cells of four pixels keep their colours:
+  // a pixel whose samples' footprints stay inside one cell shows it.
+  SceneDescription d = base_scene(32, 32);
+  d.camera.vertical_fov_deg = 10.0;
+  d.image.samples_per_pixel = 4;
+  d.ambient.intensity = 1.0;
+  add_plane(d, MaterialDescription::Kind::matte, {0.5, 0.5, 0.5});
+  d.materials.back().kd = 0.0;
+  const RenderResult flat = render(build_scene(d));
+  const double pixel_m = 2.0 * 2.0 * std::tan(5.0 * std::numbers::pi / 180.0) / 32.0;
+  auto worst_difference = [&](double cells_per_pixel) {
+    SceneDescription c = d;
+    c.materials.back().texture.kind = TextureDescription::Kind::checker;
+    c.materials.back().texture.checker_colors = {RgbD{1.0, 1.0, 1.0}, RgbD{0.0, 0.0, 0.0}};
+    c.materials.back().texture.checker_size = pixel_m * cells_per_pixel;
+    const RenderResult r = render(build_scene(c));
+    double worst = 0;
+    for (int y = 0; y < 32; ++y)
+      for (int x = 0; x < 32; ++x)
+        worst = std::max(worst, double(std::abs(r.image.at(x, y).g - flat.image.at(x, y).g)));
+    return worst;
+  };
+  EXPECT_LT(worst_difference(1.0), 3e-4);
+  EXPECT_GT(worst_difference(4.0), 0.2);
 }
 
 TEST(Whitted, EscapingRaysSeeTheSky) {

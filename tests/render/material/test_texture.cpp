@@ -1,5 +1,6 @@
 // Tests render/material/texture.h: the 3D checker parity and offset convention of POV-Ray, its
-// libm-free floor.
+// libm-free floor, its closed-form box mean against numerical integration, and its footprint
+// mean (limits, one exact box along a texture axis, the bounding box along a diagonal).
 #include "render/material/texture.h"
 
 #include <gtest/gtest.h>
@@ -11,6 +12,42 @@
 
 namespace thaw::render {
 namespace {
+
+Texture red_blue_checker(float size) {
+  Texture t;
+  t.kind = Texture::Kind::checker;
+  t.color0 = Rgb{1, 0, 0};
+  t.color1 = Rgb{0, 0, 1};
+  t.size = size;
+  return t;
+}
+
+/// The point-sampled checker's red channel (1 on colour 0, 0 on colour 1) averaged over the box
+/// c +- e, numerically: along x exactly (the row split at every cell boundary, each piece's
+/// length times eval() at its middle), along y and z by the midpoint rule on an n x n grid of
+/// rows (one row when that extent is 0). Only rows whose cell straddles a jump in y or z are
+/// wrong, each by at most 1 in red; at most n (J_y + J_z) of n^2 rows do, with J the jumps inside
+/// the box, so the error is at most (J_y + J_z) / n.
+double numerical_box_mean(const Texture& t, const Vec3& c, const Vec3& e, int n) {
+  const int ny = e.y > 0 ? n : 1, nz = e.z > 0 ? n : 1;
+  double sum = 0;
+  for (int j = 0; j < ny; ++j) {
+    for (int k = 0; k < nz; ++k) {
+      const double y = c.y - e.y + (j + 0.5) * 2.0 * e.y / ny;
+      const double z = c.z - e.z + (k + 0.5) * 2.0 * e.z / nz;
+      const double x0 = c.x - e.x, x1 = c.x + e.x;
+      double row = 0;
+      for (double a = x0; a < x1;) {
+        const double b = std::min(x1, (std::floor(a / t.size + 1e-9) + 1.0) * t.size);
+        const Vec3 mid{float(0.5 * (a + b)), float(y), float(z)};
+        row += (b - a) * t.eval(mid).r;
+        a = b;
+      }
+      sum += row / (x1 - x0);
+    }
+  }
+  return sum / (double(ny) * nz);
+}
 
 TEST(Texture, CheckerParityAndOffset) {
   Texture t;
@@ -80,6 +117,84 @@ TEST(Texture, FilteredCheckerTendsToThePointValueAndToTheMean) {
   // Symmetric about a cell edge: half and half.
   const Rgb edge = t.eval_filtered({0.5f, 0.2f, 0.3f}, {0.1f, 0.0f, 0.0f});
   EXPECT_NEAR(edge.r, 0.5f, 1e-5f);
+}
+
+TEST(Texture, BoxMeanMatchesNumericalIntegration) {
+  // eval_filtered (a product of per-axis closed forms) against the point-sampled checker
+  // integrated numerically over 2D boxes (a floor: no extent in y) and 3D boxes, off-centre,
+  // across negative coordinates, from inside one cell to many cells. Tolerance: the integration's
+  // bound (J_y + J_z) / n (numerical_box_mean) with J <= 2 e / size + 1 jumps per axis, plus the
+  // float rounding of the colours (1e-6).
+  const Texture t = red_blue_checker(0.5f);
+  const Vec3 centres[] = {{0.1f, 0.2f, 0.3f}, {-1.37f, 0.7f, 2.05f}, {3.9f, -0.26f, -0.8f}};
+  const Vec3 extents[] = {{0.1f, 0.0f, 0.05f}, {0.6f, 0.0f, 0.2f},  {1.3f, 0.0f, 2.7f},
+                          {0.35f, 0.0f, 4.0f}, {0.3f, 0.4f, 0.45f}, {1.1f, 0.8f, 0.27f}};
+  constexpr int n = 400;
+  for (const Vec3& c : centres) {
+    for (const Vec3& e : extents) {
+      const double jumps = (e.y > 0 ? 2 * e.y / t.size + 1 : 0) + 2 * e.z / t.size + 1;
+      const double tolerance = jumps / (e.y > 0 ? n / 4 : n) + 1e-6;
+      const double reference = numerical_box_mean(t, c, e, e.y > 0 ? n / 4 : n);
+      const Rgb filtered = t.eval_filtered(c, e);
+      EXPECT_NEAR(filtered.r, reference, tolerance) << c.x << " " << e.x << " " << e.z;
+      EXPECT_NEAR(filtered.r + filtered.b, 1.0, 1e-6);  // weights of the two colours sum to 1
+    }
+  }
+}
+
+TEST(Texture, FootprintLimitsArePointSampleAndMean) {
+  const Texture t = red_blue_checker(0.5f);
+  const Vec3 x{1, 0, 0}, z{0, 0, 1};
+  // No extent, or one far below a cell (1e-7 cells, below float resolution): the point value.
+  for (const Vec3 c : {Vec3{0.1f, 0.2f, 0.3f}, Vec3{-0.7f, 0.1f, 0.6f}}) {
+    EXPECT_EQ(t.eval_footprint({c, x, z, 0.0f, 0.0f}), t.eval(c));
+    EXPECT_EQ(t.eval_footprint({c, x, z, 5e-8f, 5e-8f}), t.eval(c));
+  }
+  // A footprint of thousands of cells: the mean colour (0.5, 0, 0.5), within the box mean's
+  // bound |mean of s over 2h| <= 1/(2h) per axis (h in cells; 2000 and 1000 here: 2.5e-4 for
+  // the product of two), for any orientation in the floor's plane.
+  const float r = std::sqrt(0.5f);
+  for (const Vec3& a : {x, Vec3{r, 0, r}, Vec3{0.6f, 0, -0.8f}}) {
+    const Vec3 b = cross(Vec3{0, 1, 0}, a);
+    const Rgb far = t.eval_footprint({{0.3f, 0.1f, -0.2f}, a, b, 1000.0f, 500.0f});
+    EXPECT_NEAR(far.r, 0.5f, 2.5e-4f);
+    EXPECT_NEAR(far.b, 0.5f, 2.5e-4f);
+  }
+  // Solid textures ignore the footprint.
+  Texture solid;
+  solid.color0 = Rgb{0.2f, 0.3f, 0.4f};
+  EXPECT_EQ(solid.eval_footprint({{0, 0, 0}, x, z, 3.0f, 1.0f}), solid.color0);
+}
+
+TEST(Texture, FootprintAlongATextureAxisIsOneExactBox) {
+  // An ellipse whose long axis follows x is bounded by the box (major, minor) in x and z: one
+  // box, the same value as eval_filtered's, for any elongation.
+  const Texture t = red_blue_checker(0.5f);
+  for (const float major : {0.2f, 1.3f, 7.0f}) {
+    const Vec3 c{0.37f, 0.1f, -0.61f};
+    const Rgb f = t.eval_footprint({c, {1, 0, 0}, {0, 0, -1}, major, 0.15f});
+    EXPECT_EQ(f, t.eval_filtered(c, {major, 0.0f, 0.15f})) << major;
+  }
+}
+
+TEST(Texture, DiagonalFootprintIsBoundedByItsBox) {
+  // A footprint 100 times longer than wide along the diagonal x = z (a floor seen at 45 degrees
+  // to its rows, near the horizon): the box bounding it reaches A / sqrt(2) along x and z, 7.07
+  // cells for A = 10, so whatever its position the mean is within the box bound
+  // 1/(2 * 7.07) per axis, (1/14.1)^2 / 2 = 2.5e-3 in colour, of the mean colour: the along-view
+  // compression is filtered whatever the orientation (the minor axis alone, 0.1 cells, would
+  // leave the checker's full contrast). And it is the box of the formula, per axis
+  // sqrt((A a_i)^2 + (B b_i)^2).
+  const Texture t = red_blue_checker(1.0f);
+  const float r = std::sqrt(0.5f);
+  const Vec3 a{r, 0, r}, b{-r, 0, r};
+  for (const Vec3 c : {Vec3{0.5f, 0.5f, 0.5f}, Vec3{0.3f, 0.5f, 0.6f}, Vec3{-4.2f, 0.5f, 7.9f}}) {
+    const Rgb f = t.eval_footprint({c, a, b, 10.0f, 0.1f});
+    EXPECT_NEAR(f.r, 0.5f, 2.5e-3f) << c.x;
+    const float e = std::sqrt(50.0f + 0.005f);
+    const Rgb box = t.eval_filtered(c, {e, 0.0f, e});
+    EXPECT_NEAR(f.r, box.r, 1e-6f) << c.x;
+  }
 }
 
 }  // namespace
