@@ -33,6 +33,8 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_btl_vader_single_copy_mechanism=none
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
 echo "load before: $(cut -d' ' -f1-3 /proc/loadavg) ($(date -u +%H:%M) UTC)"
+awk '$1 > 0.5 { print "WARNING: load " $1 " above 0.5: the wall-time efficiencies will measure the" \
+  " load; the CPU-second estimates still hold" }' /proc/loadavg
 scenario=()
 [ -n "${SCENARIO:-}" ] && scenario=("$(realpath "$SCENARIO")")
 echo "scenario: ${SCENARIO:-built-in default}"
