@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <ctime>
 #include <string>
 
 namespace thaw::pipeline {
@@ -63,6 +64,37 @@ TEST(RanksMeshFarm, GuidedChunksCoverTheItemsLargeFirstThenOneRoundOfThreads) {
   const auto film = guided_chunks(103, 2, 1);
   EXPECT_EQ(film.front().count, 26);
   EXPECT_LE(film.size(), 20u);
+}
+
+// What each run() cost is recorded for bench/pipeline/mpi_scaling.sh: one entry per run, the
+// run's item count, and the CPU spent inside the items (here: a busy loop of known CPU) counted
+// once per item and within the run's process CPU.
+TEST(RanksMeshFarm, EveryRunsCostIsRecordedPerPhase) {
+  TwoRanksHere ranks;
+  RanksMeshFarm farm(ranks);
+  const auto thread_cpu_s = [] {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+  };
+  const auto spin = [&](long k) {
+    for (const double start = thread_cpu_s(); thread_cpu_s() - start < 0.01;) {  // 10 ms of CPU
+    }
+    return std::to_string(k);
+  };
+  farm.run(3, 1, spin, {});
+  farm.run(0, 1, spin, {});
+  ASSERT_EQ(farm.costs().size(), 2u);
+  EXPECT_EQ(farm.costs()[0].items, 3);
+  EXPECT_EQ(farm.costs()[1].items, 0);
+  // 3 items of >= 10 ms of this thread's CPU each (the clock the farm reads too): >= 0.03 s
+  // inside them; the run's process CPU holds the items' (same kernel accounting, read after).
+  EXPECT_GE(farm.costs()[0].work_cpu_s, 0.03);
+  EXPECT_GE(farm.costs()[0].cpu_s, farm.costs()[0].work_cpu_s);
+  EXPECT_EQ(farm.costs()[1].work_cpu_s, 0.0);
+  EXPECT_EQ(cost_note({{3, 0.5, 0.75, 0.25}, {1, 1, 2, 0.125}}),
+            "farm 0 items 3 cpu_s 0.5000 wall_s 0.7500 work_cpu_s 0.2500; "
+            "farm 1 items 1 cpu_s 1.0000 wall_s 2.0000 work_cpu_s 0.1250");
 }
 
 TEST(RanksMeshFarm, OneRankIsThisProcessesThreads) {
