@@ -15,7 +15,9 @@
 // Usage: bench_gui [EDITS=10]. Prints one line per figure.
 #include <time.h>
 
+#include <QVTKInteractor.h>
 #include <QVTKOpenGLNativeWidget.h>
+#include <vtkCommand.h>
 #include <QApplication>
 #include <QElapsedTimer>
 #include <QProgressBar>
@@ -23,6 +25,7 @@
 #include <QSurfaceFormat>
 #include <QTimer>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -151,6 +154,37 @@ int main(int argc, char** argv) {
   worst_gap_ms = 0;
   worst_gap_cpu_ms = 0;
 
+  // Orbits: the interactor's start, 10 camera steps about the focus drawn quick, its end (the
+  // view drawn at rest, its camera written back as [render.camera]: the preview restarts and
+  // the floor, drawn about the camera's focus, is made anew), as a mouse drag does.
+  phase = "orbits";
+  std::vector<double> orbit_step_ms;
+  thaw::gui::ShellView& view = w.shell_view();
+  for (int k = 0; k < std::max(1, edits / 2); ++k) {
+    const auto c0 = view.camera();
+    view.interactor()->InvokeEvent(vtkCommand::StartInteractionEvent);
+    for (int step = 1; step <= 10; ++step) {
+      auto c = c0;
+      const double a = 0.02 * step * ((k % 2) ? -1 : 1);  // radians about the vertical
+      const double x = c0.position[0] - c0.focal_point[0], z = c0.position[2] - c0.focal_point[2];
+      c.position[0] = c0.focal_point[0] + std::cos(a) * x - std::sin(a) * z;
+      c.position[2] = c0.focal_point[2] + std::sin(a) * x + std::cos(a) * z;
+      QElapsedTimer t;
+      t.start();
+      view.set_camera(c);
+      orbit_step_ms.push_back(t.nsecsElapsed() * 1e-6);
+      QCoreApplication::processEvents(QEventLoop::AllEvents);
+    }
+    view.interactor()->InvokeEvent(vtkCommand::EndInteractionEvent);
+    if (!wait_until([&] { return w.preview_full_size(); }, 60000))
+      return std::puts("no image after the orbit"), 1;
+    wait_until([] { return false; }, 300);  // the floor made anew reaches the view
+  }
+  const qint64 orbit_gap_ms = worst_gap_ms;
+  const double orbit_cpu_ms = worst_gap_cpu_ms;
+  worst_gap_ms = 0;
+  worst_gap_cpu_ms = 0;
+
   // A simulated run to scrub.
   phase = "simulation";
   QElapsedTimer sim;
@@ -184,18 +218,21 @@ int main(int argc, char** argv) {
   print_stats("edit -> 320x240 image shown [s] (wall)", full_s, "s");
   print_stats("  process CPU meanwhile [s]", full_cpu_s, "s");
   print_stats("request -> 320x240 image [s] (worker clock)", worker_s, "s");
+  print_stats("orbit step drawn (quick) [ms]", orbit_step_ms, "ms");
   print_stats("slider -> step's meshes drawn [ms]", scrub_ms, "ms");
   print_stats("  GUI-thread CPU meanwhile [ms]", scrub_cpu_ms, "ms");
   print_stats("  process CPU meanwhile [ms] (llvmpipe, preview)", scrub_process_ms, "ms");
   std::printf("simulate + mesh + load %d steps: %.2f s\n", slider->maximum() + 1, sim_s);
   std::printf(
-      "longest GUI-thread block [ms]: start-up %lld, edits %lld, simulation %lld, scrubbing %lld\n",
+      "longest GUI-thread block [ms]: start-up %lld, edits %lld, orbits %lld, simulation %lld, "
+      "scrubbing %lld\n",
       static_cast<long long>(startup_gap_ms), static_cast<long long>(edit_gap_ms),
-      static_cast<long long>(sim_gap_ms), static_cast<long long>(scrub_gap_ms));
+      static_cast<long long>(orbit_gap_ms), static_cast<long long>(sim_gap_ms),
+      static_cast<long long>(scrub_gap_ms));
   std::printf(
-      "most GUI-thread CPU between two ticks [ms]: start-up %.0f, edits %.0f, simulation %.0f, "
-      "scrubbing %.0f\n",
-      startup_cpu_ms, edit_cpu_ms, sim_cpu_ms, scrub_cpu_gap_ms);
+      "most GUI-thread CPU between two ticks [ms]: start-up %.0f, edits %.0f, orbits %.0f, "
+      "simulation %.0f, scrubbing %.0f\n",
+      startup_cpu_ms, edit_cpu_ms, orbit_cpu_ms, sim_cpu_ms, scrub_cpu_gap_ms);
   for (const std::string& g : long_gaps) std::printf("  GUI thread blocked: %s\n", g.c_str());
   return 0;
 }

@@ -59,6 +59,13 @@ ShellView::ShellView(QWidget* parent) : QVTKOpenGLNativeWidget(parent) {
   m_stage_timer->setSingleShot(true);
   m_stage_timer->setInterval(0);
   connect(m_stage_timer, &QTimer::timeout, this, [this] { advance(); });
+  m_settle_timer = new QTimer(this);
+  m_settle_timer->setSingleShot(true);
+  m_settle_timer->setInterval(kSettleMs);
+  connect(m_settle_timer, &QTimer::timeout, this, [this] {
+    settle_now();
+    draw();
+  });
   m_renderer = vtkSmartPointer<vtkRenderer>::New();
   // The first draw (the OpenGL context, Qt's compositing) clears to the plain background; the
   // gradient and the label, each a shader of its own, come in the next turns (warm-up).
@@ -132,6 +139,7 @@ bool ShellView::edges_shown() const {
 }
 
 void ShellView::set_quick(bool quick) {
+  if (quick) m_settle_pending = false, m_settle_timer->stop();  // moving again
   m_quick = quick;
   if (m_outer) m_outer->GetProperty()->SetEdgeVisibility(!quick);  // the look of surface_actor.h
   // A textured actor (the floor's checker) is drawn in its texture's mean colour while quick:
@@ -146,12 +154,24 @@ void ShellView::set_quick(bool quick) {
 
 void ShellView::settle() {
   if (!m_quick) return;
+  // The draw at rest (edges, the mipmapped floor: llvmpipe's dearest draw) waits a little, the
+  // view kept quick meanwhile (also for the interactor's own draw as a drag ends): the scene of
+  // the new camera or step, which the window requests now, usually comes within that and is
+  // drawn at rest once (set_scene), not twice.
+  m_settle_pending = true;
+  m_settle_timer->start();
+}
+
+void ShellView::settle_now() {
+  if (!m_settle_pending) return;
+  m_settle_pending = false;
+  m_settle_timer->stop();
   set_quick(false);
-  draw();
 }
 
 void ShellView::set_scene(const SceneProps& props) {
-  bool changed = false;
+  bool changed = m_settle_pending;  // the draw at rest that settle() deferred
+  settle_now();
   if (props.key != m_scene_key) {
     for (const auto& a : m_scene) remove_prop(a);
     m_scene = props.actors;

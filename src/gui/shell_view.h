@@ -47,8 +47,11 @@ class ShellView : public QVTKOpenGLNativeWidget {
   /// slower) and the floor in its checker's mean colour (llvmpipe's texture sampling was most of
   /// a draw's CPU time: bench/gui/bench_gui). Takes effect at the next draw.
   void set_quick(bool quick);
-  /// Draws the view at rest again (edges, filtered textures) if it was quick.
+  /// Draws the view at rest again (edges, filtered textures) if it was quick: with the next
+  /// scene (set_scene), or kSettleMs from now if none comes sooner (the window asks for the new
+  /// camera's or step's scene meanwhile, whose draw is then the only one at rest).
   void settle();
+  static constexpr int kSettleMs = 400;
   /// The view's camera in the meshes' frame (the shell's core at the origin) [m, degrees].
   struct ViewCamera {
     std::array<double, 3> position, focal_point, view_up;
@@ -105,12 +108,16 @@ class ShellView : public QVTKOpenGLNativeWidget {
   void draw();
   /// One warm-up turn: the queued additions up to the second new look, then a draw.
   void advance();
+  /// Ends a pending settle(): the at-rest look, drawn by the caller.
+  void settle_now();
 
   std::deque<Staged> m_staged;
   std::set<std::string> m_looks;
   int m_new_looks = 0, m_most_new_looks = 0;
   bool m_painted = false;
   QTimer* m_stage_timer = nullptr;
+  QTimer* m_settle_timer = nullptr;
+  bool m_settle_pending = false;
   vtkSmartPointer<vtkRenderer> m_renderer;
   vtkSmartPointer<vtkActor> m_outer, m_inner;
   vtkSmartPointer<vtkTextActor> m_label;

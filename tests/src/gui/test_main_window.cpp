@@ -255,7 +255,8 @@ class TestMainWindow : public QObject {
     QVERIFY(!w.shell_view().edges_shown());
     w.shell_view().set_camera({{0.2, 0.08, 0.0}, {0.0, 0.03, 0.0}, {0.0, 1.0, 0.0}, 30.0});
     w.shell_view().interactor()->InvokeEvent(vtkCommand::EndInteractionEvent);
-    QVERIFY(w.shell_view().edges_shown());
+    // At rest again with the scene of the new camera (or after ShellView::kSettleMs).
+    QTRY_VERIFY_WITH_TIMEOUT(w.shell_view().edges_shown(), 10000);
     QVERIFY2(w.check().ok(), w.check().message.c_str());
     const auto& sc = *w.check().scenario;
     QVERIFY(sc.camera_set);
