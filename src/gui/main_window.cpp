@@ -725,15 +725,22 @@ std::array<double, 3> MainWindow::shell_offset_of(const ShellStep& step) const {
 
 void MainWindow::camera_from_view() {
   if (!m_check.ok()) return;
-  // The view is in scene coordinates (the shell drawn where the frames place it).
+  // The view is in scene coordinates (the shell drawn where the frames place it). Written to a
+  // micrometre (and the up direction and angle to 1e-6), so the file and the Scene tab read
+  // 0.126686 rather than 0.12668567722...: far below what a frame resolves (the smallest shell
+  // is millimetres across), and the parser normalises the up vector.
   const ShellView::ViewCamera v = m_view->camera();
+  auto rounded = [](double x) { return std::round(x * 1e6) / 1e6; };
+  auto rounded3 = [&](const std::array<double, 3>& a, double scale) {
+    return std::array<double, 3>{rounded(a[0] / scale), rounded(a[1] / scale),
+                                 rounded(a[2] / scale)};
+  };
   const double n = std::hypot(v.view_up[0], v.view_up[1], v.view_up[2]);
   modify([&](ScenarioDocument& d) {
-    d.set("render.camera.position", v.position);
-    d.set("render.camera.look_at", v.focal_point);
-    d.set("render.camera.up",
-          std::array<double, 3>{v.view_up[0] / n, v.view_up[1] / n, v.view_up[2] / n});
-    d.set("render.camera.vertical_fov_deg", v.vertical_fov_deg);
+    d.set("render.camera.position", rounded3(v.position, 1.0));
+    d.set("render.camera.look_at", rounded3(v.focal_point, 1.0));
+    d.set("render.camera.up", rounded3(v.view_up, n));
+    d.set("render.camera.vertical_fov_deg", rounded(v.vertical_fov_deg));
   });
 }
 

@@ -269,6 +269,16 @@ class TestMainWindow : public QObject {
     QVERIFY(wait_for_full_size(w));
     const auto v = w.shell_view().camera();
     QCOMPARE(v.position, (std::array<double, 3>{0.2, 0.08, 0.0}));
+    // A camera the mouse left anywhere is written to a micrometre (the Scene tab and the file
+    // read 0.123457, not 0.123456789).
+    w.shell_view().interactor()->InvokeEvent(vtkCommand::StartInteractionEvent);
+    w.shell_view().set_camera(
+        {{0.123456789, 0.0812345678, 0.01}, {0.0, 0.03, 0.0}, {0.0, 1.0, 0.0}, 30.123456789});
+    w.shell_view().interactor()->InvokeEvent(vtkCommand::EndInteractionEvent);
+    QVERIFY2(w.check().ok(), w.check().message.c_str());
+    const auto& moved = w.check().scenario->scene.camera;
+    QCOMPARE(moved.position, (thaw::render::Vec3d{0.123457, 0.081235, 0.01}));
+    QCOMPARE(moved.vertical_fov_deg, 30.123457);
   }
 
   // The 3D view shows the frame's scene, not only the shell: the default's floor and light, an
