@@ -2,8 +2,10 @@
 // Direct light from a scene's sphere lights at a surface point, by stratified low-discrepancy
 // samples with shadow rays: what soft shadows are made of. For camera sample s of a pixel, light
 // k takes n = light.samples directions, the points s n .. s n + n - 1 of the pixel sampler's
-// dimension pair `dimension_base + k`: for a power-of-two n each shading point's set is a
-// (0,log2 n,2)-net, and all camera samples of the pixel together form one larger net. The
+// dimension pair light_dimension(depth, k): for a power-of-two n each shading point's set is a
+// (0,log2 n,2)-net, and the first n of all camera samples of the pixel together (points
+// 0 .. S n - 1) form one larger net, so the pixel's estimate is stratified too. Penumbra samples
+// come from a second pair (+ kPenumbraDimensionOffset), points s N + n .. s N + N - 1. The
 // integrator supplies the BSDF through a callback, so RGB and spectral shading share this.
 // Knows nothing about materials or the image.
 #include <algorithm>
@@ -33,6 +35,8 @@ inline std::uint32_t light_dimension(int depth, std::size_t light) {
 /// seen nor all hidden: 8 n, at most 64 (but never fewer than n). Elsewhere the ratio estimator
 /// is exact with the first n, so the extra rays go only where the light is partly hidden.
 inline constexpr std::uint32_t kMaxPenumbraSamples = 64;
+/// The dimension pair of a light's penumbra samples: its own pair plus this.
+inline constexpr std::uint32_t kPenumbraDimensionOffset = 0x10000u;
 inline std::uint32_t penumbra_samples(std::uint32_t n) {
   return std::max(n, std::min(8 * n, kMaxPenumbraSamples));
 }
@@ -47,9 +51,13 @@ inline std::uint32_t penumbra_samples(std::uint32_t n) {
 /// E = E_exact * sum_visible(cos / pdf) / sum_all(cos / pdf), a ratio estimator, consistent, exact
 /// wherever the light is wholly visible or wholly hidden (no noise outside penumbrae; a lone
 /// unshadowed sphere light gives precisely a point light's I cos / d^2). Samples below the
-/// horizon cast no shadow ray. For camera sample s a shading point takes points s N .. s N + n - 1
-/// (N = penumbra_samples(n)) and, in a penumbra, the rest up to s N + N - 1: the first n and all
-/// N are both nets of the sequence. `rays` counts the shadow rays.
+/// horizon cast no shadow ray. For camera sample s a shading point takes points s n .. s n + n - 1
+/// and, in a penumbra, N - n more (N = penumbra_samples(n)), points s N + n .. s N + N - 1 of the
+/// penumbra pair. Where something may hide the light (the cone test below) but the first n were
+/// all seen, n more look for it before stopping: at a penumbra's outer fringe, where a sliver of
+/// the light is hidden, stopping at n seen samples reports the whole light (too bright on
+/// average) in some camera samples and the refined fraction in others, a grain of the shadow's
+/// edge (docs/benchmarks.md "Penumbra"). `rays` counts the shadow rays.
 /// Where no shadow ray can be occluded (Scene::light_unoccluded: the cone from the rays' common
 /// origin to the light meets nothing) no ray is cast: every sample would be seen, the fraction is
 /// 1, and the result is the same to the bit; without `highlights` (a matte surface) not even the
@@ -88,11 +96,15 @@ void sample_sphere_lights(const Scene& scene, const Vec3& p, const Vec3& p_error
     std::size_t highlight_count = 0;
     std::uint32_t taken = 0;
     for (std::uint32_t j = 0; j < n_max; ++j, ++taken) {
-      // After the first n: on only in a penumbra (some seen, some hidden).
-      if (j == n && (seen == 0 || hidden == 0)) break;
+      // After the first n: on only in a penumbra (some seen, some hidden), or, where something
+      // may hide the light but all n were seen, n more to look for it.
+      if (j == n && (seen == 0 || (hidden == 0 && clear))) break;
+      if (j == 2 * n && hidden == 0) break;
       SphereLightSample s;
-      if (!sample_sphere_light(light, p, ctx.sampler->get_2d(ctx.sample_index * n_max + j, dim), s))
-        break;
+      const sampling::Point2 u =
+          j < n ? ctx.sampler->get_2d(ctx.sample_index * n + j, dim)
+                : ctx.sampler->get_2d(ctx.sample_index * n_max + j, dim + kPenumbraDimensionOffset);
+      if (!sample_sphere_light(light, p, u, s)) break;
       falloff_scale = s.falloff_scale;
       const float cos_s = dot(ns, s.wi);
       if (cos_s <= 0.0f || dot(s.wi, ng) <= 0.0f) continue;

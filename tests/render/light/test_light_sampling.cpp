@@ -78,5 +78,23 @@ TEST(LightSampling, ABlockerCastsAFullShadowAndTheLightItselfDoesNot) {
   EXPECT_GT(irradiance(build_scene(floor_scene(false)), {0, 2.4f, 0}, {0, 1, 0}, rays), 0.0);
 }
 
+TEST(LightSampling, AllSeenWhereSomethingMayHideTheLightLooksTwice) {
+  // A slab beside the shadow cone (x >= 0.4 at heights 1.5-1.6, where every ray from the origin
+  // to the light, x / y <= tan(asin(0.5 / 3)) = 0.17, passes at x <= 0.27): its bounding sphere
+  // meets the cone, so the rays must decide, and none is hidden. The first 16 are all seen, 16
+  // more look for an occluder (2 n = 32 per camera sample, 4 camera samples), then the point
+  // counts as fully lit: the exact unoccluded irradiance I / d^2 = 4/9, as with no slab.
+  SceneDescription d = floor_scene(false);
+  ObjectDescription b;
+  b.shape = ObjectDescription::Shape::box;
+  b.box_min = {0.4, 1.5, -5};
+  b.box_max = {5, 1.6, 5};
+  b.material = "grey";
+  d.objects.push_back(b);
+  std::uint64_t rays = 0;
+  EXPECT_NEAR(irradiance(build_scene(d), {0, 0, 0}, {0, 1, 0}, rays), 4.0 / 9.0, 1e-6);
+  EXPECT_EQ(rays, 4u * 32u);
+}
+
 }  // namespace
 }  // namespace thaw::render
