@@ -75,11 +75,15 @@ PixelEstimate<Value> estimate_pixel(int x, int y, const sampling::PixelSampler& 
   int n = 0;
   int batch_end = aa.adaptive ? std::min(aa.min_samples, aa.max_samples) : aa.max_samples;
   while (true) {
+    // The last batch's display values would feed no decision: not computed (3 pow per sample;
+    // half the samples of the pixels that reach the cap).
+    const bool last = batch_end >= aa.max_samples;
     for (; n < batch_end; ++n) {
       const auto index = static_cast<std::uint32_t>(n);
       const FilterSample fs = filter.sample(sampler.get_2d(index, kFilmDimension));
       const Value v = radiance(cx + fs.dx, cy + fs.dy, index);
       sum += v * fs.weight;
+      if (last) continue;
       const Rgb c = to_rgb(v);
       const std::array<double, 3> d{display_value(c.r, aa.exposure_scale),
                                     display_value(c.g, aa.exposure_scale),
