@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -601,7 +602,8 @@ bool Scene::intersect(const Ray& ray, Hit& hit) const {
   float t_max = ray.t_max;
   bool found = false;
   // Planes first: their hit bounds the tree's traversal (the floor culls every node beneath it,
-  // e.g. the puddle mesh's part sunk below the floor).
+  // e.g. the puddle mesh's part sunk below the floor). A primitive at exactly the plane's t still
+  // wins, as when the planes were tested last (the traversal keeps hits with t < its bound).
   for (std::uint32_t k = 0; k < m_planes.size(); ++k) {
     const SceneObject& o = m_objects[m_planes[k]];
     float t;
@@ -613,6 +615,7 @@ bool Scene::intersect(const Ray& ray, Hit& hit) const {
     }
   }
   if (!m_bvh.empty()) {
+    if (found) t_max = std::nextafter(t_max, std::numeric_limits<float>::infinity());
     const Bvh::RayData rd(ray);
     // The shear transform (3 divisions) serves triangles only: made at the first triangle leaf
     // the ray reaches (many rays reach none, e.g. those leaving a floor upwards).
