@@ -114,6 +114,11 @@ class Bvh {
   template <class BoxTest, class LeafFn>
   bool any_leaf(BoxTest&& box_test, LeafFn&& leaf) const;
 
+  /// The same with a box test of a node's four children at once: `boxes_test(planes)` gets
+  /// Bvh4Node::planes and returns the mask of the children to enter (never an unused slot).
+  template <class BoxesTest, class LeafFn>
+  bool any_leaf_wide(BoxesTest&& boxes_test, LeafFn&& leaf) const;
+
   /// Slab test of the four children of `n`: bit i of the result is set if child i is met within
   /// (0, t_max); its entry distance is t_enter[i].
   static int hit_children(const Bvh4Node& n, const RayData& r, float t_max, float t_enter[4]);
@@ -287,6 +292,32 @@ bool Bvh::any_leaf(BoxTest&& box_test, LeafFn&& leaf) const {
         const Vec3 lo{n.planes[0][i], n.planes[2][i], n.planes[4][i]};
         const Vec3 hi{n.planes[1][i], n.planes[3][i], n.planes[5][i]};
         if (lo.x > hi.x || !box_test(lo, hi)) continue;  // unused slot, or outside the region
+        stack[sp++] = {n.child[i], n.count[i]};
+      }
+    }
+    if (sp == 0) return false;
+    e = stack[--sp];
+  }
+}
+
+template <class BoxesTest, class LeafFn>
+bool Bvh::any_leaf_wide(BoxesTest&& boxes_test, LeafFn&& leaf) const {
+  if (m_wide.empty()) return false;
+  struct Entry {
+    std::uint32_t ref, count;
+  };
+  Entry stack[kBvhStackSize];
+  int sp = 0;
+  Entry e{0, 0};  // the root: its children are tested
+  while (true) {
+    if (e.count > 0) {
+      if (leaf(e.ref, e.count)) return true;
+    } else {
+      const Bvh4Node& n = m_wide[e.ref];
+      auto mask = static_cast<unsigned>(boxes_test(n.planes));
+      while (mask) {  // in child order, as any_leaf pushes them
+        const int i = __builtin_ctz(mask);
+        mask &= mask - 1;
         stack[sp++] = {n.child[i], n.count[i]};
       }
     }

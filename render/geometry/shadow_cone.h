@@ -11,6 +11,10 @@
 
 #include "render/math/vec3.h"
 
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
 namespace thaw::render {
 
 class ShadowCone {
@@ -48,8 +52,55 @@ class ShadowCone {
     return may_touch_sphere((lo + hi) * 0.5f, 0.5f * length(hi - lo));
   }
 
-  const Vec3& apex() const { return m_apex; }
-  const Vec3& axis() const { return m_axis; }
+  /// may_touch_box() of four boxes at once (SSE, the same operations in the same order, so
+  /// the same results): boxes as planes[0..5] = lo_x, hi_x, lo_y, hi_y, lo_z, hi_z of lanes 0-3.
+  /// Bit i of the result is set if box i may meet the cone; empty boxes (lo > hi) never do.
+  unsigned may_touch_boxes4(const float (&planes)[6][4]) const {
+#if defined(__SSE2__)
+    const __m128 half = _mm_set1_ps(0.5f);
+    __m128 lo[3], hi[3], v[3], e[3];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = _mm_loadu_ps(planes[2 * a]);
+      hi[a] = _mm_loadu_ps(planes[2 * a + 1]);
+      v[a] = _mm_sub_ps(_mm_mul_ps(_mm_add_ps(lo[a], hi[a]), half), _mm_set1_ps(m_apex[a]));
+      e[a] = _mm_sub_ps(hi[a], lo[a]);
+    }
+    const auto dot3 = [](const __m128* x, const __m128* y) {
+      return _mm_add_ps(_mm_add_ps(_mm_mul_ps(x[0], y[0]), _mm_mul_ps(x[1], y[1])),
+                        _mm_mul_ps(x[2], y[2]));
+    };
+    const __m128 rho = _mm_add_ps(_mm_mul_ps(half, _mm_sqrt_ps(dot3(e, e))), _mm_set1_ps(m_slack));
+    const __m128 len2 = dot3(v, v);
+    const __m128 axis[3] = {_mm_set1_ps(m_axis.x), _mm_set1_ps(m_axis.y), _mm_set1_ps(m_axis.z)};
+    const __m128 x = dot3(v, axis);
+    const __m128 len = _mm_sqrt_ps(len2);
+    const __m128 sin_phi = _mm_div_ps(rho, len);
+    const __m128 cos_phi = _mm_sqrt_ps(_mm_sub_ps(_mm_set1_ps(1.0f), _mm_mul_ps(sin_phi, sin_phi)));
+    const __m128 cos_sum = _mm_sub_ps(_mm_mul_ps(_mm_set1_ps(m_cos), cos_phi),
+                                      _mm_mul_ps(_mm_set1_ps(m_sin), sin_phi));
+    const __m128 near = _mm_cmple_ps(len2, _mm_mul_ps(rho, rho));
+    const __m128 in_range = _mm_and_ps(_mm_cmpge_ps(x, _mm_sub_ps(_mm_setzero_ps(), rho)),
+                                       _mm_cmple_ps(x, _mm_add_ps(_mm_set1_ps(m_far), rho)));
+    const __m128 in_cone = _mm_and_ps(in_range, _mm_cmpge_ps(x, _mm_mul_ps(cos_sum, len)));
+    const __m128 used = _mm_cmple_ps(lo[0], hi[0]);
+    return static_cast<unsigned>(_mm_movemask_ps(_mm_and_ps(used, _mm_or_ps(near, in_cone))));
+#else
+    unsigned mask = 0;
+    for (int i = 0; i < 4; ++i) {
+      const Vec3 lo{planes[0][i], planes[2][i], planes[4][i]};
+      const Vec3 hi{planes[1][i], planes[3][i], planes[5][i]};
+      if (!(lo.x > hi.x) && may_touch_box(lo, hi)) mask |= 1u << i;
+    }
+    return mask;
+#endif
+  }
+
+  const Vec3& apex() const {
+    return m_apex;
+  }
+  const Vec3& axis() const {
+    return m_axis;
+  }
 
  private:
   Vec3 m_apex, m_axis;

@@ -695,8 +695,8 @@ bool Scene::light_unoccluded(const Vec3& origin, std::size_t light) const {
   }
   const ShadowCone cone(origin, l.center, l.radius, slack);
   const Primitive* prims = m_primitives.data();
-  return !m_bvh.any_leaf(
-      [&](const Vec3& lo, const Vec3& hi) { return cone.may_touch_box(lo, hi); },
+  return !m_bvh.any_leaf_wide(
+      [&](const float(&planes)[6][4]) { return cone.may_touch_boxes4(planes); },
       [&](std::uint32_t first, std::uint32_t count) {
         for (std::uint32_t i = first; i < first + count; ++i) {
           const Primitive& p = prims[i];

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 namespace thaw::render {
@@ -54,6 +55,45 @@ TEST(ShadowCone, ClearBallsMeetNoSegment) {
                                  apex + (light - apex) * 0.5f + Vec3{0.01f, 0.01f, 0.01f}));
   EXPECT_FALSE(cone.may_touch_sphere(apex - (light - apex) * 0.5f, 0.1f));
   EXPECT_FALSE(cone.may_touch_sphere(apex + (light - apex) * 2.0f, 0.1f));
+}
+
+// The four-box test is the one-box test lane by lane, bit for bit (the same operations in the
+// same order), on boxes in, near and off the cone, with a slack, and skips empty slots.
+TEST(ShadowCone, FourBoxesAsOne) {
+  const Vec3 apex{0.1f, 0.2f, -0.3f}, light{1.0f, 4.0f, 0.5f};
+  const ShadowCone cone(apex, light, 0.5f, 1e-4f);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  int touching = 0;
+  for (int k = 0; k < 2000; ++k) {
+    float planes[6][4];
+    bool want[4];
+    for (int i = 0; i < 4; ++i) {
+      const Vec3 c = apex + (light - apex) * (0.7f * (u(rng) + 1.0f) - 0.2f) +
+                     Vec3{u(rng), u(rng), u(rng)} * 0.6f;
+      const Vec3 e = Vec3{u(rng) + 1.0f, u(rng) + 1.0f, u(rng) + 1.0f} * 0.2f;
+      const Vec3 lo = c - e, hi = c + e;
+      for (int a = 0; a < 3; ++a) {
+        planes[2 * a][i] = lo[a];
+        planes[2 * a + 1][i] = hi[a];
+      }
+      want[i] = cone.may_touch_box(lo, hi);
+    }
+    if (k % 7 == 0) {  // an empty slot, as in a BVH node with fewer than four children
+      for (int a = 0; a < 3; ++a) {
+        planes[2 * a][3] = std::numeric_limits<float>::infinity();
+        planes[2 * a + 1][3] = -std::numeric_limits<float>::infinity();
+      }
+      want[3] = false;
+    }
+    const unsigned got = cone.may_touch_boxes4(planes);
+    for (int i = 0; i < 4; ++i) {
+      ASSERT_EQ(bool(got & (1u << i)), want[i]) << k << " " << i;
+      touching += want[i];
+    }
+  }
+  EXPECT_GT(touching, 1000);
+  EXPECT_LT(touching, 7000);
 }
 
 }  // namespace
