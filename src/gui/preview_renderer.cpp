@@ -139,7 +139,10 @@ void PreviewRenderer::serve(const PreviewRequest& request,
   }
   const auto passes = preview_passes(request.width, request.height, request.samples);
   for (std::size_t i = 0; i < passes.size();) {
-    if (m_cancel) return;
+    if (m_cancel) {  // replaced between two passes (e.g. while the 3D view's actors were made)
+      ++m_abandoned;
+      return;
+    }
     const render::SceneDescription desc =
         preview_scene(request.scenario, *step, request.camera_rows, passes[i]);
     const render::Scene scene = render::build_scene(desc);

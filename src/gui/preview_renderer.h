@@ -56,7 +56,8 @@ class PreviewRenderer : public QObject {
   /// time slider moves: the 3D view's draws then have the cores, and the preview of the step
   /// is requested once the slider rests).
   void cancel();
-  /// Passes started and then abandoned because a newer request came (stale previews cancelled).
+  /// Requests left unfinished because a newer one (or cancel()) replaced them: a pass abandoned
+  /// while rendering, or the next pass not started (stale previews cancelled).
   std::uint64_t abandoned_passes() const { return m_abandoned; }
   /// The initial shell the worker last meshed (for the 3D view); null before the first.
   std::shared_ptr<const ShellStep> initial_shell() const;
