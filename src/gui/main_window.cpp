@@ -17,6 +17,7 @@
 #include <QVBoxLayout>
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "src/common/error.h"
 #include "src/gui/key_form.h"
@@ -485,6 +486,7 @@ void MainWindow::show_step(int index) {
 
 bool MainWindow::apply_edit(const std::string& key, const TomlValue& value) {
   m_document.set(key, value);
+  if (key == "outer_boundary.kind") fit_outer_boundary_keys();
   recheck();
   return m_check.ok();
 }
@@ -552,6 +554,7 @@ void MainWindow::recheck() {
   if (m_save_as) m_save_as->setEnabled(m_check.ok());
   if (m_check.ok()) {
     for (KeyForm* form : m_forms) form->refresh(*m_check.scenario);
+    grey_out_unused(*m_check.scenario);
     const RunScenario& sc = *m_check.scenario;
     if (m_run &&
         (m_run->simulation_text != sc.simulation_text || m_run->mesh_text != sc.mesh_text)) {
@@ -570,6 +573,43 @@ void MainWindow::recheck() {
   }
   if (m_scene) m_scene->refresh();
   update_title();
+}
+
+void MainWindow::fit_outer_boundary_keys() {
+  // The file's rule (sim/scenario/scenario_file.cpp): [outer_boundary] holds exactly the keys its
+  // kind uses. After the kind changed, a key the parser rejects is removed and one it misses is
+  // added with a typical value, so that switching the kind is one edit, not an error.
+  static const std::map<std::string, double> typical = {
+      {"outer_boundary.temperature_c", 20.0},
+      {"outer_boundary.heat_transfer_coefficient_w_m2k", 10.0},
+      {"outer_boundary.flux_w_m2", 1000.0}};
+  for (std::size_t k = 0; k <= typical.size(); ++k) {
+    const ScenarioCheck c = m_document.check();
+    const auto t = typical.find(c.key);
+    if (c.ok() || t == typical.end()) return;
+    if (m_document.has(c.key))
+      m_document.remove(c.key);
+    else
+      m_document.set(c.key, t->second);
+  }
+}
+
+void MainWindow::grey_out_unused(const RunScenario& sc) {
+  // Keys the scenario's geometry or outer boundary does not read stay editable in the file but
+  // are greyed out here (a sphere has no length; an insulated boundary no temperature).
+  using B = sim::OuterBoundary;
+  const sim::Scenario& s = sc.simulation;
+  const std::pair<const char*, bool> used[] = {
+      {"shell.length_m", s.geometry == sim::Geometry::cylinder},
+      {"shell.lateral_size_m", s.geometry == sim::Geometry::planar},
+      {"outer_boundary.temperature_c",
+       s.outer_kind == B::temperature || s.outer_kind == B::convective},
+      {"outer_boundary.heat_transfer_coefficient_w_m2k", s.outer_kind == B::convective},
+      {"outer_boundary.flux_w_m2", s.outer_kind == B::flux},
+  };
+  for (const auto& [key, on] : used)
+    for (KeyForm* form : m_forms)
+      if (QWidget* field = form->field(key)) field->setEnabled(on);
 }
 
 bool MainWindow::can_save() const {

@@ -124,6 +124,10 @@ class MainWindow : public QMainWindow {
   QWidget* make_scenario_tab();
   QWidget* make_simulation_tab();
   void recheck();
+  /// Makes [outer_boundary] hold the keys its (just edited) kind uses: see the definition.
+  void fit_outer_boundary_keys();
+  /// Greys out the fields of keys the scenario does not read (its geometry, its boundary kind).
+  void grey_out_unused(const pipeline::RunScenario& scenario);
   void request_preview(bool full_quality = false);
   void on_image(const QImage& image, int pass, int passes, double seconds, quint64 serial);
   void show_image();

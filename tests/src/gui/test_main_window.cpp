@@ -136,6 +136,35 @@ class TestMainWindow : public QObject {
     QCOMPARE(edit->text(), QString("0.032"));
   }
 
+  // Fields of keys the scenario does not read are greyed out: a sphere has no length, a
+  // convective boundary no flux.
+  void fieldsTheScenarioDoesNotReadAreGreyedOut() {
+    MainWindow w{ScenarioDocument()};  // a sphere, a convective outer boundary
+    auto enabled = [&](const char* key) {
+      auto* f = w.findChild<QLineEdit*>(key);
+      return f && f->isEnabled();
+    };
+    QVERIFY(!enabled("shell.length_m"));
+    QVERIFY(!enabled("shell.lateral_size_m"));
+    QVERIFY(enabled("outer_boundary.heat_transfer_coefficient_w_m2k"));
+    QVERIFY(!enabled("outer_boundary.flux_w_m2"));
+    QVERIFY(w.apply_edit("simulation.geometry", std::string("cylinder")));
+    QVERIFY(enabled("shell.length_m"));
+    // Switching the boundary's kind is one edit: the keys the new kind does not read go, those
+    // it needs come with a typical value (the file's rule: exactly the keys the kind uses).
+    QVERIFY2(w.apply_edit("outer_boundary.kind", std::string("flux")), w.check().message.c_str());
+    QVERIFY(enabled("outer_boundary.flux_w_m2"));
+    QVERIFY(!enabled("outer_boundary.heat_transfer_coefficient_w_m2k"));
+    QVERIFY(!enabled("outer_boundary.temperature_c"));
+    QVERIFY(!w.document().has("outer_boundary.temperature_c"));
+    QCOMPARE(w.check().scenario->simulation.flux_w_m2, 1000.0);
+    QVERIFY2(w.apply_edit("outer_boundary.kind", std::string("convective")),
+             w.check().message.c_str());
+    QVERIFY(!w.document().has("outer_boundary.flux_w_m2"));
+    QCOMPARE(w.check().scenario->simulation.heat_transfer_coefficient_w_m2k, 10.0);
+    QCOMPARE(w.check().scenario->simulation.outer_temperature_c, 20.0);
+  }
+
   void badValueShowsItsMessageAndBlocksSaving() {
     MainWindow w{ScenarioDocument()};
     w.show();
