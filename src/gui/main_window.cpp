@@ -486,7 +486,7 @@ void MainWindow::show_step(int index) {
 
 bool MainWindow::apply_edit(const std::string& key, const TomlValue& value) {
   m_document.set(key, value);
-  if (key == "outer_boundary.kind") fit_outer_boundary_keys();
+  if (key.size() > 5 && key.compare(key.size() - 5, 5, ".kind") == 0) fit_keys_to_kind(key);
   recheck();
   return m_check.ok();
 }
@@ -575,22 +575,38 @@ void MainWindow::recheck() {
   update_title();
 }
 
-void MainWindow::fit_outer_boundary_keys() {
-  // The file's rule (sim/scenario/scenario_file.cpp): [outer_boundary] holds exactly the keys its
-  // kind uses. After the kind changed, a key the parser rejects is removed and one it misses is
-  // added with a typical value, so that switching the kind is one edit, not an error.
-  static const std::map<std::string, double> typical = {
-      {"outer_boundary.temperature_c", 20.0},
-      {"outer_boundary.heat_transfer_coefficient_w_m2k", 10.0},
-      {"outer_boundary.flux_w_m2", 1000.0}};
-  for (std::size_t k = 0; k <= typical.size(); ++k) {
+void MainWindow::fit_keys_to_kind(const std::string& kind_key) {
+  // The parsers' rule: a table holds exactly the keys its kind uses (an outer boundary's
+  // temperature, h or flux; a sphere light's radius; a material's texture). After a kind
+  // changed, a key of that table the parser rejects as not used is removed and one it misses
+  // is added with a typical value, so that switching a kind is one edit, not an error whose key
+  // the window has no field to remove. A rejected value is left alone (its message shows).
+  // Typical values by "kind/key" or, failing that, by the key's last part: a held outer
+  // temperature below melting (the rules reject a held one above), convective air at 20 C.
+  static const std::map<std::string, TomlValue> typical = {
+      {"temperature/temperature_c", TomlValue{-10.0}},
+      {"temperature_c", TomlValue{20.0}},
+      {"heat_transfer_coefficient_w_m2k", TomlValue{10.0}},
+      {"flux_w_m2", TomlValue{1000.0}},
+      {"radius", TomlValue{0.1}},
+      {"emission", TomlValue{std::array<double, 3>{1.0, 1.0, 1.0}}}};
+  const std::string kind = m_document.string_or(kind_key, "");
+  const std::string table = kind_key.substr(0, kind_key.size() - std::string(".kind").size());
+  for (int k = 0; k < 8; ++k) {
     const ScenarioCheck c = m_document.check();
-    const auto t = typical.find(c.key);
-    if (c.ok() || t == typical.end()) return;
-    if (m_document.has(c.key))
+    if (c.ok() || c.key.rfind(table + ".", 0) != 0) return;
+    const bool unused = c.message.find("unknown key") != std::string::npos ||
+                        c.message.find("not used") != std::string::npos ||
+                        c.message.find("only used") != std::string::npos;
+    const std::string part = c.key.substr(table.size() + 1);
+    auto t = typical.find(kind + "/" + part);
+    if (t == typical.end()) t = typical.find(part);
+    if (unused && m_document.has(c.key))
       m_document.remove(c.key);
-    else
+    else if (!m_document.has(c.key) && t != typical.end())
       m_document.set(c.key, t->second);
+    else
+      return;
   }
 }
 

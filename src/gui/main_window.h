@@ -124,8 +124,8 @@ class MainWindow : public QMainWindow {
   QWidget* make_scenario_tab();
   QWidget* make_simulation_tab();
   void recheck();
-  /// Makes [outer_boundary] hold the keys its (just edited) kind uses: see the definition.
-  void fit_outer_boundary_keys();
+  /// Makes the table of `kind_key` (just edited) hold the keys its new kind uses (see there).
+  void fit_keys_to_kind(const std::string& kind_key);
   /// Greys out the fields of keys the scenario does not read (its geometry, its boundary kind).
   void grey_out_unused(const pipeline::RunScenario& scenario);
   void request_preview(bool full_quality = false);

@@ -137,7 +137,7 @@ class TestMainWindow : public QObject {
   }
 
   // Fields of keys the scenario does not read are greyed out: a sphere has no length, a
-  // convective boundary no flux.
+  // convective boundary no flux; switching a kind brings the keys the new kind reads.
   void fieldsTheScenarioDoesNotReadAreGreyedOut() {
     MainWindow w{ScenarioDocument()};  // a sphere, a convective outer boundary
     auto enabled = [&](const char* key) {
@@ -150,8 +150,8 @@ class TestMainWindow : public QObject {
     QVERIFY(!enabled("outer_boundary.flux_w_m2"));
     QVERIFY(w.apply_edit("simulation.geometry", std::string("cylinder")));
     QVERIFY(enabled("shell.length_m"));
-    // Switching the boundary's kind is one edit: the keys the new kind does not read go, those
-    // it needs come with a typical value (the file's rule: exactly the keys the kind uses).
+    // Switching a kind is one edit: the keys the new kind does not read go, those it needs come
+    // with a typical value (the files' rule: a table holds exactly the keys its kind uses).
     QVERIFY2(w.apply_edit("outer_boundary.kind", std::string("flux")), w.check().message.c_str());
     QVERIFY(enabled("outer_boundary.flux_w_m2"));
     QVERIFY(!enabled("outer_boundary.heat_transfer_coefficient_w_m2k"));
@@ -163,6 +163,22 @@ class TestMainWindow : public QObject {
     QVERIFY(!w.document().has("outer_boundary.flux_w_m2"));
     QCOMPARE(w.check().scenario->simulation.heat_transfer_coefficient_w_m2k, 10.0);
     QCOMPARE(w.check().scenario->simulation.outer_temperature_c, 20.0);
+    // A held temperature must not be above melting (the rules): a new one is -10 C; an air
+    // temperature kept from the convective kind is the user's value, shown with its message.
+    QVERIFY(!w.apply_edit("outer_boundary.kind", std::string("temperature")));
+    QVERIFY(!w.field_problem("outer_boundary.temperature_c").isEmpty());
+    QVERIFY2(w.apply_edit("outer_boundary.kind", std::string("insulated")),
+             w.check().message.c_str());
+    QVERIFY2(w.apply_edit("outer_boundary.kind", std::string("temperature")),
+             w.check().message.c_str());
+    QCOMPARE(w.check().scenario->simulation.outer_temperature_c, -10.0);
+    // The same for any kind: a sphere light turned point loses its radius, and back gets one.
+    QVERIFY2(w.apply_edit("render.lights[0].kind", std::string("point")),
+             w.check().message.c_str());
+    QVERIFY(!w.document().has("render.lights[0].radius"));
+    QVERIFY2(w.apply_edit("render.lights[0].kind", std::string("sphere")),
+             w.check().message.c_str());
+    QCOMPARE(w.check().scenario->scene.lights[0].radius, 0.1);
   }
 
   void badValueShowsItsMessageAndBlocksSaving() {
