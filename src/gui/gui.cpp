@@ -1,9 +1,12 @@
 #include "src/gui/gui.h"
 
 #include <QVTKOpenGLNativeWidget.h>
+#include <sys/resource.h>
+#include <vtkRenderWindow.h>
 #include <QApplication>
 #include <QSurfaceFormat>
 #include <QTimer>
+
 #include <cstdlib>
 #include <memory>
 
@@ -12,20 +15,48 @@
 #include "src/gui/film_runner.h"
 #include "src/gui/main_window.h"
 #include "src/gui/screenshot.h"
+#include "src/gui/shader_warmup.h"
+#include "src/gui/shell_view.h"
 #include "src/inspect/virtual_display.h"
 
 namespace thaw::gui {
+namespace {
+
+/// The --warm-shaders child: once the 3D view has drawn the initial shell and the scene with all
+/// their looks, draws it quick too (the looks of an orbit or a slider drag), then quits with 0.
+void quit_when_warmed(MainWindow& window, QApplication& app) {
+  auto* poll = new QTimer(&window);
+  QObject::connect(poll, &QTimer::timeout, &window, [&window, &app, poll] {
+    ShellView& view = window.shell_view();
+    if (!window.check().ok()) return poll->stop(), app.exit(3);  // the parent compiles them
+    if (view.triangles() == 0 || view.scene_objects() == 0 || view.warming_up()) return;
+    poll->stop();
+    view.set_quick(true);
+    view.renderWindow()->Render();
+    view.set_quick(false);
+    app.exit(0);
+  });
+  poll->start(50);
+}
+
+}  // namespace
 
 int run_gui(const GuiOptions& options) {
   ScenarioDocument document =
       options.scenario.empty() ? ScenarioDocument() : ScenarioDocument::load(options.scenario);
+  if (options.warm_shaders) {
+    ::unsetenv("DISPLAY");  // always a private Xvfb: nothing appears on the user's screen
+    ::unsetenv("QT_QPA_PLATFORM");
+    // Below the parent's GUI thread, which it must not keep from a core.
+    (void)::setpriority(PRIO_PROCESS, 0, 5);
+  }
   // Qt's xcb platform needs an X display; --screenshot may start a private Xvfb for it (as
   // `thaw inspect --screenshot` does). The offscreen platform needs none.
   const char* platform = std::getenv("QT_QPA_PLATFORM");
   const bool offscreen = platform && std::string(platform) == "offscreen";
   std::unique_ptr<inspect::DisplayLease> display;
   if (!offscreen && !inspect::display_available()) {
-    if (options.screenshot.empty())
+    if (options.screenshot.empty() && !options.warm_shaders)
       throw UserError("", "gui",
                       "no X display: run it on a desktop, or with --screenshot under xvfb-run");
     display = std::make_unique<inspect::DisplayLease>("thaw gui --screenshot");
@@ -40,6 +71,12 @@ int run_gui(const GuiOptions& options) {
     throw UserError("", "--tab",
                     "no tab '" + options.tab + "' (render, scenario, simulation, scene)");
   window.show();
+  if (options.warm_shaders) {
+    quit_when_warmed(window, app);
+    return app.exec();
+  }
+  warm_shaders_first(window.shell_view(), QCoreApplication::applicationFilePath(),
+                     options.scenario);
   if (options.simulate) {
     if (!window.start_simulation())
       throw UserError(window.document().source_name(), "--simulate",

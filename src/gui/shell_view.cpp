@@ -254,7 +254,17 @@ void ShellView::paintGL() {
   QVTKOpenGLNativeWidget::paintGL();
   if (m_painted) return;
   m_painted = true;  // the context exists: the warm-up's turns may begin
-  if (!m_staged.empty()) m_stage_timer->start();
+  if (!m_staged.empty() && !m_held) m_stage_timer->start();
+}
+
+void ShellView::hold() {
+  m_held = true;
+}
+
+void ShellView::release() {
+  if (!m_held) return;
+  m_held = false;
+  if (!m_staged.empty() && m_painted) m_stage_timer->start();
 }
 
 std::size_t ShellView::drawn_props() const {
@@ -281,13 +291,13 @@ void ShellView::add_prop(vtkProp* prop) {
 void ShellView::stage(const std::string& look, std::function<void()> apply, vtkProp* prop,
                       bool apply_when_removed) {
   const bool known = m_looks.count(look) > 0;
-  if (known || (m_painted && m_new_looks == 0 && m_staged.empty())) {
+  if (known || (m_painted && !m_held && m_new_looks == 0 && m_staged.empty())) {
     if (!known) m_looks.insert(look), ++m_new_looks;
     apply();
     return;
   }
   m_staged.push_back({look, prop, std::move(apply), apply_when_removed});
-  if (m_painted) m_stage_timer->start();
+  if (m_painted && !m_held) m_stage_timer->start();
 }
 
 void ShellView::remove_prop(vtkProp* prop) {
@@ -306,10 +316,11 @@ void ShellView::draw() {
   m_most_new_looks = std::max(m_most_new_looks, m_new_looks);
   m_new_looks = 0;
   renderWindow()->Render();
-  if (!m_staged.empty() && m_painted) m_stage_timer->start();
+  if (!m_staged.empty() && m_painted && !m_held) m_stage_timer->start();
 }
 
 void ShellView::advance() {
+  if (m_held) return;
   while (!m_staged.empty()) {
     Staged& next = m_staged.front();
     const bool known = m_looks.count(next.look) > 0;

@@ -69,6 +69,13 @@ class ShellView : public QVTKOpenGLNativeWidget {
   /// Whether some actors still wait for their turn to be drawn (warm-up, below). Never before
   /// the first paint: the turns start with it (a platform without OpenGL never paints the view).
   bool warming_up() const { return m_painted && !m_staged.empty(); }
+  /// Holds every look not drawn yet (the view shows what it has, at first its plain background)
+  /// until release(): while a child process fills Mesa's shader cache (shader_warmup.h), so
+  /// that the turns below then load the compiled shaders instead of compiling them here.
+  void hold();
+  /// Ends hold(): the held looks are drawn in turns as below.
+  void release();
+  bool held() const { return m_held; }
   /// The most looks first drawn in one draw (tests; warm-up, below).
   int most_new_looks_per_draw() const { return m_most_new_looks; }
   /// Actors (and the label) in the renderer now (tests).
@@ -115,6 +122,7 @@ class ShellView : public QVTKOpenGLNativeWidget {
   std::set<std::string> m_looks;
   int m_new_looks = 0, m_most_new_looks = 0;
   bool m_painted = false;
+  bool m_held = false;
   QTimer* m_stage_timer = nullptr;
   QTimer* m_settle_timer = nullptr;
   bool m_settle_pending = false;

@@ -28,6 +28,7 @@
 #include "src/common/interrupt.h"
 #include "src/gui/main_window.h"
 #include "src/gui/screenshot.h"
+#include "src/gui/shader_warmup.h"
 #include "src/gui/shell_view.h"
 #include "src/inspect/virtual_display.h"
 
@@ -362,6 +363,28 @@ class TestMainWindow : public QObject {
         120000);
     QCOMPARE(v.most_new_looks_per_draw(), 1);
     // Everything is drawn: the shell's two surfaces, the scene's objects and lights, the label.
+    QCOMPARE(v.drawn_props(), 2 + v.scene_objects() + v.scene_lights() + 1);
+  }
+
+  // The first-run warm-up (shader_warmup.h): while the child fills Mesa's shader cache the view
+  // holds every new look (its plain background only); a child that fails (exit code 3 here)
+  // still releases it, and the view ends complete, in turns as without a child.
+  void aFailedShaderWarmupStillCompletesTheView() {
+    MainWindow w{ScenarioDocument()};
+    thaw::gui::ShellView& v = w.shell_view();
+    v.hold();
+    w.show();
+    QTRY_VERIFY_WITH_TIMEOUT(
+        v.triangles() > 0 && v.scene_objects() > 0 && v.warming_up() && w.preview_full_size(),
+        120000);
+    QCOMPARE(v.drawn_props(), std::size_t{0});  // held: no look drawn, not even the label
+    thaw::gui::ShaderWarmup child("/bin/sh", {"-c", "exit 3"}, 60000);
+    QSignalSpy finished(&child, &thaw::gui::ShaderWarmup::finished);
+    connect(&child, &thaw::gui::ShaderWarmup::finished, &v, [&v] { v.release(); });
+    QTRY_VERIFY_WITH_TIMEOUT(finished.count() == 1 && !v.warming_up(), 60000);
+    QCOMPARE(finished.front().front().toBool(), false);
+    QVERIFY(!v.held());
+    QCOMPARE(v.most_new_looks_per_draw(), 1);
     QCOMPARE(v.drawn_props(), 2 + v.scene_objects() + v.scene_lights() + 1);
   }
 
