@@ -59,7 +59,9 @@ int run_gui(const GuiOptions& options) {
     if (options.screenshot.empty() && !options.warm_shaders)
       throw UserError("", "gui",
                       "no X display: run it on a desktop, or with --screenshot under xvfb-run");
-    display = std::make_unique<inspect::DisplayLease>("thaw gui --screenshot");
+    display = std::make_unique<inspect::DisplayLease>(
+        options.warm_shaders ? "thaw gui --warm-shaders (the 3D view's shader warm-up)"
+                             : "thaw gui --screenshot");
   }
   QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
   static int argc = 1;
