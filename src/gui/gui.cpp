@@ -14,6 +14,7 @@
 #include "src/common/interrupt.h"
 #include "src/gui/film_runner.h"
 #include "src/gui/main_window.h"
+#include "src/gui/scene_props.h"
 #include "src/gui/screenshot.h"
 #include "src/gui/shader_warmup.h"
 #include "src/gui/shell_view.h"
@@ -23,13 +24,26 @@ namespace thaw::gui {
 namespace {
 
 /// The --warm-shaders child: once the 3D view has drawn the initial shell and the scene with all
-/// their looks, draws it quick too (the looks of an orbit or a slider drag), then quits with 0.
+/// their looks, adds one small actor of every look an edit can bring (look_catalog), and once
+/// those are drawn too, draws it quick (the looks of an orbit or a slider drag), then quits with 0.
 void quit_when_warmed(MainWindow& window, QApplication& app) {
   auto* poll = new QTimer(&window);
-  QObject::connect(poll, &QTimer::timeout, &window, [&window, &app, poll] {
+  auto catalog_added = std::make_shared<bool>(false);
+  QObject::connect(poll, &QTimer::timeout, &window, [&window, &app, poll, catalog_added] {
     ShellView& view = window.shell_view();
     if (!window.check().ok()) return poll->stop(), app.exit(3);  // the parent compiles them
     if (view.triangles() == 0 || view.scene_objects() == 0 || view.warming_up()) return;
+    if (!*catalog_added) {
+      *catalog_added = true;
+      const ShellView::ViewCamera c = view.camera();
+      render::CameraDescription camera;
+      camera.position = c.position;
+      camera.look_at = c.focal_point;
+      camera.up = c.view_up;
+      camera.vertical_fov_deg = c.vertical_fov_deg;
+      view.add_catalog(look_catalog(camera));
+      return;
+    }
     poll->stop();
     view.set_quick(true);
     view.renderWindow()->Render();

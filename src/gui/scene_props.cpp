@@ -443,3 +443,55 @@ SceneProps make_scene_props(const render::SceneDescription& desc,
 }
 
 }  // namespace thaw::gui
+
+namespace thaw::gui {
+
+SceneProps look_catalog(const render::CameraDescription& camera) {
+  using Kind = render::MaterialDescription::Kind;
+  using Shape = ObjectDescription::Shape;
+  render::SceneDescription desc;
+  desc.camera = camera;
+  const Vec3d f = camera.look_at;
+  const Vec3d to_eye = plus(camera.position, scaled(f, -1.0));
+  const double s = 0.01 * std::max(1e-3, std::sqrt(dot(to_eye, to_eye)));  // small, in view
+  for (Kind kind : {Kind::matte, Kind::metal, Kind::phong, Kind::emissive}) {
+    render::MaterialDescription m;
+    m.name = "m" + std::to_string(desc.materials.size());
+    m.kind = kind;
+    desc.materials.push_back(m);
+  }
+  render::MaterialDescription checker;
+  checker.name = "checker";
+  checker.texture.kind = render::TextureDescription::Kind::checker;
+  desc.materials.push_back(checker);
+  auto mesh = std::make_shared<render::TriangleMesh>();
+  mesh->positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  mesh->triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  std::vector<std::string> materials;
+  for (const auto& m : desc.materials) materials.push_back(m.name);
+  materials.push_back("");  // a dielectric
+  for (Shape shape : {Shape::sphere, Shape::box, Shape::plane, Shape::mesh})
+    for (const std::string& material : materials) {
+      ObjectDescription o;
+      o.shape = shape;
+      o.center = o.point = o.translate = f;
+      o.radius = o.scale = s;
+      o.box_min = plus(f, {-s, -s, -s});
+      o.box_max = plus(f, {s, s, s});
+      o.mesh = mesh;
+      o.material = material;
+      o.inside = material.empty() ? "glass" : "";
+      desc.objects.push_back(o);
+    }
+  for (auto kind :
+       {render::LightDescription::Kind::point, render::LightDescription::Kind::sphere}) {
+    render::LightDescription l;
+    l.kind = kind;
+    l.position = f;
+    l.radius = s;
+    desc.lights.push_back(l);
+  }
+  return make_scene_props(desc, {});
+}
+
+}  // namespace thaw::gui

@@ -26,7 +26,6 @@
 #include "src/inspect/surface_actor.h"
 
 namespace thaw::gui {
-namespace {
 
 /// What decides the shaders and pipeline state an actor is drawn with (see Staged in the
 /// header): actors with equal looks draw with the programs the first of them compiled.
@@ -47,8 +46,6 @@ std::string look_of(vtkProp* prop) {
                 p->GetDiffuse() == 0.0);
   return text;
 }
-
-}  // namespace
 
 ShellView::ShellView(QWidget* parent) : QVTKOpenGLNativeWidget(parent) {
   vtkNew<vtkGenericOpenGLRenderWindow> window;
@@ -248,6 +245,28 @@ void ShellView::show_step(const ShellStep& step, const std::array<double, 3>& of
     m_renderer->ResetCameraClippingRange();
   }
   draw();
+}
+
+std::size_t ShellView::add_catalog(const SceneProps& catalog) {
+  // One actor of each look not drawn yet (the others would only cost drawing time).
+  const std::size_t first = m_catalog.size();
+  std::set<std::string> added = m_looks;
+  auto add = [&](const vtkSmartPointer<vtkActor>& actor) {
+    if (!added.insert(look_of(actor)).second) return;
+    m_catalog.push_back(actor);
+    add_prop(actor);
+  };
+  for (std::size_t k = 0; k < catalog.actors.size(); ++k) {
+    add(catalog.actors[k]);
+    if (!catalog.textures[k]) continue;
+    // the same actor drawn quick (set_quick): its texture off
+    auto quick = vtkSmartPointer<vtkActor>::New();
+    quick->ShallowCopy(catalog.actors[k]);
+    quick->SetTexture(nullptr);
+    add(quick);
+  }
+  draw();
+  return m_catalog.size() - first;
 }
 
 void ShellView::paintGL() {

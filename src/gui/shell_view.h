@@ -26,6 +26,10 @@ class QTimer;
 
 namespace thaw::gui {
 
+/// What decides the shaders and pipeline state an actor is drawn with (see Staged below): actors
+/// with equal looks draw with the programs the first of them compiled.
+std::string look_of(vtkProp* prop);
+
 class ShellView : public QVTKOpenGLNativeWidget {
   Q_OBJECT
  public:
@@ -78,6 +82,13 @@ class ShellView : public QVTKOpenGLNativeWidget {
   bool held() const { return m_held; }
   /// The most looks first drawn in one draw (tests; warm-up, below).
   int most_new_looks_per_draw() const { return m_most_new_looks; }
+  /// Adds one actor of each look among `catalog`'s actors (look_catalog(), scene_props.h) and
+  /// their copies without texture (the look while the view is drawn quick) that was not drawn
+  /// yet, in turns as new looks are: the --warm-shaders child draws every look an edit can bring
+  /// (shader_warmup.h). Returns how many it added.
+  std::size_t add_catalog(const SceneProps& catalog);
+  /// The looks drawn so far (tests).
+  const std::set<std::string>& looks() const { return m_looks; }
   /// Actors (and the label) in the renderer now (tests).
   std::size_t drawn_props() const;
 
@@ -131,6 +142,7 @@ class ShellView : public QVTKOpenGLNativeWidget {
   vtkSmartPointer<vtkTextActor> m_label;
   long m_triangles = 0;
   std::vector<vtkSmartPointer<vtkActor>> m_scene;
+  std::vector<vtkSmartPointer<vtkActor>> m_catalog;
   std::vector<vtkSmartPointer<vtkTexture>> m_scene_textures;
   std::vector<std::array<double, 3>> m_quick_colors;
   std::string m_scene_key;

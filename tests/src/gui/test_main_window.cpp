@@ -4,6 +4,7 @@
 // screenshot of the default with its panels and a non-empty render.
 #include <QVTKInteractor.h>
 #include <QVTKOpenGLNativeWidget.h>
+#include <vtkActor.h>
 #include <vtkCommand.h>
 #include <QApplication>
 #include <QComboBox>
@@ -24,9 +25,12 @@
 #include <map>
 #include <memory>
 #include <numeric>
+#include <set>
+#include <string>
 
 #include "src/common/interrupt.h"
 #include "src/gui/main_window.h"
+#include "src/gui/scene_props.h"
 #include "src/gui/screenshot.h"
 #include "src/gui/shader_warmup.h"
 #include "src/gui/shell_view.h"
@@ -364,6 +368,40 @@ class TestMainWindow : public QObject {
     QCOMPARE(v.most_new_looks_per_draw(), 1);
     // Everything is drawn: the shell's two surfaces, the scene's objects and lights, the label.
     QCOMPARE(v.drawn_props(), 2 + v.scene_objects() + v.scene_lights() + 1);
+  }
+
+  // The warm-up child's catalog (look_catalog, drawn by `thaw gui --warm-shaders`): the view
+  // adds exactly one actor of each of the catalog's looks (at rest and quick) it had not drawn,
+  // in turns, one new look per draw, and ends with every one of them drawn (so Mesa's cache
+  // holds the looks an edit brings; tests/src/gui/test_scene_props.cpp: the catalog has them all).
+  void theCatalogAddsOneActorPerLookNotDrawnYet() {
+    MainWindow w{ScenarioDocument()};
+    w.show();
+    thaw::gui::ShellView& v = w.shell_view();
+    QTRY_VERIFY_WITH_TIMEOUT(
+        v.triangles() > 0 && v.scene_objects() > 0 && !v.warming_up() && w.preview_full_size(),
+        120000);
+    const std::set<std::string> before = v.looks();
+    const std::size_t props_before = v.drawn_props();
+    const thaw::gui::SceneProps catalog =
+        thaw::gui::look_catalog(thaw::render::CameraDescription{});
+    std::set<std::string> wanted;
+    for (std::size_t k = 0; k < catalog.actors.size(); ++k) {
+      wanted.insert(thaw::gui::look_of(catalog.actors[k]));
+      if (!catalog.textures[k]) continue;
+      auto quick = vtkSmartPointer<vtkActor>::New();
+      quick->ShallowCopy(catalog.actors[k]);
+      quick->SetTexture(nullptr);
+      wanted.insert(thaw::gui::look_of(quick));
+    }
+    std::size_t missing = 0;
+    for (const auto& look : wanted) missing += before.count(look) == 0;
+    QVERIFY(missing > 0);  // the default scenario does not already show every look
+    QCOMPARE(v.add_catalog(catalog), missing);
+    QTRY_VERIFY_WITH_TIMEOUT(!v.warming_up(), 60000);
+    QCOMPARE(v.most_new_looks_per_draw(), 1);
+    QCOMPARE(v.drawn_props(), props_before + missing);
+    for (const auto& look : wanted) QVERIFY2(v.looks().count(look), look.c_str());
   }
 
   // The first-run warm-up (shader_warmup.h): while the child fills Mesa's shader cache the view
