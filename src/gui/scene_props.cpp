@@ -491,7 +491,24 @@ SceneProps look_catalog(const render::CameraDescription& camera) {
     l.radius = s;
     desc.lights.push_back(l);
   }
-  return make_scene_props(desc, {});
+  SceneProps props = make_scene_props(desc, {});
+  // A mesh read from an OBJ file without smooth_normals is drawn without normals (flat); the
+  // catalog's in-memory mesh is smooth, so each of its actors is added once more without them.
+  const std::size_t per_shape = materials.size(), first_mesh = 3 * per_shape;  // the 4th shape
+  for (std::size_t k = first_mesh; k < first_mesh + per_shape; ++k) {
+    vtkActor* smooth = props.actors[k];
+    auto flat = vtkSmartPointer<vtkPolyData>::New();
+    flat->ShallowCopy(vtkPolyData::SafeDownCast(smooth->GetMapper()->GetInputDataObject(0, 0)));
+    flat->GetPointData()->SetNormals(nullptr);
+    vtkSmartPointer<vtkActor> actor = actor_of(flat, false);
+    actor->GetMapper()->ScalarVisibilityOff();
+    actor->GetProperty()->DeepCopy(smooth->GetProperty());
+    props.actors.push_back(actor);
+    props.actor_keys.push_back(props.actor_keys[k] + " flat");
+    props.textures.push_back(nullptr);
+    props.quick_colors.push_back(props.quick_colors[k]);
+  }
+  return props;
 }
 
 }  // namespace thaw::gui

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 #include <vtkActor.h>
 
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <set>
 #include <string>
@@ -73,6 +75,20 @@ TEST(LookCatalog, HoldsTheLookOfEveryObjectAndLightAnEditCanMake) {
                   << " texture " << static_cast<int>(texture) << " dielectric " << dielectric
                   << ": " << look;
           }
+  // An OBJ file's mesh (read from disk, flat unless smooth_normals): the same looks.
+  const auto obj = std::filesystem::temp_directory_path() / "thaw_test_look_catalog.obj";
+  std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  for (Kind kind : {Kind::matte, Kind::metal, Kind::phong, Kind::emissive})
+    for (bool smooth : {false, true})
+      for (bool dielectric : {false, true}) {
+        render::SceneDescription desc = one_object(
+            Shape::mesh, kind, render::TextureDescription::Kind::solid, dielectric, smooth);
+        desc.objects[0].mesh = nullptr;
+        desc.objects[0].mesh_file = obj;
+        for (const std::string& look : looks(make_scene_props(desc, {})))
+          EXPECT_TRUE(have.count(look)) << "OBJ mesh, smooth " << smooth << ": " << look;
+      }
+  std::filesystem::remove(obj);
   for (auto kind : {LightDescription::Kind::point, LightDescription::Kind::sphere}) {
     render::SceneDescription desc;
     LightDescription l;
