@@ -149,6 +149,8 @@ int main(int argc, char** argv) {
   // does, each until the view has drawn it. A look no draw made before compiles its shaders on
   // the GUI thread here unless the warm-up child drew it (look_catalog, src/gui/scene_props.h).
   phase = "new objects";
+  const std::size_t objects_before = w.document().array_size("render.objects");
+  const std::size_t view_objects_before = w.shell_view().scene_objects();
   for (const char* shape : {"box", "sphere", "plane"}) {
     const std::size_t n = w.shell_view().scene_objects();
     if (!w.add_object(shape)) return std::puts("add_object failed"), 1;
@@ -177,6 +179,12 @@ int main(int argc, char** argv) {
               static_cast<long long>(worst_gap_ms), worst_gap_cpu_ms);
   std::fflush(stdout);
   if (argc > 3 && std::string(argv[3]) == "objects") return 0;
+  // The edits below are timed on the default scene (issue 14's preview target): the objects go.
+  while (w.document().array_size("render.objects") > objects_before)
+    w.remove_object(w.document().array_size("render.objects") - 1);
+  if (!wait_until([&] { return w.shell_view().scene_objects() == view_objects_before; }, 60000))
+    return std::puts("added objects not removed from the view"), 1;
+  wait_until([] { return false; }, 300);
   worst_gap_ms = 0;
   worst_gap_cpu_ms = 0;
 
