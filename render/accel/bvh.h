@@ -276,28 +276,18 @@ bool Bvh::occluded(const RayData& ray, float t_max, LeafFn&& leaf) const {
 
 template <class BoxTest, class LeafFn>
 bool Bvh::any_leaf(BoxTest&& box_test, LeafFn&& leaf) const {
-  if (m_wide.empty()) return false;
-  struct Entry {
-    std::uint32_t ref, count;
-  };
-  Entry stack[kBvhStackSize];
-  int sp = 0;
-  Entry e{0, 0};  // the root: its children are tested
-  while (true) {
-    if (e.count > 0) {
-      if (leaf(e.ref, e.count)) return true;
-    } else {
-      const Bvh4Node& n = m_wide[e.ref];
-      for (int i = 0; i < 4; ++i) {
-        const Vec3 lo{n.planes[0][i], n.planes[2][i], n.planes[4][i]};
-        const Vec3 hi{n.planes[1][i], n.planes[3][i], n.planes[5][i]};
-        if (lo.x > hi.x || !box_test(lo, hi)) continue;  // unused slot, or outside the region
-        stack[sp++] = {n.child[i], n.count[i]};
-      }
-    }
-    if (sp == 0) return false;
-    e = stack[--sp];
-  }
+  // One child box at a time: the mask any_leaf_wide takes, from four scalar tests.
+  return any_leaf_wide(
+      [&](const float(&planes)[6][4]) {
+        unsigned mask = 0;
+        for (int i = 0; i < 4; ++i) {
+          const Vec3 lo{planes[0][i], planes[2][i], planes[4][i]};
+          const Vec3 hi{planes[1][i], planes[3][i], planes[5][i]};
+          if (!(lo.x > hi.x) && box_test(lo, hi)) mask |= 1u << i;  // a used slot, in the region
+        }
+        return mask;
+      },
+      std::forward<LeafFn>(leaf));
 }
 
 template <class BoxesTest, class LeafFn>
