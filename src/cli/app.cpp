@@ -20,13 +20,38 @@ void describe_app(CLI::App& app) {
   app.require_subcommand(1);
 }
 
+namespace {
+
+// "render " when the mistake was in `thaw render ...`, so the hint names the right help page.
+std::string help_path(const CLI::App& app) {
+  for (const CLI::App* sub : app.get_subcommands()) return sub->get_name() + " ";
+  return "";
+}
+
+// `thaw bogus`: CLI11 would only say that a subcommand is required; name the word and the choices.
+std::string unknown_command(const CLI::App& app, int argc, char** argv) {
+  if (!app.get_subcommands().empty() || argc < 2 || argv[1][0] == '-') return "";
+  std::string known;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+    known += (known.empty() ? "" : ", ") + sub->get_name();
+  return "unknown command \"" + std::string(argv[1]) + "\"; the commands: " + known;
+}
+
+}  // namespace
+
 int run_app(CLI::App& app, int argc, char** argv) {
   thaw::install_interrupt_handlers();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+    // --help and --version are "errors" with exit code 0: CLI11 prints them. A real command-line
+    // mistake is user input like any other: one line on stderr, exit code 2.
+    if (e.get_exit_code() == 0) return app.exit(e);
+    const std::string unknown = unknown_command(app, argc, argv);
+    const std::string problem = unknown.empty() ? e.what() : unknown;
+    std::fprintf(stderr, "thaw: error: %s (see thaw %s--help)\n",
+                 thaw::escape_control_characters(problem).c_str(), help_path(app).c_str());
+    return 2;
   } catch (const thaw::Interrupted& e) {
     std::fprintf(stderr, "\nthaw: %s\n", e.what());
     return thaw::kInterruptedExitCode;
