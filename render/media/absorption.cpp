@@ -6,16 +6,14 @@
 #include <sstream>
 #include <utility>
 
+#include "render/media/wavelength_table.h"
 #include "src/common/error.h"
 
 namespace thaw::render::media {
 namespace {
 
 std::string num(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
+  return table_number(v);
 }
 
 }  // namespace
@@ -99,24 +97,10 @@ void Absorption::validate(const std::string& file, const std::string& where) con
                                    num(m_constant_per_m) + ")");
     return;
   }
-  if (m_table_nm.size() != m_table_per_m.size())
-    fail("absorption_per_m", "wavelength_nm has " + std::to_string(m_table_nm.size()) +
-                                 " entries but per_m has " + std::to_string(m_table_per_m.size()));
-  if (m_table_nm.size() < 2) fail("absorption_per_m", "a table needs at least two rows");
-  for (std::size_t i = 0; i + 1 < m_table_nm.size(); ++i)
-    if (!(m_table_nm[i + 1] > m_table_nm[i]))
-      fail("absorption_per_m.wavelength_nm",
-           "must be strictly increasing (row " + std::to_string(i + 1) + ")");
-  if (m_table_nm.front() > kLambdaMinNm || m_table_nm.back() < kLambdaMaxNm)
-    fail("absorption_per_m.wavelength_nm", "covers " + num(m_table_nm.front()) + "-" +
-                                               num(m_table_nm.back()) +
-                                               " nm but must cover the rendered range " +
-                                               num(kLambdaMinNm) + "-" + num(kLambdaMaxNm) + " nm");
-  for (std::size_t i = 0; i < m_table_per_m.size(); ++i)
-    if (!std::isfinite(m_table_per_m[i]) || m_table_per_m[i] < 0)
-      fail("absorption_per_m.per_m", "entry " + std::to_string(i) +
-                                         " must be finite and >= 0 per metre (got " +
-                                         num(m_table_per_m[i]) + ")");
+  const auto table = wavelength_table_problem(m_table_nm, m_table_per_m,
+                                              {"per_m", 0.0, "finite and >= 0 per metre"});
+  if (table)
+    fail("absorption_per_m" + (table->key.empty() ? "" : "." + table->key), table->problem);
 }
 
 }  // namespace thaw::render::media

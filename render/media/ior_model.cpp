@@ -7,16 +7,14 @@
 #include <sstream>
 #include <utility>
 
+#include "render/media/wavelength_table.h"
 #include "src/common/error.h"
 
 namespace thaw::render::media {
 namespace {
 
 std::string num(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
+  return table_number(v);
 }
 
 /// Linear interpolation in a strictly increasing table, clamped at the ends.
@@ -178,21 +176,9 @@ void IorModel::validate(const std::string& file, const std::string& where) const
         if (!std::isfinite(v)) fail("cauchy", "coefficients must be finite");
       break;
     case Kind::table: {
-      if (m_table_nm.size() != m_table_n.size())
-        fail("table", "wavelength_nm has " + std::to_string(m_table_nm.size()) +
-                          " entries but n has " + std::to_string(m_table_n.size()));
-      if (m_table_nm.size() < 2) fail("table", "needs at least two rows");
-      for (std::size_t i = 0; i + 1 < m_table_nm.size(); ++i)
-        if (!(m_table_nm[i + 1] > m_table_nm[i]))
-          fail("table.wavelength_nm",
-               "must be strictly increasing (row " + std::to_string(i + 1) + ")");
-      if (m_table_nm.front() > kLambdaMinNm || m_table_nm.back() < kLambdaMaxNm)
-        fail("table.wavelength_nm", "covers " + num(m_table_nm.front()) + "-" +
-                                        num(m_table_nm.back()) + " nm but must cover " + range);
-      for (std::size_t i = 0; i < m_table_n.size(); ++i)
-        if (!std::isfinite(m_table_n[i]) || m_table_n[i] < 1)
-          fail("table.n", "entry " + std::to_string(i) + " must be a finite number >= 1 (got " +
-                              num(m_table_n[i]) + ")");
+      const auto table =
+          wavelength_table_problem(m_table_nm, m_table_n, {"n", 1.0, "a finite number >= 1"});
+      if (table) fail("table" + (table->key.empty() ? "" : "." + table->key), table->problem);
       return;
     }
     case Kind::iapws97:
