@@ -8,24 +8,14 @@
 #include "src/common/error.h"
 #include "src/meshio/edge_topology.h"
 #include "src/meshio/obj_reader.h"
+#include "src/meshio/point3.h"
 
 namespace thaw::sim {
 
 namespace {
 
-using V3 = std::array<double, 3>;
-V3 sub(const V3& a, const V3& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-double dot(const V3& a, const V3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-V3 cross(const V3& a, const V3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double norm(const V3& a) {
-  return std::sqrt(dot(a, a));
-}
+using V3 = meshio::Point3;
+using meshio::cross, meshio::dot, meshio::norm, meshio::sub;
 
 /// Squared distance from p to triangle abc (Ericson, "Real-Time Collision Detection", 5.1.5).
 double triangle_distance2(const V3& p, const V3& a, const V3& b, const V3& c) {

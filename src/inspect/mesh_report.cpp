@@ -18,24 +18,13 @@
 #include "src/inspect/vtk_polydata.h"
 #include "src/meshio/edge_topology.h"
 #include "src/meshio/obj_reader.h"
+#include "src/meshio/point3.h"
 
 namespace thaw::inspect {
 namespace {
 
-using Vec3 = std::array<double, 3>;
-
-Vec3 sub(const Vec3& a, const Vec3& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-double norm(const Vec3& a) {
-  return std::sqrt(dot(a, a));
-}
+using Vec3 = meshio::Point3;
+using meshio::cross, meshio::dot, meshio::norm, meshio::sub;
 
 struct QualityStats {
   double min = 0, mean = 0, max = 0;

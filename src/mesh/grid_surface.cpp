@@ -6,20 +6,14 @@
 #include <deque>
 #include <unordered_map>
 
+#include "src/meshio/point3.h"
+
 namespace thaw::mesh {
 
 namespace {
 
-using Vec = std::array<double, 3>;
-Vec sub(const Vec& a, const Vec& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-Vec cross(const Vec& a, const Vec& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec& a, const Vec& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
+using Vec = meshio::Point3;
+using meshio::cross, meshio::dot, meshio::sub;
 
 // Corner offsets of a lattice cube (bit 0 = x, bit 1 = y, bit 2 = z) and its Kuhn decomposition:
 // the six tetrahedra 0 - e_a - e_a + e_b - 7 for the six orders (a, b, c) of the axes. Their
