@@ -193,13 +193,18 @@ Bvh::Bvh(std::span<const Aabb> bounds, const BvhBuildOptions& options) {
     }
   }
   m_wide.reserve(m_nodes.size() / 2 + 1);
-  collapse(0);
+  collapse(m_wide, 0);
+  if (n >= options.wide8_min_primitives) {
+    m_wide8.reserve(m_nodes.size() / 4 + 1);
+    collapse(m_wide8, 0);
+  }
 }
 
-std::uint32_t Bvh::collapse(std::uint32_t binary_index) {
-  // Gather up to four subtrees under this node by repeatedly opening the interior candidate with
+template <int W>
+std::uint32_t Bvh::collapse(std::vector<BvhWideNode<W>>& out, std::uint32_t binary_index) const {
+  // Gather up to W subtrees under this node by repeatedly opening the interior candidate with
   // the largest surface area (the one most likely to be entered), then recurse.
-  std::uint32_t candidates[4];
+  std::uint32_t candidates[W];
   int n = 0;
   const BvhNode& b = m_nodes[binary_index];
   if (b.count > 0) {
@@ -208,7 +213,7 @@ std::uint32_t Bvh::collapse(std::uint32_t binary_index) {
     candidates[n++] = binary_index + 1;
     candidates[n++] = b.offset;
   }
-  while (n < 4) {
+  while (n < W) {
     int best = -1;
     float best_area = -1.0f;
     for (int i = 0; i < n; ++i) {
@@ -227,9 +232,9 @@ std::uint32_t Bvh::collapse(std::uint32_t binary_index) {
     candidates[best] = open + 1;
     candidates[n++] = m_nodes[open].offset;
   }
-  const auto index = static_cast<std::uint32_t>(m_wide.size());
-  m_wide.emplace_back();
-  for (int i = 0; i < 4; ++i) {
+  const auto index = static_cast<std::uint32_t>(out.size());
+  out.emplace_back();
+  for (int i = 0; i < W; ++i) {
     float lo[3] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity(),
                    std::numeric_limits<float>::infinity()};
     float hi[3] = {-lo[0], -lo[1], -lo[2]};
@@ -244,10 +249,10 @@ std::uint32_t Bvh::collapse(std::uint32_t binary_index) {
         child = c.offset;
         count = c.count;
       } else {
-        child = collapse(candidates[i]);  // may reallocate m_wide: index, not reference
+        child = collapse(out, candidates[i]);  // may reallocate `out`: index, not reference
       }
     }
-    Bvh4Node& w = m_wide[index];
+    BvhWideNode<W>& w = out[index];
     for (int k = 0; k < 3; ++k) {
       w.planes[2 * k][i] = lo[k];
       w.planes[2 * k + 1][i] = hi[k];

@@ -1,10 +1,14 @@
 // Tests render/accel/bvh.h: closest and any hit agree with brute force on 10^5 random rays over
-// random and degenerate triangle sets; rays aimed at shared edges and vertices of a closed mesh
-// never miss it (watertight test + conservative slab test together).
+// random and degenerate triangle sets, on the SSE and (where the CPU has it) the AVX2 path; rays
+// aimed at shared edges and vertices of a closed mesh never miss it (watertight test +
+// conservative slab test together); the two paths test the same nodes bit for bit and visit the
+// same leaves in the same order (so they return the same hit, ties included).
 #include "render/accel/bvh.h"
 
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <limits>
 #include <random>
 
 #include "render/geometry/triangle.h"
@@ -20,7 +24,8 @@ struct Tri {
 struct Accel {
   Bvh bvh;
   std::vector<Tri> tris;  // in BVH order
-  explicit Accel(const std::vector<Tri>& input) {
+  /// wide8_min_primitives 0: rays traverse the 8-wide tree; SIZE_MAX: the 4-wide one.
+  explicit Accel(const std::vector<Tri>& input, std::size_t wide8_min_primitives = 0) {
     std::vector<Aabb> boxes;
     for (const auto& t : input) {
       Aabb b;
@@ -29,14 +34,16 @@ struct Accel {
       b.extend(t.c);
       boxes.push_back(b);
     }
-    bvh = Bvh(boxes, BvhBuildOptions{4, 1.0f, 64});  // low threshold: exercise the parallel build
+    // A low parallel threshold: exercise the parallel build.
+    bvh = Bvh(boxes, BvhBuildOptions{.parallel_threshold = 64,
+                                     .wide8_min_primitives = wide8_min_primitives});
     for (auto i : bvh.order()) tris.push_back(input[i]);
   }
-  bool closest(const Ray& r, float& t_out) const {
+  bool closest(const Ray& r, float& t_out, SimdLevel level = simd_level()) const {
     float t_max = r.t_max;
     const ShearedRay sr(r);
-    const bool hit =
-        bvh.intersect(Bvh::RayData(r), t_max, [&](std::uint32_t first, std::uint32_t n, float& tm) {
+    const bool hit = bvh.intersect_at(
+        level, Bvh::RayData(r), t_max, [&](std::uint32_t first, std::uint32_t n, float& tm) {
           bool any = false;
           for (std::uint32_t i = first; i < first + n; ++i) {
             TriangleHit h;
@@ -50,17 +57,17 @@ struct Accel {
     t_out = t_max;
     return hit;
   }
-  bool occluded(const Ray& r) const {
+  bool occluded(const Ray& r, SimdLevel level = simd_level()) const {
     const ShearedRay sr(r);
-    return bvh.occluded(Bvh::RayData(r), r.t_max,
-                        [&](std::uint32_t first, std::uint32_t n, float tm) {
-                          for (std::uint32_t i = first; i < first + n; ++i) {
-                            TriangleHit h;
-                            if (intersect_triangle(sr, tris[i].a, tris[i].b, tris[i].c, tm, h))
-                              return true;
-                          }
-                          return false;
-                        });
+    return bvh.occluded_at(level, Bvh::RayData(r), r.t_max,
+                           [&](std::uint32_t first, std::uint32_t n, float tm) {
+                             for (std::uint32_t i = first; i < first + n; ++i) {
+                               TriangleHit h;
+                               if (intersect_triangle(sr, tris[i].a, tris[i].b, tris[i].c, tm, h))
+                                 return true;
+                             }
+                             return false;
+                           });
   }
 };
 
@@ -79,26 +86,51 @@ bool brute_force(const std::vector<Tri>& tris, const Ray& r, float& t_out) {
   return hit;
 }
 
+/// The instruction sets this machine can run: always SSE2, and AVX2 where the CPU has it.
+std::vector<SimdLevel> levels() {
+  std::vector<SimdLevel> l{SimdLevel::sse2};
+  if (cpu_supports_avx2()) l.push_back(SimdLevel::avx2);
+  return l;
+}
+
 void compare_with_brute_force(const std::vector<Tri>& tris, std::uint32_t seed,
                               int n_rays = 100000) {
-  const Accel accel(tris);
+  struct Case {
+    Ray ray;
+    bool hit;
+    float t;
+  };
+  std::vector<Case> cases;
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(-1.5f, 1.5f);
-  int mismatches = 0, hits = 0;
+  int hits = 0;
   for (int i = 0; i < n_rays; ++i) {
     Ray r{{u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}};
     if (length(r.direction) < 1e-3f) continue;
     if (i % 3 == 0) r.t_max = std::abs(u(rng));  // also bounded rays
-    float tb = 0, tf = 0;
-    const bool hb = accel.closest(r, tb);
-    const bool hf = brute_force(tris, r, tf);
-    // Same float test on the same triangles: the closest t must agree exactly.
-    if (hb != hf || (hb && tb != tf)) ++mismatches;
-    if (accel.occluded(r) != hf) ++mismatches;
-    hits += hf;
+    float t = 0;
+    const bool hit = brute_force(tris, r, t);
+    cases.push_back({r, hit, t});
+    hits += hit;
   }
-  EXPECT_EQ(mismatches, 0);
   EXPECT_GT(hits, n_rays / 100);  // the test means something only if rays do hit
+  // Both tree widths, each on every instruction set this machine runs.
+  for (const std::size_t wide8_min : {std::size_t(0), std::numeric_limits<std::size_t>::max()}) {
+    const Accel accel(tris, wide8_min);
+    for (const SimdLevel level : levels()) {
+      SCOPED_TRACE(level == SimdLevel::avx2 ? "avx2" : "sse2");
+      SCOPED_TRACE(wide8_min == 0 ? "8-wide" : "4-wide");
+      int mismatches = 0;
+      for (const Case& c : cases) {
+        float t = 0;
+        const bool hit = accel.closest(c.ray, t, level);
+        // Same float test on the same triangles: the closest t must agree exactly.
+        if (hit != c.hit || (hit && t != c.t)) ++mismatches;
+        if (accel.occluded(c.ray, level) != c.hit) ++mismatches;
+      }
+      EXPECT_EQ(mismatches, 0);
+    }
+  }
 }
 
 TEST(Bvh, RandomTriangleSoupMatchesBruteForce) {
@@ -180,6 +212,104 @@ TEST(Bvh, AnyLeafRegionQueryMatchesBruteForce) {
   EXPECT_LT(found, 1980);
   EXPECT_FALSE(Bvh().any_leaf([](const Vec3&, const Vec3&) { return true; },
                               [](std::uint32_t, std::uint32_t) { return true; }));
+}
+
+// The AVX2 node test against the SSE one on random 8-wide nodes (random, empty, flat and
+// point-like boxes, unused slots) and random rays (axis-parallel ones included): the same mask
+// and the same entry distances to the bit. Skipped where the CPU has no AVX2.
+TEST(Bvh, Avx2NodeTestEqualsSseBitForBit) {
+#if THAW_AVX2_DISPATCH
+  if (!cpu_supports_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<float> u(-2.0f, 2.0f), e(0.0f, 3.0f);
+  int masks_seen = 0;
+  for (int k = 0; k < 20000; ++k) {
+    Bvh8Node n{};
+    for (int i = 0; i < 8; ++i) {
+      const int kind = static_cast<int>(rng() % 5);
+      for (int a = 0; a < 3; ++a) {
+        float lo = u(rng), hi = lo + (kind == 1 ? 0.0f : e(rng));  // kind 1: a point
+        if (kind == 2 && a == 1) hi = lo;                          // kind 2: flat
+        if (kind == 3) {                                           // kind 3: an unused slot
+          lo = std::numeric_limits<float>::infinity();
+          hi = -lo;
+        }
+        n.planes[2 * a][i] = lo;
+        n.planes[2 * a + 1][i] = hi;
+      }
+    }
+    Vec3 d{u(rng), u(rng), u(rng)};
+    if (k % 7 == 0) d[k % 3] = 0.0f;          // parallel to a slab
+    if (k % 11 == 0) d = Vec3{0, u(rng), 0};  // parallel to two slabs
+    const Ray ray{{u(rng), u(rng), u(rng)}, d};
+    const Bvh::RayData rd(ray);
+    const float t_max = k % 3 == 0 ? std::numeric_limits<float>::infinity() : 2.0f * e(rng);
+    alignas(32) float ts[8], ta[8];
+    const int ms = Bvh::Children8(rd)(n, t_max, ts);
+    const int ma = Bvh::Children8Avx2(rd)(n, t_max, ta);
+    ASSERT_EQ(ms, ma) << k;
+    for (int i = 0; i < 8; ++i) {
+      if (ms & (1 << i)) {
+        ASSERT_EQ(std::bit_cast<std::uint32_t>(ts[i]), std::bit_cast<std::uint32_t>(ta[i])) << k;
+      }
+    }
+    masks_seen += ms != 0 && ms != 0xff;
+  }
+  EXPECT_GT(masks_seen, 1000);  // partial masks occur: the comparison means something
+#else
+  GTEST_SKIP() << "no AVX2 code path in this build";
+#endif
+}
+
+// Both paths over the S1-like nested shells (two icospheres and a floor) with rays starting on
+// their surfaces: the same leaves in the same order, hence the same hit. Skipped without AVX2.
+TEST(Bvh, Avx2AndSseVisitTheSameLeavesInTheSameOrder) {
+  if (!cpu_supports_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
+  std::vector<Tri> tris;
+  for (const TriangleMesh& mesh :
+       {test::icosphere(4, 1.0f, {0, 0, 0}), test::icosphere(3, 0.7f, {0.05f, 0, 0})})
+    for (const auto& t : mesh.triangles)
+      tris.push_back({mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]});
+  tris.push_back({{-5, -1, -5}, {5, -1, -5}, {5, -1, 5}});
+  tris.push_back({{-5, -1, -5}, {5, -1, 5}, {-5, -1, 5}});
+  const Accel accel(tris);
+  ASSERT_FALSE(accel.bvh.wide8_nodes().empty());
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f), w(0.0f, 1.0f);
+  int differing = 0, hits = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const Tri& on = tris[rng() % tris.size()];
+    const float b1 = w(rng), b2 = w(rng) * (1.0f - b1);
+    const Vec3 o = on.a * (1.0f - b1 - b2) + on.b * b1 + on.c * b2;  // on a surface
+    const Ray ray{o, {u(rng), u(rng), u(rng)}};
+    std::vector<std::uint32_t> visits[2];
+    float t[2];
+    bool hit[2];
+    const SimdLevel lv[2] = {SimdLevel::sse2, SimdLevel::avx2};
+    for (int p = 0; p < 2; ++p) {
+      float t_max = ray.t_max;
+      const ShearedRay sr(ray);
+      hit[p] = accel.bvh.intersect_at(
+          lv[p], Bvh::RayData(ray), t_max, [&](std::uint32_t first, std::uint32_t n, float& tm) {
+            visits[p].push_back(first);
+            bool any = false;
+            for (std::uint32_t i = first; i < first + n; ++i) {
+              TriangleHit h;
+              if (intersect_triangle(sr, accel.tris[i].a, accel.tris[i].b, accel.tris[i].c, tm,
+                                     h)) {
+                tm = h.t;
+                any = true;
+              }
+            }
+            return any;
+          });
+      t[p] = t_max;
+    }
+    if (visits[0] != visits[1] || hit[0] != hit[1] || t[0] != t[1]) ++differing;
+    hits += hit[0];
+  }
+  EXPECT_EQ(differing, 0);
+  EXPECT_GT(hits, 10000);
 }
 
 TEST(Bvh, EmptyAndSinglePrimitive) {
