@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace thaw::render {
@@ -134,6 +135,59 @@ TEST(AdaptivePixel, DisplayValueIsTheSrgbCurve) {
   EXPECT_FLOAT_EQ(display_value(4.0f, 1.0f), 1.0f);
   EXPECT_NEAR(display_value(0.18f, 1.0f), 0.4614, 1e-3);  // middle grey
   EXPECT_FLOAT_EQ(display_value(0.001f, 1.0f), 0.01292f);
+  EXPECT_EQ(display_value(std::nanf(""), 1.0f), 0.0f);
+}
+
+TEST(AdaptivePixel, DisplayTableFollowsTheFormula) {
+  // Linear interpolation between nodes h = 1/4096 apart: error <= h^2/8 max|f''| (f = 1.055
+  // v^(5/12), |f''| = 0.2564 v^(-19/12) <= 2366 above the linear segment's end 0.0031308) =
+  // 1.77e-5, or in the interval holding that end <= h/4 x the jump of slope there (12.92 -
+  // 12.70 = 0.22): 1.34e-5; plus float rounding of a value <= 1 (a few 1e-7).
+  const double h = 1.0 / kSrgbTableSize;
+  const double bound = std::max(h * h / 8.0 * 2366.0, h / 4.0 * 0.22) + 1e-6;
+  double worst = 0.0;
+  for (int i = 0; i <= 200000; ++i) {
+    const float v = float(i) / 200000.0f;
+    worst = std::max(worst, std::abs(double(display_value(v, 1.0f)) - double(srgb_encode(v))));
+  }
+  EXPECT_LE(worst, bound);
+  EXPECT_GT(worst, 0.0);  // it is the table, not the formula
+}
+
+TEST(AdaptivePixel, StandsOutOnlyBeyondAllNeighbours) {
+  // Neighbours between 0.2 and 0.25 (linear) in every channel; display margin 3 x 0.01.
+  AntialiasingSettings aa;
+  aa.threshold = 0.01f;
+  const Rgb hi = Rgb::gray(0.25f), lo = Rgb::gray(0.2f);
+  const float d_hi = display_value(0.25f, 1.0f), d_lo = display_value(0.2f, 1.0f);
+  // The linear value whose display value is d (bisection on the monotonic curve).
+  const auto linear = [](float d) {
+    float a = 0.0f, b = 1.0f;
+    for (int i = 0; i < 60; ++i) (display_value(0.5f * (a + b), 1.0f) < d ? a : b) = 0.5f * (a + b);
+    return 0.5f * (a + b);
+  };
+  // Beyond the margin above the brightest neighbour, in one channel: a speck.
+  EXPECT_TRUE(stands_out(Rgb{0.22f, linear(d_hi + 0.031f), 0.22f}, hi, lo, aa));
+  EXPECT_TRUE(stands_out(Rgb{linear(d_lo - 0.031f), 0.22f, 0.22f}, hi, lo, aa));
+  // Within it: the neighbours' own errors may explain it.
+  EXPECT_FALSE(stands_out(Rgb::gray(linear(d_hi + 0.029f)), hi, lo, aa));
+  EXPECT_FALSE(stands_out(Rgb::gray(linear(d_lo - 0.029f)), hi, lo, aa));
+  // Inside the neighbours' range (a ridge, an edge): real structure of the image.
+  EXPECT_FALSE(stands_out(Rgb::gray(0.22f), hi, lo, aa));
+  // The margin is in display units: exposure counts.
+  aa.exposure_scale = 0.5f;
+  EXPECT_FALSE(stands_out(Rgb{0.22f, linear(d_hi + 0.031f), 0.22f}, hi, lo, aa));
+}
+
+TEST(AdaptivePixel, DoubledFirstBatchKeepsTheCap) {
+  AntialiasingSettings aa;
+  aa.adaptive = true;
+  aa.max_samples = 8;
+  aa.min_samples = 2;
+  EXPECT_EQ(first_batch(aa), 2);
+  EXPECT_EQ(doubled_first_batch(aa, 2).min_samples, 4);
+  EXPECT_EQ(doubled_first_batch(aa, 4).min_samples, 8);
+  EXPECT_EQ(doubled_first_batch(aa, 6).min_samples, 8);
 }
 
 }  // namespace
