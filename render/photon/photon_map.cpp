@@ -262,27 +262,144 @@ void PhotonMap::collapse(const std::vector<Node>& nodes, std::uint32_t node, std
   }
 }
 
-Rgb PhotonMap::irradiance(const Vec3& p, const Vec3& n) const {
-  if (m_wide.empty()) return {};
+#if defined(__SSE2__)
+namespace {
+/// Lanes 0..7 of a channel's per-lane sums added in one fixed order (both leaf kernels).
+float lane_total(const float s[8]) {
+  return ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
+}
+}  // namespace
+
+/// Leaf kernel, SSE: a block's 8 photons as two halves of 4, each lane summed on its own.
+struct PhotonMap::LeafSums {
+  __m128 px, py, pz, qx, qy, qz;
+  __m128 sum_r[2], sum_g[2], sum_b[2];
+
+  LeafSums(const Vec3& p, const Vec3& n)
+      : px(_mm_set1_ps(p.x)),
+        py(_mm_set1_ps(p.y)),
+        pz(_mm_set1_ps(p.z)),
+        qx(_mm_set1_ps(n.x)),
+        qy(_mm_set1_ps(n.y)),
+        qz(_mm_set1_ps(n.z)) {
+    for (int h = 0; h < 2; ++h) sum_r[h] = sum_g[h] = sum_b[h] = _mm_setzero_ps();
+  }
+
+  /// Adds the block's photons that count at p; with `on_surface` the normal and plane tests are
+  /// known to pass (see photon_map.h).
+  void add(const PhotonBlock& b, bool on_surface) {
+    const __m128 one = _mm_set1_ps(1.0f), min_cos = _mm_set1_ps(kMinNormalCos),
+                 max_h2 = _mm_set1_ps(kMaxPlaneDistance * kMaxPlaneDistance);
+    for (int h = 0; h < 2; ++h) {
+      const int o = 4 * h;
+      const __m128 vx = _mm_sub_ps(_mm_load_ps(b.x + o), px),
+                   vy = _mm_sub_ps(_mm_load_ps(b.y + o), py),
+                   vz = _mm_sub_ps(_mm_load_ps(b.z + o), pz);
+      const __m128 inv = _mm_load_ps(b.inv_r2 + o);
+      const __m128 u = _mm_mul_ps(
+          _mm_add_ps(_mm_add_ps(_mm_mul_ps(vx, vx), _mm_mul_ps(vy, vy)), _mm_mul_ps(vz, vz)), inv);
+      __m128 ok = _mm_cmplt_ps(u, one);
+      if (!on_surface) {
+        const __m128 cos_n = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_load_ps(b.nx + o), qx),
+                                                   _mm_mul_ps(_mm_load_ps(b.ny + o), qy)),
+                                        _mm_mul_ps(_mm_load_ps(b.nz + o), qz));
+        const __m128 hq =
+            _mm_add_ps(_mm_add_ps(_mm_mul_ps(vx, qx), _mm_mul_ps(vy, qy)), _mm_mul_ps(vz, qz));
+        ok = _mm_and_ps(_mm_and_ps(ok, _mm_cmpge_ps(cos_n, min_cos)),
+                        _mm_cmple_ps(_mm_mul_ps(_mm_mul_ps(hq, hq), inv), max_h2));
+      }
+      const __m128 wgt = _mm_and_ps(_mm_mul_ps(_mm_sub_ps(one, u), inv), ok);
+      sum_r[h] = _mm_add_ps(sum_r[h], _mm_mul_ps(wgt, _mm_load_ps(b.r + o)));
+      sum_g[h] = _mm_add_ps(sum_g[h], _mm_mul_ps(wgt, _mm_load_ps(b.g + o)));
+      sum_b[h] = _mm_add_ps(sum_b[h], _mm_mul_ps(wgt, _mm_load_ps(b.b + o)));
+    }
+  }
+
+  Rgb total() const {
+    alignas(32) float r[8], g[8], b[8];
+    for (int h = 0; h < 2; ++h) {
+      _mm_store_ps(r + 4 * h, sum_r[h]);
+      _mm_store_ps(g + 4 * h, sum_g[h]);
+      _mm_store_ps(b + 4 * h, sum_b[h]);
+    }
+    return {lane_total(r), lane_total(g), lane_total(b)};
+  }
+};
+
+#if THAW_AVX2_DISPATCH
+/// Leaf kernel, AVX2: LeafSums's operations on all 8 lanes at once (no FMA: the same rounding).
+struct PhotonMap::LeafSumsAvx2 {
+  __m256 px, py, pz, qx, qy, qz;
+  __m256 sum_r, sum_g, sum_b;
+
+  THAW_TARGET_AVX2 LeafSumsAvx2(const Vec3& p, const Vec3& n)
+      : px(_mm256_set1_ps(p.x)),
+        py(_mm256_set1_ps(p.y)),
+        pz(_mm256_set1_ps(p.z)),
+        qx(_mm256_set1_ps(n.x)),
+        qy(_mm256_set1_ps(n.y)),
+        qz(_mm256_set1_ps(n.z)),
+        sum_r(_mm256_setzero_ps()),
+        sum_g(_mm256_setzero_ps()),
+        sum_b(_mm256_setzero_ps()) {}
+
+  THAW_TARGET_AVX2 void add(const PhotonBlock& b, bool on_surface) {
+    const __m256 one = _mm256_set1_ps(1.0f), min_cos = _mm256_set1_ps(kMinNormalCos),
+                 max_h2 = _mm256_set1_ps(kMaxPlaneDistance * kMaxPlaneDistance);
+    const __m256 vx = _mm256_sub_ps(_mm256_load_ps(b.x), px),
+                 vy = _mm256_sub_ps(_mm256_load_ps(b.y), py),
+                 vz = _mm256_sub_ps(_mm256_load_ps(b.z), pz);
+    const __m256 inv = _mm256_load_ps(b.inv_r2);
+    const __m256 u =
+        _mm256_mul_ps(_mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(vx, vx), _mm256_mul_ps(vy, vy)),
+                                    _mm256_mul_ps(vz, vz)),
+                      inv);
+    __m256 ok = _mm256_cmp_ps(u, one, _CMP_LT_OQ);
+    if (!on_surface) {
+      const __m256 cos_n = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_load_ps(b.nx), qx),
+                                                       _mm256_mul_ps(_mm256_load_ps(b.ny), qy)),
+                                         _mm256_mul_ps(_mm256_load_ps(b.nz), qz));
+      const __m256 hq = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(vx, qx), _mm256_mul_ps(vy, qy)),
+                                      _mm256_mul_ps(vz, qz));
+      ok = _mm256_and_ps(
+          _mm256_and_ps(ok, _mm256_cmp_ps(cos_n, min_cos, _CMP_GE_OQ)),
+          _mm256_cmp_ps(_mm256_mul_ps(_mm256_mul_ps(hq, hq), inv), max_h2, _CMP_LE_OQ));
+    }
+    const __m256 wgt = _mm256_and_ps(_mm256_mul_ps(_mm256_sub_ps(one, u), inv), ok);
+    sum_r = _mm256_add_ps(sum_r, _mm256_mul_ps(wgt, _mm256_load_ps(b.r)));
+    sum_g = _mm256_add_ps(sum_g, _mm256_mul_ps(wgt, _mm256_load_ps(b.g)));
+    sum_b = _mm256_add_ps(sum_b, _mm256_mul_ps(wgt, _mm256_load_ps(b.b)));
+  }
+
+  THAW_TARGET_AVX2 Rgb total() const {
+    alignas(32) float r[8], g[8], b[8];
+    _mm256_store_ps(r, sum_r);
+    _mm256_store_ps(g, sum_g);
+    _mm256_store_ps(b, sum_b);
+    return {lane_total(r), lane_total(g), lane_total(b)};
+  }
+};
+#endif
+
+template <class Leaf>
+inline Rgb PhotonMap::lookup(const Vec3& p, const Vec3& n) const {
   // Depth <= log2(N / kLeafPhotons) + 1 < 30 binary levels (median splits), <= 15 wide levels
   // of at most 3 pushes each.
   std::uint32_t stack[64];
   int top = 0;
   std::uint32_t node = 0;
-#if defined(__SSE2__)
   // Stack entries: a wide node, bit 31 set when its subtree lies on the query's surface (the
   // normal and plane tests pass for all its photons: only u < 1 is left to test).
   constexpr std::uint32_t kOnSurface = 1u << 31;
   const __m128 px = _mm_set1_ps(p.x), py = _mm_set1_ps(p.y), pz = _mm_set1_ps(p.z);
   const __m128 qx = _mm_set1_ps(n.x), qy = _mm_set1_ps(n.y), qz = _mm_set1_ps(n.z);
-  const __m128 one = _mm_set1_ps(1.0f), min_cos = _mm_set1_ps(kMinNormalCos),
-               max_h2 = _mm_set1_ps(kMaxPlaneDistance * kMaxPlaneDistance);
+  const __m128 min_cos = _mm_set1_ps(kMinNormalCos);
   const __m128 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
   const __m128 aqx = _mm_and_ps(qx, abs_mask), aqy = _mm_and_ps(qy, abs_mask),
                aqz = _mm_and_ps(qz, abs_mask);
   const __m128 half = _mm_set1_ps(0.5f), rounding = _mm_set1_ps(kRoundingBound),
                surface_h2 = _mm_set1_ps(kMaxPlaneDistance * kMaxPlaneDistance * kSurfaceMargin);
-  __m128 sum_r = _mm_setzero_ps(), sum_g = _mm_setzero_ps(), sum_b = _mm_setzero_ps();
+  Leaf leaf(p, n);
   // The children of w (lanes) whose subtrees lie on the query's surface: their common normal
   // passes the normal test (the per-photon expression, so the same float value), and the box of
   // their positions lies within r_min / 4 of the tangent plane: |(c - p).n| + half extents
@@ -329,38 +446,37 @@ Rgb PhotonMap::irradiance(const Vec3& p, const Vec3& n) const {
         stack[top++] = w.child[i] | (flat & (1u << i) ? kOnSurface : 0u);
         continue;
       }
-      const PhotonBlock& b = m_blocks[w.child[i]];
-      const __m128 vx = _mm_sub_ps(_mm_load_ps(b.x), px), vy = _mm_sub_ps(_mm_load_ps(b.y), py),
-                   vz = _mm_sub_ps(_mm_load_ps(b.z), pz);
-      const __m128 inv = _mm_load_ps(b.inv_r2);
-      const __m128 u = _mm_mul_ps(
-          _mm_add_ps(_mm_add_ps(_mm_mul_ps(vx, vx), _mm_mul_ps(vy, vy)), _mm_mul_ps(vz, vz)), inv);
-      __m128 ok = _mm_cmplt_ps(u, one);
-      if (!(flat & (1u << i))) {
-        const __m128 cos_n = _mm_add_ps(
-            _mm_add_ps(_mm_mul_ps(_mm_load_ps(b.nx), qx), _mm_mul_ps(_mm_load_ps(b.ny), qy)),
-            _mm_mul_ps(_mm_load_ps(b.nz), qz));
-        const __m128 h =
-            _mm_add_ps(_mm_add_ps(_mm_mul_ps(vx, qx), _mm_mul_ps(vy, qy)), _mm_mul_ps(vz, qz));
-        ok = _mm_and_ps(_mm_and_ps(ok, _mm_cmpge_ps(cos_n, min_cos)),
-                        _mm_cmple_ps(_mm_mul_ps(_mm_mul_ps(h, h), inv), max_h2));
-      }
-      const __m128 wgt = _mm_and_ps(_mm_mul_ps(_mm_sub_ps(one, u), inv), ok);
-      sum_r = _mm_add_ps(sum_r, _mm_mul_ps(wgt, _mm_load_ps(b.r)));
-      sum_g = _mm_add_ps(sum_g, _mm_mul_ps(wgt, _mm_load_ps(b.g)));
-      sum_b = _mm_add_ps(sum_b, _mm_mul_ps(wgt, _mm_load_ps(b.b)));
+      leaf.add(m_blocks[w.child[i]], (flat & (1u << i)) != 0);
     }
     if (top == 0) break;
     node = stack[--top];
   }
-  float r[4], g[4], bl[4];
-  _mm_storeu_ps(r, sum_r);
-  _mm_storeu_ps(g, sum_g);
-  _mm_storeu_ps(bl, sum_b);
-  const float sr = (r[0] + r[1]) + (r[2] + r[3]), sg = (g[0] + g[1]) + (g[2] + g[3]),
-              sb = (bl[0] + bl[1]) + (bl[2] + bl[3]);
+  const Rgb sum = leaf.total();
+  const float norm = 2.0f / kPi;
+  return {sum.r * norm, sum.g * norm, sum.b * norm};
+}
+
+#if THAW_AVX2_DISPATCH
+THAW_TARGET_AVX2 Rgb PhotonMap::lookup_avx2(const Vec3& p, const Vec3& n) const {
+  return lookup<LeafSumsAvx2>(p, n);
+}
+#endif
+#endif  // __SSE2__
+
+Rgb PhotonMap::irradiance_at(SimdLevel level, const Vec3& p, const Vec3& n) const {
+  if (m_wide.empty()) return {};
+#if defined(__SSE2__)
+#if THAW_AVX2_DISPATCH
+  if (level == SimdLevel::avx2) return lookup_avx2(p, n);
+#endif
+  (void)level;
+  return lookup<LeafSums>(p, n);
 #else
-  float sr = 0, sg = 0, sb = 0;
+  (void)level;
+  std::uint32_t stack[64];
+  int top = 0;
+  std::uint32_t node = 0;
+  float sr[kLeafPhotons] = {}, sg[kLeafPhotons] = {}, sb[kLeafPhotons] = {};
   while (true) {
     const WideNode& w = m_wide[node];
     for (int i = 0; i < 4; ++i) {
@@ -372,7 +488,7 @@ Rgb PhotonMap::irradiance(const Vec3& p, const Vec3& n) const {
         continue;
       }
       const PhotonBlock& b = m_blocks[w.child[i]];
-      for (int k = 0; k < 4; ++k) {
+      for (std::uint32_t k = 0; k < kLeafPhotons; ++k) {
         const Vec3 v{b.x[k] - p.x, b.y[k] - p.y, b.z[k] - p.z};
         const float u = dot(v, v) * b.inv_r2[k];
         const float cos_n = b.nx[k] * n.x + b.ny[k] * n.y + b.nz[k] * n.z;
@@ -381,17 +497,23 @@ Rgb PhotonMap::irradiance(const Vec3& p, const Vec3& n) const {
             !(h * h * b.inv_r2[k] <= kMaxPlaneDistance * kMaxPlaneDistance))
           continue;
         const float wgt = (1.0f - u) * b.inv_r2[k];
-        sr += wgt * b.r[k];
-        sg += wgt * b.g[k];
-        sb += wgt * b.b[k];
+        sr[k] += wgt * b.r[k];
+        sg[k] += wgt * b.g[k];
+        sb[k] += wgt * b.b[k];
       }
     }
     if (top == 0) break;
     node = stack[--top];
   }
-#endif
+  float tr = 0, tg = 0, tb = 0;
+  for (std::uint32_t k = 0; k < kLeafPhotons; ++k) {
+    tr += sr[k];
+    tg += sg[k];
+    tb += sb[k];
+  }
   const float norm = 2.0f / kPi;
-  return {sr * norm, sg * norm, sb * norm};
+  return {tr * norm, tg * norm, tb * norm};
+#endif
 }
 
 }  // namespace thaw::render::photon

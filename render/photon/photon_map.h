@@ -20,7 +20,9 @@
 // Lookup: a bounding volume hierarchy over the photons' kernel balls (each photon's box is its
 // position +- r_p; nodes bound their photons' boxes; leaves of kLeafPhotons photons, the last
 // one possibly fewer),
-// collapsed to 4-wide nodes and 4-photon leaf blocks tested with SSE, descended only into nodes
+// collapsed to 4-wide nodes tested with SSE and 8-photon leaf blocks tested with AVX2 where the
+// CPU has it (render/accel/simd_level.h), else as two SSE halves: the same operations lane for
+// lane and the same order of the final sum, so both give the same bits), descended only into nodes
 // whose box contains the query point, so a query examines about the
 // photons whose kernels reach it, whatever their radii (the "scatter" form of the estimate as a
 // point-in-box query, the reverse of a k-nearest-neighbour search). It replaced seven hashed
@@ -36,6 +38,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "render/accel/simd_level.h"
 #include "render/math/color.h"
 #include "render/math/vec3.h"
 
@@ -55,8 +58,9 @@ class PhotonMap {
  public:
   /// The largest kernel radius over the base radius r (photons sparser than K per disc of r).
   static constexpr float kMaxRadiusScale = 8.0f;
-  /// Photons per leaf of the lookup tree: small, since every leaf photon is tested.
-  static constexpr std::uint32_t kLeafPhotons = 4;
+  /// Photons per leaf of the lookup tree: one AVX2 register's width (8 photons were 0.9x the
+  /// frame time of 4 on the default film, docs/benchmarks.md: fewer nodes, half the leaf work).
+  static constexpr std::uint32_t kLeafPhotons = 8;
 
   PhotonMap() = default;
   /// `radius` > 0 [scene units]; photons among at least `photons_per_disc` (>= 1) keep it,
@@ -73,8 +77,10 @@ class PhotonMap {
   std::size_t leaf_blocks() const { return m_blocks.size(); }
 
   /// Irradiance [power per area] at `p` on a surface with unit normal `n` (facing the side the
-  /// light is wanted on).
-  Rgb irradiance(const Vec3& p, const Vec3& n) const;
+  /// light is wanted on). Runs the simd_level() path; irradiance_at() a given one (both give the
+  /// same bits).
+  Rgb irradiance(const Vec3& p, const Vec3& n) const { return irradiance_at(simd_level(), p, n); }
+  Rgb irradiance_at(SimdLevel level, const Vec3& p, const Vec3& n) const;
 
  private:
   /// A node of the binary build tree: the box of its photons' kernel balls; a leaf (count > 0)
@@ -101,11 +107,18 @@ class PhotonMap {
     std::uint32_t leaf_mask = 0;
     std::uint32_t one_normal = 0;
   };
-  /// The (up to) 4 photons of a leaf as structure of arrays, tested together; unused lanes have
-  /// zero power and inv_radius2 (they add 0).
-  struct alignas(16) PhotonBlock {
-    float x[4], y[4], z[4], nx[4], ny[4], nz[4], inv_r2[4], r[4], g[4], b[4];
+  /// The (up to) kLeafPhotons photons of a leaf as structure of arrays, tested together; unused
+  /// lanes have zero power and inv_radius2 (they add 0).
+  struct alignas(32) PhotonBlock {
+    float x[kLeafPhotons], y[kLeafPhotons], z[kLeafPhotons], nx[kLeafPhotons], ny[kLeafPhotons],
+        nz[kLeafPhotons], inv_r2[kLeafPhotons], r[kLeafPhotons], g[kLeafPhotons], b[kLeafPhotons];
   };
+  struct LeafSums;
+  struct LeafSumsAvx2;
+  /// The lookup with the leaf kernel `Leaf` (LeafSums: SSE halves; LeafSumsAvx2).
+  template <class Leaf>
+  [[gnu::always_inline]] inline Rgb lookup(const Vec3& p, const Vec3& n) const;
+  THAW_TARGET_AVX2 Rgb lookup_avx2(const Vec3& p, const Vec3& n) const;
   /// Builds the subtree of m_photons[begin, end) into nodes[node].
   void build(std::vector<Node>& nodes, std::uint32_t node, std::uint32_t begin, std::uint32_t end);
   /// Collapses binary node `node` (interior) into m_wide[wide].

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
+
 #include <cmath>
 
 namespace thaw::render::photon {
@@ -127,8 +129,49 @@ TEST(PhotonMap, TreeLookupEqualsBruteForce) {
       if (u < 1 && dot(ph.normal, n) >= 0.9f && h * h * ph.inv_radius2 <= 0.0625)
         want += ph.power.r * (1 - u) * ph.inv_radius2 * 2 / M_PI;
     }
-    EXPECT_NEAR(map.irradiance(p, n).r, want, 1e-5 * want + 1e-9) << k;
+    EXPECT_NEAR(map.irradiance_at(SimdLevel::sse2, p, n).r, want, 1e-5 * want + 1e-9) << k;
+    if (cpu_supports_avx2()) {
+      EXPECT_NEAR(map.irradiance_at(SimdLevel::avx2, p, n).r, want, 1e-5 * want + 1e-9) << k;
+    }
   }
+}
+
+// The AVX2 leaf kernel against the SSE one (two halves of the same operations, the lanes summed
+// in the same order): the same bits for every channel, on the map of the test above's kind
+// (two surfaces, radii r to 8r, partly filled last block) and 3000 queries on and off the
+// photons' surfaces. Skipped where the CPU has no AVX2.
+TEST(PhotonMap, Avx2LookupEqualsSseBitForBit) {
+  if (!cpu_supports_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
+  std::vector<Photon> photons;
+  std::uint32_t s = 777;
+  const auto next = [&s] {
+    s = s * 1664525u + 1013904223u;
+    return float(s >> 8) / float(1u << 24);
+  };
+  const Vec3 wall_normal = normalize(Vec3{1, 0.3f, 0});
+  for (int i = 0; i < 5003; ++i) {
+    const float spread = i % 2 ? 0.05f : 1.0f;
+    const Vec3 q{(next() - 0.5f) * spread, 0, (next() - 0.5f) * spread};
+    if (i % 5 == 0)
+      photons.push_back({Vec3{q.x, std::abs(q.z), q.z} + wall_normal * 0.001f, wall_normal,
+                         Rgb{next(), next(), next()}});
+    else
+      photons.push_back({q, Vec3{0, 1, 0}, Rgb{next(), next(), next()}});
+  }
+  const PhotonMap map(photons, 0.01f, 32.0);
+  int lit = 0;
+  for (int k = 0; k < 3000; ++k) {
+    const Vec3 p{(next() - 0.5f) * (k % 2 ? 0.07f : 1.2f), (next() - 0.5f) * 0.004f,
+                 (next() - 0.5f) * (k % 2 ? 0.07f : 1.2f)};
+    const Vec3 n = k % 3 ? Vec3{0, 1, 0} : (k % 2 ? wall_normal : normalize(Vec3{0.3f, 1, 0}));
+    const Rgb a = map.irradiance_at(SimdLevel::sse2, p, n),
+              b = map.irradiance_at(SimdLevel::avx2, p, n);
+    ASSERT_EQ(std::bit_cast<std::uint32_t>(a.r), std::bit_cast<std::uint32_t>(b.r)) << k;
+    ASSERT_EQ(std::bit_cast<std::uint32_t>(a.g), std::bit_cast<std::uint32_t>(b.g)) << k;
+    ASSERT_EQ(std::bit_cast<std::uint32_t>(a.b), std::bit_cast<std::uint32_t>(b.b)) << k;
+    lit += a.g > 0.0f;
+  }
+  EXPECT_GT(lit, 1000);  // most queries sum photons: the comparison means something
 }
 
 // Subtrees on one surface skip the normal and plane tests (photon_map.h): the sum must still be
@@ -164,16 +207,17 @@ TEST(PhotonMap, SurfaceShortcutMatchesPerPhotonTests) {
       }
 }
 
-// Every leaf block of the lookup tree is full but the last (its 4 lanes are tested together,
-// empty ones cost as much as photons), for any count: ceil(n / 4) blocks.
+// Every leaf block of the lookup tree is full but the last (its lanes are tested together,
+// empty ones cost as much as photons), for any count: ceil(n / kLeafPhotons) blocks.
 TEST(PhotonMap, LeafBlocksAreFull) {
-  for (const int n : {1, 4, 5, 7, 8, 9, 31, 100, 1001}) {
+  for (const int n : {1, 4, 5, 7, 8, 9, 15, 16, 17, 31, 100, 1001}) {
     std::vector<Photon> photons;
     for (int i = 0; i < n; ++i)
       photons.push_back(
           {Vec3{float(i % 7) * 0.013f, 0, float(i) * 0.007f}, Vec3{0, 1, 0}, Rgb{1, 1, 1}});
     const PhotonMap map(photons, 0.01f, 32.0);
-    EXPECT_EQ(map.leaf_blocks(), std::size_t((n + 3) / 4)) << n;
+    const std::size_t k = PhotonMap::kLeafPhotons;
+    EXPECT_EQ(map.leaf_blocks(), (std::size_t(n) + k - 1) / k) << n;
   }
 }
 
