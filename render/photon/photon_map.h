@@ -58,8 +58,8 @@ class PhotonMap {
  public:
   /// The largest kernel radius over the base radius r (photons sparser than K per disc of r).
   static constexpr float kMaxRadiusScale = 8.0f;
-  /// Photons per leaf of the lookup tree: one AVX2 register's width (8 photons were 0.9x the
-  /// frame time of 4 on the default film, docs/benchmarks.md: fewer nodes, half the leaf work).
+  /// Photons per leaf of the lookup tree: one AVX2 register's width (fewer nodes and half the
+  /// leaf instructions of 4-photon blocks; docs/benchmarks.md has the default film's figures).
   static constexpr std::uint32_t kLeafPhotons = 8;
 
   PhotonMap() = default;
