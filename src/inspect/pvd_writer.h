@@ -14,6 +14,7 @@
 
 #include "src/common/atomic_file.h"
 #include "src/common/progress.h"
+#include "src/inspect/simulation_folder.h"
 #include "src/inspect/triangle_mesh.h"
 
 namespace thaw::inspect {
@@ -39,6 +40,11 @@ class PvdWriter {
   /// its entry.
   void add(long step, double time_s, SurfacePart part, const TriangleMesh* mesh,
            const std::vector<PointScalars>& scalars = {});
+  /// add() in two halves for writers on several threads: write() writes the data set (safe
+  /// concurrently for different steps or parts), record() references it (one thread at a time).
+  void write(long step, SurfacePart part, const TriangleMesh* mesh,
+             const std::vector<PointScalars>& scalars = {}) const;
+  void record(long step, double time_s, SurfacePart part);
 
   /// Puts the data sets in place (`<stem>_vtp/`, replaced as a whole the first time) and writes the
   /// .pvd (atomically) referencing every data set added; throws thaw::UserError. Data sets added
@@ -66,7 +72,7 @@ class PvdWriter {
 /// vertex normal, each face weighted by its area through the unnormalised cross product).
 std::vector<std::array<double, 3>> vertex_normals(const TriangleMesh& mesh);
 
-/// Writes `mesh` as a VTK XML PolyData file atomically (appended raw binary, zlib), with the
+/// Writes `mesh` as a VTK XML PolyData file atomically (arrays inline, zlib level 1), with the
 /// point data "Normals" (vertex_normals, set as the data set's normals so ParaView shades with
 /// them) when the mesh has triangles, and each of `scalars` as a point data array (the first set
 /// as the active scalars, so ParaView colours by it). THAW_CHECK: one value per vertex.
@@ -83,5 +89,28 @@ using StepPlacement = std::function<std::array<double, 3>(long step)>;
 /// material's temperature at each vertex (field_probe.h), sampled before the placement.
 void write_pvd_series(const std::filesystem::path& simdir, const std::filesystem::path& out_pvd,
                       const ProgressCallback& progress = {}, const StepPlacement& placement = {});
+
+/// The options of the second write_pvd_series, for a caller that places the surfaces by their
+/// own shape and exports them elsewhere too (thaw run: the shell rests on the floor by its
+/// lowest point; the OBJ sequence for Blender), reading each OBJ once.
+struct PvdSeriesOptions {
+  /// (steps done, steps total); called on any of the threads, never concurrently. May throw
+  /// (an interrupt): the series then fails with that exception.
+  ProgressCallback progress;
+  /// Where a step's surfaces are placed, given its outer surface as read (nullptr: vanished);
+  /// none: where they are. Called once per step, concurrently for different steps.
+  std::function<std::array<double, 3>(const MeshedStep& step, const TriangleMesh* outer)> placement;
+  /// Called with each surface as written to its .vtp (placed; nullptr: vanished), once per step
+  /// and part, concurrently for different steps. May throw thaw::UserError (the series fails).
+  std::function<void(const MeshedStep& step, SurfacePart part, const TriangleMesh* mesh)> surface;
+  /// Steps written at once (OpenMP threads; <= 0: OpenMP's default). The files are the same for
+  /// any number.
+  int threads = 1;
+};
+
+/// write_pvd_series with PvdSeriesOptions. A failure (the first in step order) is thrown after
+/// every step has been attempted; nothing is committed then.
+void write_pvd_series(const std::filesystem::path& simdir, const std::filesystem::path& out_pvd,
+                      const PvdSeriesOptions& options);
 
 }  // namespace thaw::inspect

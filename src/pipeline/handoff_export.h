@@ -9,26 +9,22 @@
 #include <filesystem>
 #include <vector>
 
-#include "src/mesh/mesh_series.h"
+#include "src/meshio/triangle_mesh.h"
 #include "src/pipeline/run_scenario.h"
 
 namespace thaw::pipeline {
 
-/// The offset [m] each step's surfaces were rendered at (index = position in meshes.steps),
-/// computed from the outer mesh as the renderer loads it, so the exports sit where the film
+/// The offset [m] a step's surfaces were rendered at, from its outer mesh as read from its OBJ
+/// (nullptr: vanished) and converted as the renderer loads it, so the exports sit where the film
 /// shows the shell.
-std::vector<std::array<double, 3>> rendered_offsets(const RunScenario& sc,
-                                                    const std::filesystem::path& mesh_dir,
-                                                    const mesh::MeshManifest& meshes);
+std::array<double, 3> rendered_offset(const RunScenario& sc, const meshio::TriangleMesh* outer);
 
 /// "shell_outer_000012.obj" / "shell_inner_000012.obj".
 std::string world_obj_name(long step, bool inner);
 
-/// Writes the OBJ sequence described above into `out_dir` (created; each file atomic). Returns
-/// the number of files written.
-long write_world_obj_sequence(const std::filesystem::path& mesh_dir,
-                              const mesh::MeshManifest& meshes,
-                              const std::vector<std::array<double, 3>>& offsets,
-                              const std::filesystem::path& out_dir);
+/// Writes one file of the OBJ sequence described above into `out_dir` (atomic): step `step`'s
+/// surface `placed` (already in world space; nullptr: vanished) at simulated time `time_s`.
+void write_world_obj(const std::filesystem::path& out_dir, long step, double time_s, bool inner,
+                     const meshio::TriangleMesh* placed);
 
 }  // namespace thaw::pipeline

@@ -594,7 +594,6 @@ void inspect_stage(Run& r, const mesh::MeshManifest& meshes) {
   const RunOptions& o = r.o;
   const fs::path& out = r.out;
   const fs::path& simdir = r.simdir;
-  const fs::path& mesh_dir = r.mesh_dir;
   const ContentHash& mesh_hash = r.mesh_hash;
   RunManifest& manifest = r.manifest;
   RunReport& report = r.report;
@@ -621,14 +620,24 @@ void inspect_stage(Run& r, const mesh::MeshManifest& meshes) {
     } else {
       ProgressReporter progress(stage_title(5, "inspect"), static_cast<long>(meshes.steps.size()),
                                 o.quiet);
-      const auto offsets = rendered_offsets(sc, mesh_dir, meshes);
+      // One pass over the surfaces, each OBJ read once: placed by its outer surface as the film
+      // shows it, written as .vtp and as the world-space OBJ, steps on this process's threads.
       std::map<long, std::array<double, 3>> offset_of_step;
-      for (std::size_t k = 0; k < offsets.size(); ++k)
-        offset_of_step[meshes.steps[k].step] = offsets[k];
-      inspect::write_pvd_series(simdir, report.pvd, interruptible(progress.callback()),
-                                [&](long step) { return offset_of_step.at(step); });
+      for (const mesh::StepRecord& step : meshes.steps) offset_of_step[step.step] = {};
+      ensure_directory(report.handoff_obj);
+      inspect::PvdSeriesOptions series;
+      series.progress = interruptible(progress.callback());
+      series.placement = [&](const inspect::MeshedStep& s, const meshio::TriangleMesh* outer) {
+        return offset_of_step.at(s.step) = rendered_offset(sc, outer);  // a key of its own
+      };
+      series.surface = [&](const inspect::MeshedStep& s, inspect::SurfacePart part,
+                           const meshio::TriangleMesh* placed) {
+        write_world_obj(report.handoff_obj, s.step, s.time_s, part == inspect::SurfacePart::inner,
+                        placed);
+      };
+      series.threads = o.jobs;
+      inspect::write_pvd_series(simdir, report.pvd, series);
       inspect::write_radius_plot(simdir, report.plot);
-      write_world_obj_sequence(mesh_dir, meshes, offsets, report.handoff_obj);
       // Grid runs: the solver's fields as a ParaView image series, placed like the meshes.
       if (inspect::write_field_series(simdir, out / "fields.pvd", {},
                                       [&](long step) { return offset_of_step.at(step); }) > 0)

@@ -12,7 +12,11 @@
 #include <vtkXMLDataElement.h>
 #include <vtkXMLDataParser.h>
 #include <vtkXMLPolyDataReader.h>
+#include <atomic>
 #include <cmath>
+#include <fstream>
+#include <map>
+#include <mutex>
 
 #include "sim/io/grid_field.h"
 #include "src/common/error.h"
@@ -241,6 +245,86 @@ TEST(PvdWriter, FullDiskLeavesNoPartialSeries) {
   }
   EXPECT_NE(what.find((out / "series_vtp" / "step_").string()), std::string::npos) << what;
   EXPECT_EQ(what.find(".tmp-"), std::string::npos) << what;
+  EXPECT_TRUE(fs::is_empty(out)) << fs::directory_iterator(out)->path();
+}
+
+std::string file_bytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// thaw run's use: each step placed by its own outer surface (resting on y = 0 by its lowest
+// vertex), and every surface handed on as written, each OBJ read once; steps on two threads
+// give the same files as on one.
+TEST(PvdWriter, OptionsPlaceByTheOuterSurfaceAndHandEverySurfaceOn) {
+  testing::ScratchDir dir("pvd_options");
+  const auto rows = testing::write_sphere_simulation(dir.path() / "sim", 4);
+  std::string bytes[2];
+  for (const int threads : {1, 2}) {
+    std::mutex mutex;
+    std::map<std::pair<long, int>, std::optional<TriangleMesh>> seen;
+    PvdSeriesOptions options;
+    options.placement = [&](const MeshedStep& s, const TriangleMesh* outer) {
+      EXPECT_NE(outer, nullptr) << s.step;  // every outer sphere of this series exists
+      double lowest = 0;
+      for (const auto& v : outer->vertices) lowest = std::min(lowest, v[1]);
+      return std::array<double, 3>{0.5, -lowest, 0};
+    };
+    options.surface = [&](const MeshedStep& s, SurfacePart part, const TriangleMesh* mesh) {
+      const std::lock_guard<std::mutex> lock(mutex);
+      EXPECT_TRUE(seen.emplace(std::pair(s.step, static_cast<int>(part)),
+                               mesh ? std::optional(*mesh) : std::nullopt)
+                      .second);
+    };
+    options.threads = threads;
+    const fs::path pvd = dir.path() / ("out" + std::to_string(threads)) / "melt.pvd";
+    write_pvd_series(dir.path() / "sim", pvd, options);
+    ASSERT_EQ(seen.size(), 8u);
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      const long step = rows[k].step;
+      const auto& outer = seen.at({step, 1});
+      ASSERT_TRUE(outer.has_value());
+      double lowest = 1;
+      for (const auto& v : outer->vertices) lowest = std::min(lowest, v[1]);
+      EXPECT_EQ(lowest, 0.0) << step;  // x + (-x) is exactly 0
+      // What the hook got is what the .vtp holds.
+      for (const int part : {0, 1}) {
+        const auto& mesh = seen.at({step, part});
+        char name[64];
+        std::snprintf(name, sizeof name, "melt_vtp/step_%06ld_%s.vtp", step,
+                      part == 0 ? "inner" : "outer");
+        const auto poly = read_vtp(pvd.parent_path() / name);
+        ASSERT_EQ(poly->GetNumberOfPoints(),
+                  mesh ? static_cast<vtkIdType>(mesh->vertices.size()) : 0)
+            << name;
+        for (vtkIdType i = 0; mesh && i < poly->GetNumberOfPoints(); ++i) {
+          double p[3];
+          poly->GetPoint(i, p);
+          for (int c = 0; c < 3; ++c) EXPECT_EQ(p[c], mesh->vertices[i][c]) << name;
+        }
+        bytes[threads - 1] += file_bytes(pvd.parent_path() / name);
+      }
+    }
+    bytes[threads - 1] += file_bytes(pvd);
+  }
+  EXPECT_EQ(bytes[0], bytes[1]);
+}
+
+// A failing step (here the hook's) fails the series after the others were attempted, and
+// nothing is committed: no .pvd, no data set folder.
+TEST(PvdWriter, OptionsFailureCommitsNothing) {
+  testing::ScratchDir dir("pvd_options_fail");
+  testing::write_sphere_simulation(dir.path() / "sim", 4);
+  std::atomic<int> calls = 0;
+  PvdSeriesOptions options;
+  options.surface = [&](const MeshedStep& s, SurfacePart, const TriangleMesh*) {
+    ++calls;
+    if (s.step == 2) throw UserError("hook.obj", "", "disk full");
+  };
+  options.threads = 2;
+  const fs::path out = dir.path() / "out";
+  EXPECT_THROW(write_pvd_series(dir.path() / "sim", out / "melt.pvd", options), UserError);
+  EXPECT_EQ(calls.load(), 7);  // every step, but step 2's outer after its inner failed
   EXPECT_TRUE(fs::is_empty(out)) << fs::directory_iterator(out)->path();
 }
 
