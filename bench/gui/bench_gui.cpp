@@ -6,10 +6,12 @@
 //      the 2 cores serve);
 //   2. slider scrub: milliseconds from setting the time slider to the step's meshes drawn in the
 //      3D view (show_step renders the VTK window synchronously), over every step of a run;
-//   3. the longest the GUI thread went without serving its event loop, over everything above,
-//      measured by a 5 ms timer (the gap between two ticks minus the 5 ms period), and the most
-//      CPU time the GUI thread itself used between two ticks (a long gap with little CPU is the
-//      scheduler serving other processes of a loaded machine, not work on the GUI thread).
+//   3. per phase (start-up from just before the window's show(), new objects, edits, orbits,
+//      simulation, scrubbing): the longest the GUI thread went without serving its event loop,
+//      measured by a 5 ms timer (the gap between two ticks minus the 5 ms period), with the CPU
+//      time the GUI thread itself used in that gap, and the most GUI-thread CPU in any gap (a
+//      long gap with little CPU is the scheduler serving other processes of a loaded machine, or
+//      the GUI thread waiting for llvmpipe's rasterizer threads, not work on the GUI thread).
 // Start-up is `thaw gui`'s: when Mesa's shader cache is not known warm, the warm-up child first
 // (src/gui/shader_warmup.h; `bench_gui N nowarm` without it). An empty cache: run it with
 // MESA_SHADER_CACHE_DIR set to a new folder.
@@ -34,6 +36,7 @@
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "src/gui/main_window.h"
@@ -72,6 +75,24 @@ double thread_cpu_ms() {
   return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
 }
 
+/// The GUI thread's blocks of one phase: the longest (wall) with the GUI thread's CPU in it, and
+/// the most GUI-thread CPU in any block.
+struct Blocks {
+  qint64 longest_ms = 0;
+  double longest_cpu_ms = 0, most_cpu_ms = 0;
+  void add(qint64 gap_ms, double cpu_ms) {
+    if (gap_ms > longest_ms) longest_ms = gap_ms, longest_cpu_ms = cpu_ms;
+    most_cpu_ms = std::max(most_cpu_ms, cpu_ms);
+  }
+  /// e.g. "172 ms (49 ms CPU)"
+  std::string text() const {
+    char t[64];
+    std::snprintf(t, sizeof t, "%lld ms (%.0f ms CPU)", static_cast<long long>(longest_ms),
+                  longest_cpu_ms);
+    return t;
+  }
+};
+
 void print_stats(const char* what, std::vector<double> v, const char* unit) {
   if (v.empty()) return;
   std::sort(v.begin(), v.end());
@@ -83,28 +104,27 @@ void print_stats(const char* what, std::vector<double> v, const char* unit) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const int edits = argc > 1 ? std::atoi(argv[1]) : 10;
+  const int n_edits = argc > 1 ? std::atoi(argv[1]) : 10;
   std::unique_ptr<thaw::inspect::DisplayLease> display;
   if (!thaw::inspect::display_available())
     display = std::make_unique<thaw::inspect::DisplayLease>("bench_gui");
   QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
   QApplication app(argc, argv);
   MainWindow w{thaw::gui::ScenarioDocument()};
-  w.show();
-  // As `thaw gui` starts (src/gui/gui.cpp): a child fills Mesa's shader cache first when it is
-  // not known warm (src/gui/shader_warmup.h); start-up below lasts until the view is complete.
-  // `bench_gui N nowarm`: without it (the view compiles its shaders itself, as before).
-  if (!(argc > 2 && std::string(argv[2]) == "nowarm"))
-    thaw::gui::warm_shaders_first(w.shell_view(), THAW_EXE, {});
 
-  // The GUI thread's longest block: gaps between ticks of a 5 ms timer. Gaps over 50 ms are
-  // listed with the phase and, during the simulation, its stage (to find what blocks).
+  // The GUI thread's blocks: gaps between ticks of a 5 ms timer (minus the period), each with
+  // the CPU time the GUI thread itself used in it (CLOCK_THREAD_CPUTIME_ID: a long gap with
+  // little of it was the scheduler serving other processes of a loaded machine, or the GUI
+  // thread waiting for llvmpipe's rasterizer threads, not work done on the GUI thread). Per
+  // phase: the longest block with its CPU, and the most CPU in any block. Blocks over 50 ms are
+  // listed with their phase and, during the simulation, its stage (to find what blocks).
+  // Measuring starts before show(): it lays the window out and may paint (a QOpenGLWidget paints
+  // and makes its OpenGL context inside show()), which the first gap then includes.
   QElapsedTimer clock;
   clock.start();
-  qint64 last_tick = 0, worst_gap_ms = 0;
-  // The GUI thread's own CPU time within each gap: a long gap with little of it was the
-  // scheduler giving the core to other processes (load), not work done on the GUI thread.
-  double last_cpu_ms = thread_cpu_ms(), worst_gap_cpu_ms = 0;
+  Blocks blocks;
+  qint64 last_tick = clock.elapsed();
+  double last_cpu_ms = thread_cpu_ms();
   const char* phase = "start-up";
   auto* sim_progress = w.findChild<QProgressBar*>("simulation_progress");
   std::vector<std::string> long_gaps;
@@ -113,9 +133,8 @@ int main(int argc, char** argv) {
   QObject::connect(&ticker, &QTimer::timeout, [&] {
     const qint64 now = clock.elapsed();
     const double cpu = thread_cpu_ms();
-    const qint64 gap = last_tick > 0 ? now - last_tick - 5 : 0;
-    worst_gap_ms = std::max(worst_gap_ms, gap);
-    worst_gap_cpu_ms = std::max(worst_gap_cpu_ms, cpu - last_cpu_ms);
+    const qint64 gap = std::max<qint64>(0, now - last_tick - 5);
+    blocks.add(gap, cpu - last_cpu_ms);
     if (gap > 50)
       long_gaps.push_back(std::string(phase) + " at " + std::to_string(now) +
                           " ms: " + std::to_string(gap) + " ms, GUI-thread CPU " +
@@ -125,6 +144,12 @@ int main(int argc, char** argv) {
     last_cpu_ms = cpu;
   });
   ticker.start(5);
+  w.show();
+  // As `thaw gui` starts (src/gui/gui.cpp): a child fills Mesa's shader cache first when it is
+  // not known warm (src/gui/shader_warmup.h); start-up below lasts until the view is complete.
+  // `bench_gui N nowarm`: without it (the view compiles its shaders itself, as before).
+  if (!(argc > 2 && std::string(argv[2]) == "nowarm"))
+    thaw::gui::warm_shaders_first(w.shell_view(), THAW_EXE, {});
 
   // Start-up (its own figure): the initial shell is meshed, the first preview rendered and the
   // scene drawn in the 3D view over several turns (each new look compiles llvmpipe's shaders),
@@ -140,10 +165,7 @@ int main(int argc, char** argv) {
   const qint64 view_complete_ms = clock.elapsed();
   // The last draw's paint and the window's compositing follow in the next turns: still start-up.
   wait_until([] { return false; }, 500);
-  const qint64 startup_gap_ms = worst_gap_ms;
-  const double startup_cpu_ms = worst_gap_cpu_ms;
-  worst_gap_ms = 0;
-  worst_gap_cpu_ms = 0;
+  const Blocks startup = std::exchange(blocks, {});
 
   // New objects (issue 14): a box, a sphere and a plane added one by one as the Scene tab's "add"
   // does, each until the view has drawn it. A look no draw made before compiles its shaders on
@@ -175,22 +197,24 @@ int main(int argc, char** argv) {
     wait_until([] { return false; }, 300);
     std::printf("new looks drawn: %zu\n", looks);
   }
-  std::printf("new objects: longest GUI-thread block %lld ms, most GUI-thread CPU %.0f ms\n",
-              static_cast<long long>(worst_gap_ms), worst_gap_cpu_ms);
+  std::printf("longest GUI-thread block: start-up %s, new objects %s\n", startup.text().c_str(),
+              blocks.text().c_str());
   std::fflush(stdout);
-  if (argc > 3 && std::string(argv[3]) == "objects") return 0;
+  if (argc > 3 && std::string(argv[3]) == "objects") {
+    for (const std::string& g : long_gaps) std::printf("  GUI thread blocked: %s\n", g.c_str());
+    return 0;
+  }
   // The edits below are timed on the default scene (issue 14's preview target): the objects go.
   while (w.document().array_size("render.objects") > objects_before)
     w.remove_object(w.document().array_size("render.objects") - 1);
   if (!wait_until([&] { return w.shell_view().scene_objects() == view_objects_before; }, 60000))
     return std::puts("added objects not removed from the view"), 1;
   wait_until([] { return false; }, 300);
-  worst_gap_ms = 0;
-  worst_gap_cpu_ms = 0;
+  blocks = {};
 
   phase = "edits";
   std::vector<double> full_s, full_cpu_s, worker_s;
-  for (int k = 0; k < edits; ++k) {
+  for (int k = 0; k < n_edits; ++k) {
     // The key light's intensity, as a user tuning the look would.
     QElapsedTimer t;
     t.start();
@@ -205,10 +229,7 @@ int main(int argc, char** argv) {
     // again (which cancels it): the edit must not wait for the refinement.
     wait_until([] { return false; }, 150);
   }
-  const qint64 edit_gap_ms = worst_gap_ms;
-  const double edit_cpu_ms = worst_gap_cpu_ms;
-  worst_gap_ms = 0;
-  worst_gap_cpu_ms = 0;
+  const Blocks edits = std::exchange(blocks, {});
 
   // Orbits: the interactor's start, 10 camera steps about the focus drawn quick, its end (the
   // view drawn at rest, its camera written back as [render.camera]: the preview restarts and
@@ -216,7 +237,7 @@ int main(int argc, char** argv) {
   phase = "orbits";
   std::vector<double> orbit_step_ms;
   thaw::gui::ShellView& view = w.shell_view();
-  for (int k = 0; k < std::max(1, edits / 2); ++k) {
+  for (int k = 0; k < std::max(1, n_edits / 2); ++k) {
     const auto c0 = view.camera();
     view.interactor()->InvokeEvent(vtkCommand::StartInteractionEvent);
     for (int step = 1; step <= 10; ++step) {
@@ -236,10 +257,7 @@ int main(int argc, char** argv) {
       return std::puts("no image after the orbit"), 1;
     wait_until([] { return false; }, 300);  // the floor made anew reaches the view
   }
-  const qint64 orbit_gap_ms = worst_gap_ms;
-  const double orbit_cpu_ms = worst_gap_cpu_ms;
-  worst_gap_ms = 0;
-  worst_gap_cpu_ms = 0;
+  const Blocks orbits = std::exchange(blocks, {});
 
   // A simulated run to scrub.
   phase = "simulation";
@@ -249,10 +267,7 @@ int main(int argc, char** argv) {
   if (!wait_until([&] { return w.simulation_run() != nullptr; }, 600000))
     return std::puts("no run"), 1;
   const double sim_s = sim.nsecsElapsed() * 1e-9;
-  const qint64 sim_gap_ms = worst_gap_ms;
-  const double sim_cpu_ms = worst_gap_cpu_ms;
-  worst_gap_ms = 0;
-  worst_gap_cpu_ms = 0;
+  const Blocks simulation = std::exchange(blocks, {});
   phase = "scrubbing";
   auto* slider = w.findChild<QSlider*>("time_slider");
   std::vector<double> scrub_ms, scrub_cpu_ms, scrub_process_ms;
@@ -267,8 +282,7 @@ int main(int argc, char** argv) {
       scrub_process_ms.push_back(1e3 * (process_cpu_s() - p0));
       QCoreApplication::processEvents(QEventLoop::AllEvents);
     }
-  const qint64 scrub_gap_ms = worst_gap_ms;
-  const double scrub_cpu_gap_ms = worst_gap_cpu_ms;
+  const Blocks scrubbing = blocks;
 
   std::printf("thaw gui responsiveness, default scenario, preview 320x240\n");
   print_stats("edit -> 320x240 image shown [s] (wall)", full_s, "s");
@@ -279,17 +293,18 @@ int main(int argc, char** argv) {
   print_stats("  GUI-thread CPU meanwhile [ms]", scrub_cpu_ms, "ms");
   print_stats("  process CPU meanwhile [ms] (llvmpipe, preview)", scrub_process_ms, "ms");
   std::printf("simulate + mesh + load %d steps: %.2f s\n", slider->maximum() + 1, sim_s);
+  std::printf("start-up: the 3D view complete after %lld ms\n",
+              static_cast<long long>(view_complete_ms));
   std::printf(
-      "start-up: the 3D view complete after %lld ms\n"
-      "longest GUI-thread block [ms]: start-up %lld, edits %lld, orbits %lld, simulation %lld, "
-      "scrubbing %lld\n",
-      static_cast<long long>(view_complete_ms), static_cast<long long>(startup_gap_ms),
-      static_cast<long long>(edit_gap_ms), static_cast<long long>(orbit_gap_ms),
-      static_cast<long long>(sim_gap_ms), static_cast<long long>(scrub_gap_ms));
+      "longest GUI-thread block (its GUI-thread CPU): start-up %s, edits %s, orbits %s, "
+      "simulation %s, scrubbing %s\n",
+      startup.text().c_str(), edits.text().c_str(), orbits.text().c_str(),
+      simulation.text().c_str(), scrubbing.text().c_str());
   std::printf(
-      "most GUI-thread CPU between two ticks [ms]: start-up %.0f, edits %.0f, orbits %.0f, "
+      "most GUI-thread CPU in one block [ms]: start-up %.0f, edits %.0f, orbits %.0f, "
       "simulation %.0f, scrubbing %.0f\n",
-      startup_cpu_ms, edit_cpu_ms, orbit_cpu_ms, sim_cpu_ms, scrub_cpu_gap_ms);
+      startup.most_cpu_ms, edits.most_cpu_ms, orbits.most_cpu_ms, simulation.most_cpu_ms,
+      scrubbing.most_cpu_ms);
   for (const std::string& g : long_gaps) std::printf("  GUI thread blocked: %s\n", g.c_str());
   return 0;
 }
