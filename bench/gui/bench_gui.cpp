@@ -22,13 +22,11 @@
 #include <time.h>
 
 #include <QVTKInteractor.h>
-#include <QVTKOpenGLNativeWidget.h>
 #include <vtkCommand.h>
 #include <QApplication>
 #include <QElapsedTimer>
 #include <QProgressBar>
 #include <QSlider>
-#include <QSurfaceFormat>
 #include <QTimer>
 #include <algorithm>
 #include <cmath>
@@ -108,7 +106,6 @@ int main(int argc, char** argv) {
   std::unique_ptr<thaw::inspect::DisplayLease> display;
   if (!thaw::inspect::display_available())
     display = std::make_unique<thaw::inspect::DisplayLease>("bench_gui");
-  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
   QApplication app(argc, argv);
   MainWindow w{thaw::gui::ScenarioDocument()};
 

@@ -1,10 +1,8 @@
 #include "src/gui/gui.h"
 
-#include <QVTKOpenGLNativeWidget.h>
 #include <sys/resource.h>
 #include <vtkRenderWindow.h>
 #include <QApplication>
-#include <QSurfaceFormat>
 #include <QTimer>
 
 #include <cstdlib>
@@ -77,7 +75,6 @@ int run_gui(const GuiOptions& options) {
         options.warm_shaders ? "thaw gui --warm-shaders (the 3D view's shader warm-up)"
                              : "thaw gui --screenshot");
   }
-  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
   static int argc = 1;
   static char name[] = "thaw";
   static char* argv[] = {name, nullptr};

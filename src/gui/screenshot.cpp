@@ -3,6 +3,7 @@
 #include <vtkRenderWindow.h>
 #include <QBuffer>
 #include <QElapsedTimer>
+#include <QPainter>
 #include <QTimer>
 #include <memory>
 
@@ -35,8 +36,14 @@ void take_screenshot_when_ready(MainWindow& window, const std::filesystem::path&
       return;
     }
     poll->stop();
-    window.shell_view().renderWindow()->Render();
-    const QPixmap shot = window.grab();
+    // The window's widgets, then the 3D view's OpenGL window over its place (grab() sees only
+    // the widgets of Qt's backing store).
+    QPixmap shot = window.grab();
+    ShellView& view = window.shell_view();
+    if (const QImage drawn = view.image(); !drawn.isNull()) {
+      QPainter painter(&shot);
+      painter.drawImage(QRect(view.mapTo(&window, QPoint(0, 0)), view.size()), drawn);
+    }
     QByteArray bytes;
     QBuffer buffer(&bytes);
     buffer.open(QIODevice::WriteOnly);

@@ -4,6 +4,7 @@
 #include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
 #include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkImageData.h>
 #include <vtkLightKit.h>
 #include <vtkMapper.h>
 #include <vtkNew.h>
@@ -17,11 +18,15 @@
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
 #include <vtkTexture.h>
+#include <vtkWindowToImageFilter.h>
 
+#include <QImage>
+#include <QOpenGLWindow>
 #include <QTimer>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "src/inspect/surface_actor.h"
 
@@ -47,11 +52,13 @@ std::string look_of(vtkProp* prop) {
   return text;
 }
 
-ShellView::ShellView(QWidget* parent) : QVTKOpenGLNativeWidget(parent) {
+ShellView::ShellView(QWidget* parent) : QVTKOpenGLStereoWidget(parent) {
   vtkNew<vtkGenericOpenGLRenderWindow> window;
   window->SetAlphaBitPlanes(1);  // depth peeling for the translucent outer surface
   window->SetMultiSamples(0);
   setRenderWindow(window);
+  setFormat(QVTKOpenGLWindow::defaultFormat());
+  connect(embeddedOpenGLWindow(), &QOpenGLWindow::frameSwapped, this, [this] { first_frame(); });
   m_stage_timer = new QTimer(this);
   m_stage_timer->setSingleShot(true);
   m_stage_timer->setInterval(0);
@@ -269,11 +276,29 @@ std::size_t ShellView::add_catalog(const SceneProps& catalog) {
   return m_catalog.size() - first;
 }
 
-void ShellView::paintGL() {
-  QVTKOpenGLNativeWidget::paintGL();
+void ShellView::first_frame() {
   if (m_painted) return;
   m_painted = true;  // the context exists: the warm-up's turns may begin
   if (!m_staged.empty() && !m_held) m_stage_timer->start();
+}
+
+QImage ShellView::image() {
+  if (!m_painted) return {};
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(renderWindow());
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOff();  // VTK's own frame buffer, drawn again now
+  grab->ShouldRerenderOn();
+  grab->Update();
+  vtkImageData* data = grab->GetOutput();
+  int size[3];
+  data->GetDimensions(size);
+  QImage image(size[0], size[1], QImage::Format_RGB888);
+  const auto* pixels = static_cast<const unsigned char*>(data->GetScalarPointer());
+  for (int y = 0; y < size[1]; ++y)  // OpenGL's rows bottom-up, QImage's top-down
+    std::memcpy(image.scanLine(size[1] - 1 - y), pixels + 3 * std::size_t(size[0]) * y,
+                3 * std::size_t(size[0]));
+  return image;
 }
 
 void ShellView::hold() {

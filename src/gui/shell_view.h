@@ -5,7 +5,16 @@
 // and the scene's other objects and lights (scene_props.h), seen through the frame's camera
 // until the user moves it. Showing a step replaces the shell's two actors and keeps the camera,
 // so scrubbing through a run shows the shell shrinking in place.
-#include <QVTKOpenGLNativeWidget.h>
+//
+// The view is an OpenGL window of its own (VTK's QVTKOpenGLWindow, a QOpenGLWindow) in a window
+// container (QVTKOpenGLStereoWidget wraps QWidget::createWindowContainer), not an OpenGL widget
+// (QVTKOpenGLNativeWidget, a QOpenGLWidget): a QOpenGLWidget makes Qt 5 composite the whole
+// top-level window through OpenGL on every repaint of any widget in it (the raster backing store
+// uploaded as a texture, blended with the widget's, swapped: with software OpenGL, llvmpipe, a
+// full-window draw per repaint), and makes its OpenGL context and first paint inside the window's
+// show(). In a container the rest of the window stays on Qt's raster backing store; the OpenGL
+// work is the view's own child window's, its context made in its first expose, a turn of its own.
+#include <QVTKOpenGLStereoWidget.h>
 #include <vtkSmartPointer.h>
 
 #include <array>
@@ -30,7 +39,7 @@ namespace thaw::gui {
 /// with equal looks draw with the programs the first of them compiled.
 std::string look_of(vtkProp* prop);
 
-class ShellView : public QVTKOpenGLNativeWidget {
+class ShellView : public QVTKOpenGLStereoWidget {
   Q_OBJECT
  public:
   explicit ShellView(QWidget* parent = nullptr);
@@ -91,14 +100,13 @@ class ShellView : public QVTKOpenGLNativeWidget {
   const std::set<std::string>& looks() const { return m_looks; }
   /// Actors (and the label) in the renderer now (tests).
   std::size_t drawn_props() const;
+  /// The view drawn now, at its size in pixels (the window's screenshot: QWidget::grab does not
+  /// see the OpenGL child window's pixels). Null before the first paint.
+  QImage image();
 
  signals:
   /// The user orbited, panned or zoomed the view (the window writes it back as the scene camera).
   void cameraMoved();
-
- protected:
-  /// Qt's paint; the first one (the OpenGL context made) lets the warm-up begin.
-  void paintGL() override;
 
  private:
   // Warm-up. With software OpenGL (Mesa llvmpipe) the first draw of each new look (shader
@@ -128,6 +136,9 @@ class ShellView : public QVTKOpenGLNativeWidget {
   void advance();
   /// Ends a pending settle(): the at-rest look, drawn by the caller.
   void settle_now();
+  /// The OpenGL window's first frame (its context made, the plain background shown) lets the
+  /// warm-up begin.
+  void first_frame();
 
   std::deque<Staged> m_staged;
   std::set<std::string> m_looks;

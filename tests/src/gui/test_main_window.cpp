@@ -3,7 +3,6 @@
 // preview; a stale preview cancelled by an edit; cancelling and resuming "Render film"; the
 // screenshot of the default with its panels and a non-empty render.
 #include <QVTKInteractor.h>
-#include <QVTKOpenGLNativeWidget.h>
 #include <vtkActor.h>
 #include <vtkCommand.h>
 #include <QApplication>
@@ -16,7 +15,6 @@
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QSlider>
-#include <QSurfaceFormat>
 #include <QTabWidget>
 #include <QtTest>
 #include <cmath>
@@ -648,7 +646,6 @@ int main(int argc, char** argv) {
   std::unique_ptr<thaw::inspect::DisplayLease> display;
   if (!thaw::inspect::display_available())
     display = std::make_unique<thaw::inspect::DisplayLease>("test_gui_window");
-  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
   QApplication app(argc, argv);
   TestMainWindow test;
   return QTest::qExec(&test, argc, argv);
