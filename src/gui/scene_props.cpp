@@ -19,6 +19,7 @@
 #include <cstdio>
 
 #include "render/geometry/obj_loader.h"
+#include "src/gui/mipmapped_texture.h"
 #include "src/gui/shell_step.h"
 #include "src/inspect/vtk_polydata.h"
 
@@ -197,11 +198,12 @@ PlaneLook plane_look(const ObjectDescription& o, const Vec3d& focus, double side
       for (int k = 0; k < 3; ++k)
         px[k] = static_cast<unsigned char>(std::lround(255.0 * c[static_cast<std::size_t>(k)]));
     }
-  look.texture = vtkSmartPointer<vtkTexture>::New();
-  look.texture->SetInputData(image);
-  look.texture->RepeatOn();
-  look.texture->InterpolateOn();
-  look.texture->MipmapOn();
+  auto texture = vtkSmartPointer<MipmappedTexture>::New();  // its levels made here, off the GUI
+  texture->set_image(image);                                // thread
+  texture->RepeatOn();
+  texture->InterpolateOn();
+  texture->MipmapOn();
+  look.texture = texture;
   return look;
 }
 

@@ -20,7 +20,9 @@
 #include <vtkTexture.h>
 #include <vtkWindowToImageFilter.h>
 
+#include <QGuiApplication>
 #include <QImage>
+#include <QOpenGLContext>
 #include <QOpenGLWindow>
 #include <QTimer>
 #include <algorithm>
@@ -52,6 +54,22 @@ std::string look_of(vtkProp* prop) {
   return text;
 }
 
+namespace {
+
+/// Whether Qt's platform can make an OpenGL context. Qt's platforms without a window system
+/// (offscreen without GLX, minimal) cannot, and an OpenGL window exposed there crashes in Qt's
+/// paint (Qt 5.15, QT_QPA_PLATFORM=offscreen without a display: a null context dereferenced in
+/// QPaintDeviceWindow::exposeEvent). On the others (xcb) a context is assumed, as any Qt OpenGL
+/// widget does, without the cost of making one here.
+bool platform_has_opengl() {
+  const QString platform = QGuiApplication::platformName();
+  if (platform != "offscreen" && platform != "minimal") return true;
+  QOpenGLContext probe;
+  return probe.create();
+}
+
+}  // namespace
+
 ShellView::ShellView(QWidget* parent) : QVTKOpenGLStereoWidget(parent) {
   vtkNew<vtkGenericOpenGLRenderWindow> window;
   window->SetAlphaBitPlanes(1);  // depth peeling for the translucent outer surface
@@ -59,6 +77,10 @@ ShellView::ShellView(QWidget* parent) : QVTKOpenGLStereoWidget(parent) {
   setRenderWindow(window);
   setFormat(QVTKOpenGLWindow::defaultFormat());
   connect(embeddedOpenGLWindow(), &QOpenGLWindow::frameSwapped, this, [this] { first_frame(); });
+  // Without OpenGL the view stays its plain container, never painted (warming_up() false).
+  if (!platform_has_opengl())
+    for (QWidget* container : findChildren<QWidget*>(QString(), Qt::FindDirectChildrenOnly))
+      container->hide();
   m_stage_timer = new QTimer(this);
   m_stage_timer->setSingleShot(true);
   m_stage_timer->setInterval(0);
@@ -318,9 +340,10 @@ std::size_t ShellView::drawn_props() const {
 void ShellView::add_prop(vtkProp* prop) {
   stage(
       look_of(prop), [this, prop] { m_renderer->AddViewProp(prop); }, prop);
-  // A mipmapped texture (the floor's checker) is a turn of its own: generating its levels and
-  // its trilinear sampling cost llvmpipe 50-60 ms of CPU in the first draw, bilinear sampling
-  // 10 ms. It is drawn bilinear first (the cheap version), mipmapped a turn later.
+  // A mipmapped texture (the floor's checker) is a turn of its own: its trilinear sampling is a
+  // shader variant of its own for llvmpipe (its levels come made: mipmapped_texture.h; with
+  // glGenerateMipmap that turn cost 50-60 ms of CPU). It is drawn bilinear first, mipmapped a
+  // turn later.
   auto* actor = vtkActor::SafeDownCast(prop);
   vtkTexture* texture = actor ? actor->GetTexture() : nullptr;
   if (texture && texture->GetMipmap() && m_looks.count("mipmapped texture") == 0) {

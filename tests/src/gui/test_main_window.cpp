@@ -13,6 +13,7 @@
 #include <QPointer>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QScreen>
 #include <QSignalSpy>
 #include <QSlider>
 #include <QTabWidget>
@@ -639,6 +640,17 @@ class TestMainWindow : public QObject {
         red += qRed(p) > qBlue(p) + 60;
       }
     QVERIFY2(red > 2000, qPrintable(QString::number(red)));
+    // What the display shows (the X server's pixels of the window, the view's own OpenGL child
+    // window included): the water's blue in the view's area there too.
+    const QImage screen = QGuiApplication::primaryScreen()->grabWindow(w.winId()).toImage();
+    QCOMPARE(screen.size(), w.size());
+    long shown = 0;
+    for (int y = varea.top(); y <= varea.bottom(); y += 2)
+      for (int x = varea.left(); x <= varea.right(); x += 2) {
+        const QRgb p = screen.pixel(x, y);
+        shown += qBlue(p) > qRed(p) + 60;
+      }
+    QVERIFY2(shown > 500, qPrintable(QString::number(shown)));
   }
 };
 
