@@ -30,6 +30,7 @@
 #include <string>
 
 #include "src/common/atomic_file.h"
+#include "src/mesh/geodesic_sphere.h"
 #include "src/mesh/grid_mesher.h"
 #include "src/mesh/mesh_series.h"
 #include "src/mesh/obj_writer.h"
@@ -121,6 +122,35 @@ void DefaultFilmForm(benchmark::State& state) {
   fs::remove(file);
 }
 BENCHMARK(DefaultFilmForm)->Unit(benchmark::kMillisecond)->Iterations(5);
+
+// The form the mesh stage makes for the default film since the sphere mesher
+// (geodesic_sphere.h): the frequency search and the mesh, then the checks (CGAL, run as the
+// first item of the surface farm), in thread CPU time like DefaultFilmForm's Mesh_3.
+void DefaultFilmGeodesicForm(benchmark::State& state) {
+  const mesh::SurfaceCriteria c{30, 2, 1e-3};
+  const auto cpu_ms = [] {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+  };
+  double form_ms = 0, check_ms = 0;
+  std::size_t triangles = 0;
+  for (auto _ : state) {
+    const double t0 = cpu_ms();
+    const mesh::TriangleMesh form = mesh::geodesic_sphere(1, mesh::geodesic_frequency(1, c));
+    const double t1 = cpu_ms();
+    benchmark::DoNotOptimize(mesh::check_closed_manifold_outward(form));
+    const double t2 = cpu_ms();
+    form_ms += t1 - t0;
+    check_ms += t2 - t1;
+    triangles = form.faces.size();
+  }
+  const double n = static_cast<double>(state.iterations());
+  state.counters["triangles"] = static_cast<double>(triangles);
+  state.counters["form_ms"] = form_ms / n;
+  state.counters["checks_ms"] = check_ms / n;
+}
+BENCHMARK(DefaultFilmGeodesicForm)->Unit(benchmark::kMillisecond)->Iterations(20);
 
 fs::path series_folder() {
   const fs::path dir = fs::temp_directory_path() / "thaw_bench_mesh_series";

@@ -14,6 +14,7 @@
 #include "src/common/error.h"
 #include "src/common/fnv_hash.h"
 #include "src/common/interrupt.h"
+#include "src/mesh/geodesic_sphere.h"
 #include "src/mesh/grid_series.h"
 #include "src/mesh/obj_writer.h"
 #include "src/mesh/similar_surface.h"
@@ -138,17 +139,19 @@ void validate_geometry(const sim::ShellGeometry& g, const fs::path& summary) {
 // meshed (form and options, thaw version); a file is used only if that line matches exactly.
 // Vertices are written with 17 digits and read back bit for bit (src/meshio), so a resumed run
 // writes exactly the bytes a fresh one does. The folder is removed once SIMDIR/mesh is complete.
-std::string form_description(const SimilarSurface& f, const MeshOptions& unit_options) {
-  // Every input of mesh_surface(): the shape (radius too: without reuse of similar surfaces the
-  // "unit" shape is the surface itself), the criteria and the options.
+std::string form_description(const SimilarSurface& f, const MeshOptions& unit_options,
+                             int geodesic) {
+  // Every input of the mesher: the shape (radius too: without reuse of similar surfaces the
+  // "unit" shape is the surface itself), the criteria and the options; which mesher.
   const ShellShape& u = f.unit_shape;
   const SurfaceCriteria& c = f.unit_criteria;
-  char buf[320];
+  char buf[360];
   std::snprintf(buf, sizeof buf,
                 "thaw %s unit mesh: geometry %d radius %.17g core %.17g angle %.17g size %.17g "
-                "distance %.17g options ",
+                "distance %.17g mesher %s %d options ",
                 THAW_VERSION_STRING, static_cast<int>(u.geometry), u.radius_m, u.core_half_size_m,
-                c.facet_angle_deg, c.facet_size_m, c.facet_distance_m);
+                c.facet_angle_deg, c.facet_size_m, c.facet_distance_m,
+                geodesic > 0 ? "geodesic" : "Mesh_3", geodesic);
   return buf + to_json(unit_options).dump();
 }
 
@@ -286,7 +289,18 @@ struct FormPlan {
   std::vector<std::size_t> form_of;      // per task: its form
   std::vector<double> scale_of;          // per task: the form's unit mesh times this [m]
   std::vector<std::string> description;  // per form: form_description (the resume key)
+  /// Per form: the geodesic frequency of a sphere (geodesic_sphere.h), 0: meshed by Mesh_3.
+  std::vector<int> geodesic;
 };
+
+// Spheres are geodesic polyhedra (the least frequency meeting their criteria: a closed form, the
+// one serial step of a sphere series made cheap); everything else, and a sphere whose criteria no
+// frequency meets, is meshed by Mesh_3.
+int geodesic_frequency_of(const SimilarSurface& f) {
+  if (f.unit_shape.geometry != sim::Geometry::sphere || f.unit_shape.core_half_size_m != 0)
+    return 0;
+  return geodesic_frequency(f.unit_shape.radius_m, f.unit_criteria);
+}
 
 FormPlan group_similar_surfaces(const std::vector<Task>& tasks, const MeshOptions& options,
                                 const MeshOptions& unit_options) {
@@ -306,8 +320,10 @@ FormPlan group_similar_surfaces(const std::vector<Task>& tasks, const MeshOption
     plan.form_of[k] = pos->second;
     plan.scale_of[k] = f.scale_m;
   }
-  for (const SimilarSurface& f : plan.forms)
-    plan.description.push_back(form_description(f, unit_options));
+  for (const SimilarSurface& f : plan.forms) {
+    plan.geodesic.push_back(geodesic_frequency_of(f));
+    plan.description.push_back(form_description(f, unit_options, plan.geodesic.back()));
+  }
   return plan;
 }
 
@@ -353,10 +369,15 @@ void take_kept_forms(const FormPlan& plan, const fs::path& partial_dir, FormMesh
 void mesh_form(const FormPlan& plan, std::size_t k, const MeshOptions& unit_options,
                const fs::path& partial_dir, FormMeshes& m) {
   try {
-    UncheckedSurface surface =
-        mesh_surface_unchecked(plan.forms[k].unit_shape, plan.forms[k].unit_criteria, unit_options);
-    m.unit[k] = surface.mesh();
-    m.unchecked[k] = std::move(surface);
+    const SimilarSurface& form = plan.forms[k];
+    if (const int n = plan.geodesic[k]; n > 0) {
+      m.unit[k] = geodesic_sphere(form.unit_shape.radius_m, n);  // checked like a kept form
+    } else {
+      UncheckedSurface surface =
+          mesh_surface_unchecked(form.unit_shape, form.unit_criteria, unit_options);
+      m.unit[k] = surface.mesh();
+      m.unchecked[k] = std::move(surface);
+    }
     store_cached_form(form_cache_file(partial_dir, plan.description[k]), plan.description[k],
                       m.unit[k]);
     m.have[k] = 1;

@@ -2,6 +2,7 @@
 // data/: the file and manifest contract, vanished surfaces, inner strictly inside outer,
 // parallel == sequential byte for byte, and bad input leaving nothing half-written.
 // Coarse criteria throughout: none of these properties depends on resolution.
+#include "src/mesh/geodesic_sphere.h"
 #include "src/mesh/mesh_series.h"
 
 #include <gtest/gtest.h>
@@ -169,6 +170,11 @@ TEST(MeshSeries, SphereSeriesMeshedOnceAndScaled) {
   o.jobs = 2;
   const MeshManifest m = mesh_simulation_folder(dir, o);
   EXPECT_EQ(m.distinct_meshes, 1);
+  // The form is the geodesic sphere of the least frequency meeting the unit criteria
+  // (geodesic_sphere.h): 20 n^2 triangles.
+  const int n = geodesic_frequency(1, {o.angle_deg, 2, o.relative_distance});
+  ASSERT_GT(n, 0);
+  EXPECT_EQ(m.steps[0].outer.triangles, 20 * n * n);
   for (const auto& s : m.steps) {
     if (!s.outer.file) continue;
     for (const SurfaceRecord* r : {&s.inner, &s.outer}) {
