@@ -147,6 +147,19 @@ class Bvh {
   template <class BoxesTest, class LeafFn>
   bool any_leaf_wide(BoxesTest&& boxes_test, LeafFn&& leaf) const;
 
+  /// The same over the 8-wide nodes (wide8_nodes() must not be empty): `boxes8(planes)` gets
+  /// Bvh8Node::planes. `boxes8_avx2`, a functor whose call operator is THAW_TARGET_AVX2, is
+  /// used instead where simd_level() is avx2. The leaves found are the same either way.
+  template <class Boxes8, class Boxes8Avx2, class LeafFn>
+  bool any_leaf_wide8(const Boxes8& boxes8, const Boxes8Avx2& boxes8_avx2, LeafFn&& leaf) const {
+#if THAW_AVX2_DISPATCH
+    if (simd_level() == SimdLevel::avx2) return any_leaf8_avx2(boxes8_avx2, leaf);
+#else
+    (void)boxes8_avx2;
+#endif
+    return any_leaf8(boxes8, leaf);
+  }
+
   /// Slab test of the four children of `n`: bit i of the result is set if child i is met within
   /// (0, t_max); its entry distance is t_enter[i].
   static int hit_children(const Bvh4Node& n, const RayData& r, float t_max, float t_enter[4]);
@@ -181,7 +194,13 @@ class Bvh {
   [[gnu::always_inline]] inline bool closest8(const RayData& ray, float& t_max, LeafFn& leaf) const;
   template <class Children, class LeafFn>
   [[gnu::always_inline]] inline bool any8(const RayData& ray, float t_max, LeafFn& leaf) const;
+  template <class Boxes8, class LeafFn>
+  [[gnu::always_inline]] inline bool any_leaf8(const Boxes8& boxes8, LeafFn& leaf) const;
 #if THAW_AVX2_DISPATCH
+  template <class Boxes8, class LeafFn>
+  THAW_TARGET_AVX2 bool any_leaf8_avx2(const Boxes8& boxes8, LeafFn& leaf) const {
+    return any_leaf8(boxes8, leaf);
+  }
   template <class LeafFn>
   THAW_TARGET_AVX2 bool closest8_avx2(const RayData& ray, float& t_max, LeafFn& leaf) const {
     return closest8<Children8Avx2>(ray, t_max, leaf);
@@ -582,6 +601,31 @@ bool Bvh::any_leaf_wide(BoxesTest&& boxes_test, LeafFn&& leaf) const {
       const Bvh4Node& n = m_wide[e.ref];
       auto mask = static_cast<unsigned>(boxes_test(n.planes));
       while (mask) {  // in child order, as any_leaf pushes them
+        const int i = __builtin_ctz(mask);
+        mask &= mask - 1;
+        stack[sp++] = {n.child[i], n.count[i]};
+      }
+    }
+    if (sp == 0) return false;
+    e = stack[--sp];
+  }
+}
+
+template <class Boxes8, class LeafFn>
+inline bool Bvh::any_leaf8(const Boxes8& boxes8, LeafFn& leaf) const {
+  struct Entry {
+    std::uint32_t ref, count;
+  };
+  Entry stack[kBvh8StackSize];
+  int sp = 0;
+  Entry e{0, 0};  // the root: its children are tested
+  while (true) {
+    if (e.count > 0) {
+      if (leaf(e.ref, e.count)) return true;
+    } else {
+      const Bvh8Node& n = m_wide8[e.ref];
+      auto mask = static_cast<unsigned>(boxes8(n.planes));
+      while (mask) {  // in child order, as any_leaf_wide pushes them
         const int i = __builtin_ctz(mask);
         mask &= mask - 1;
         stack[sp++] = {n.child[i], n.count[i]};

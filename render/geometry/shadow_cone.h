@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/accel/simd_level.h"
 #include "render/math/vec3.h"
 
 #if defined(__SSE2__)
@@ -55,13 +56,71 @@ class ShadowCone {
   /// may_touch_box() of four boxes at once (SSE, the same operations in the same order, so
   /// the same results): boxes as planes[0..5] = lo_x, hi_x, lo_y, hi_y, lo_z, hi_z of lanes 0-3.
   /// Bit i of the result is set if box i may meet the cone; empty boxes (lo > hi) never do.
-  unsigned may_touch_boxes4(const float (&planes)[6][4]) const {
+  unsigned may_touch_boxes4(const float (&planes)[6][4]) const { return touch4(planes, 0); }
+
+  /// The same for eight boxes (an 8-wide BVH node's children), as two SSE halves.
+  unsigned may_touch_boxes8(const float (&planes)[6][8]) const {
+    return touch4(planes, 0) | touch4(planes, 4) << 4;
+  }
+
+#if THAW_AVX2_DISPATCH
+  /// may_touch_boxes8() in one AVX2 pass: the same operations lane for lane, the same bits.
+  THAW_TARGET_AVX2 unsigned may_touch_boxes8_avx2(const float (&planes)[6][8]) const {
+    const __m256 half = _mm256_set1_ps(0.5f);
+    __m256 lo[3], hi[3], v[3], e[3];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = _mm256_loadu_ps(planes[2 * a]);
+      hi[a] = _mm256_loadu_ps(planes[2 * a + 1]);
+      v[a] = _mm256_sub_ps(_mm256_mul_ps(_mm256_add_ps(lo[a], hi[a]), half),
+                           _mm256_set1_ps(m_apex[a]));
+      e[a] = _mm256_sub_ps(hi[a], lo[a]);
+    }
+    const __m256 ee =
+        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(e[0], e[0]), _mm256_mul_ps(e[1], e[1])),
+                      _mm256_mul_ps(e[2], e[2]));
+    const __m256 rho =
+        _mm256_add_ps(_mm256_mul_ps(half, _mm256_sqrt_ps(ee)), _mm256_set1_ps(m_slack));
+    const __m256 len2 =
+        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(v[0], v[0]), _mm256_mul_ps(v[1], v[1])),
+                      _mm256_mul_ps(v[2], v[2]));
+    const __m256 x = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(v[0], _mm256_set1_ps(m_axis.x)),
+                                                 _mm256_mul_ps(v[1], _mm256_set1_ps(m_axis.y))),
+                                   _mm256_mul_ps(v[2], _mm256_set1_ps(m_axis.z)));
+    const __m256 len = _mm256_sqrt_ps(len2);
+    const __m256 sin_phi = _mm256_div_ps(rho, len);
+    const __m256 cos_phi =
+        _mm256_sqrt_ps(_mm256_sub_ps(_mm256_set1_ps(1.0f), _mm256_mul_ps(sin_phi, sin_phi)));
+    const __m256 cos_sum = _mm256_sub_ps(_mm256_mul_ps(_mm256_set1_ps(m_cos), cos_phi),
+                                         _mm256_mul_ps(_mm256_set1_ps(m_sin), sin_phi));
+    const __m256 near = _mm256_cmp_ps(len2, _mm256_mul_ps(rho, rho), _CMP_LE_OQ);
+    const __m256 in_range =
+        _mm256_and_ps(_mm256_cmp_ps(x, _mm256_sub_ps(_mm256_setzero_ps(), rho), _CMP_GE_OQ),
+                      _mm256_cmp_ps(x, _mm256_add_ps(_mm256_set1_ps(m_far), rho), _CMP_LE_OQ));
+    const __m256 in_cone =
+        _mm256_and_ps(in_range, _mm256_cmp_ps(x, _mm256_mul_ps(cos_sum, len), _CMP_GE_OQ));
+    const __m256 used = _mm256_cmp_ps(lo[0], hi[0], _CMP_LE_OQ);
+    return static_cast<unsigned>(
+        _mm256_movemask_ps(_mm256_and_ps(used, _mm256_or_ps(near, in_cone))));
+  }
+#endif
+
+  const Vec3& apex() const {
+    return m_apex;
+  }
+  const Vec3& axis() const {
+    return m_axis;
+  }
+
+ private:
+  /// may_touch_box() of the four boxes in lanes [offset, offset + 4) of planes[6][W].
+  template <int W>
+  unsigned touch4(const float (&planes)[6][W], int offset) const {
 #if defined(__SSE2__)
     const __m128 half = _mm_set1_ps(0.5f);
     __m128 lo[3], hi[3], v[3], e[3];
     for (int a = 0; a < 3; ++a) {
-      lo[a] = _mm_loadu_ps(planes[2 * a]);
-      hi[a] = _mm_loadu_ps(planes[2 * a + 1]);
+      lo[a] = _mm_loadu_ps(planes[2 * a] + offset);
+      hi[a] = _mm_loadu_ps(planes[2 * a + 1] + offset);
       v[a] = _mm_sub_ps(_mm_mul_ps(_mm_add_ps(lo[a], hi[a]), half), _mm_set1_ps(m_apex[a]));
       e[a] = _mm_sub_ps(hi[a], lo[a]);
     }
@@ -87,22 +146,14 @@ class ShadowCone {
 #else
     unsigned mask = 0;
     for (int i = 0; i < 4; ++i) {
-      const Vec3 lo{planes[0][i], planes[2][i], planes[4][i]};
-      const Vec3 hi{planes[1][i], planes[3][i], planes[5][i]};
+      const Vec3 lo{planes[0][offset + i], planes[2][offset + i], planes[4][offset + i]};
+      const Vec3 hi{planes[1][offset + i], planes[3][offset + i], planes[5][offset + i]};
       if (!(lo.x > hi.x) && may_touch_box(lo, hi)) mask |= 1u << i;
     }
     return mask;
 #endif
   }
 
-  const Vec3& apex() const {
-    return m_apex;
-  }
-  const Vec3& axis() const {
-    return m_axis;
-  }
-
- private:
   Vec3 m_apex, m_axis;
   float m_distance = 0, m_sin = 0, m_cos = 1, m_far = 0, m_slack = 0;
 };

@@ -594,6 +594,25 @@ class SceneBuilder {
   std::set<std::uint32_t> m_inside_media, m_outside_media;
 };
 
+namespace {
+/// The shadow cone's test of an 8-wide node's children, for Bvh::any_leaf_wide8: SSE halves and
+/// AVX2 (the same bits).
+struct ConeBoxes8 {
+  const ShadowCone& cone;
+  unsigned operator()(const float (&planes)[6][8]) const { return cone.may_touch_boxes8(planes); }
+};
+struct ConeBoxes8Avx2 {
+  const ShadowCone& cone;
+  THAW_TARGET_AVX2 unsigned operator()(const float (&planes)[6][8]) const {
+#if THAW_AVX2_DISPATCH
+    return cone.may_touch_boxes8_avx2(planes);
+#else
+    return cone.may_touch_boxes8(planes);
+#endif
+  }
+};
+}  // namespace
+
 Scene build_scene(const SceneDescription& desc) {
   return SceneBuilder(desc).build();
 }
@@ -695,23 +714,25 @@ bool Scene::light_unoccluded(const Vec3& origin, std::size_t light) const {
   }
   const ShadowCone cone(origin, l.center, l.radius, slack);
   const Primitive* prims = m_primitives.data();
-  return !m_bvh.any_leaf_wide(
-      [&](const float(&planes)[6][4]) { return cone.may_touch_boxes4(planes); },
-      [&](std::uint32_t first, std::uint32_t count) {
-        for (std::uint32_t i = first; i < first + count; ++i) {
-          const Primitive& p = prims[i];
-          // The light's own visible sphere: the rays stop short of it.
-          if (p.kind == PrimitiveKind::sphere && p.a == l.center && p.b.x == l.radius) continue;
-          const bool touches =
-              p.kind == PrimitiveKind::sphere
-                  ? cone.may_touch_sphere(p.a, p.b.x)
-                  : (p.kind == PrimitiveKind::box
-                         ? cone.may_touch_box(p.a, p.b)
-                         : cone.may_touch_box(min(min(p.a, p.b), p.c), max(max(p.a, p.b), p.c)));
-          if (touches) return true;
-        }
-        return false;
-      });
+  const auto leaf = [&](std::uint32_t first, std::uint32_t count) {
+    for (std::uint32_t i = first; i < first + count; ++i) {
+      const Primitive& p = prims[i];
+      // The light's own visible sphere: the rays stop short of it.
+      if (p.kind == PrimitiveKind::sphere && p.a == l.center && p.b.x == l.radius) continue;
+      const bool touches =
+          p.kind == PrimitiveKind::sphere
+              ? cone.may_touch_sphere(p.a, p.b.x)
+              : (p.kind == PrimitiveKind::box
+                     ? cone.may_touch_box(p.a, p.b)
+                     : cone.may_touch_box(min(min(p.a, p.b), p.c), max(max(p.a, p.b), p.c)));
+      if (touches) return true;
+    }
+    return false;
+  };
+  if (m_bvh.wide8_nodes().empty())
+    return !m_bvh.any_leaf_wide(
+        [&](const float(&planes)[6][4]) { return cone.may_touch_boxes4(planes); }, leaf);
+  return !m_bvh.any_leaf_wide8(ConeBoxes8{cone}, ConeBoxes8Avx2{cone}, leaf);
 }
 
 bool Scene::occluded(const Ray& ray) const {

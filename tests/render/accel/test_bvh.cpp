@@ -189,6 +189,7 @@ TEST(Bvh, AnyLeafRegionQueryMatchesBruteForce) {
     boxes.push_back(b);
   }
   const Bvh bvh(boxes, BvhBuildOptions{4, 1.0f, 4});
+  ASSERT_FALSE(bvh.wide8_nodes().empty());
   std::vector<Aabb> ordered;
   for (auto i : bvh.order()) ordered.push_back(boxes[i]);
   auto inside = [](const Vec3& q, const Vec3& lo, const Vec3& hi) {
@@ -206,6 +207,23 @@ TEST(Bvh, AnyLeafRegionQueryMatchesBruteForce) {
                                     return false;
                                   });
     ASSERT_EQ(got, want) << k;
+    // The same query over the 8-wide nodes (3000 boxes: the tree has them).
+    const auto boxes8 = [&](const float(&planes)[6][8]) {
+      unsigned mask = 0;
+      for (int i = 0; i < 8; ++i) {
+        const Vec3 lo{planes[0][i], planes[2][i], planes[4][i]};
+        const Vec3 hi{planes[1][i], planes[3][i], planes[5][i]};
+        if (!(lo.x > hi.x) && inside(q, lo, hi)) mask |= 1u << i;
+      }
+      return mask;
+    };
+    const bool got8 =
+        bvh.any_leaf_wide8(boxes8, boxes8, [&](std::uint32_t first, std::uint32_t count) {
+          for (std::uint32_t i = first; i < first + count; ++i)
+            if (inside(q, ordered[i].lo, ordered[i].hi)) return true;
+          return false;
+        });
+    ASSERT_EQ(got8, want) << k;
     found += got;
   }
   EXPECT_GT(found, 50);  // both outcomes occur (boxes fill ~8 % of the volume)

@@ -96,5 +96,51 @@ TEST(ShadowCone, FourBoxesAsOne) {
   EXPECT_LT(touching, 7000);
 }
 
+// The eight-box tests (an 8-wide BVH node's children): the SSE halves and, where the CPU has it,
+// the AVX2 pass give the scalar test's answer for every box, empty slots never touching.
+TEST(ShadowCone, EightBoxesAsOne) {
+  const Vec3 apex{-0.2f, 0.1f, 0.4f}, light{-1.0f, 3.0f, 1.5f};
+  const ShadowCone cone(apex, light, 0.3f, 1e-4f);
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  int touching = 0;
+  for (int k = 0; k < 2000; ++k) {
+    alignas(32) float planes[6][8];
+    bool want[8];
+    for (int i = 0; i < 8; ++i) {
+      const Vec3 c = apex + (light - apex) * (0.7f * (u(rng) + 1.0f) - 0.2f) +
+                     Vec3{u(rng), u(rng), u(rng)} * 0.6f;
+      const Vec3 e = Vec3{u(rng) + 1.0f, u(rng) + 1.0f, u(rng) + 1.0f} * 0.2f;
+      const Vec3 lo = c - e, hi = c + e;
+      for (int a = 0; a < 3; ++a) {
+        planes[2 * a][i] = lo[a];
+        planes[2 * a + 1][i] = hi[a];
+      }
+      want[i] = cone.may_touch_box(lo, hi);
+    }
+    if (k % 5 == 0) {  // empty slots, as in a node with fewer than eight children
+      for (int i = 8 - 1 - k % 4; i < 8; ++i) {
+        for (int a = 0; a < 3; ++a) {
+          planes[2 * a][i] = std::numeric_limits<float>::infinity();
+          planes[2 * a + 1][i] = -std::numeric_limits<float>::infinity();
+        }
+        want[i] = false;
+      }
+    }
+    const unsigned sse = cone.may_touch_boxes8(planes);
+    for (int i = 0; i < 8; ++i) {
+      ASSERT_EQ(bool(sse & (1u << i)), want[i]) << k << " " << i;
+      touching += want[i];
+    }
+#if THAW_AVX2_DISPATCH
+    if (cpu_supports_avx2()) {
+      ASSERT_EQ(cone.may_touch_boxes8_avx2(planes), sse) << k;
+    }
+#endif
+  }
+  EXPECT_GT(touching, 2000);
+  EXPECT_LT(touching, 14000);
+}
+
 }  // namespace
 }  // namespace thaw::render
