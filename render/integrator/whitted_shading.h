@@ -340,8 +340,9 @@ class WhittedShading {
     return result;
   }
 
-  /// A texture's colour at a hit seen along unit direction d: its mean over the box bounding the
-  /// ray cone's footprint (Texture::eval_footprint, one closed-form lookup), an ellipse of minor
+  /// A texture's colour at a hit seen along unit direction d: its mean over the tighter box (the
+  /// texture's axes or the plane's diagonals) bounding the ray cone's footprint
+  /// (Texture::eval_footprint, closed-form lookups), an ellipse of minor
   /// half-axis w and major half-axis w / cos along d's projection on the surface, w the cone's
   /// width at the hit (one pixel there, or what reflections and refractions made of it). Half-axes
   /// of one pixel, a footprint two pixels across: a box average's first zero falls on a checker

@@ -7,9 +7,10 @@
 // square wave's box mean is a difference of its integral, a triangle wave (the box-filtered
 // checkerboard of Apodaca & Gritz 2000, "Advanced RenderMan", sec. 11.4; Quilez, "Filtering
 // checkerboards", iquilezles.org/articles/checkerfiltering). eval_footprint() averages it over the
-// box bounding a ray's footprint, an ellipse on the surface (TextureFootprint). Far away, where the
-// footprint spans many cells, both tend to the cells' mean colour: no moire at the horizon. Knows
-// nothing about rays, cameras or pixels.
+// box bounding a ray's footprint, an ellipse on the surface (TextureFootprint), in the texture's
+// axes or along the plane's diagonals, whichever is tighter (diagonal_box_mean: also closed form).
+// Far away, where the footprint spans many cells, both tend to the cells' mean colour: no moire at
+// the horizon. Knows nothing about rays, cameras or pixels.
 #include <algorithm>
 #include <cmath>
 
@@ -62,10 +63,7 @@ struct Texture {
   /// `half_extent` [scene units] (a box filter per axis); eval(p) where the extent is 0.
   Rgb eval_filtered(const Vec3& p, const Vec3& half_extent) const {
     if (kind == Kind::solid) return color0;
-    const double inv = 1.0 / double(size);
-    const double q = square_wave_mean(double(p.x - offset.x) * inv, double(half_extent.x) * inv) *
-                     square_wave_mean(double(p.y - offset.y) * inv, double(half_extent.y) * inv) *
-                     square_wave_mean(double(p.z - offset.z) * inv, double(half_extent.z) * inv);
+    const double q = checker_mean(p, half_extent);
     const auto w0 = static_cast<float>(0.5 * (1.0 + q)), w1 = static_cast<float>(0.5 * (1.0 - q));
     return color0 * w0 + color1 * w1;
   }
@@ -84,21 +82,100 @@ struct Texture {
     return (triangle(t + h) - triangle(t - h)) / (2.0 * h);
   }
 
-  /// The mean colour over footprint `f` (an ellipse on the surface) as the mean over the
-  /// axis-aligned box bounding it: half-extent per axis i sqrt((A a_i)^2 + (B b_i)^2) for
-  /// half-axes A, B along unit a, b (Quilez's box of the texture-space derivatives). One
-  /// closed-form lookup. Exact in kind where the ellipse's long axis follows a texture axis; seen
-  /// diagonally the box is as wide across the view as along it, so checks resolved across the
-  /// view but compressed below the footprint along it fade with those along it (a grazing floor
-  /// at 45 degrees to its rows turns flat where one along a row keeps its converging stripes).
-  /// Boxes along the long axis would keep them but leave a residual that varies from sample to
-  /// sample (speckle where the few samples of a pixel cannot average it; docs/benchmarks.md
-  /// "Checker footprint"). eval(center) where the footprint has no extent.
+  /// The mean colour over footprint `f` (an ellipse on the surface with half-axes A = major,
+  /// B = minor) as the exact mean over the box bounding it in one of two frames of the surface's
+  /// plane: the texture's own axes (the box per axis i half sqrt((A a_i)^2 + (B b_i)^2): Quilez's
+  /// box of the texture-space derivatives), or the plane's two diagonals (diagonal_box_mean),
+  /// where the checker is as simple: along a diagonal its cells of one colour touch corner to
+  /// corner. The tighter box is taken (the smaller area), both blended in between (diagonal share
+  /// ramping from 0 where the two areas are equal to 1 where the diagonal box is half the other:
+  /// no seam on the floor where the view turns). A footprint along a texture axis or a diagonal
+  /// is then bounded by a box of its own size; a long one between them (22.5 degrees from both)
+  /// by one up to 0.38 A across, as before: the checker's converging rows survive where they
+  /// exist, seen along an axis or along a diagonal, and fade to the mean colour where the view
+  /// compresses them below the footprint (one box of the texture's axes around a floor seen at 45
+  /// degrees to its rows, 0.7 A across instead of B, turned it flat far too soon). The axis normal
+  /// to the plane (the largest component of a x b) enters as its own per-axis box factor.
+  /// eval(center) where the footprint has no extent.
   Rgb eval_footprint(const TextureFootprint& f) const {
     if (kind == Kind::solid) return color0;
     const Vec3 a = f.major_axis * f.major, b = f.minor_axis * f.minor;
     const auto half = [](float u, float v) { return std::sqrt(u * u + v * v); };
-    return eval_filtered(f.center, Vec3{half(a.x, b.x), half(a.y, b.y), half(a.z, b.z)});
+    const Vec3 axis_half{half(a.x, b.x), half(a.y, b.y), half(a.z, b.z)};
+    // The plane's two texture axes i, j (k: the one closest to the normal).
+    const Vec3 n = cross(f.major_axis, f.minor_axis);
+    const int k = std::abs(n.x) >= std::abs(n.y) && std::abs(n.x) >= std::abs(n.z) ? 0
+                  : std::abs(n.y) >= std::abs(n.z)                                 ? 1
+                                                                                   : 2;
+    const int i = k == 0 ? 1 : 0, j = k == 2 ? 1 : 2;
+    // Half-extents along p = t_i + t_j and m = t_i - t_j (t in cells); the diagonal box's area
+    // in the plane is 2 h_p h_m (the map (t_i, t_j) -> (p, m) doubles areas), the axis box's
+    // 4 h_i h_j.
+    const float hp = half(a[i] + a[j], b[i] + b[j]), hm = half(a[i] - a[j], b[i] - b[j]);
+    const float axis_area = 4.0f * axis_half[i] * axis_half[j], diagonal_area = 2.0f * hp * hm;
+    const float w =
+        axis_area > 0.0f ? std::clamp(2.0f * (1.0f - diagonal_area / axis_area), 0.0f, 1.0f) : 0.0f;
+    double q = 0.0;
+    if (w < 1.0f) q += (1.0 - w) * checker_mean(f.center, axis_half);
+    if (w > 0.0f) {
+      const double inv = 1.0 / double(size);
+      const double ti = double(f.center[i] - offset[i]) * inv,
+                   tj = double(f.center[j] - offset[j]) * inv;
+      q += w * square_wave_mean(double(f.center[k] - offset[k]) * inv, double(axis_half[k]) * inv) *
+           diagonal_box_mean(ti + tj, ti - tj, double(hp) * inv, double(hm) * inv);
+    }
+    const auto w0 = static_cast<float>(0.5 * (1.0 + q)), w1 = static_cast<float>(0.5 * (1.0 - q));
+    return color0 * w0 + color1 * w1;
+  }
+
+  /// The checker's sign q = s(x) s(y) s(z) (+1 on colour 0) averaged over the box p +- half
+  /// [scene units]: eval_filtered's weight.
+  double checker_mean(const Vec3& p, const Vec3& half_extent) const {
+    const double inv = 1.0 / double(size);
+    return square_wave_mean(double(p.x - offset.x) * inv, double(half_extent.x) * inv) *
+           square_wave_mean(double(p.y - offset.y) * inv, double(half_extent.y) * inv) *
+           square_wave_mean(double(p.z - offset.z) * inv, double(half_extent.z) * inv);
+  }
+
+  /// The mean of s(u) s(v) (a 2D checker of unit cells, +1 where floor u + floor v is even) over
+  /// the box p +- hp, m +- hm in its diagonal coordinates p = u + v, m = u - v [cells]. Closed
+  /// form: sin(pi u) sin(pi v) = (cos(pi m) - cos(pi p)) / 2, so s(u) s(v) = sign(T(p) - T(m))
+  /// with T the distance to the nearest even integer (the triangle wave of square_wave_mean),
+  /// periodic in p and in m apart; its integral from 0 is diagonal_integral. Extents are taken
+  /// as at least 1e-4 cells (the corners' differences keep 1e-8 of their precision; the
+  /// diagonal frame serves elongated footprints only).
+  static double diagonal_box_mean(double p, double m, double hp, double hm) {
+    if (!(std::abs(p) + hp < 0x1p52) || !(std::abs(m) + hm < 0x1p52)) return 0.0;
+    hp = std::max(hp, 1e-4), hm = std::max(hm, 1e-4);
+    // Both integrands are 2-periodic: centre p and m in [0, 2) so the corners stay small.
+    p -= 2.0 * floor_to_integer(0.5 * p), m -= 2.0 * floor_to_integer(0.5 * m);
+    const double sum = diagonal_integral(p + hp, m + hm) - diagonal_integral(p - hp, m + hm) -
+                       diagonal_integral(p + hp, m - hm) + diagonal_integral(p - hp, m - hm);
+    return sum / (4.0 * hp * hm);
+  }
+
+  /// F(P, M) = integral over [0, P] x [0, M] of sign(T(p) - T(m)) dm dp, odd in each argument
+  /// (T is even). On [0, P] the levels T(p) in [0, 1] are met with weight C + sigma [t < alpha]
+  /// (diagonal_levels), so F = integral over t, tau in [0, 1]^2 of sign(t - tau) w_P(t) w_M(tau):
+  /// with J(x, y) = integral over [0, x] x [0, y] of sign(t - tau) = (x - y) min(x, y), and
+  /// J(1, 1) = 0, F = C_P s_M J(1, a_M) + s_P C_M J(a_P, 1) + s_P s_M J(a_P, a_M).
+  static double diagonal_integral(double P, double M) {
+    const double sign = (P < 0.0) == (M < 0.0) ? 1.0 : -1.0;
+    const Levels a = diagonal_levels(std::abs(P)), b = diagonal_levels(std::abs(M));
+    const auto J = [](double x, double y) { return (x - y) * std::min(x, y); };
+    return sign * (a.c * b.sigma * J(1.0, b.alpha) + a.sigma * b.c * J(a.alpha, 1.0) +
+                   a.sigma * b.sigma * J(a.alpha, b.alpha));
+  }
+
+  /// How often [0, P] (P >= 0) meets each level t of T: C + sigma [t < alpha]. Each full period
+  /// of 2 meets every level twice; a remainder r <= 1 meets [0, r) once more; r > 1 meets [0, 1]
+  /// once and (2 - r, 1] once more, i.e. 2 - [t < 2 - r].
+  struct Levels {
+    double c, sigma, alpha;
+  };
+  static Levels diagonal_levels(double P) {
+    const double periods = floor_to_integer(0.5 * P), r = P - 2.0 * periods;
+    return r <= 1.0 ? Levels{2.0 * periods, 1.0, r} : Levels{2.0 * periods + 2.0, -1.0, 2.0 - r};
   }
 };
 

@@ -1,10 +1,13 @@
 // Tests render/material/texture.h: the 3D checker parity and offset convention of POV-Ray, its
 // libm-free floor, its closed-form box mean against numerical integration, and its footprint
-// mean (limits, one exact box along a texture axis, the bounding box along a diagonal).
+// mean (limits, one exact box along a texture axis, the diagonal frame's closed form and its
+// choice).
 #include "render/material/texture.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -177,24 +180,101 @@ TEST(Texture, FootprintAlongATextureAxisIsOneExactBox) {
   }
 }
 
-TEST(Texture, DiagonalFootprintIsBoundedByItsBox) {
+TEST(Texture, DiagonalBoxMeanMatchesNumericalIntegration) {
+  // The closed form against the point checker s(u) s(v) (parity of floor u + floor v) over the
+  // box in diagonal coordinates, integrated numerically: each of n rows of constant m exactly in
+  // p (split where u = (p + m)/2 or v = (p - m)/2 crosses an integer, the parity at each piece's
+  // middle), the rows by the midpoint rule. The row integral is piecewise linear in m with slopes
+  // of at most 2 (two moving breakpoints per crossing) and jumps of at most 4 at fewer than
+  // K = 4 (hm + hp + 2) kinks; the midpoint rule is exact on linear pieces and off by at most
+  // 4 dm^2 / 8 at a kink: error <= K dm^2 / 2 / (2 hm) with dm = 2 hm / n, below 1e-4 here.
+  const auto point = [](double u, double v) {
+    return ((long long)std::floor(u) + (long long)std::floor(v)) % 2 == 0 ? 1.0 : -1.0;
+  };
+  const int n = 800;
+  for (const auto& [p, m, hp, hm] : std::vector<std::array<double, 4>>{{0.3, 0.1, 0.4, 0.2},
+                                                                       {1.7, -0.4, 2.5, 0.05},
+                                                                       {-3.2, 5.1, 0.7, 1.9},
+                                                                       {10.25, 0.0, 3.0, 0.1},
+                                                                       {0.0, 0.0, 0.01, 0.01}}) {
+    double sum = 0.0;
+    for (int j = 0; j < n; ++j) {
+      const double mj = m - hm + (j + 0.5) * 2.0 * hm / n;
+      std::vector<double> cuts{p - hp, p + hp};
+      for (double k = std::floor((p - hp + mj) / 2.0); 2.0 * k - mj < p + hp; ++k)
+        cuts.push_back(2.0 * k - mj);  // u = k
+      for (double k = std::floor((p - hp - mj) / 2.0); 2.0 * k + mj < p + hp; ++k)
+        cuts.push_back(2.0 * k + mj);  // v = k
+      std::sort(cuts.begin(), cuts.end());
+      double row = 0.0;
+      for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
+        const double a0 = std::max(cuts[c], p - hp), a1 = std::min(cuts[c + 1], p + hp);
+        if (a1 <= a0) continue;
+        const double mid = 0.5 * (a0 + a1);
+        row += (a1 - a0) * point(0.5 * (mid + mj), 0.5 * (mid - mj));
+      }
+      sum += row / (2.0 * hp);
+    }
+    const double kinks = 4.0 * (hm + hp + 2.0), dm = 2.0 * hm / n;
+    const double bound = kinks * dm * dm / 2.0 / (2.0 * hm) + 1e-9;
+    EXPECT_NEAR(Texture::diagonal_box_mean(p, m, hp, hm), sum / n, bound)
+        << p << " " << m << " " << hp << " " << hm;
+  }
+  // Periodic in p and in m apart (period 2 each), and the point value for a small box inside a
+  // cell: p = 1, m = 0 is u = v = 0.5, colour 0.
+  EXPECT_NEAR(Texture::diagonal_box_mean(1.0, 0.0, 0.1, 0.1), 1.0, 1e-9);
+  EXPECT_NEAR(Texture::diagonal_box_mean(0.0, 1.0, 0.1, 0.1), -1.0, 1e-9);
+  EXPECT_NEAR(Texture::diagonal_box_mean(0.37, 0.81, 0.6, 0.3),
+              Texture::diagonal_box_mean(4.37, -5.19, 0.6, 0.3), 1e-9);
+}
+
+TEST(Texture, DiagonalFootprintKeepsTheDiagonalRowsContrast) {
   // A footprint 100 times longer than wide along the diagonal x = z (a floor seen at 45 degrees
-  // to its rows, near the horizon): the box bounding it reaches A / sqrt(2) along x and z, 7.07
-  // cells for A = 10, so whatever its position the mean is within the box bound
-  // 1/(2 * 7.07) per axis, (1/14.1)^2 / 2 = 2.5e-3 in colour, of the mean colour: the along-view
-  // compression is filtered whatever the orientation (the minor axis alone, 0.1 cells, would
-  // leave the checker's full contrast). And it is the box of the formula, per axis
-  // sqrt((A a_i)^2 + (B b_i)^2).
+  // to its rows, towards the horizon), centred on the middle of a colour-0 cell: it runs along a
+  // chain of colour-0 cells touching corner to corner. In diagonal coordinates (p = x + z,
+  // m = x - z) it spans |m| <= sqrt(2) B and colour 1 fills the part |p - even| < |m|: a share of
+  // the mean of |m|, B / sqrt(2) = 0.0707 for B = 0.1 cells, up to the partial period of p
+  // (0.28 of its 28.3 at most 0.0014). The box of the texture's axes around it (0.7 A = 7 cells in
+  // x and z) gave the mean colour, 0.5 red, within 2.5e-3.
   const Texture t = red_blue_checker(1.0f);
   const float r = std::sqrt(0.5f);
   const Vec3 a{r, 0, r}, b{-r, 0, r};
-  for (const Vec3 c : {Vec3{0.5f, 0.5f, 0.5f}, Vec3{0.3f, 0.5f, 0.6f}, Vec3{-4.2f, 0.5f, 7.9f}}) {
+  for (const Vec3 c : {Vec3{0.5f, 0.5f, 0.5f}, Vec3{-3.5f, 0.5f, 4.5f}}) {
     const Rgb f = t.eval_footprint({c, a, b, 10.0f, 0.1f});
-    EXPECT_NEAR(f.r, 0.5f, 2.5e-3f) << c.x;
-    const float e = std::sqrt(50.0f + 0.005f);
-    const Rgb box = t.eval_filtered(c, {e, 0.0f, e});
-    EXPECT_NEAR(f.r, box.r, 1e-6f) << c.x;
+    EXPECT_NEAR(f.r, 1.0 - 0.1 / std::sqrt(2.0), 0.003) << c.x;
+    EXPECT_NEAR(f.r + f.b, 1.0f, 1e-6f);
   }
+  // Across the chains (centred on a corner between them, m = 1) it is the other colour's mean:
+  // the rows are resolved across the view and kept.
+  const Rgb across = t.eval_footprint({{1.0f, 0.5f, 0.0f}, a, b, 10.0f, 0.1f});
+  EXPECT_LT(across.r, 0.1f);
+}
+
+TEST(Texture, FootprintFrameIsTheTighterBoxWithoutASeam) {
+  // A round footprint, turned any way, and one along a texture axis keep the box of the
+  // texture's axes (that box is no larger than the diagonal one); turning an elongated footprint
+  // from the x axis to the diagonal moves the value continuously (the two boxes are blended where
+  // their areas are within a factor 2): no step between 0.01-degree turns larger than what the
+  // box means' own slope gives (|d mean / d angle| <= 2 (A / cell) / h_min per radian, ~0.02
+  // here), where switching boxes at once would jump by up to 1.
+  const Texture t = red_blue_checker(1.0f);
+  const Vec3 c{0.3f, 0.5f, 0.8f};
+  for (const float deg : {0.0f, 17.0f, 45.0f, 60.0f}) {
+    const float th = deg * 3.14159265f / 180.0f;
+    const Vec3 a{std::cos(th), 0, std::sin(th)}, b{-std::sin(th), 0, std::cos(th)};
+    const float e = 0.4f * std::sqrt(std::cos(th) * std::cos(th) + std::sin(th) * std::sin(th));
+    EXPECT_NEAR(t.eval_footprint({c, a, b, 0.4f, 0.4f}).r, t.eval_filtered(c, {e, 0, e}).r, 1e-6f)
+        << deg;
+  }
+  float previous = -1.0f, largest_step = 0.0f;
+  for (int step = 0; step <= 4500; ++step) {
+    const float th = float(step) * 0.01f * 3.14159265f / 180.0f;
+    const Vec3 a{std::cos(th), 0, std::sin(th)}, b{-std::sin(th), 0, std::cos(th)};
+    const float red = t.eval_footprint({c, a, b, 3.0f, 0.3f}).r;
+    if (previous >= 0.0f) largest_step = std::max(largest_step, std::abs(red - previous));
+    previous = red;
+  }
+  EXPECT_LT(largest_step, 0.02f);
 }
 
 }  // namespace
