@@ -154,8 +154,13 @@ Rgb environment_irradiance(const Scene& scene, const EnvironmentOccluders& occlu
   int seen = 0, hidden = 0;
   for (std::uint32_t j = 0; j < n_max; ++j) {
     if (j == n && (seen == 0 || hidden == 0)) break;
-    const Vec3 wi =
-        cosine_direction(ns, camera.sampler->get_2d(camera.sample_index * n_max + j, dim));
+    // The first n of camera sample s are points s n .. s n + n - 1 of the pair: the pixel's
+    // first S n rays together form one net (stratified across its camera samples, as the sphere
+    // lights' shadow rays: light_sampling.h); the rest come from the penumbra pair.
+    const sampling::Point2 u = j < n ? camera.sampler->get_2d(camera.sample_index * n + j, dim)
+                                     : camera.sampler->get_2d(camera.sample_index * n_max + j,
+                                                              dim + kPenumbraDimensionOffset);
+    const Vec3 wi = cosine_direction(ns, u);
     if (dot(wi, ng) <= 0.0f) continue;
     // + a floor so that a black part of the sky still counts as directions
     const double w = double(luminance(env.radiance(wi))) + 1e-6;

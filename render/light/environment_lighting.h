@@ -58,9 +58,11 @@ class EnvironmentOccluders {
 /// Irradiance from the environment at point p (rounding bound p_error, normals ng and ns facing
 /// the side being lit) on object `object`, tree level `depth`, camera sample `ctx`. Shadow rays
 /// use the pixel sampler's dimension pair after the sphere lights' (light_dimension(depth,
-/// number of sphere lights)): for camera sample s, points s N .. s N + n - 1 with n =
-/// occlusion_samples, N = penumbra_samples(n), and the rest up to s N + N - 1 where the first n
-/// are neither all seen nor all hidden. `rays` counts them.
+/// number of sphere lights)): for camera sample s, points s n .. s n + n - 1 with n =
+/// occlusion_samples (the first n of all camera samples of a pixel form one net: stratified
+/// across the pixel), and where they are neither all seen nor all hidden, N - n more, points
+/// s N + n .. s N + N - 1 (N = penumbra_samples(n)) of the penumbra pair (+
+/// kPenumbraDimensionOffset), as the sphere lights' shadow rays. `rays` counts them.
 Rgb environment_irradiance(const Scene& scene, const EnvironmentOccluders& occluders, const Vec3& p,
                            const Vec3& p_error, const Vec3& ng, const Vec3& ns,
                            std::uint32_t object, int depth, const CameraSampleContext& ctx,

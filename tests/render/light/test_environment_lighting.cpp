@@ -139,6 +139,39 @@ TEST(EnvironmentLighting, FloorHidesTheLowerHalfFromAWall) {
   EXPECT_GT(rays, 0u);
 }
 
+TEST(EnvironmentLighting, RaysAreStratifiedAcrossThePixelsCameraSamples) {
+  // The wall of the test above with one ray per camera sample (occlusion_samples = 1: one ray
+  // always agrees with itself, so no penumbra rays): a pixel's 64 camera samples see the floor
+  // with their 64 rays, points 0 .. 63 of one pair, a (0,6,2)-net. The floor hides a half-plane
+  // through the centre of the unit square (the concentric map keeps lines through its centre),
+  // which crosses at most 15 of the net's 8 x 8 elementary squares of one point each; only those
+  // err, each by a Bernoulli of variance <= 1/4 (Owen scrambling: independent across squares),
+  // so the pixel's hidden share errs by sqrt(15 / 4) / 64 = 0.030 (1 sd) at most. Rays spread
+  // unstratified over the camera samples (every 8th point, as before) err as independent ones,
+  // sqrt(1/4 / 64) = 0.0625: the RMS over 64 pixels must stay below 1.5 x 0.030.
+  SceneDescription d = floor_under_uniform_sky();
+  d.environment.occlusion_samples = 1;
+  const Scene scene = build_scene(d);
+  const EnvironmentOccluders occluders(scene);
+  const Vec3 n{1, 0, 0};
+  std::uint64_t rays = 0;
+  double squares = 0.0;
+  for (int y = 0; y < 8; ++y) {
+    for (int x = 0; x < 8; ++x) {
+      const sampling::PixelSampler sampler(x, y);
+      double sum = 0.0;
+      for (std::uint32_t s = 0; s < 64; ++s)
+        sum += environment_irradiance(scene, occluders, {0, 1, 0}, Vec3{1e-6f, 1e-6f, 1e-6f}, n, n,
+                                      1000, 1, {&sampler, s}, rays)
+                   .g;
+      const double hidden = 1.0 - sum / 64.0 / (std::numbers::pi * kL);
+      squares += (hidden - 0.5) * (hidden - 0.5);
+    }
+  }
+  EXPECT_EQ(rays, 64u * 64u);
+  EXPECT_LT(std::sqrt(squares / 64.0), 1.5 * 0.030);
+}
+
 TEST(EnvironmentLighting, RenderedMatteFloorShowsAlbedoTimesL) {
   SceneDescription d = floor_under_uniform_sky();
   d.camera.position = {0, 1, 0};
