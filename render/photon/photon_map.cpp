@@ -122,7 +122,7 @@ PhotonMap::PhotonMap(const std::vector<Photon>& photons, float radius, double ph
   if (nodes[0].count > 0) {  // a single leaf: a root with one child
     WideNode& root = m_wide[0];
     for (int a = 0; a < 3; ++a)
-      for (int i = 0; i < 4; ++i) {
+      for (int i = 0; i < kWidth; ++i) {
         root.lo[a][i] = std::numeric_limits<float>::infinity();
         root.hi[a][i] = -std::numeric_limits<float>::infinity();
       }
@@ -222,19 +222,25 @@ void PhotonMap::describe(const Node& node, WideNode& w, int i) const {
 }
 
 void PhotonMap::collapse(const std::vector<Node>& nodes, std::uint32_t node, std::uint32_t wide) {
-  // The node's children, and the children of interior children: up to four slots.
-  std::uint32_t slots[4];
-  int n = 0;
-  for (std::uint32_t c = nodes[node].first; c < nodes[node].first + 2; ++c) {
-    if (nodes[c].count > 0) {
-      slots[n++] = c;
-    } else {
-      slots[n++] = nodes[c].first;
-      slots[n++] = nodes[c].first + 1;
+  // The node's children, and interior ones opened level by level into theirs: up to kWidth
+  // slots, in the binary tree's left-to-right order.
+  std::uint32_t slots[kWidth] = {nodes[node].first, nodes[node].first + 1};
+  int n = 2;
+  for (bool opened = true; opened && n < kWidth;) {
+    opened = false;
+    for (int i = 0; i < n && n < kWidth; ++i) {
+      if (nodes[slots[i]].count > 0) continue;
+      const std::uint32_t first = nodes[slots[i]].first;
+      for (int j = n; j > i + 1; --j) slots[j] = slots[j - 1];
+      slots[i] = first;
+      slots[i + 1] = first + 1;
+      ++n;
+      ++i;  // the new right child stays for the next level
+      opened = true;
     }
   }
   WideNode w{};
-  for (int i = 0; i < 4; ++i) {
+  for (int i = 0; i < kWidth; ++i) {
     const bool used = i < n;
     const Vec3 lo =
         used ? nodes[slots[i]].lo : Vec3{1, 1, 1} * std::numeric_limits<float>::infinity();
@@ -264,30 +270,88 @@ void PhotonMap::collapse(const std::vector<Node>& nodes, std::uint32_t node, std
 
 #if defined(__SSE2__)
 namespace {
-/// Lanes 0..7 of a channel's per-lane sums added in one fixed order (both leaf kernels).
+/// Lanes 0..7 of a channel's per-lane sums added in one fixed order (both kernels).
 float lane_total(const float s[8]) {
   return ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
 }
 }  // namespace
 
-/// Leaf kernel, SSE: a block's 8 photons as two halves of 4, each lane summed on its own.
-struct PhotonMap::LeafSums {
-  __m128 px, py, pz, qx, qy, qz;
+/// The lookup's tests for 8 lanes (a node's children, a leaf's photons), SSE: two halves of 4,
+/// each lane summed on its own.
+struct PhotonMap::LookupSse {
+  __m128 px, py, pz, qx, qy, qz, aqx, aqy, aqz;
   __m128 sum_r[2], sum_g[2], sum_b[2];
 
-  LeafSums(const Vec3& p, const Vec3& n)
+  LookupSse(const Vec3& p, const Vec3& n)
       : px(_mm_set1_ps(p.x)),
         py(_mm_set1_ps(p.y)),
         pz(_mm_set1_ps(p.z)),
         qx(_mm_set1_ps(n.x)),
         qy(_mm_set1_ps(n.y)),
-        qz(_mm_set1_ps(n.z)) {
+        qz(_mm_set1_ps(n.z)),
+        aqx(_mm_set1_ps(std::fabs(n.x))),
+        aqy(_mm_set1_ps(std::fabs(n.y))),
+        aqz(_mm_set1_ps(std::fabs(n.z))) {
     for (int h = 0; h < 2; ++h) sum_r[h] = sum_g[h] = sum_b[h] = _mm_setzero_ps();
   }
 
-  /// Adds the block's photons that count at p; with `on_surface` the normal and plane tests are
-  /// known to pass (see photon_map.h).
-  void add(const PhotonBlock& b, bool on_surface) {
+  /// The children whose boxes contain p.
+  unsigned inside(const WideNode& w) const {
+    unsigned mask = 0;
+    for (int o = 0; o < kWidth; o += 4) {
+      const __m128 in =
+          _mm_and_ps(_mm_and_ps(_mm_and_ps(_mm_cmple_ps(_mm_load_ps(w.lo[0] + o), px),
+                                           _mm_cmple_ps(px, _mm_load_ps(w.hi[0] + o))),
+                                _mm_and_ps(_mm_cmple_ps(_mm_load_ps(w.lo[1] + o), py),
+                                           _mm_cmple_ps(py, _mm_load_ps(w.hi[1] + o)))),
+                     _mm_and_ps(_mm_cmple_ps(_mm_load_ps(w.lo[2] + o), pz),
+                                _mm_cmple_ps(pz, _mm_load_ps(w.hi[2] + o))));
+      mask |= static_cast<unsigned>(_mm_movemask_ps(in)) << o;
+    }
+    return mask;
+  }
+
+  /// The children whose subtrees lie on the query's surface: their common normal passes the
+  /// normal test (the per-photon expression, so the same float value), and the box of their
+  /// positions lies within r_min / 4 of the tangent plane: |(c - p).n| + half extents projected
+  /// on n, plus a bound on that sum's rounding, with the margin kSurfaceMargin.
+  unsigned on_surface(const WideNode& w) const {
+    const __m128 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+    const __m128 half = _mm_set1_ps(0.5f), rounding = _mm_set1_ps(kRoundingBound),
+                 surface_h2 = _mm_set1_ps(kMaxPlaneDistance * kMaxPlaneDistance * kSurfaceMargin),
+                 min_cos = _mm_set1_ps(kMinNormalCos);
+    unsigned mask = 0;
+    for (int o = 0; o < kWidth; o += 4) {
+      const __m128 lox = _mm_load_ps(w.pos_lo[0] + o), hix = _mm_load_ps(w.pos_hi[0] + o);
+      const __m128 loy = _mm_load_ps(w.pos_lo[1] + o), hiy = _mm_load_ps(w.pos_hi[1] + o);
+      const __m128 loz = _mm_load_ps(w.pos_lo[2] + o), hiz = _mm_load_ps(w.pos_hi[2] + o);
+      const __m128 cos_n = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_load_ps(w.normal[0] + o), qx),
+                                                 _mm_mul_ps(_mm_load_ps(w.normal[1] + o), qy)),
+                                      _mm_mul_ps(_mm_load_ps(w.normal[2] + o), qz));
+      const __m128 dx = _mm_mul_ps(_mm_sub_ps(_mm_mul_ps(_mm_add_ps(lox, hix), half), px), qx);
+      const __m128 dy = _mm_mul_ps(_mm_sub_ps(_mm_mul_ps(_mm_add_ps(loy, hiy), half), py), qy);
+      const __m128 dz = _mm_mul_ps(_mm_sub_ps(_mm_mul_ps(_mm_add_ps(loz, hiz), half), pz), qz);
+      const __m128 extent =
+          _mm_mul_ps(half, _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_sub_ps(hix, lox), aqx),
+                                                 _mm_mul_ps(_mm_sub_ps(hiy, loy), aqy)),
+                                      _mm_mul_ps(_mm_sub_ps(hiz, loz), aqz)));
+      const __m128 terms =
+          _mm_add_ps(_mm_add_ps(_mm_and_ps(dx, abs_mask), _mm_and_ps(dy, abs_mask)),
+                     _mm_add_ps(_mm_and_ps(dz, abs_mask), extent));
+      const __m128 hb =
+          _mm_add_ps(_mm_add_ps(_mm_and_ps(_mm_add_ps(_mm_add_ps(dx, dy), dz), abs_mask), extent),
+                     _mm_mul_ps(terms, rounding));
+      const __m128 ok = _mm_and_ps(
+          _mm_cmpge_ps(cos_n, min_cos),
+          _mm_cmple_ps(_mm_mul_ps(_mm_mul_ps(hb, hb), _mm_load_ps(w.max_inv_r2 + o)), surface_h2));
+      mask |= static_cast<unsigned>(_mm_movemask_ps(ok)) << o;
+    }
+    return mask & w.one_normal;
+  }
+
+  /// Adds the block's photons that count at p; with `flat` the normal and plane tests are known
+  /// to pass (see photon_map.h).
+  void add(const PhotonBlock& b, bool flat) {
     const __m128 one = _mm_set1_ps(1.0f), min_cos = _mm_set1_ps(kMinNormalCos),
                  max_h2 = _mm_set1_ps(kMaxPlaneDistance * kMaxPlaneDistance);
     for (int h = 0; h < 2; ++h) {
@@ -299,7 +363,7 @@ struct PhotonMap::LeafSums {
       const __m128 u = _mm_mul_ps(
           _mm_add_ps(_mm_add_ps(_mm_mul_ps(vx, vx), _mm_mul_ps(vy, vy)), _mm_mul_ps(vz, vz)), inv);
       __m128 ok = _mm_cmplt_ps(u, one);
-      if (!on_surface) {
+      if (!flat) {
         const __m128 cos_n = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_load_ps(b.nx + o), qx),
                                                    _mm_mul_ps(_mm_load_ps(b.ny + o), qy)),
                                         _mm_mul_ps(_mm_load_ps(b.nz + o), qz));
@@ -327,23 +391,74 @@ struct PhotonMap::LeafSums {
 };
 
 #if THAW_AVX2_DISPATCH
-/// Leaf kernel, AVX2: LeafSums's operations on all 8 lanes at once (no FMA: the same rounding).
-struct PhotonMap::LeafSumsAvx2 {
-  __m256 px, py, pz, qx, qy, qz;
+/// LookupSse's tests on all 8 lanes at once: the same operations lane for lane (no FMA: the
+/// same rounding), so the same masks and sums.
+struct PhotonMap::LookupAvx2 {
+  __m256 px, py, pz, qx, qy, qz, aqx, aqy, aqz;
   __m256 sum_r, sum_g, sum_b;
 
-  THAW_TARGET_AVX2 LeafSumsAvx2(const Vec3& p, const Vec3& n)
+  THAW_TARGET_AVX2 LookupAvx2(const Vec3& p, const Vec3& n)
       : px(_mm256_set1_ps(p.x)),
         py(_mm256_set1_ps(p.y)),
         pz(_mm256_set1_ps(p.z)),
         qx(_mm256_set1_ps(n.x)),
         qy(_mm256_set1_ps(n.y)),
         qz(_mm256_set1_ps(n.z)),
+        aqx(_mm256_set1_ps(std::fabs(n.x))),
+        aqy(_mm256_set1_ps(std::fabs(n.y))),
+        aqz(_mm256_set1_ps(std::fabs(n.z))),
         sum_r(_mm256_setzero_ps()),
         sum_g(_mm256_setzero_ps()),
         sum_b(_mm256_setzero_ps()) {}
 
-  THAW_TARGET_AVX2 void add(const PhotonBlock& b, bool on_surface) {
+  THAW_TARGET_AVX2 unsigned inside(const WideNode& w) const {
+    const __m256 in = _mm256_and_ps(
+        _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(_mm256_load_ps(w.lo[0]), px, _CMP_LE_OQ),
+                                    _mm256_cmp_ps(px, _mm256_load_ps(w.hi[0]), _CMP_LE_OQ)),
+                      _mm256_and_ps(_mm256_cmp_ps(_mm256_load_ps(w.lo[1]), py, _CMP_LE_OQ),
+                                    _mm256_cmp_ps(py, _mm256_load_ps(w.hi[1]), _CMP_LE_OQ))),
+        _mm256_and_ps(_mm256_cmp_ps(_mm256_load_ps(w.lo[2]), pz, _CMP_LE_OQ),
+                      _mm256_cmp_ps(pz, _mm256_load_ps(w.hi[2]), _CMP_LE_OQ)));
+    return static_cast<unsigned>(_mm256_movemask_ps(in));
+  }
+
+  THAW_TARGET_AVX2 unsigned on_surface(const WideNode& w) const {
+    const __m256 abs_mask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
+    const __m256 half = _mm256_set1_ps(0.5f), rounding = _mm256_set1_ps(kRoundingBound),
+                 surface_h2 =
+                     _mm256_set1_ps(kMaxPlaneDistance * kMaxPlaneDistance * kSurfaceMargin),
+                 min_cos = _mm256_set1_ps(kMinNormalCos);
+    const __m256 lox = _mm256_load_ps(w.pos_lo[0]), hix = _mm256_load_ps(w.pos_hi[0]);
+    const __m256 loy = _mm256_load_ps(w.pos_lo[1]), hiy = _mm256_load_ps(w.pos_hi[1]);
+    const __m256 loz = _mm256_load_ps(w.pos_lo[2]), hiz = _mm256_load_ps(w.pos_hi[2]);
+    const __m256 cos_n =
+        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_load_ps(w.normal[0]), qx),
+                                    _mm256_mul_ps(_mm256_load_ps(w.normal[1]), qy)),
+                      _mm256_mul_ps(_mm256_load_ps(w.normal[2]), qz));
+    const __m256 dx =
+        _mm256_mul_ps(_mm256_sub_ps(_mm256_mul_ps(_mm256_add_ps(lox, hix), half), px), qx);
+    const __m256 dy =
+        _mm256_mul_ps(_mm256_sub_ps(_mm256_mul_ps(_mm256_add_ps(loy, hiy), half), py), qy);
+    const __m256 dz =
+        _mm256_mul_ps(_mm256_sub_ps(_mm256_mul_ps(_mm256_add_ps(loz, hiz), half), pz), qz);
+    const __m256 extent = _mm256_mul_ps(
+        half, _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(hix, lox), aqx),
+                                          _mm256_mul_ps(_mm256_sub_ps(hiy, loy), aqy)),
+                            _mm256_mul_ps(_mm256_sub_ps(hiz, loz), aqz)));
+    const __m256 terms =
+        _mm256_add_ps(_mm256_add_ps(_mm256_and_ps(dx, abs_mask), _mm256_and_ps(dy, abs_mask)),
+                      _mm256_add_ps(_mm256_and_ps(dz, abs_mask), extent));
+    const __m256 hb = _mm256_add_ps(
+        _mm256_add_ps(_mm256_and_ps(_mm256_add_ps(_mm256_add_ps(dx, dy), dz), abs_mask), extent),
+        _mm256_mul_ps(terms, rounding));
+    const __m256 ok = _mm256_and_ps(
+        _mm256_cmp_ps(cos_n, min_cos, _CMP_GE_OQ),
+        _mm256_cmp_ps(_mm256_mul_ps(_mm256_mul_ps(hb, hb), _mm256_load_ps(w.max_inv_r2)),
+                      surface_h2, _CMP_LE_OQ));
+    return static_cast<unsigned>(_mm256_movemask_ps(ok)) & w.one_normal;
+  }
+
+  THAW_TARGET_AVX2 void add(const PhotonBlock& b, bool flat) {
     const __m256 one = _mm256_set1_ps(1.0f), min_cos = _mm256_set1_ps(kMinNormalCos),
                  max_h2 = _mm256_set1_ps(kMaxPlaneDistance * kMaxPlaneDistance);
     const __m256 vx = _mm256_sub_ps(_mm256_load_ps(b.x), px),
@@ -355,7 +470,7 @@ struct PhotonMap::LeafSumsAvx2 {
                                     _mm256_mul_ps(vz, vz)),
                       inv);
     __m256 ok = _mm256_cmp_ps(u, one, _CMP_LT_OQ);
-    if (!on_surface) {
+    if (!flat) {
       const __m256 cos_n = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_load_ps(b.nx), qx),
                                                        _mm256_mul_ps(_mm256_load_ps(b.ny), qy)),
                                          _mm256_mul_ps(_mm256_load_ps(b.nz), qz));
@@ -381,64 +496,22 @@ struct PhotonMap::LeafSumsAvx2 {
 };
 #endif
 
-template <class Leaf>
+template <class Lanes>
 inline Rgb PhotonMap::lookup(const Vec3& p, const Vec3& n) const {
-  // Depth <= log2(N / kLeafPhotons) + 1 < 30 binary levels (median splits), <= 15 wide levels
-  // of at most 3 pushes each.
-  std::uint32_t stack[64];
+  // Depth <= log2(N / kLeafPhotons) + 1 < 28 binary levels (median splits); an 8-wide node
+  // pushes at most 7 children and spans at least one binary level: 7 * 28 < 256.
+  std::uint32_t stack[256];
   int top = 0;
   std::uint32_t node = 0;
   // Stack entries: a wide node, bit 31 set when its subtree lies on the query's surface (the
   // normal and plane tests pass for all its photons: only u < 1 is left to test).
   constexpr std::uint32_t kOnSurface = 1u << 31;
-  const __m128 px = _mm_set1_ps(p.x), py = _mm_set1_ps(p.y), pz = _mm_set1_ps(p.z);
-  const __m128 qx = _mm_set1_ps(n.x), qy = _mm_set1_ps(n.y), qz = _mm_set1_ps(n.z);
-  const __m128 min_cos = _mm_set1_ps(kMinNormalCos);
-  const __m128 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
-  const __m128 aqx = _mm_and_ps(qx, abs_mask), aqy = _mm_and_ps(qy, abs_mask),
-               aqz = _mm_and_ps(qz, abs_mask);
-  const __m128 half = _mm_set1_ps(0.5f), rounding = _mm_set1_ps(kRoundingBound),
-               surface_h2 = _mm_set1_ps(kMaxPlaneDistance * kMaxPlaneDistance * kSurfaceMargin);
-  Leaf leaf(p, n);
-  // The children of w (lanes) whose subtrees lie on the query's surface: their common normal
-  // passes the normal test (the per-photon expression, so the same float value), and the box of
-  // their positions lies within r_min / 4 of the tangent plane: |(c - p).n| + half extents
-  // projected on n, plus a bound on that sum's rounding, with the margin kSurfaceMargin.
-  const auto on_surface = [&](const WideNode& w) {
-    const __m128 lox = _mm_load_ps(w.pos_lo[0]), hix = _mm_load_ps(w.pos_hi[0]);
-    const __m128 loy = _mm_load_ps(w.pos_lo[1]), hiy = _mm_load_ps(w.pos_hi[1]);
-    const __m128 loz = _mm_load_ps(w.pos_lo[2]), hiz = _mm_load_ps(w.pos_hi[2]);
-    const __m128 cos_n = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_load_ps(w.normal[0]), qx),
-                                               _mm_mul_ps(_mm_load_ps(w.normal[1]), qy)),
-                                    _mm_mul_ps(_mm_load_ps(w.normal[2]), qz));
-    const __m128 dx = _mm_mul_ps(_mm_sub_ps(_mm_mul_ps(_mm_add_ps(lox, hix), half), px), qx);
-    const __m128 dy = _mm_mul_ps(_mm_sub_ps(_mm_mul_ps(_mm_add_ps(loy, hiy), half), py), qy);
-    const __m128 dz = _mm_mul_ps(_mm_sub_ps(_mm_mul_ps(_mm_add_ps(loz, hiz), half), pz), qz);
-    const __m128 extent =
-        _mm_mul_ps(half, _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_sub_ps(hix, lox), aqx),
-                                               _mm_mul_ps(_mm_sub_ps(hiy, loy), aqy)),
-                                    _mm_mul_ps(_mm_sub_ps(hiz, loz), aqz)));
-    const __m128 terms = _mm_add_ps(_mm_add_ps(_mm_and_ps(dx, abs_mask), _mm_and_ps(dy, abs_mask)),
-                                    _mm_add_ps(_mm_and_ps(dz, abs_mask), extent));
-    const __m128 hb =
-        _mm_add_ps(_mm_add_ps(_mm_and_ps(_mm_add_ps(_mm_add_ps(dx, dy), dz), abs_mask), extent),
-                   _mm_mul_ps(terms, rounding));
-    const __m128 ok = _mm_and_ps(
-        _mm_cmpge_ps(cos_n, min_cos),
-        _mm_cmple_ps(_mm_mul_ps(_mm_mul_ps(hb, hb), _mm_load_ps(w.max_inv_r2)), surface_h2));
-    return static_cast<unsigned>(_mm_movemask_ps(ok)) & w.one_normal;
-  };
+  Lanes lanes(p, n);
   while (true) {
     const bool surface = node & kOnSurface;
     const WideNode& w = m_wide[node & ~kOnSurface];
-    const __m128 in = _mm_and_ps(
-        _mm_and_ps(_mm_and_ps(_mm_cmple_ps(_mm_load_ps(w.lo[0]), px),
-                              _mm_cmple_ps(px, _mm_load_ps(w.hi[0]))),
-                   _mm_and_ps(_mm_cmple_ps(_mm_load_ps(w.lo[1]), py),
-                              _mm_cmple_ps(py, _mm_load_ps(w.hi[1])))),
-        _mm_and_ps(_mm_cmple_ps(_mm_load_ps(w.lo[2]), pz), _mm_cmple_ps(pz, _mm_load_ps(w.hi[2]))));
-    auto mask = static_cast<unsigned>(_mm_movemask_ps(in));
-    const unsigned flat = surface ? 0xfu : (mask ? on_surface(w) : 0u);
+    unsigned mask = lanes.inside(w);
+    const unsigned flat = surface ? 0xffu : (mask ? lanes.on_surface(w) : 0u);
     while (mask) {
       const int i = __builtin_ctz(mask);
       mask &= mask - 1;
@@ -446,19 +519,19 @@ inline Rgb PhotonMap::lookup(const Vec3& p, const Vec3& n) const {
         stack[top++] = w.child[i] | (flat & (1u << i) ? kOnSurface : 0u);
         continue;
       }
-      leaf.add(m_blocks[w.child[i]], (flat & (1u << i)) != 0);
+      lanes.add(m_blocks[w.child[i]], (flat & (1u << i)) != 0);
     }
     if (top == 0) break;
     node = stack[--top];
   }
-  const Rgb sum = leaf.total();
+  const Rgb sum = lanes.total();
   const float norm = 2.0f / kPi;
   return {sum.r * norm, sum.g * norm, sum.b * norm};
 }
 
 #if THAW_AVX2_DISPATCH
 THAW_TARGET_AVX2 Rgb PhotonMap::lookup_avx2(const Vec3& p, const Vec3& n) const {
-  return lookup<LeafSumsAvx2>(p, n);
+  return lookup<LookupAvx2>(p, n);
 }
 #endif
 #endif  // __SSE2__
@@ -470,16 +543,16 @@ Rgb PhotonMap::irradiance_at(SimdLevel level, const Vec3& p, const Vec3& n) cons
   if (level == SimdLevel::avx2) return lookup_avx2(p, n);
 #endif
   (void)level;
-  return lookup<LeafSums>(p, n);
+  return lookup<LookupSse>(p, n);
 #else
   (void)level;
-  std::uint32_t stack[64];
+  std::uint32_t stack[256];  // as in lookup()
   int top = 0;
   std::uint32_t node = 0;
   float sr[kLeafPhotons] = {}, sg[kLeafPhotons] = {}, sb[kLeafPhotons] = {};
   while (true) {
     const WideNode& w = m_wide[node];
-    for (int i = 0; i < 4; ++i) {
+    for (int i = 0; i < kWidth; ++i) {
       if (!(w.lo[0][i] <= p.x && p.x <= w.hi[0][i] && w.lo[1][i] <= p.y && p.y <= w.hi[1][i] &&
             w.lo[2][i] <= p.z && p.z <= w.hi[2][i]))
         continue;

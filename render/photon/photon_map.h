@@ -20,9 +20,9 @@
 // Lookup: a bounding volume hierarchy over the photons' kernel balls (each photon's box is its
 // position +- r_p; nodes bound their photons' boxes; leaves of kLeafPhotons photons, the last
 // one possibly fewer),
-// collapsed to 4-wide nodes tested with SSE and 8-photon leaf blocks tested with AVX2 where the
-// CPU has it (render/accel/simd_level.h), else as two SSE halves: the same operations lane for
-// lane and the same order of the final sum, so both give the same bits), descended only into nodes
+// collapsed to 8-wide nodes and 8-photon leaf blocks, both tested with AVX2 where the CPU has it
+// (render/accel/simd_level.h), else as two SSE halves: the same operations lane for lane and the
+// same order of the final sum, so both give the same bits), descended only into nodes
 // whose box contains the query point, so a query examines about the
 // photons whose kernels reach it, whatever their radii (the "scatter" form of the estimate as a
 // point-in-box query, the reverse of a k-nearest-neighbour search). It replaced seven hashed
@@ -92,18 +92,20 @@ class PhotonMap {
     /// its photons: m_photons[begin, end)
     std::uint32_t begin = 0, end = 0;
   };
-  /// The traversal tree: the binary tree collapsed into 4-wide nodes, the children's boxes as
-  /// structure of arrays (tested together with SSE, as render/accel/bvh.h does for rays).
-  /// child[i]: a WideNode index, or for a leaf (leaf bit i set) a PhotonBlock index; unused
-  /// slots have an empty box. Per child also what decides whether its subtree lies on one
-  /// surface (see above): its photons' box of positions, their largest 1 / r_p^2 and their
+  /// Children per node of the traversal tree.
+  static constexpr int kWidth = 8;
+  /// The traversal tree: the binary tree collapsed into 8-wide nodes, the children's boxes as
+  /// structure of arrays (tested together with AVX2 or two SSE halves, as render/accel/bvh.h
+  /// does for rays). child[i]: a WideNode index, or for a leaf (leaf bit i set) a PhotonBlock
+  /// index; unused slots have an empty box. Per child also what decides whether its subtree lies
+  /// on one surface (see above): its photons' box of positions, their largest 1 / r_p^2 and their
   /// common normal (bit i of one_normal set when they have one).
-  struct alignas(16) WideNode {
-    float lo[3][4], hi[3][4];
-    float pos_lo[3][4], pos_hi[3][4];
-    float max_inv_r2[4];
-    float normal[3][4];
-    std::uint32_t child[4];
+  struct alignas(32) WideNode {
+    float lo[3][kWidth], hi[3][kWidth];
+    float pos_lo[3][kWidth], pos_hi[3][kWidth];
+    float max_inv_r2[kWidth];
+    float normal[3][kWidth];
+    std::uint32_t child[kWidth];
     std::uint32_t leaf_mask = 0;
     std::uint32_t one_normal = 0;
   };
@@ -113,10 +115,10 @@ class PhotonMap {
     float x[kLeafPhotons], y[kLeafPhotons], z[kLeafPhotons], nx[kLeafPhotons], ny[kLeafPhotons],
         nz[kLeafPhotons], inv_r2[kLeafPhotons], r[kLeafPhotons], g[kLeafPhotons], b[kLeafPhotons];
   };
-  struct LeafSums;
-  struct LeafSumsAvx2;
-  /// The lookup with the leaf kernel `Leaf` (LeafSums: SSE halves; LeafSumsAvx2).
-  template <class Leaf>
+  struct LookupSse;
+  struct LookupAvx2;
+  /// The lookup with the node and leaf tests of `Lanes` (LookupSse: SSE halves; LookupAvx2).
+  template <class Lanes>
   [[gnu::always_inline]] inline Rgb lookup(const Vec3& p, const Vec3& n) const;
   THAW_TARGET_AVX2 Rgb lookup_avx2(const Vec3& p, const Vec3& n) const;
   /// Builds the subtree of m_photons[begin, end) into nodes[node].
