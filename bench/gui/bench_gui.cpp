@@ -17,8 +17,8 @@
 // MESA_SHADER_CACHE_DIR set to a new folder.
 // Run it under Xvfb (the default without $DISPLAY): Qt's offscreen platform has no OpenGL for
 // VTK, so the 3D view is not drawn there and the scrub figures would mean nothing.
-// Usage: bench_gui [EDITS=10] [warm|nowarm] [objects]. Prints one line per figure; `objects`
-// stops after start-up and the new objects.
+// Usage: bench_gui [EDITS=10] [warm|nowarm] [objects|nopreload]. Prints one line per figure;
+// `objects` stops after start-up and the new objects.
 #include <time.h>
 
 #include <QVTKInteractor.h>
@@ -33,11 +33,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "src/gui/main_window.h"
+#include "src/gui/opengl_preload.h"
 #include "src/gui/scene_props.h"
 #include "src/gui/shader_warmup.h"
 #include "src/gui/shell_view.h"
@@ -106,8 +108,19 @@ int main(int argc, char** argv) {
   std::unique_ptr<thaw::inspect::DisplayLease> display;
   if (!thaw::inspect::display_available())
     display = std::make_unique<thaw::inspect::DisplayLease>("bench_gui");
+  // As `thaw gui` starts (src/gui/gui.cpp): the OpenGL driver loads on a thread of its own
+  // while the window is built (src/gui/opengl_preload.h); `bench_gui N warm|nowarm nopreload`:
+  // without it (show() loads it).
+  const bool preload = !(argc > 3 && std::string(argv[3]) == "nopreload");
+  std::optional<thaw::gui::OpenGlPreload> opengl;
+  if (preload) opengl.emplace();
   QApplication app(argc, argv);
   MainWindow w{thaw::gui::ScenarioDocument()};
+  QElapsedTimer preload_wait;
+  preload_wait.start();
+  if (opengl) opengl->wait();
+  // (before show(): the window is not on the screen yet; printed with start-up's figures)
+  const qint64 preload_wait_ms = preload_wait.elapsed();
 
   // The GUI thread's blocks: gaps between ticks of a 5 ms timer (minus the period), each with
   // the CPU time the GUI thread itself used in it (CLOCK_THREAD_CPUTIME_ID: a long gap with
@@ -196,6 +209,8 @@ int main(int argc, char** argv) {
   }
   std::printf("longest GUI-thread block: start-up %s, new objects %s\n", startup.text().c_str(),
               blocks.text().c_str());
+  std::printf("before show(): waited %lld ms for the OpenGL driver's preload%s\n",
+              static_cast<long long>(preload_wait_ms), preload ? "" : " (none)");
   std::fflush(stdout);
   if (argc > 3 && std::string(argv[3]) == "objects") {
     for (const std::string& g : long_gaps) std::printf("  GUI thread blocked: %s\n", g.c_str());

@@ -7,11 +7,13 @@
 
 #include <cstdlib>
 #include <memory>
+#include <optional>
 
 #include "src/common/error.h"
 #include "src/common/interrupt.h"
 #include "src/gui/film_runner.h"
 #include "src/gui/main_window.h"
+#include "src/gui/opengl_preload.h"
 #include "src/gui/scene_props.h"
 #include "src/gui/screenshot.h"
 #include "src/gui/shader_warmup.h"
@@ -75,6 +77,9 @@ int run_gui(const GuiOptions& options) {
         options.warm_shaders ? "thaw gui --warm-shaders (the 3D view's shader warm-up)"
                              : "thaw gui --screenshot");
   }
+  // The OpenGL driver loads on a thread of its own meanwhile (opengl_preload.h), not in show().
+  std::optional<OpenGlPreload> opengl;
+  if (!offscreen) opengl.emplace();
   static int argc = 1;
   static char name[] = "thaw";
   static char* argv[] = {name, nullptr};
@@ -83,6 +88,7 @@ int run_gui(const GuiOptions& options) {
   if (!options.tab.empty() && !window.select_tab(options.tab))
     throw UserError("", "--tab",
                     "no tab '" + options.tab + "' (render, scenario, simulation, scene)");
+  if (opengl) opengl->wait();
   window.show();
   if (options.warm_shaders) {
     quit_when_warmed(window, app);
