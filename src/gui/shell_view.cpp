@@ -20,15 +20,20 @@
 #include <vtkTexture.h>
 #include <vtkWindowToImageFilter.h>
 
+#include <QVTKInteractor.h>
+#include <QVTKOpenGLWindow.h>
+#include <QApplication>
 #include <QGuiApplication>
 #include <QImage>
 #include <QOpenGLContext>
-#include <QOpenGLWindow>
+#include <QOpenGLFunctions>
 #include <QTimer>
+#include <QVBoxLayout>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <utility>
 
 #include "src/inspect/surface_actor.h"
 
@@ -61,6 +66,9 @@ namespace {
 /// paint (Qt 5.15, QT_QPA_PLATFORM=offscreen without a display: a null context dereferenced in
 /// QPaintDeviceWindow::exposeEvent). On the others (xcb) a context is assumed, as any Qt OpenGL
 /// widget does, without the cost of making one here.
+/// The view's plain background (its first paint, then the gradient's lower colour).
+constexpr float kBackground[3] = {0.10f, 0.11f, 0.14f};
+
 bool platform_has_opengl() {
   const QString platform = QGuiApplication::platformName();
   if (platform != "offscreen" && platform != "minimal") return true;
@@ -70,17 +78,54 @@ bool platform_has_opengl() {
 
 }  // namespace
 
-ShellView::ShellView(QWidget* parent) : QVTKOpenGLStereoWidget(parent) {
+/// VTK's OpenGL window whose paints only clear to the view's plain background until the view's
+/// first draw: the first paint makes the OpenGL context and sets VTK up, and a VTK frame would
+/// also be blitted to the window in it, which llvmpipe does with a blit shader it compiles with
+/// LLVM (20 ms of CPU, in every process). So the context comes in one event-loop turn, the first
+/// frame in a later one (the view's first draw), its blit in the paint that frame requests.
+class ViewWindow : public QVTKOpenGLWindow {
+ public:
+  ViewWindow(vtkGenericOpenGLRenderWindow* window, std::function<void()> first_paint)
+      : QVTKOpenGLWindow(window), m_first_paint(std::move(first_paint)) {}
+  /// The view draws from now on: paints show VTK's frames.
+  void start_drawing() { m_drawing = true; }
+
+ protected:
+  void paintGL() override {
+    if (m_drawing) return QVTKOpenGLWindow::paintGL();
+    QOpenGLFunctions* f = context()->functions();
+    f->glClearColor(kBackground[0], kBackground[1], kBackground[2], 1.0f);
+    f->glClear(GL_COLOR_BUFFER_BIT);
+    if (m_painted) return;
+    m_painted = true;
+    QTimer::singleShot(0, this, m_first_paint);
+  }
+
+ private:
+  std::function<void()> m_first_paint;
+  bool m_painted = false, m_drawing = false;
+};
+
+ShellView::ShellView(QWidget* parent) : QWidget(parent) {
   vtkNew<vtkGenericOpenGLRenderWindow> window;
   window->SetAlphaBitPlanes(1);  // depth peeling for the translucent outer surface
   window->SetMultiSamples(0);
-  setRenderWindow(window);
-  setFormat(QVTKOpenGLWindow::defaultFormat());
-  connect(embeddedOpenGLWindow(), &QOpenGLWindow::frameSwapped, this, [this] { first_frame(); });
+  m_window = new ViewWindow(window, [this] { first_frame(); });
+  m_window->setFormat(QVTKOpenGLWindow::defaultFormat());
+  // As VTK's QVTKOpenGLStereoWidget embeds it: the container lets the window take the mouse, and
+  // the window's events reach this widget too.
+  QWidget* container = QWidget::createWindowContainer(m_window, this);
+  container->setAttribute(Qt::WA_TransparentForMouseEvents);
+  container->setMouseTracking(true);
+  auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(0, 0, 0, 0);
+  layout->addWidget(container);
+  connect(m_window, &QVTKOpenGLWindow::windowEvent, this,
+          [this](QEvent* e) { QApplication::sendEvent(this, e); });
+  setMouseTracking(true);
+  setFocusPolicy(Qt::StrongFocus);
   // Without OpenGL the view stays its plain container, never painted (warming_up() false).
-  if (!platform_has_opengl())
-    for (QWidget* container : findChildren<QWidget*>(QString(), Qt::FindDirectChildrenOnly))
-      container->hide();
+  if (!platform_has_opengl()) container->hide();
   m_stage_timer = new QTimer(this);
   m_stage_timer->setSingleShot(true);
   m_stage_timer->setInterval(0);
@@ -96,7 +141,7 @@ ShellView::ShellView(QWidget* parent) : QVTKOpenGLStereoWidget(parent) {
   // The first draw (the OpenGL context, Qt's compositing) clears to the plain background; the
   // gradient and the label, each a shader of its own, come in the next turns (warm-up).
   stage("gradient background", [this] { m_renderer->GradientBackgroundOn(); });
-  m_renderer->SetBackground(0.10, 0.11, 0.14);
+  m_renderer->SetBackground(kBackground[0], kBackground[1], kBackground[2]);
   m_renderer->SetBackground2(0.30, 0.33, 0.40);
   // No depth peeling (thaw inspect's pictures use it): with software OpenGL (Mesa llvmpipe, as
   // under Xvfb) its passes made every redraw several times slower; the one translucent surface
@@ -134,6 +179,21 @@ ShellView::ShellView(QWidget* parent) : QVTKOpenGLStereoWidget(parent) {
     interactor()->AddObserver(vtkCommand::StartInteractionEvent, on_start);
     interactor()->AddObserver(vtkCommand::EndInteractionEvent, on_end);
   }
+}
+
+vtkRenderWindow* ShellView::renderWindow() const {
+  return m_window->renderWindow();
+}
+
+QVTKInteractor* ShellView::interactor() const {
+  return m_window->interactor();
+}
+
+void ShellView::paintEvent(QPaintEvent* event) {
+  QWidget::paintEvent(event);
+  // as VTK's QVTKOpenGLStereoWidget does: after a resize the embedded window may otherwise not
+  // repaint although it got its resize event
+  m_window->update();
 }
 
 ShellView::ViewCamera ShellView::camera() const {
@@ -382,6 +442,7 @@ void ShellView::remove_prop(vtkProp* prop) {
 void ShellView::draw() {
   m_most_new_looks = std::max(m_most_new_looks, m_new_looks);
   m_new_looks = 0;
+  if (m_painted) m_window->start_drawing();  // (before the first paint VTK cannot draw yet)
   renderWindow()->Render();
   if (!m_staged.empty() && m_painted && !m_held) m_stage_timer->start();
 }

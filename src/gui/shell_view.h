@@ -7,15 +7,15 @@
 // so scrubbing through a run shows the shell shrinking in place.
 //
 // The view is an OpenGL window of its own (VTK's QVTKOpenGLWindow, a QOpenGLWindow) in a window
-// container (QVTKOpenGLStereoWidget wraps QWidget::createWindowContainer), not an OpenGL widget
-// (QVTKOpenGLNativeWidget, a QOpenGLWidget): a QOpenGLWidget makes Qt 5 composite the whole
-// top-level window through OpenGL on every repaint of any widget in it (the raster backing store
-// uploaded as a texture, blended with the widget's, swapped: with software OpenGL, llvmpipe, a
-// full-window draw per repaint), and makes its OpenGL context and first paint inside the window's
-// show(). In a container the rest of the window stays on Qt's raster backing store; the OpenGL
-// work is the view's own child window's, its context made in its first expose, a turn of its own.
-#include <QVTKOpenGLStereoWidget.h>
+// container (QWidget::createWindowContainer), not an OpenGL widget (QVTKOpenGLNativeWidget, a
+// QOpenGLWidget): a QOpenGLWidget makes Qt 5 composite the whole top-level window through OpenGL
+// on every repaint of any widget in it (the raster backing store uploaded as a texture, blended
+// with the widget's, swapped: with software OpenGL, llvmpipe, a full-window draw per repaint),
+// and makes its OpenGL context and first paint inside the window's show(). In a container the
+// rest of the window stays on Qt's raster backing store; the OpenGL work is the view's own child
+// window's, its context made in its first expose, a turn of its own.
 #include <vtkSmartPointer.h>
+#include <QWidget>
 
 #include <array>
 #include <deque>
@@ -27,6 +27,8 @@
 #include "src/gui/scene_props.h"
 #include "src/gui/shell_step.h"
 
+class QVTKInteractor;
+class vtkRenderWindow;
 class vtkRenderer;
 class vtkActor;
 class vtkProp;
@@ -39,10 +41,15 @@ namespace thaw::gui {
 /// with equal looks draw with the programs the first of them compiled.
 std::string look_of(vtkProp* prop);
 
-class ShellView : public QVTKOpenGLStereoWidget {
+class ViewWindow;
+
+class ShellView : public QWidget {
   Q_OBJECT
  public:
   explicit ShellView(QWidget* parent = nullptr);
+  /// VTK's render window and its interactor (the view's OpenGL window's).
+  vtkRenderWindow* renderWindow() const;
+  QVTKInteractor* interactor() const;
   /// Shows `step`'s surfaces moved by `offset` (where the frame places the shell's core) [m];
   /// the camera is framed on them when `frame` and no scene camera was set yet (set_scene).
   /// While `moving` (the time slider is dragged) the view is drawn quick (set_quick) until
@@ -108,6 +115,9 @@ class ShellView : public QVTKOpenGLStereoWidget {
   /// The user orbited, panned or zoomed the view (the window writes it back as the scene camera).
   void cameraMoved();
 
+ protected:
+  void paintEvent(QPaintEvent* event) override;
+
  private:
   // Warm-up. With software OpenGL (Mesa llvmpipe) the first draw of each new look (shader
   // program and pipeline state: translucent, textured, with edges, the label, the gradient)
@@ -136,10 +146,11 @@ class ShellView : public QVTKOpenGLStereoWidget {
   void advance();
   /// Ends a pending settle(): the at-rest look, drawn by the caller.
   void settle_now();
-  /// The OpenGL window's first frame (its context made, the plain background shown) lets the
+  /// The OpenGL window's first paint (its context made, the plain background shown) lets the
   /// warm-up begin.
   void first_frame();
 
+  ViewWindow* m_window = nullptr;
   std::deque<Staged> m_staged;
   std::set<std::string> m_looks;
   int m_new_looks = 0, m_most_new_looks = 0;
