@@ -130,6 +130,16 @@ ShellView::ShellView(QWidget* parent) : QWidget(parent) {
   m_stage_timer->setSingleShot(true);
   m_stage_timer->setInterval(0);
   connect(m_stage_timer, &QTimer::timeout, this, [this] { advance(); });
+  // The next warm-up turn after a draw waits for that draw's frame to reach the window (its
+  // paint, which blits it), or kFrameWaitMs if none comes (a window not exposed): a new look's
+  // draw and the previous frame's paint are never one turn.
+  m_frame_timer = new QTimer(this);
+  m_frame_timer->setSingleShot(true);
+  m_frame_timer->setInterval(kFrameWaitMs);
+  connect(m_frame_timer, &QTimer::timeout, this, [this] { next_turn(); });
+  connect(m_window, &QOpenGLWindow::frameSwapped, this, [this] {
+    if (m_frame_timer->isActive()) next_turn();
+  });
   m_settle_timer = new QTimer(this);
   m_settle_timer->setSingleShot(true);
   m_settle_timer->setInterval(kSettleMs);
@@ -424,7 +434,7 @@ void ShellView::stage(const std::string& look, std::function<void()> apply, vtkP
     return;
   }
   m_staged.push_back({look, prop, std::move(apply), apply_when_removed});
-  if (m_painted && !m_held) m_stage_timer->start();
+  if (m_painted && !m_held && !m_frame_timer->isActive()) m_stage_timer->start();
 }
 
 void ShellView::remove_prop(vtkProp* prop) {
@@ -444,7 +454,12 @@ void ShellView::draw() {
   m_new_looks = 0;
   if (m_painted) m_window->start_drawing();  // (before the first paint VTK cannot draw yet)
   renderWindow()->Render();
-  if (!m_staged.empty() && m_painted && !m_held) m_stage_timer->start();
+  if (!m_staged.empty() && m_painted && !m_held) m_frame_timer->start();  // then next_turn()
+}
+
+void ShellView::next_turn() {
+  m_frame_timer->stop();
+  m_stage_timer->start();
 }
 
 void ShellView::advance() {

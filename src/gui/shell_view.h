@@ -144,6 +144,10 @@ class ShellView : public QWidget {
   void draw();
   /// One warm-up turn: the queued additions up to the second new look, then a draw.
   void advance();
+  /// Starts the next warm-up turn (the last draw's frame has reached the window, or waited
+  /// kFrameWaitMs).
+  void next_turn();
+  static constexpr int kFrameWaitMs = 100;
   /// Ends a pending settle(): the at-rest look, drawn by the caller.
   void settle_now();
   /// The OpenGL window's first paint (its context made, the plain background shown) lets the
@@ -157,6 +161,7 @@ class ShellView : public QWidget {
   bool m_painted = false;
   bool m_held = false;
   QTimer* m_stage_timer = nullptr;
+  QTimer* m_frame_timer = nullptr;
   QTimer* m_settle_timer = nullptr;
   bool m_settle_pending = false;
   vtkSmartPointer<vtkRenderer> m_renderer;
