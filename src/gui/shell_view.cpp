@@ -110,6 +110,12 @@ ShellView::ShellView(QWidget* parent) : QWidget(parent) {
   vtkNew<vtkGenericOpenGLRenderWindow> window;
   window->SetAlphaBitPlanes(1);  // depth peeling for the translucent outer surface
   window->SetMultiSamples(0);
+  // A draw's frame reaches the screen in the paint it requests (QWindow::requestUpdate), which
+  // Qt 5 delays by QT_QPA_UPDATE_IDLE_TIME, 5 ms unless set: the view's frames are shown at
+  // once, as a QOpenGLWidget's were (with the delay, a slider drag's next draw often came before
+  // the last frame's paint and waited for its rasterization instead).
+  if (!qEnvironmentVariableIsSet("QT_QPA_UPDATE_IDLE_TIME"))
+    qputenv("QT_QPA_UPDATE_IDLE_TIME", "0");
   m_window = new ViewWindow(window, [this] { first_frame(); });
   m_window->setFormat(QVTKOpenGLWindow::defaultFormat());
   // As VTK's QVTKOpenGLStereoWidget embeds it: the container lets the window take the mouse, and
@@ -138,6 +144,7 @@ ShellView::ShellView(QWidget* parent) : QWidget(parent) {
   m_frame_timer->setInterval(kFrameWaitMs);
   connect(m_frame_timer, &QTimer::timeout, this, [this] { next_turn(); });
   connect(m_window, &QOpenGLWindow::frameSwapped, this, [this] {
+    ++m_frames_shown;
     if (m_frame_timer->isActive()) next_turn();
   });
   m_settle_timer = new QTimer(this);

@@ -82,6 +82,8 @@ class ShellView : public QWidget {
   void set_camera(const ViewCamera& camera);
   /// Emits cameraMoved with the current camera (called when an orbit, pan or zoom ends).
   void report_camera();
+  /// Frames of the view's draws shown on the screen so far (swapped: bench_gui).
+  long frames_shown() const { return m_frames_shown; }
   /// Triangles drawn (both surfaces), for tests.
   long triangles() const { return m_triangles; }
   /// Whether the outer surface is drawn with its triangle edges (false while the slider moves).
@@ -168,6 +170,7 @@ class ShellView : public QWidget {
   vtkSmartPointer<vtkActor> m_outer, m_inner;
   vtkSmartPointer<vtkTextActor> m_label;
   long m_triangles = 0;
+  long m_frames_shown = 0;
   std::vector<vtkSmartPointer<vtkActor>> m_scene;
   std::vector<vtkSmartPointer<vtkActor>> m_catalog;
   std::vector<vtkSmartPointer<vtkTexture>> m_scene_textures;
