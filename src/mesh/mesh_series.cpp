@@ -555,12 +555,39 @@ void check_containment(const std::vector<Task>& tasks, const std::vector<TaskRes
 
 }  // namespace
 
-MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& requested,
-                                    const ProgressCallback& progress, MeshFarm& farm) {
+namespace {
+
+constexpr const char* kNotMeshedHere =
+    "not meshed: thaw run --frames meshes only its frames' steps (a whole run meshes the rest)";
+
+// Keeps the tasks of the steps at `step_indexes` (positions in manifest.steps); every other
+// step's surfaces lose their files and say why.
+void keep_only_steps(const std::vector<long>& step_indexes, std::vector<Task>& tasks,
+                     MeshManifest& manifest) {
+  std::vector<char> wanted(manifest.steps.size(), 0);
+  for (const long k : step_indexes)
+    if (k >= 0 && static_cast<std::size_t>(k) < wanted.size())
+      wanted[static_cast<std::size_t>(k)] = 1;
+  std::erase_if(tasks, [&](const Task& t) { return !wanted[t.step_index]; });
+  for (std::size_t i = 0; i < manifest.steps.size(); ++i) {
+    if (wanted[i]) continue;
+    for (SurfaceRecord* s : {&manifest.steps[i].inner, &manifest.steps[i].outer})
+      if (s->file) {
+        s->file.reset();
+        s->reason = kNotMeshedHere;
+      }
+  }
+}
+
+// mesh_simulation_folder, or with `only` mesh_simulation_steps.
+MeshManifest mesh_series(const fs::path& simdir, const MeshOptions& requested,
+                         const ProgressCallback& progress, MeshFarm& farm,
+                         const std::vector<long>* only) {
   // A run killed outright (SIGKILL, a lost node) leaves its staged folder and temporaries: the
   // leader removes those of dead processes before staging (the other processes of a farm write
-  // nothing before the staged folder is shared).
-  if (farm.leader()) remove_stale_temporaries(simdir);
+  // nothing before the staged folder is shared). Not for a part of a run: other processes (on
+  // other machines, whose process ids mean nothing here) may be writing into the folder.
+  if (farm.leader() && !only) remove_stale_temporaries(simdir);
   if (is_grid_simulation_folder(simdir))
     return mesh_grid_simulation_folder(simdir, requested, progress, farm);
   validate(requested);
@@ -569,12 +596,24 @@ MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& r
   manifest.options = series_options(requested, in);
   manifest.geometry = in.geometry;
   const MeshOptions& options = manifest.options;
-  const std::vector<Task> tasks = plan_surfaces(in, options, manifest);
+  std::vector<Task> tasks = plan_surfaces(in, options, manifest);
+  if (only) keep_only_steps(*only, tasks, manifest);
 
   const fs::path final_dir = simdir / "mesh", partial_dir = simdir / "mesh.partial";
-  // The leader stages the folder; the other processes of a farm write their files into it.
+  // The leader stages the folder; the other processes of a farm write their files into it. A
+  // part of a run writes its steps' files (each atomically) beside the kept forms instead.
   std::optional<StagingDirectory> staging;
-  const fs::path out_dir = stage_on_leader(farm, staging, final_dir);
+  fs::path out_dir;
+  if (only) {
+    out_dir = partial_steps_dir(simdir);
+    manifest.partial = true;
+    std::error_code ec;
+    fs::create_directories(out_dir, ec);  // concurrent processes may create it too
+    if (!fs::is_directory(out_dir))
+      throw UserError(out_dir.string(), "", "cannot create folder: " + ec.message());
+  } else {
+    out_dir = stage_on_leader(farm, staging, final_dir);
+  }
 
   MeshOptions unit_options = options;
   unit_options.normals = false;  // each surface takes the normals of its own shape
@@ -595,14 +634,33 @@ MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& r
   throw_if_interrupted();
   if (!farm.leader()) return manifest;  // the leader gathers, checks and commits
 
-  record_surfaces(tasks, results, final_dir, manifest);
-  check_containment(tasks, results, final_dir, manifest);
+  const fs::path& named_dir = only ? out_dir : final_dir;
+  record_surfaces(tasks, results, named_dir, manifest);
+  check_containment(tasks, results, named_dir, manifest);
+  manifest.resumed_meshes = meshes.resumed;
+  if (only) return manifest;  // kept for the whole run, which completes it
   write_file_atomic(out_dir / "manifest.json", to_json(manifest).dump(1) + "\n");
   staging->commit();
   std::error_code ec;
   fs::remove_all(partial_dir, ec);  // complete: nothing left to resume
-  manifest.resumed_meshes = meshes.resumed;
   return manifest;
+}
+
+}  // namespace
+
+fs::path partial_steps_dir(const fs::path& simdir) {
+  return simdir / "mesh.partial" / "steps";
+}
+
+MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& requested,
+                                    const ProgressCallback& progress, MeshFarm& farm) {
+  return mesh_series(simdir, requested, progress, farm, nullptr);
+}
+
+MeshManifest mesh_simulation_steps(const fs::path& simdir, const MeshOptions& requested,
+                                   const std::vector<long>& step_indexes,
+                                   const ProgressCallback& progress, MeshFarm& farm) {
+  return mesh_series(simdir, requested, progress, farm, &step_indexes);
 }
 
 nlohmann::ordered_json to_json(const MeshManifest& m) {

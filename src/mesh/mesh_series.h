@@ -63,6 +63,9 @@ struct MeshManifest {
   /// Of those, how many were taken from SIMDIR/mesh.partial/ (kept by an interrupted run)
   /// instead of being meshed again. Not written to the manifest (it would differ on resume).
   long resumed_meshes = 0;
+  /// Only some steps were meshed (mesh_simulation_steps): their surface files are in
+  /// partial_steps_dir, not SIMDIR/mesh. Not written to the manifest.
+  bool partial = false;
 };
 
 /// "step_000012_inner.obj" / "step_000012_outer.obj".
@@ -80,6 +83,21 @@ std::string surface_file_name(long step, bool inner);
 MeshManifest mesh_simulation_folder(const std::filesystem::path& simdir, const MeshOptions& options,
                                     const ProgressCallback& progress = {},
                                     MeshFarm& farm = this_process_farm());
+
+/// For `thaw run --frames`: meshes only the surfaces of the steps at `step_indexes` (positions in
+/// interfaces.csv) into partial_steps_dir(simdir), each file atomically, and returns the manifest
+/// of every step, the others without files (their reason says why). No SIMDIR/mesh, no
+/// manifest.json: the forms are kept in SIMDIR/mesh.partial/ as by an interrupted run, so a later
+/// mesh_simulation_folder meshes only the rest and writes the bytes a whole run does (and so do
+/// these files). Several processes may do this at once on one folder. A grid run is meshed
+/// whole (mesh_simulation_folder). Throws as mesh_simulation_folder; same farm contract.
+MeshManifest mesh_simulation_steps(const std::filesystem::path& simdir, const MeshOptions& options,
+                                   const std::vector<long>& step_indexes,
+                                   const ProgressCallback& progress = {},
+                                   MeshFarm& farm = this_process_farm());
+
+/// SIMDIR/mesh.partial/steps: where mesh_simulation_steps writes its surfaces.
+std::filesystem::path partial_steps_dir(const std::filesystem::path& simdir);
 
 /// The manifest as written to manifest.json.
 nlohmann::ordered_json to_json(const MeshManifest& manifest);

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "render/geometry/obj_loader.h"
 #include "render/image/exr_io.h"
@@ -217,8 +218,8 @@ struct Run {
         subset(opt.frames.has_value()),
         out(opt.out_dir),
         simdir(out / "sim"),
-        mesh_dir(simdir / "mesh"),
         frames_dir(out / "frames"),
+        mesh_dir(simdir / "mesh"),
         times(frame_times(scenario)),
         manifest(out / "run_manifest.json") {
     o.quiet = opt.quiet || !leader;
@@ -231,8 +232,13 @@ struct Run {
   const bool leader;
   /// --frames: stages after render need every frame, so this process leaves them.
   const bool subset;
-  const fs::path out, simdir, mesh_dir, frames_dir;
+  const fs::path out, simdir, frames_dir;
+  /// The surfaces the render stage reads: SIMDIR/mesh, or for a --frames process whose steps
+  /// alone were meshed, mesh::partial_steps_dir.
+  fs::path mesh_dir;
   const std::vector<double> times;
+  /// Set when this process meshed only its frames' steps (mesh_simulation_steps).
+  std::optional<mesh::MeshManifest> partial_meshes;
   ContentHash sim_hash, mesh_hash, render_hash;
   bool exr_frames = false;
   std::unique_ptr<CaptionFont> font;
@@ -359,6 +365,35 @@ std::vector<sim::InterfaceRecord> simulate_stage(Run& r) {
   return sim::read_interfaces_csv(simdir / "interfaces.csv");
 }
 
+/// The frames this process is asked for: --frames or all of them, less those past the
+/// simulation's end (it may end early, with no ice left); whether some were past it.
+std::vector<long> frame_indexes(const Run& r, long frame_count, bool* cut = nullptr) {
+  std::vector<long> selected;
+  if (!r.o.frames) {
+    for (long k = 0; k < frame_count; ++k) selected.push_back(k);
+    return selected;
+  }
+  selected = r.o.frames->resolve(static_cast<long>(r.times.size()));
+  const auto past =
+      std::find_if(selected.begin(), selected.end(), [&](long k) { return k >= frame_count; });
+  if (cut) *cut = past != selected.end();
+  selected.erase(past, selected.end());
+  return selected;
+}
+
+/// frame_indexes, saying once that frames past the simulation's end do not exist.
+std::vector<long> selected_frames(const Run& r, long frame_count) {
+  bool cut = false;
+  std::vector<long> selected = frame_indexes(r, frame_count, &cut);
+  if (cut) {
+    const long past = r.o.frames->resolve(static_cast<long>(r.times.size()))[selected.size()];
+    say(r.o, stage_title(3, "render") + ": frames from " + std::to_string(past) +
+                 " on do not exist (the simulation ended early with " +
+                 std::to_string(frame_count) + " frames)");
+  }
+  return selected;
+}
+
 /// 2. Mesh the inner and outer surface of every frame: every rank meshes (distinct surfaces, then
 /// the steps' files, handed out like frames); the leader checks, writes the manifest and commits.
 void mesh_stage(Run& r, const std::vector<sim::InterfaceRecord>& rows) {
@@ -385,12 +420,18 @@ void mesh_stage(Run& r, const std::vector<sim::InterfaceRecord>& rows) {
       clock.timing().skipped = true;
       say(o, stage_title(2, "mesh") + ": up to date");
     } else {
+      // A --frames process that leaves frames to others meshes only its frames' steps (kept
+      // for the whole run, which completes the stage: mesh_series.h).
+      const std::vector<long> frames = frame_indexes(r, static_cast<long>(rows.size()));
+      const bool part = r.subset && o.stage.empty() && frames.size() < rows.size();
       on_every_rank(ranks, [&] {
         ProgressReporter progress(stage_title(2, "mesh"), static_cast<long>(2 * rows.size()),
                                   o.quiet);
         RanksMeshFarm farm(ranks);
         const mesh::MeshManifest meshes =
-            mesh::mesh_simulation_folder(simdir, options, progress.callback(), farm);
+            part ? mesh::mesh_simulation_steps(simdir, options, frames, progress.callback(), farm)
+                 : mesh::mesh_simulation_folder(simdir, options, progress.callback(), farm);
+        if (meshes.partial) r.partial_meshes = meshes;
         // What this rank's farm phases cost (bench/pipeline/mpi_scaling.sh): beside the frames'
         // notes, one file per rank, forgotten with the stage's items when its inputs change. A
         // note only: failing to write it does not fail the stage.
@@ -404,32 +445,19 @@ void mesh_stage(Run& r, const std::vector<sim::InterfaceRecord>& rows) {
         } catch (const UserError&) {
         }
         if (!leader) return;
+        if (meshes.partial) {
+          progress.finish_early("for the " + std::to_string(frames.size()) +
+                                " selected frames' steps only (a whole run meshes all " +
+                                std::to_string(rows.size()) + ")");
+          clock.timing().items_done = static_cast<int>(frames.size());
+          return;
+        }
         progress.finish();
         manifest.mark_stage_complete("mesh");
         clock.timing().items_done = static_cast<int>(meshes.steps.size());
       });
     }
   }
-}
-
-/// The frames this process is asked for: --frames (less those past a simulation that ended
-/// early, said once) or all of them.
-std::vector<long> selected_frames(const Run& r, long frame_count) {
-  std::vector<long> selected;
-  if (!r.o.frames) {
-    for (long k = 0; k < frame_count; ++k) selected.push_back(k);
-    return selected;
-  }
-  selected = r.o.frames->resolve(static_cast<long>(r.times.size()));
-  // The simulation may have ended early (no ice left): those frames do not exist.
-  const auto past =
-      std::find_if(selected.begin(), selected.end(), [&](long k) { return k >= frame_count; });
-  if (past != selected.end())
-    say(r.o, stage_title(3, "render") + ": frames from " + std::to_string(*past) +
-                 " on do not exist (the simulation ended early with " +
-                 std::to_string(frame_count) + " frames)");
-  selected.erase(past, selected.end());
-  return selected;
 }
 
 /// Renders frame k and writes its PNG (and EXR) atomically; nothing if interrupted.
@@ -668,13 +696,21 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
   const std::vector<sim::InterfaceRecord> rows = simulate_stage(r);
   mesh_stage(r, rows);
   if (r.o.stage == "simulate") return finish_report(r.report, start);
-  const mesh::MeshManifest meshes = mesh::read_mesh_manifest(r.mesh_dir / "manifest.json");
+  if (r.partial_meshes) r.mesh_dir = mesh::partial_steps_dir(r.simdir);
+  const mesh::MeshManifest meshes =
+      r.partial_meshes ? *r.partial_meshes : mesh::read_mesh_manifest(r.mesh_dir / "manifest.json");
   const long frame_count = static_cast<long>(meshes.steps.size());
   r.report.frames = static_cast<int>(frame_count);
   if (r.o.stage == "mesh") return finish_report(r.report, start);
   const bool all_frames_done = render_stage(r, meshes, rows);
   if (!r.leader || r.o.stage == "render" || !all_frames_done) return finish_report(r.report, start);
   film_stage(r, frame_count);
+  if (r.partial_meshes) {  // the inspect outputs are of every step's surfaces
+    if (r.wanted("inspect"))
+      say(r.o, stage_title(5, "inspect") +
+                   ": waits for every step's meshes; run thaw run again without --frames");
+    return finish_report(r.report, start);
+  }
   inspect_stage(r, meshes);
   return finish_report(r.report, start);
 }

@@ -11,6 +11,7 @@
 // DIR/scenario.toml        the scenario as given (or the built-in default)
 // DIR/sim/                 interfaces.csv, profiles/, summary.json (one row per film frame)
 // DIR/sim/mesh/            step_NNNNNN_inner.obj / _outer.obj, manifest.json
+// DIR/sim/mesh.partial/    kept meshes (and steps/: --frames parts' surfaces) until sim/mesh
 // DIR/frames/frame_NNNNNN.png
 // DIR/melt.mp4 (+ melt.gif), DIR/plot.png, DIR/meshes.pvd (+ meshes_vtp/, world space, normals)
 // DIR/handoff/obj/shell_outer_NNNNNN.obj, shell_inner_NNNNNN.obj (world space, for Blender)
@@ -35,9 +36,11 @@ struct RunOptions {
   bool quiet = false;
   /// the scenario file's text, copied to DIR/scenario.toml ("" = built-in default)
   std::string scenario_text;
-  /// --frames: render only these frames (the simulation and meshes are the whole run's); the
-  /// film and inspect stages then run only once every frame is rendered. Such a process leaves
-  /// other processes' temporary files alone (they may be rendering into the same folder).
+  /// --frames: render only these frames (the simulation is the whole run's; unless the mesh
+  /// stage is up to date, only these frames' steps are meshed, into sim/mesh.partial/steps/, and
+  /// a later whole run completes the stage); the film runs only once every frame is rendered,
+  /// inspect only after a whole mesh stage. Such a process leaves other processes' temporary
+  /// files alone (they may be rendering into the same folder).
   std::optional<FrameSelection> frames;
   /// --stage: run only this stage (one of kStageNames); the stages before it must be up to date.
   std::string stage;

@@ -209,6 +209,48 @@ TEST(MeshSeries, SphereSeriesMeshedOnceAndScaled) {
   EXPECT_EQ(m.steps[0].inner.triangles, m.steps[1].outer.triangles);
 }
 
+// thaw run --frames: the steps of its frames alone, written beside the kept forms, so that the
+// whole run meshes only the rest and writes exactly the bytes of a fresh one.
+TEST(MeshSeries, SomeStepsFirstThenTheWholeRunCompletesThem) {
+  const fs::path fresh = fresh_copy("cylinder", "steps_fresh"),
+                 part = fresh_copy("cylinder", "steps_part");
+  const MeshOptions o = coarse(2);
+  const MeshManifest reference = mesh_simulation_folder(fresh, o);
+  ASSERT_EQ(reference.distinct_meshes, 3);  // capsules of other radii are no scaled copies
+  EXPECT_FALSE(reference.partial);
+
+  const MeshManifest some = mesh_simulation_steps(part, o, {1});
+  EXPECT_TRUE(some.partial);
+  EXPECT_EQ(some.distinct_meshes, 2);
+  ASSERT_EQ(some.steps.size(), reference.steps.size());
+  EXPECT_FALSE(fs::exists(part / "mesh"));
+  EXPECT_FALSE(some.steps[0].outer.file);
+  EXPECT_NE(some.steps[0].outer.reason.find("--frames"), std::string::npos);
+  EXPECT_FALSE(fs::exists(partial_steps_dir(part) / surface_file_name(0, false)));
+  for (const bool inner : {true, false}) {
+    const std::string name = surface_file_name(1, inner);
+    EXPECT_EQ(read_text(partial_steps_dir(part) / name), read_text(fresh / "mesh" / name)) << name;
+    const SurfaceRecord &a = inner ? some.steps[1].inner : some.steps[1].outer,
+                        &b = inner ? reference.steps[1].inner : reference.steps[1].outer;
+    EXPECT_EQ(a.file, b.file);
+    EXPECT_EQ(a.triangles, b.triangles);
+    EXPECT_EQ(a.volume_m3, b.volume_m3);
+  }
+  EXPECT_EQ(some.steps[1].inner_inside_outer, reference.steps[1].inner_inside_outer);
+
+  const MeshManifest whole = mesh_simulation_folder(part, o);
+  EXPECT_FALSE(whole.partial);
+  EXPECT_EQ(whole.resumed_meshes, 2);  // step 1's two forms, meshed once
+  int compared = 0;
+  for (const auto& e : fs::directory_iterator(fresh / "mesh")) {
+    EXPECT_EQ(read_text(e.path()), read_text(part / "mesh" / e.path().filename()))
+        << e.path().filename();
+    ++compared;
+  }
+  EXPECT_EQ(compared, 4);  // three surfaces and the manifest
+  EXPECT_FALSE(fs::exists(part / "mesh.partial"));
+}
+
 TEST(MeshSeries, CylinderWithoutCoreAndPlanar) {
   const fs::path c = fresh_copy("cylinder", "cylinder");
   const MeshManifest mc = mesh_simulation_folder(c, coarse(2));

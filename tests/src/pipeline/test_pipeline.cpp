@@ -293,23 +293,41 @@ TEST_F(ThawRun, FrameSubsetsTogetherEqualTheWholeRunAndTheLastOneMakesTheFilm) {
   // thaw run prints the simulation's events as thaw simulate does.
   EXPECT_TRUE(contains(reference.output, "event break_through at t = ")) << reference.output;
 
-  // As two Slurm array tasks would: frames 1 and 3, then 0 and 2.
+  // As two Slurm array tasks would: frames 1 and 3, then 0 and 2. Each meshes only its frames'
+  // steps (kept in sim/mesh.partial/); no sim/mesh until a whole run.
   const auto odd = thaw({"run", kTiny.string(), "--out", parts.string(), "--frames", "1:3:2"});
   ASSERT_EQ(odd.exit_code, 0) << odd.output;
+  EXPECT_TRUE(
+      contains(odd.output, "for the 2 selected frames' steps only (a whole run meshes all 4)"))
+      << odd.output;
   EXPECT_TRUE(contains(odd.output, "render: 2/2 done")) << odd.output;
   EXPECT_TRUE(contains(odd.output, "waits for every frame (2 of 4 rendered)")) << odd.output;
   EXPECT_FALSE(fs::exists(parts / "melt.mp4"));
+  EXPECT_FALSE(fs::exists(parts / "sim/mesh"));
   EXPECT_EQ(frames_of(parts).size(), 2u);
   const auto sim_time = fs::last_write_time(parts / "sim/interfaces.csv");
 
   const auto even = thaw({"run", kTiny.string(), "--out", parts.string(), "--frames", "0:2:2"});
   ASSERT_EQ(even.exit_code, 0) << even.output;
   EXPECT_TRUE(contains(even.output, "simulate: up to date")) << even.output;
-  EXPECT_TRUE(contains(even.output, "mesh: up to date")) << even.output;
+  EXPECT_TRUE(contains(even.output, "for the 2 selected frames' steps only")) << even.output;
   EXPECT_EQ(fs::last_write_time(parts / "sim/interfaces.csv"), sim_time);
   EXPECT_EQ(frames_of(parts), frames_of(whole));  // byte-identical frames
   EXPECT_EQ(count_video_frames(parts / "melt.mp4"), 4);
   EXPECT_EQ(read_file(parts / "melt.mp4"), read_file(whole / "melt.mp4"));
+  EXPECT_TRUE(contains(even.output, "inspect: waits for every step's meshes")) << even.output;
+  EXPECT_FALSE(fs::exists(parts / "plot.png"));
+
+  // The whole run meshes every step (the kept form reused), renders nothing, writes the rest.
+  const auto rest = thaw({"run", kTiny.string(), "--out", parts.string()});
+  ASSERT_EQ(rest.exit_code, 0) << rest.output;
+  EXPECT_TRUE(contains(rest.output, "render: up to date")) << rest.output;
+  EXPECT_TRUE(contains(rest.output, "film: up to date")) << rest.output;
+  for (const auto& e : fs::directory_iterator(whole / "sim/mesh"))
+    EXPECT_EQ(read_file(e.path()), read_file(parts / "sim/mesh" / e.path().filename()))
+        << e.path().filename();
+  EXPECT_FALSE(fs::exists(parts / "sim/mesh.partial"));
+  EXPECT_EQ(read_file(parts / "plot.png"), read_file(whole / "plot.png"));
 
   // --fps re-encodes the film only.
   const auto faster = thaw({"run", kTiny.string(), "--out", parts.string(), "--fps", "8"});

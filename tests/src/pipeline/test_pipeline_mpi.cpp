@@ -106,6 +106,29 @@ TEST_F(ThawRunMpi, KilledUnderMpiResumesWithAnotherNumberOfRanks) {
   expect_no_temporaries(killed);
 }
 
+TEST_F(ThawRunMpi, FramesUnderMpiMeshOnlyTheirStepsAndTheWholeRunCompletesThem) {
+  // A 1D capsule series: every surface its own form, spread over the ranks; --frames meshes only
+  // its frames' steps, and a later whole run (another number of processes) the rest.
+  const fs::path cylinder =
+      tiny_variant(m_dir, {{"geometry = \"sphere\"", "geometry = \"cylinder\""}}, "capsule.toml");
+  const fs::path reference = m_dir / "reference", parts = m_dir / "parts";
+  ASSERT_EQ(
+      run_process({kThaw.string(), "run", cylinder.string(), "--out", reference.string(), "-q"})
+          .exit_code,
+      0);
+  const auto some = run_process(
+      mpirun(3, {"run", cylinder.string(), "--out", parts.string(), "--frames", "1-2", "-j", "1"}));
+  ASSERT_EQ(some.exit_code, 0) << some.output;
+  EXPECT_NE(some.output.find("selected frames' steps only"), std::string::npos) << some.output;
+  EXPECT_FALSE(fs::exists(parts / "sim/mesh"));
+  const auto rest =
+      run_process({kThaw.string(), "run", cylinder.string(), "--out", parts.string()});
+  ASSERT_EQ(rest.exit_code, 0) << rest.output;
+  EXPECT_EQ(files_under(parts / "sim/mesh"), files_under(reference / "sim/mesh"));
+  EXPECT_EQ(frames_of(parts), frames_of(reference));
+  expect_no_temporaries(parts);
+}
+
 TEST_F(ThawRunMpi, BadOptionUnderMpiIsOneErrorLine) {
   const auto r = run_process(
       mpirun(3, {"run", kTiny.string(), "--out", (m_dir / "never").string(), "--frames", "9-12"}));
