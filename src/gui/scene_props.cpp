@@ -381,6 +381,48 @@ vtkSmartPointer<vtkActor> light_actor(const render::LightDescription& l, double 
   return actor;
 }
 
+/// The actor `previous` made for `key`, its texture and quick colour appended to `props`; null
+/// when it has none. An actor whose key is unchanged is taken over as it is (its triangles and
+/// texture uploaded once): after a slider move only the puddle's actor is new.
+vtkSmartPointer<vtkActor> reuse_actor(const SceneProps* previous, const std::string& key,
+                                      SceneProps& props) {
+  if (!previous) return nullptr;
+  for (std::size_t k = 0; k < previous->actor_keys.size(); ++k)
+    if (previous->actor_keys[k] == key) {
+      props.textures.push_back(previous->textures[k]);
+      props.quick_colors.push_back(previous->quick_colors[k]);
+      return previous->actors[k];
+    }
+  return nullptr;
+}
+
+/// Appends a new actor of `o` with its texture and the colour it is drawn quick in.
+void add_object_actor(const render::SceneDescription& desc, const ObjectDescription& o,
+                      const Vec3d& focus, double distance, const std::string& water,
+                      SceneProps& props) {
+  const ObjectGeometry g = object_geometry(desc, o, focus, distance);
+  vtkSmartPointer<vtkActor> actor = actor_of(g.data, g.smooth);
+  set_look(actor, desc, o, water);
+  actor->GetMapper()->ScalarVisibilityOff();
+  props.textures.push_back(g.texture);
+  const render::MaterialDescription* material =
+      o.is_dielectric() ? nullptr : find_material(desc, o.material);
+  props.quick_colors.push_back(material ? display(mean_colour(material->texture))
+                                        : RgbD{1.0, 1.0, 1.0});
+  if (g.texture) {
+    actor->SetTexture(g.texture);
+    actor->GetProperty()->SetColor(1.0, 1.0, 1.0);  // the texture's colours as they are
+  }
+  props.actors.push_back(actor);
+}
+
+/// Appends a new actor of the light `l`.
+void add_light_actor(const render::LightDescription& l, double distance, SceneProps& props) {
+  props.textures.push_back(nullptr);
+  props.quick_colors.push_back({1.0, 1.0, 1.0});
+  props.actors.push_back(light_actor(l, distance));
+}
+
 }  // namespace
 
 SceneProps make_scene_props(const render::SceneDescription& desc,
@@ -389,18 +431,6 @@ SceneProps make_scene_props(const render::SceneDescription& desc,
   SceneProps props;
   props.camera = desc.camera;
   props.key = scene_props_key(desc, skip);
-  // An actor whose key is unchanged is taken over as it is (its triangles and texture uploaded
-  // once): after a slider move only the puddle's actor is new.
-  auto reuse = [&](const std::string& key) -> vtkSmartPointer<vtkActor> {
-    if (!previous) return nullptr;
-    for (std::size_t k = 0; k < previous->actor_keys.size(); ++k)
-      if (previous->actor_keys[k] == key) {
-        props.textures.push_back(previous->textures[k]);
-        props.quick_colors.push_back(previous->quick_colors[k]);
-        return previous->actors[k];
-      }
-    return nullptr;
-  };
   const Vec3d focus = desc.camera.look_at;
   const Vec3d to_eye = plus(desc.camera.position, scaled(focus, -1.0));
   const double distance = std::max(1e-3, std::sqrt(dot(to_eye, to_eye)));
@@ -410,36 +440,19 @@ SceneProps make_scene_props(const render::SceneDescription& desc,
     const std::string key = object_key(desc, o);
     ++props.objects;
     props.actor_keys.push_back(key);
-    if (auto actor = reuse(key)) {
+    if (auto actor = reuse_actor(previous, key, props))
       props.actors.push_back(actor);
-      continue;
-    }
-    const ObjectGeometry g = object_geometry(desc, o, focus, distance);
-    vtkSmartPointer<vtkActor> actor = actor_of(g.data, g.smooth);
-    set_look(actor, desc, o, water);
-    actor->GetMapper()->ScalarVisibilityOff();
-    props.textures.push_back(g.texture);
-    const render::MaterialDescription* material =
-        o.is_dielectric() ? nullptr : find_material(desc, o.material);
-    const RgbD mean = material ? display(mean_colour(material->texture)) : RgbD{1.0, 1.0, 1.0};
-    props.quick_colors.push_back(mean);
-    if (g.texture) {
-      actor->SetTexture(g.texture);
-      actor->GetProperty()->SetColor(1.0, 1.0, 1.0);  // the texture's colours as they are
-    }
-    props.actors.push_back(actor);
+    else
+      add_object_actor(desc, o, focus, distance, water, props);
   }
   for (const auto& l : desc.lights) {
     const std::string key = light_key(desc, l);
     ++props.lights;
     props.actor_keys.push_back(key);
-    if (auto actor = reuse(key)) {
+    if (auto actor = reuse_actor(previous, key, props))
       props.actors.push_back(actor);
-      continue;
-    }
-    props.textures.push_back(nullptr);
-    props.quick_colors.push_back({1.0, 1.0, 1.0});
-    props.actors.push_back(light_actor(l, distance));
+    else
+      add_light_actor(l, distance, props);
   }
   return props;
 }
