@@ -5,6 +5,7 @@
 // the leader's simulation, say) leaves its core to the ranks that work.
 #include <mpi.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
@@ -23,11 +24,29 @@ constexpr int kTagAsk = 1;   // worker -> leader: "ready" ('R'), "done" ('D'), "
 constexpr int kTagItem = 2;  // leader -> worker: the next item, or -1: no more
 constexpr auto kPoll = std::chrono::milliseconds(1);
 
+// The sleeps between polls grow from 50 us to kPoll: an answer that comes within microseconds (a
+// hand-out; the default film's surfaces take ~2 ms each, and a fixed 1 ms sleep on each side of
+// a hand-out cost up to 2 ms of idling per chunk) is not held for a millisecond, while a long
+// wait (the leader's simulation) still wakes at most about a thousand times a second.
+class Backoff {
+ public:
+  void pause() {
+    std::this_thread::sleep_for(m_sleep);
+    m_sleep = std::min<std::chrono::microseconds>(2 * m_sleep, kPoll);
+  }
+  void reset() { m_sleep = kFirst; }
+
+ private:
+  static constexpr std::chrono::microseconds kFirst{50};
+  std::chrono::microseconds m_sleep = kFirst;
+};
+
 void sleepy_wait(MPI_Request& request) {
   int done = 0;
+  Backoff backoff;
   for (MPI_Test(&request, &done, MPI_STATUS_IGNORE); !done;
        MPI_Test(&request, &done, MPI_STATUS_IGNORE))
-    std::this_thread::sleep_for(kPoll);
+    backoff.pause();
 }
 
 class MpiRanks final : public RunRanks {
@@ -135,14 +154,16 @@ class MpiRanks final : public RunRanks {
     const auto dispatch = [&] {
       // The index each worker is busy with: its "done" message carries that item's text.
       std::vector<long> busy(static_cast<std::size_t>(m_size), -1);
+      Backoff backoff;
       for (int active = m_size - 1; active > 0;) {
         int flag = 0;
         MPI_Status status;
         MPI_Iprobe(MPI_ANY_SOURCE, kTagAsk, MPI_COMM_WORLD, &flag, &status);
         if (!flag) {
-          std::this_thread::sleep_for(kPoll);
+          backoff.pause();
           continue;
         }
+        backoff.reset();
         int length = 0;
         MPI_Get_count(&status, MPI_CHAR, &length);
         std::string message(static_cast<std::size_t>(length), '\0');
