@@ -41,6 +41,8 @@ class Filter {
   /// f(x, y) = f1(x) f1(y), unnormalised.
   float evaluate(float x, float y) const { return evaluate_1d(x) * evaluate_1d(y); }
   float evaluate_1d(float x) const;
+  /// The truncated Gaussian's f1(x) from its formula (evaluate_1d reads a table of it).
+  double gaussian_1d(double x) const;
   /// A sample offset from the unit-square point `u`.
   FilterSample sample(sampling::Point2 u) const;
 
@@ -53,6 +55,8 @@ class Filter {
   /// piecewise-constant |f1| over kBins equal bins of [-r, r], its CDF (cdf[0] = 0, cdf[n] = 1),
   /// and integral of f1 / integral of the tabulated |f1|: weight = sign * ... / this.
   std::vector<float> m_abs, m_cdf;
+  /// per bin: 1 / (cdf[i + 1] - cdf[i]) and 1 / pdf, 0 where those are 0
+  std::vector<float> m_inv_bin_mass, m_inv_pdf;
   /// m_guide[g] = the first i with m_cdf[i] > g / kGuideCells: where the search for a u in
   /// [g, g + 1) / kGuideCells starts (a guide table, Devroye 1986 sec. III.2.4; the result is
   /// std::upper_bound's, found by a short forward scan instead of eight unpredictable branches)
@@ -61,6 +65,9 @@ class Filter {
   float m_abs_integral = 0, m_signed_integral = 0;
   /// gaussian: exp(-r^2 / (2 s^2)), the value subtracted so that f1(r) = 0
   double m_gaussian_floor = 0;
+  /// gaussian: f1 at kGaussianNodes + 1 even steps of [0, r], the last repeated
+  static constexpr int kGaussianNodes = 1024;
+  std::vector<float> m_gaussian_table;
 };
 
 }  // namespace thaw::render

@@ -56,18 +56,26 @@ inline AntialiasingSettings antialiasing_settings(const ImageSettings& st) {
 /// Whether pixel (x, y) of `image` stands out of its neighbours (adaptive_pixel.h, stands_out).
 inline bool pixel_stands_out(const Image& image, int x, int y, const AntialiasingSettings& aa) {
   constexpr float inf = std::numeric_limits<float>::infinity();
+  const Rgb c = image.at(x, y);
   Rgb highest{-inf, -inf, -inf}, lowest{inf, inf, inf};
-  bool any = false;
-  for (int ny = std::max(y - 1, 0); ny <= std::min(y + 1, image.height() - 1); ++ny) {
-    for (int nx = std::max(x - 1, 0); nx <= std::min(x + 1, image.width() - 1); ++nx) {
+  // Bits: c above every neighbour so far in r, g, b, then below in r, g, b. Most pixels are no
+  // extremum: the scan stops once no bit is left (after two or three neighbours), before the
+  // display values are looked at.
+  unsigned open = 0x3f;
+  int count = 0;
+  for (int ny = std::max(y - 1, 0); ny <= std::min(y + 1, image.height() - 1) && open; ++ny) {
+    for (int nx = std::max(x - 1, 0); nx <= std::min(x + 1, image.width() - 1) && open; ++nx) {
       if (nx == x && ny == y) continue;
       const Rgb& n = image.at(nx, ny);
+      open &= unsigned(c.r > n.r) | unsigned(c.g > n.g) << 1 | unsigned(c.b > n.b) << 2 |
+              unsigned(c.r < n.r) << 3 | unsigned(c.g < n.g) << 4 | unsigned(c.b < n.b) << 5;
       highest = {std::max(highest.r, n.r), std::max(highest.g, n.g), std::max(highest.b, n.b)};
       lowest = {std::min(lowest.r, n.r), std::min(lowest.g, n.g), std::min(lowest.b, n.b)};
-      any = true;
+      ++count;
     }
   }
-  return any && stands_out(image.at(x, y), highest, lowest, aa);
+  // Still open: every neighbour was scanned, so highest and lowest are complete.
+  return count > 0 && open != 0 && stands_out(c, highest, lowest, aa);
 }
 
 template <class MakeWorker>

@@ -88,10 +88,10 @@ struct Texture {
   /// box of the texture-space derivatives), or the plane's two diagonals (diagonal_box_mean),
   /// where the checker is as simple: along a diagonal its cells of one colour touch corner to
   /// corner. The tighter box is taken (the smaller area), both blended in between (diagonal share
-  /// ramping from 0 where the two areas are equal to 1 where the diagonal box is half the other:
-  /// no seam on the floor where the view turns). A footprint along a texture axis or a diagonal
-  /// is then bounded by a box of its own size; a long one between them (22.5 degrees from both)
-  /// by one up to 0.38 A across, as before: the checker's converging rows survive where they
+  /// ramping from 0 where the two areas are equal to 1 where the diagonal box is 0.7 of the
+  /// other: no seam on the floor where the view turns). A footprint along a texture axis or a
+  /// diagonal is then bounded by a box of its own size; a long one between them (22.5 degrees from
+  /// both) by one up to 0.38 A across, as before: the checker's converging rows survive where they
   /// exist, seen along an axis or along a diagonal, and fade to the mean colour where the view
   /// compresses them below the footprint (one box of the texture's axes around a floor seen at 45
   /// degrees to its rows, 0.7 A across instead of B, turned it flat far too soon). The axis normal
@@ -100,8 +100,9 @@ struct Texture {
   Rgb eval_footprint(const TextureFootprint& f) const {
     if (kind == Kind::solid) return color0;
     const Vec3 a = f.major_axis * f.major, b = f.minor_axis * f.minor;
-    const auto half = [](float u, float v) { return std::sqrt(u * u + v * v); };
-    const Vec3 axis_half{half(a.x, b.x), half(a.y, b.y), half(a.z, b.z)};
+    // Squared half-extents of the boxes bounding the ellipse (square roots only where used).
+    const auto sq = [](float u, float v) { return u * u + v * v; };
+    const Vec3 axis_sq{sq(a.x, b.x), sq(a.y, b.y), sq(a.z, b.z)};
     // The plane's two texture axes i, j (k: the one closest to the normal).
     const Vec3 n = cross(f.major_axis, f.minor_axis);
     const int k = std::abs(n.x) >= std::abs(n.y) && std::abs(n.x) >= std::abs(n.z) ? 0
@@ -110,19 +111,35 @@ struct Texture {
     const int i = k == 0 ? 1 : 0, j = k == 2 ? 1 : 2;
     // Half-extents along p = t_i + t_j and m = t_i - t_j (t in cells); the diagonal box's area
     // in the plane is 2 h_p h_m (the map (t_i, t_j) -> (p, m) doubles areas), the axis box's
-    // 4 h_i h_j.
-    const float hp = half(a[i] + a[j], b[i] + b[j]), hm = half(a[i] - a[j], b[i] - b[j]);
-    const float axis_area = 4.0f * axis_half[i] * axis_half[j], diagonal_area = 2.0f * hp * hm;
+    // 4 h_i h_j: their ratio rho = h_p h_m / (2 h_i h_j). The diagonal box's share w ramps from
+    // 0 at rho = 1 (equal areas: a round footprint, or a long one 22.5 degrees from both frames)
+    // to 1 at rho = 0.7 (27.5 degrees for a long one).
+    const float hp_sq = sq(a[i] + a[j], b[i] + b[j]), hm_sq = sq(a[i] - a[j], b[i] - b[j]);
+    const float axis_area_sq = 4.0f * axis_sq[i] * axis_sq[j];
+    // A footprint shorter than half a cell straddles at most one cell edge in either frame: the
+    // two boxes differ only in how they soften it, so the axis box serves (the diagonal one's
+    // share ramps in from 0.5 to 1 cell of major half-axis: the near floor skips it).
+    const float length_cells = f.major / size;
     const float w =
-        axis_area > 0.0f ? std::clamp(2.0f * (1.0f - diagonal_area / axis_area), 0.0f, 1.0f) : 0.0f;
+        axis_area_sq > 0.0f && length_cells > 0.5f
+            ? std::clamp((1.0f - std::sqrt(hp_sq * hm_sq / axis_area_sq)) / 0.3f, 0.0f, 1.0f) *
+                  std::min(2.0f * length_cells - 1.0f, 1.0f)
+            : 0.0f;
+    const float half_k = std::sqrt(axis_sq[k]);
     double q = 0.0;
-    if (w < 1.0f) q += (1.0 - w) * checker_mean(f.center, axis_half);
+    if (w < 1.0f) {
+      Vec3 axis_half;
+      axis_half[i] = std::sqrt(axis_sq[i]), axis_half[j] = std::sqrt(axis_sq[j]);
+      axis_half[k] = half_k;
+      q += (1.0 - w) * checker_mean(f.center, axis_half);
+    }
     if (w > 0.0f) {
       const double inv = 1.0 / double(size);
       const double ti = double(f.center[i] - offset[i]) * inv,
                    tj = double(f.center[j] - offset[j]) * inv;
-      q += w * square_wave_mean(double(f.center[k] - offset[k]) * inv, double(axis_half[k]) * inv) *
-           diagonal_box_mean(ti + tj, ti - tj, double(hp) * inv, double(hm) * inv);
+      q += w * square_wave_mean(double(f.center[k] - offset[k]) * inv, double(half_k) * inv) *
+           diagonal_box_mean(ti + tj, ti - tj, double(std::sqrt(hp_sq)) * inv,
+                             double(std::sqrt(hm_sq)) * inv);
     }
     const auto w0 = static_cast<float>(0.5 * (1.0 + q)), w1 = static_cast<float>(0.5 * (1.0 - q));
     return color0 * w0 + color1 * w1;
@@ -149,33 +166,40 @@ struct Texture {
     hp = std::max(hp, 1e-4), hm = std::max(hm, 1e-4);
     // Both integrands are 2-periodic: centre p and m in [0, 2) so the corners stay small.
     p -= 2.0 * floor_to_integer(0.5 * p), m -= 2.0 * floor_to_integer(0.5 * m);
-    const double sum = diagonal_integral(p + hp, m + hm) - diagonal_integral(p - hp, m + hm) -
-                       diagonal_integral(p + hp, m - hm) + diagonal_integral(p - hp, m - hm);
+    const Levels p1 = signed_levels(p + hp), p0 = signed_levels(p - hp), m1 = signed_levels(m + hm),
+                 m0 = signed_levels(m - hm);
+    const double sum = diagonal_integral(p1, m1) - diagonal_integral(p0, m1) -
+                       diagonal_integral(p1, m0) + diagonal_integral(p0, m0);
     return sum / (4.0 * hp * hm);
   }
 
-  /// F(P, M) = integral over [0, P] x [0, M] of sign(T(p) - T(m)) dm dp, odd in each argument
-  /// (T is even). On [0, P] the levels T(p) in [0, 1] are met with weight C + sigma [t < alpha]
-  /// (diagonal_levels), so F = integral over t, tau in [0, 1]^2 of sign(t - tau) w_P(t) w_M(tau):
-  /// with J(x, y) = integral over [0, x] x [0, y] of sign(t - tau) = (x - y) min(x, y), and
-  /// J(1, 1) = 0, F = C_P s_M J(1, a_M) + s_P C_M J(a_P, 1) + s_P s_M J(a_P, a_M).
-  static double diagonal_integral(double P, double M) {
-    const double sign = (P < 0.0) == (M < 0.0) ? 1.0 : -1.0;
-    const Levels a = diagonal_levels(std::abs(P)), b = diagonal_levels(std::abs(M));
-    const auto J = [](double x, double y) { return (x - y) * std::min(x, y); };
-    return sign * (a.c * b.sigma * J(1.0, b.alpha) + a.sigma * b.c * J(a.alpha, 1.0) +
-                   a.sigma * b.sigma * J(a.alpha, b.alpha));
+  /// How often [0, |P|] meets each level t of T: C + sigma [t < alpha]. Each full period of 2
+  /// meets every level twice; a remainder r <= 1 meets [0, r) once more; r > 1 meets [0, 1] once
+  /// and (2 - r, 1] once more, i.e. 2 - [t < 2 - r]. `sign`: P's (the integral from 0 is odd).
+  struct Levels {
+    double c, sigma, alpha, sign;
+  };
+  static Levels signed_levels(double P) {
+    const double a = std::abs(P), periods = floor_to_integer(0.5 * a), r = a - 2.0 * periods;
+    const double sign = P < 0.0 ? -1.0 : 1.0;
+    return r <= 1.0 ? Levels{2.0 * periods, 1.0, r, sign}
+                    : Levels{2.0 * periods + 2.0, -1.0, 2.0 - r, sign};
   }
 
-  /// How often [0, P] (P >= 0) meets each level t of T: C + sigma [t < alpha]. Each full period
-  /// of 2 meets every level twice; a remainder r <= 1 meets [0, r) once more; r > 1 meets [0, 1]
-  /// once and (2 - r, 1] once more, i.e. 2 - [t < 2 - r].
-  struct Levels {
-    double c, sigma, alpha;
-  };
-  static Levels diagonal_levels(double P) {
-    const double periods = floor_to_integer(0.5 * P), r = P - 2.0 * periods;
-    return r <= 1.0 ? Levels{2.0 * periods, 1.0, r} : Levels{2.0 * periods + 2.0, -1.0, 2.0 - r};
+  /// F(P, M) = integral over [0, P] x [0, M] of sign(T(p) - T(m)) dm dp, from the levels of P
+  /// and M (T is even, so F is odd in each). On [0, |P|] the levels T(p) in [0, 1] are met with
+  /// weight w_P(t) = C + sigma [t < alpha], so F = integral over t, tau in [0, 1]^2 of
+  /// sign(t - tau) w_P(t) w_M(tau): with J(x, y) = integral over [0, x] x [0, y] of
+  /// sign(t - tau) = (x - y) min(x, y), and J(1, 1) = 0,
+  /// F = C_P s_M J(1, a_M) + s_P C_M J(a_P, 1) + s_P s_M J(a_P, a_M).
+  static double diagonal_integral(const Levels& a, const Levels& b) {
+    const auto J = [](double x, double y) { return (x - y) * std::min(x, y); };
+    return a.sign * b.sign *
+           (a.c * b.sigma * J(1.0, b.alpha) + a.sigma * b.c * J(a.alpha, 1.0) +
+            a.sigma * b.sigma * J(a.alpha, b.alpha));
+  }
+  static double diagonal_integral(double P, double M) {
+    return diagonal_integral(signed_levels(P), signed_levels(M));
   }
 };
 

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "tests/render/sampling/sampling_test_util.h"
@@ -46,6 +47,21 @@ TEST(Filter, ShapesHaveTheirDefiningValues) {
   EXPECT_LT(m.evaluate_1d(1.5f), 0.0f);
   EXPECT_NEAR(m.evaluate_1d(2.0f), 0.0, 1e-7);
   EXPECT_EQ(m.evaluate(0.0f, 3.0f), 0.0f);
+}
+
+TEST(Filter, GaussianTableFollowsTheFormula) {
+  // Linear interpolation between 1025 nodes on [0, r]: error <= 9 / (8 * 1024^2) = 1.07e-6 (see
+  // filter.cpp), plus float rounding of values <= 1.
+  for (const double r : {0.5, 1.5, 4.0}) {
+    const Filter g(FilterKind::gaussian, r);
+    double worst = 0.0;
+    for (int i = -20000; i <= 20000; ++i) {
+      const double x = r * i / 20000.0;
+      worst = std::max(worst, std::abs(double(g.evaluate_1d(float(x))) - g.gaussian_1d(x)));
+    }
+    EXPECT_LE(worst, 9.0 / (8.0 * 1024.0 * 1024.0) + 2e-7) << r;
+    EXPECT_EQ(g.evaluate_1d(float(r) * 1.01f), 0.0f);
+  }
 }
 
 TEST(Filter, BoxSamplesTheSquareUniformlyWithUnitWeight) {

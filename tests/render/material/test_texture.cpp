@@ -254,7 +254,7 @@ TEST(Texture, FootprintFrameIsTheTighterBoxWithoutASeam) {
   // A round footprint, turned any way, and one along a texture axis keep the box of the
   // texture's axes (that box is no larger than the diagonal one); turning an elongated footprint
   // from the x axis to the diagonal moves the value continuously (the two boxes are blended where
-  // their areas are within a factor 2): no step between 0.01-degree turns larger than what the
+  // their areas are within a factor 1/0.7): no step between 0.01-degree turns larger than what the
   // box means' own slope gives (|d mean / d angle| <= 2 (A / cell) / h_min per radian, ~0.02
   // here), where switching boxes at once would jump by up to 1.
   const Texture t = red_blue_checker(1.0f);
