@@ -5,6 +5,8 @@
 // boundary facets are extracted with facets_in_complex_3_to_triangle_mesh.
 #include "src/mesh/surface_mesher.h"
 
+#include "src/mesh/cgal_surface_mesh.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Labeled_mesh_domain_3.h>
 #include <CGAL/Mesh_complex_3_in_triangulation_3.h>
@@ -12,7 +14,6 @@
 #include <CGAL/Mesh_triangulation_3.h>
 #include <CGAL/Polygon_mesh_processing/manifoldness.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -29,13 +30,14 @@ namespace thaw::mesh {
 
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = K::Point_3;
+using K = cgal::Kernel;
+using Point = cgal::Point;
 using Domain = CGAL::Labeled_mesh_domain_3<K>;
 using Tr = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
 using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr>;
 using Criteria = CGAL::Mesh_criteria_3<Tr>;
-using SurfaceMesh = CGAL::Surface_mesh<Point>;
+using SurfaceMesh = cgal::SurfaceMesh;
+using cgal::to_surface_mesh;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
 // The implicit function Mesh_3 samples: negative inside.
@@ -61,25 +63,6 @@ std::string check(const SurfaceMesh& sm) {
   if (PMP::does_self_intersect(sm)) return "self-intersecting";
   if (!PMP::is_outward_oriented(sm)) return "not outward oriented";
   return "";
-}
-
-// Builds a Surface_mesh from a soup; returns false if the soup is not a polygon mesh
-// (non-manifold edges or inconsistent orientation cannot be represented).
-bool to_surface_mesh(const TriangleMesh& mesh, SurfaceMesh& sm) {
-  std::vector<Point> points;
-  points.reserve(mesh.vertices.size());
-  for (const auto& v : mesh.vertices) points.emplace_back(v[0], v[1], v[2]);
-  std::vector<std::array<std::size_t, 3>> faces;
-  faces.reserve(mesh.faces.size());
-  for (const auto& f : mesh.faces) {
-    for (int i : f)
-      if (i < 0 || static_cast<std::size_t>(i) >= points.size()) return false;
-    faces.push_back({static_cast<std::size_t>(f[0]), static_cast<std::size_t>(f[1]),
-                     static_cast<std::size_t>(f[2])});
-  }
-  if (!PMP::is_polygon_soup_a_polygon_mesh(faces)) return false;
-  PMP::polygon_soup_to_polygon_mesh(points, faces, sm);
-  return true;
 }
 
 // The boundary of the meshed solid, facet by facet, each oriented with the inside cell behind it
@@ -188,21 +171,7 @@ UncheckedSurface mesh_surface_unchecked(const ShellShape& shape, const SurfaceCr
   if (sm.number_of_faces() > 0 && CGAL::is_closed(sm) && !PMP::is_outward_oriented(sm))
     PMP::reverse_face_orientations(sm);
 
-  TriangleMesh out;
-  out.vertices.reserve(sm.number_of_vertices());
-  std::vector<int> index(sm.num_vertices(), -1);
-  for (auto v : sm.vertices()) {
-    const Point& p = sm.point(v);
-    index[v.idx()] = static_cast<int>(out.vertices.size());
-    out.vertices.push_back({p.x(), p.y(), p.z()});
-  }
-  out.faces.reserve(sm.number_of_faces());
-  for (auto f : sm.faces()) {
-    std::array<int, 3> tri{};
-    int k = 0;
-    for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) tri[k++] = index[v.idx()];
-    out.faces.push_back(tri);
-  }
+  TriangleMesh out = cgal::from_surface_mesh(sm);
   if (options.normals) {
     out.normals.reserve(out.vertices.size());
     for (const auto& v : out.vertices) out.normals.push_back(shape.outward_normal(v));

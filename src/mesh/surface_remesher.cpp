@@ -2,11 +2,12 @@
 // number of components (the grid surfaces' counterpart of surface_mesher.cpp's checks).
 #include "src/mesh/surface_remesher.h"
 
+#include "src/mesh/cgal_surface_mesh.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/manifoldness.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
@@ -19,44 +20,11 @@ namespace thaw::mesh {
 
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = K::Point_3;
-using SurfaceMesh = CGAL::Surface_mesh<Point>;
+using cgal::from_surface_mesh;
+using cgal::Point;
+using cgal::SurfaceMesh;
+using cgal::to_surface_mesh;
 namespace PMP = CGAL::Polygon_mesh_processing;
-
-bool to_surface_mesh(const TriangleMesh& mesh, SurfaceMesh& sm) {
-  std::vector<Point> points;
-  points.reserve(mesh.vertices.size());
-  for (const auto& v : mesh.vertices) points.emplace_back(v[0], v[1], v[2]);
-  std::vector<std::array<std::size_t, 3>> faces;
-  faces.reserve(mesh.faces.size());
-  for (const auto& f : mesh.faces) {
-    for (int i : f)
-      if (i < 0 || static_cast<std::size_t>(i) >= points.size()) return false;
-    faces.push_back({static_cast<std::size_t>(f[0]), static_cast<std::size_t>(f[1]),
-                     static_cast<std::size_t>(f[2])});
-  }
-  if (!PMP::is_polygon_soup_a_polygon_mesh(faces)) return false;
-  PMP::polygon_soup_to_polygon_mesh(points, faces, sm);
-  return true;
-}
-
-TriangleMesh from_surface_mesh(const SurfaceMesh& sm) {
-  TriangleMesh out;
-  std::vector<int> index(sm.num_vertices(), -1);
-  for (auto v : sm.vertices()) {
-    const Point& p = sm.point(v);
-    index[v.idx()] = static_cast<int>(out.vertices.size());
-    out.vertices.push_back({p.x(), p.y(), p.z()});
-  }
-  for (auto f : sm.faces()) {
-    std::array<int, 3> tri{};
-    int k = 0;
-    for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) tri[k++] = index[v.idx()];
-    out.faces.push_back(tri);
-  }
-  return out;
-}
 
 std::string check(SurfaceMesh& sm) {
   if (sm.number_of_faces() == 0) return "empty mesh";
