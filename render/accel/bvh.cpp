@@ -21,17 +21,35 @@ struct BuildNode {
   bool used = false;
 };
 
+/// How many primitives of a range are tested in blocks and how many alone.
+struct Counts {
+  std::uint32_t blocked = 0, alone = 0;
+  Counts& operator+=(const Counts& o) {
+    blocked += o.blocked, alone += o.alone;
+    return *this;
+  }
+  bool empty() const { return blocked + alone == 0; }
+};
+
 struct Builder {
   std::span<const Aabb> bounds;
+  std::span<const std::uint8_t> tested_alone;  // empty: every primitive is blockable
   std::vector<Vec3> centroids;
   std::vector<std::uint32_t>& order;
   std::vector<BuildNode>& slots;
   BvhBuildOptions options;
 
-  /// SAH intersection cost of n primitives tested block_size at a time.
-  float blocks(std::uint32_t n) const {
+  Counts count_of(std::uint32_t primitive) const {
+    const bool alone = !tested_alone.empty() && tested_alone[primitive] != 0;
+    return alone ? Counts{0, 1} : Counts{1, 0};
+  }
+
+  /// SAH intersection cost of a leaf: blockable primitives tested block_size at a time, the
+  /// others one test each (a sphere's quadratic costs as much as a 4-triangle SIMD block, so
+  /// counting 4 spheres as one block made S4's leaves hold 4 spheres each).
+  float blocks(const Counts& c) const {
     const auto b = static_cast<std::uint32_t>(std::max(1, options.block_size));
-    return float((n + b - 1) / b);
+    return float((c.blocked + b - 1) / b + c.alone);
   }
 
   // Builds the subtree for order[begin, end) into slots[slot, slot + 2 (end - begin) - 1):
@@ -62,18 +80,18 @@ struct Builder {
       for (int axis = 0; axis < 3; ++axis) {
         if (!(cext[axis] > 0.0f)) continue;
         Aabb bin_box[kBins];
-        std::uint32_t bin_count[kBins] = {};
+        Counts bin_count[kBins] = {};
         const float scale = kBins * (1.0f - 1e-6f) / cext[axis];
         for (std::uint32_t i = begin; i < end; ++i) {
           int b = static_cast<int>((centroids[order[i]][axis] - cbox.lo[axis]) * scale);
           b = std::clamp(b, 0, kBins - 1);
           bin_box[b].extend(bounds[order[i]]);
-          ++bin_count[b];
+          bin_count[b] += count_of(order[i]);
         }
         float right_area[kBins];
-        std::uint32_t right_count[kBins];
+        Counts right_count[kBins];
         Aabb acc;
-        std::uint32_t cnt = 0;
+        Counts cnt;
         for (int b = kBins - 1; b > 0; --b) {
           acc.extend(bin_box[b]);
           cnt += bin_count[b];
@@ -81,11 +99,11 @@ struct Builder {
           right_count[b] = cnt;
         }
         acc = Aabb{};
-        cnt = 0;
+        cnt = Counts{};
         for (int b = 0; b < kBins - 1; ++b) {
           acc.extend(bin_box[b]);
           cnt += bin_count[b];
-          if (cnt == 0 || right_count[b + 1] == 0) continue;
+          if (cnt.empty() || right_count[b + 1].empty()) continue;
           const float cost =
               acc.area() * blocks(cnt) + right_area[b + 1] * blocks(right_count[b + 1]);
           if (cost < best_cost) {
@@ -96,10 +114,12 @@ struct Builder {
         }
       }
       if (best_axis >= 0) {
+        Counts all;
+        for (std::uint32_t i = begin; i < end; ++i) all += count_of(order[i]);
         const float area = box.area();
         const float split_cost =
-            options.traversal_cost + (area > 0.0f ? best_cost / area : blocks(m));
-        if (m <= static_cast<std::uint32_t>(options.max_leaf_size) && blocks(m) <= split_cost) {
+            options.traversal_cost + (area > 0.0f ? best_cost / area : blocks(all));
+        if (m <= static_cast<std::uint32_t>(options.max_leaf_size) && blocks(all) <= split_cost) {
           node.leaf = true;
           return 1;
         }
@@ -148,14 +168,17 @@ struct Builder {
 
 }  // namespace
 
-Bvh::Bvh(std::span<const Aabb> bounds, const BvhBuildOptions& options) {
+Bvh::Bvh(std::span<const Aabb> bounds, const BvhBuildOptions& options,
+         std::span<const std::uint8_t> tested_alone) {
   const std::size_t n = bounds.size();
   if (n == 0) return;
   THAW_CHECK(n < (std::size_t(1) << 31), "too many primitives for a 32-bit BVH");
   m_order.resize(n);
   for (std::uint32_t i = 0; i < n; ++i) m_order[i] = i;
   std::vector<BuildNode> slots(2 * n - 1);
-  Builder builder{bounds, {}, m_order, slots, options};
+  THAW_CHECK(tested_alone.empty() || tested_alone.size() == n,
+             "tested_alone needs one flag per primitive");
+  Builder builder{bounds, tested_alone, {}, m_order, slots, options};
   builder.centroids.resize(n);
   for (std::size_t i = 0; i < n; ++i) builder.centroids[i] = bounds[i].center();
   if (n >= options.parallel_threshold) {

@@ -81,7 +81,10 @@ class Bvh {
   Bvh() = default;
   /// Builds over `bounds` (one box per primitive). Afterwards `order()[i]` is the input index of
   /// the i-th primitive as the leaves reference them: callers store their primitives in that order.
-  explicit Bvh(std::span<const Aabb> bounds, const BvhBuildOptions& options = {});
+  /// `tested_alone` (empty, or one flag per primitive): primitives the leaf test cannot take
+  /// BvhBuildOptions::block_size at a time, so the SAH counts each as one test.
+  explicit Bvh(std::span<const Aabb> bounds, const BvhBuildOptions& options = {},
+               std::span<const std::uint8_t> tested_alone = {});
 
   /// The binary tree (build result); region queries use wide_nodes(), rays wide8_nodes() (empty
   /// below BvhBuildOptions::wide8_min_primitives: then wide_nodes()).

@@ -181,6 +181,27 @@ Vec3 triangle_normal(const Primitive& pr) {
   return len > 0.0f ? n / len : Vec3{0, 0, 1};
 }
 
+/// Whether every vertex normal of `mesh` is its face's normal (either sign) to within 1e-7 in the
+/// cosine (angle < 0.03 degrees), as a flat floor written with normals has them: interpolating
+/// them gives the face normal to rounding, so the mesh is shaded flat and each hit skips the
+/// interpolation and its square root (7 % of S4's CPU, whose floor is such a mesh).
+bool normals_are_face_normals(const TriangleMesh& mesh) {
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    const Vec3 a = mesh.positions[tri[0]], b = mesh.positions[tri[1]], c = mesh.positions[tri[2]];
+    const Vec3 face = cross(b - a, c - a);
+    const float face_length = length(face);
+    if (!(face_length > 0.0f)) return false;
+    for (int corner = 0; corner < 3; ++corner) {
+      const Vec3 n = mesh.normals[mesh.normal_indices[t][corner]];
+      const float n_length = length(n);
+      if (!(n_length > 0.0f) || std::abs(dot(n, face)) / (n_length * face_length) < 1.0f - 1e-7f)
+        return false;
+    }
+  }
+  return true;
+}
+
 /// The ray's ShearedRay, made on first use: a ray that reaches no triangle needs none.
 class LazyShearedRay {
  public:
@@ -477,7 +498,7 @@ class SceneBuilder {
             mesh_name, label,
             "a dielectric mesh must be oriented outward (its signed volume is not positive)");
     }
-    if (mesh.has_normals()) {
+    if (mesh.has_normals() && !normals_are_face_normals(mesh)) {
       obj.normal_set = static_cast<int>(m_s.m_normal_sets.size());
       std::vector<float> curvature(mesh.triangles.size());
       for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
@@ -550,7 +571,13 @@ class SceneBuilder {
   /// The BVH over every primitive, the primitives in its order, triangle normals and the
   /// packed 4-triangle leaf blocks.
   void build_acceleration() {
-    m_s.m_bvh = Bvh(m_bounds);
+    // Spheres, boxes and index-matched triangles are tested one by one, never in a 4-triangle
+    // block (below), and the SAH must count them so.
+    std::vector<std::uint8_t> tested_alone(m_prims.size());
+    for (std::size_t i = 0; i < m_prims.size(); ++i)
+      tested_alone[i] = m_prims[i].kind != PrimitiveKind::triangle ||
+                        m_s.m_objects[m_prims[i].object].index_matched;
+    m_s.m_bvh = Bvh(m_bounds, BvhBuildOptions{}, tested_alone);
     m_s.m_primitives.resize(m_prims.size());
     for (std::size_t i = 0; i < m_prims.size(); ++i)
       m_s.m_primitives[i] = m_prims[m_s.m_bvh.order()[i]];

@@ -338,6 +338,29 @@ TEST(Bvh, EmptyAndSinglePrimitive) {
   compare_with_brute_force({Tri{{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}}}, 6, 10000);
 }
 
+// The SAH counts primitives that are tested one by one (spheres) as one test each, and blockable
+// ones (triangles) block_size per test: four well-separated unit boxes in a row stay one leaf as
+// blockable primitives (one 4-wide test beats a split) and become four leaves when tested alone.
+TEST(Bvh, PrimitivesTestedAloneAreNotPackedIntoOneLeaf) {
+  std::vector<Aabb> boxes;
+  for (int i = 0; i < 4; ++i) {
+    Aabb b;
+    b.extend(Vec3{3.0f * i, 0, 0});
+    b.extend(Vec3{3.0f * i + 1, 1, 1});
+    boxes.push_back(b);
+  }
+  auto leaves = [](const Bvh& bvh) {
+    int n = 0;
+    for (const BvhNode& node : bvh.nodes()) n += node.count > 0;
+    return n;
+  };
+  EXPECT_EQ(leaves(Bvh(boxes)), 1);
+  const std::vector<std::uint8_t> alone(4, 1);
+  EXPECT_EQ(leaves(Bvh(boxes, BvhBuildOptions{}, alone)), 4);
+  const std::vector<std::uint8_t> mixed{0, 0, 1, 1};  // two blockable, two alone
+  EXPECT_GE(leaves(Bvh(boxes, BvhBuildOptions{}, mixed)), 2);
+}
+
 TEST(Bvh, ClosedMeshIsWatertightAtEdgesAndVertices) {
   // Rays from inside a closed icosphere aimed exactly at its vertices and edge midpoints (where
   // two or more triangles meet), and from outside through them towards the centre: all must hit.

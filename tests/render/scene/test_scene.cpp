@@ -121,6 +121,49 @@ TEST(Scene, BuildsFromInMemoryMeshesAndFindsCameraMedium) {
   EXPECT_EQ(s.objects()[si.object].label, "outer");
 }
 
+// A floor written with normals that are its faces' normals (S4's floor_200.obj) is shaded flat:
+// no normal set, the hit's shading normal is its geometric one exactly. A mesh whose normals
+// bend keeps them.
+TEST(Scene, MeshWhoseNormalsAreFaceNormalsIsShadedFlat) {
+  auto quad = [](Vec3 normal) {
+    auto m = std::make_shared<TriangleMesh>();
+    m->positions = {{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}};
+    m->triangles = {{0, 1, 2}, {0, 2, 3}};
+    m->normals = {normalize(normal)};
+    m->normal_indices = {{0, 0, 0}, {0, 0, 0}};
+    return m;
+  };
+  for (const auto& [normal, flat] :
+       {std::pair{Vec3{0, 1, 0}, true}, std::pair{Vec3{0, -1, 0}, true},
+        std::pair{Vec3{0.01f, 1, 0}, false}}) {
+    SceneDescription d;
+    d.camera.position = {0, 3, 0.5f};
+    d.camera.look_at = {0, 0, 0};
+    MaterialDescription grey;
+    grey.name = "grey";
+    d.materials.push_back(grey);
+    ObjectDescription o;
+    o.shape = ObjectDescription::Shape::mesh;
+    o.mesh = quad(normal);
+    o.material = "grey";
+    o.label = "floor";
+    d.objects.push_back(o);
+    const Scene s = build_scene(d);
+    EXPECT_EQ(s.objects()[0].normal_set == -1, flat) << normal.x << " " << normal.y;
+    const Ray ray{{0.3f, 3, 0.2f}, normalize(Vec3{0.1f, -1, 0.05f})};
+    Hit hit;
+    ASSERT_TRUE(s.intersect(ray, hit));
+    const SurfaceInteraction si = s.interaction(ray, hit);
+    if (flat) {
+      EXPECT_EQ(si.ns.x, si.ng.x);
+      EXPECT_EQ(si.ns.y, si.ng.y);
+      EXPECT_EQ(si.ns.z, si.ng.z);
+    } else {
+      EXPECT_GT(std::abs(si.ns.x), 5e-3f);
+    }
+  }
+}
+
 TEST(Scene, OpenDielectricMeshIsRejected) {
   SceneDescription d = shell_scene();
   auto open = std::make_shared<TriangleMesh>(test::icosphere(2, 0.5f));
