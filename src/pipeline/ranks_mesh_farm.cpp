@@ -108,7 +108,8 @@ std::vector<std::string> RanksMeshFarm::run_on_ranks(long n, int threads,
       [&](long, long c) {  // progress in items: the finished chunk's worth
         if (done)
           for (long i = 0; i < chunks[static_cast<std::size_t>(c)].count; ++i) done();
-      });
+      },
+      1);  // the next chunk asked for while this one runs: no idle round trip between chunks
   std::vector<std::string> results(static_cast<std::size_t>(std::max(0L, n)));
   if (!m_ranks.leader()) return results;
   for (std::size_t c = 0; c < chunks.size(); ++c) {

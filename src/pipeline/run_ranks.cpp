@@ -4,7 +4,7 @@ namespace thaw::pipeline {
 
 std::vector<std::string> RunRanks::farm(const std::vector<long>& items,
                                         const std::function<std::string(long)>& work,
-                                        const std::function<void(long, long)>& done) {
+                                        const std::function<void(long, long)>& done, int) {
   std::vector<std::string> results;
   for (long item : items) {
     results.push_back(work(item));

@@ -28,10 +28,13 @@ class RunRanks {
   /// index in `items` (never concurrently). If work throws on some rank, no further
   /// items are handed out and every rank then throws thaw::UserError with that rank's message
   /// (the first failure); items finished before stay finished. Every rank must call farm with
-  /// equal items.
+  /// equal items. `ahead`: how many items a rank other than the leader asks for before it needs
+  /// them (each hand-out is a round trip to the leader: asked ahead, it overlaps the rank's work;
+  /// at the end such a rank may hold up to `ahead` items that an idle rank could have taken, so
+  /// for short items only).
   virtual std::vector<std::string> farm(const std::vector<long>& items,
                                         const std::function<std::string(long)>& work,
-                                        const std::function<void(long, long)>& done);
+                                        const std::function<void(long, long)>& done, int ahead = 0);
   /// The first non-empty of every rank's `error` (in rank order), on every rank: how ranks that
   /// each ran the same step agree whether it failed.
   virtual std::string first_error(const std::string& error) { return error; }

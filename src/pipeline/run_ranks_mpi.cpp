@@ -1,14 +1,16 @@
-// RunRanks over MPI (built with THAW_MPI): the leader (rank 0) hands out frames one at a time from
-// a dispatcher thread while its main thread renders too; other ranks ask for a frame, render it,
-// and ask again (a master/worker queue: frames differ in cost, so static splits would idle).
-// Waiting ranks poll with short sleeps instead of MPI's busy-waiting, so a rank that waits (for
-// the leader's simulation, say) leaves its core to the ranks that work.
+// RunRanks over MPI (built with THAW_MPI): the leader (rank 0) hands out items (frames, mesh
+// chunks) from a dispatcher thread while its main thread works too; other ranks ask for an item,
+// work on it, and ask again (a master/worker queue: items differ in cost, so static splits would
+// idle), or with `ahead` ask for their next items before they need them. Waiting ranks poll with
+// short sleeps instead of MPI's busy-waiting, so a rank that waits (for the leader's simulation,
+// say) leaves its core to the ranks that work.
 #include <mpi.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
+#include <deque>
 #include <mutex>
 #include <thread>
 #include <utility>
@@ -85,10 +87,12 @@ class MpiRanks final : public RunRanks {
 
   std::vector<std::string> farm(const std::vector<long>& items,
                                 const std::function<std::string(long)>& work,
-                                const std::function<void(long, long)>& done) override {
+                                const std::function<void(long, long)>& done,
+                                int ahead = 0) override {
     if (m_size == 1) return RunRanks::farm(items, work, done);
     std::vector<std::string> results(items.size());
-    std::string error = leader() ? lead(items, work, done, results) : follow(work);
+    const int depth = 1 + std::max(0, ahead);
+    std::string error = leader() ? lead(items, work, done, results, depth) : follow(work, depth);
     error = broadcast(error);
     if (!error.empty()) throw UserError("", "", error);
     return results;
@@ -130,7 +134,8 @@ class MpiRanks final : public RunRanks {
   }
 
   std::string lead(const std::vector<long>& items, const std::function<std::string(long)>& work,
-                   const std::function<void(long, long)>& done, std::vector<std::string>& results) {
+                   const std::function<void(long, long)>& done, std::vector<std::string>& results,
+                   int depth) {
     std::atomic<std::size_t> next{0};
     std::atomic<long> finished{0};
     std::atomic<bool> failed{false};
@@ -152,8 +157,11 @@ class MpiRanks final : public RunRanks {
       if (done) done(n, index);
     };
     const auto dispatch = [&] {
-      // The index each worker is busy with: its "done" message carries that item's text.
-      std::vector<long> busy(static_cast<std::size_t>(m_size), -1);
+      // The indexes each worker holds, oldest first: its "done" message carries the oldest's
+      // text. Every message is answered; a worker has `depth` requests open until it has been
+      // answered "no more" that many times, and sends nothing after.
+      std::vector<std::deque<long>> busy(static_cast<std::size_t>(m_size));
+      std::vector<int> ends(static_cast<std::size_t>(m_size), 0);
       Backoff backoff;
       for (int active = m_size - 1; active > 0;) {
         int flag = 0;
@@ -169,16 +177,22 @@ class MpiRanks final : public RunRanks {
         std::string message(static_cast<std::size_t>(length), '\0');
         MPI_Recv(message.data(), length, MPI_CHAR, status.MPI_SOURCE, kTagAsk, MPI_COMM_WORLD,
                  MPI_STATUS_IGNORE);
-        long& index = busy[static_cast<std::size_t>(status.MPI_SOURCE)];
-        if (message[0] == 'D') {
-          results[static_cast<std::size_t>(index)] = message.substr(1);
-          finish(index);
+        const auto source = static_cast<std::size_t>(status.MPI_SOURCE);
+        if (message[0] == 'D' || message[0] == 'E') {
+          const long index = busy[source].front();
+          busy[source].pop_front();
+          if (message[0] == 'D') {
+            results[static_cast<std::size_t>(index)] = message.substr(1);
+            finish(index);
+          } else {
+            fail(message.substr(1));
+          }
         }
-        if (message[0] == 'E') fail(message.substr(1));
-        index = take();
+        const long index = take();
         const long item = index < 0 ? -1 : items[static_cast<std::size_t>(index)];
+        if (index >= 0) busy[source].push_back(index);
         MPI_Send(&item, 1, MPI_LONG, status.MPI_SOURCE, kTagItem, MPI_COMM_WORLD);
-        if (item < 0) --active;
+        if (item < 0 && ++ends[source] == depth) --active;
       }
     };
     if (m_threads) {
@@ -199,19 +213,28 @@ class MpiRanks final : public RunRanks {
     return first_error;
   }
 
-  std::string follow(const std::function<std::string(long)>& work) {
+  // Asks for `depth` items at once, then for one more with each result: the next item is there
+  // when this one is done. The leader answers in order, and "no more" (-1) once means no more
+  // after it: done when `depth` requests have been answered so.
+  std::string follow(const std::function<std::string(long)>& work, int depth) {
     std::string message = "R";
-    for (;;) {
-      MPI_Send(message.data(), static_cast<int>(message.size()), MPI_CHAR, 0, kTagAsk,
-               MPI_COMM_WORLD);
+    for (int i = 0; i < depth; ++i)
+      MPI_Send(message.data(), 1, MPI_CHAR, 0, kTagAsk, MPI_COMM_WORLD);
+    for (int ends = 0; ends < depth;) {
       long item = -1;
       MPI_Request r;
       MPI_Irecv(&item, 1, MPI_LONG, 0, kTagItem, MPI_COMM_WORLD, &r);
       sleepy_wait(r);
-      if (item < 0) return "";
+      if (item < 0) {
+        ++ends;
+        continue;
+      }
       auto [e, text] = attempt(work, item);
       message = e.empty() ? "D" + text : "E" + e;
+      MPI_Send(message.data(), static_cast<int>(message.size()), MPI_CHAR, 0, kTagAsk,
+               MPI_COMM_WORLD);
     }
+    return "";
   }
 
   int m_rank = 0, m_size = 1;
