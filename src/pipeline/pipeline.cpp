@@ -456,6 +456,16 @@ void mesh_stage(Run& r, const std::vector<sim::InterfaceRecord>& rows) {
         manifest.mark_stage_complete("mesh");
         clock.timing().items_done = static_cast<int>(meshes.steps.size());
       });
+      // The stage's wall seconds to 0.1 ms (the summary's "0.10 s" is too coarse for a stage this
+      // short: bench/pipeline/mpi_scaling.sh reads this). A note, like the costs above.
+      if (leader) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.4f\n", clock.elapsed_s());
+        try {
+          write_file_atomic(r.out / "run_items" / "mesh" / "stage_s", text);
+        } catch (const UserError&) {
+        }
+      }
     }
   }
 }
