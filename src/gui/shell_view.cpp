@@ -441,7 +441,15 @@ void ShellView::stage(const std::string& look, std::function<void()> apply, vtkP
     return;
   }
   m_staged.push_back({look, prop, std::move(apply), apply_when_removed});
-  if (m_painted && !m_held && !m_frame_timer->isActive()) m_stage_timer->start();
+  if (!m_painted || m_held || m_frame_timer->isActive()) return;
+  // A new look applied since the last draw waits for its draw (the caller's, which starts the
+  // frame timer) and that draw's frame: a turn started here drew again in the next event-loop
+  // turn, before that frame's paint (two draws, 100-150 ms, in one GUI-thread block when an edit
+  // brought two new looks). The frame timer stands in if no draw comes.
+  if (m_new_looks > 0)
+    m_frame_timer->start();
+  else
+    m_stage_timer->start();
 }
 
 void ShellView::remove_prop(vtkProp* prop) {
@@ -459,6 +467,8 @@ void ShellView::remove_prop(vtkProp* prop) {
 void ShellView::draw() {
   m_most_new_looks = std::max(m_most_new_looks, m_new_looks);
   m_new_looks = 0;
+  m_frames_at_draw = m_frames_shown;
+  m_since_draw.start();
   if (m_painted) m_window->start_drawing();  // (before the first paint VTK cannot draw yet)
   renderWindow()->Render();
   if (!m_staged.empty() && m_painted && !m_held) m_frame_timer->start();  // then next_turn()
@@ -471,6 +481,9 @@ void ShellView::next_turn() {
 
 void ShellView::advance() {
   if (m_held) return;
+  if (m_frames_shown == m_frames_at_draw && m_since_draw.isValid() &&
+      m_since_draw.elapsed() < kFrameWaitMs)
+    ++m_early_turns;
   while (!m_staged.empty()) {
     Staged& next = m_staged.front();
     const bool known = m_looks.count(next.look) > 0;

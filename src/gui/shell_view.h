@@ -15,6 +15,7 @@
 // rest of the window stays on Qt's raster backing store; the OpenGL work is the view's own child
 // window's, its context made in its first expose, a turn of its own.
 #include <vtkSmartPointer.h>
+#include <QElapsedTimer>
 #include <QWidget>
 
 #include <array>
@@ -84,6 +85,9 @@ class ShellView : public QWidget {
   void report_camera();
   /// Frames of the view's draws shown on the screen so far (swapped: bench_gui).
   long frames_shown() const { return m_frames_shown; }
+  /// Warm-up turns that began before the last draw's frame was shown and kFrameWaitMs had
+  /// passed (tests: none, else two draws made one long block of the GUI thread).
+  long early_turns() const { return m_early_turns; }
   /// Triangles drawn (both surfaces), for tests.
   long triangles() const { return m_triangles; }
   /// Whether the outer surface is drawn with its triangle edges (false while the slider moves).
@@ -170,7 +174,8 @@ class ShellView : public QWidget {
   vtkSmartPointer<vtkActor> m_outer, m_inner;
   vtkSmartPointer<vtkTextActor> m_label;
   long m_triangles = 0;
-  long m_frames_shown = 0;
+  long m_frames_shown = 0, m_frames_at_draw = 0, m_early_turns = 0;
+  QElapsedTimer m_since_draw;  // since the last draw
   std::vector<vtkSmartPointer<vtkActor>> m_scene;
   std::vector<vtkSmartPointer<vtkActor>> m_catalog;
   std::vector<vtkSmartPointer<vtkTexture>> m_scene_textures;

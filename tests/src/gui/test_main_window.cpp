@@ -365,6 +365,7 @@ class TestMainWindow : public QObject {
         v.triangles() > 0 && v.scene_objects() > 0 && !v.warming_up() && w.preview_full_size(),
         120000);
     QCOMPARE(v.most_new_looks_per_draw(), 1);
+    QCOMPARE(v.early_turns(), 0L);
     // Everything is drawn: the shell's two surfaces, the scene's objects and lights, the label.
     QCOMPARE(v.drawn_props(), 2 + v.scene_objects() + v.scene_lights() + 1);
   }
@@ -398,6 +399,9 @@ class TestMainWindow : public QObject {
     QVERIFY(missing > 0);  // the default scenario does not already show every look
     QCOMPARE(v.add_catalog(catalog), missing);
     QTRY_VERIFY_WITH_TIMEOUT(!v.warming_up(), 60000);
+    // Each turn waited for the last draw's frame (a turn queued by add_catalog itself drew again
+    // in the next event-loop pass: two draws in one block of the GUI thread).
+    QCOMPARE(v.early_turns(), 0L);
     QCOMPARE(v.most_new_looks_per_draw(), 1);
     QCOMPARE(v.drawn_props(), props_before + missing);
     for (const auto& look : wanted) QVERIFY2(v.looks().count(look), look.c_str());
