@@ -108,6 +108,9 @@ RenderResult render_image_tiles(const Scene& scene, const RenderOptions& options
   // where that is nullopt. Returns the samples added to the image.
   const auto pass = [&](auto&& settings, bool report) {
     std::uint64_t added = 0;
+    // A local of this lambda for the sample lambda below: clang (14, Debian 12) rejects a lambda
+    // inside an OpenMP region of a generic lambda that names the enclosing function's `scene`.
+    const Camera& camera = scene.camera();
 #pragma omp parallel num_threads(threads) reduction(+ : added)
     {
       auto worker = make_worker();
@@ -134,7 +137,7 @@ RenderResult render_image_tiles(const Scene& scene, const RenderOptions& options
             const PixelEstimate<Sample> e = estimate_pixel<Sample>(
                 x, y, points, filter, *pixel_aa,
                 [&](float fx, float fy, std::uint32_t s) {
-                  return worker.sample(scene.camera().generate(fx, fy),
+                  return worker.sample(camera.generate(fx, fy),
                                        CameraSampleContext{&points, s}, rng);
                 },
                 [&](const Sample& v) { return worker.pixel_value(v, 1); });

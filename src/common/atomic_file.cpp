@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <mutex>
 #include <string>
 #include <string_view>
@@ -85,13 +86,30 @@ fs::path final_name(const fs::path& path) {
   return p;
 }
 
+namespace {
+
+// Whether process `pid` can still write: it exists and is not a zombie. A killed process stays a
+// zombie until its parent reaps it; under mpirun killed first, a rank's parent is init, and in a
+// container init may never reap it, so its temporaries would be kept for good (Linux's
+// /proc/PID/stat: the state after the parenthesised command name, 'Z' for a zombie).
+bool can_still_write(long pid) {
+  if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) return false;
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(stat, line)) return true;  // no /proc: trust kill()
+  const auto paren = line.rfind(')');
+  return !(paren != std::string::npos && paren + 2 < line.size() && line[paren + 2] == 'Z');
+}
+
+}  // namespace
+
 int remove_stale_temporaries(const fs::path& dir) {
   std::error_code ec;
   std::vector<fs::path> stale;
   for (auto it = fs::recursive_directory_iterator(dir, ec);
        !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
     const long pid = temporary_owner(it->path().filename().string());
-    if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
+    if (pid > 0 && !can_still_write(pid)) {
       stale.push_back(it->path());
       if (it->is_directory(ec)) it.disable_recursion_pending();
     }

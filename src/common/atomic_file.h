@@ -16,8 +16,8 @@ std::filesystem::path temporary_sibling(const std::filesystem::path& final_path)
 void write_file_atomic(const std::filesystem::path& path, std::string_view contents);
 
 /// Removes, anywhere under `dir`, temporary files and folders left by thaw processes that no
-/// longer exist (a run killed while writing); those of live processes are kept. Returns how many
-/// were removed.
+/// longer exist or are zombies (a run killed while writing); those of live processes are kept.
+/// Returns how many were removed.
 int remove_stale_temporaries(const std::filesystem::path& dir);
 
 /// The name `path` will have once the staging folders (StagingDirectory) of this process holding

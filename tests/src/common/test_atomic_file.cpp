@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
 #include <unistd.h>
 #include <fstream>
 #include <sstream>
@@ -137,6 +138,33 @@ TEST(AtomicFile, StaleTemporariesOfDeadProcessesAreRemoved) {
   EXPECT_TRUE(std::filesystem::exists(dir / "keep.json"));
   EXPECT_FALSE(std::filesystem::exists(dir / "m.json.tmp-999999999-0"));
   EXPECT_FALSE(std::filesystem::exists(dir / "sub" / "x.tmp-999999999-1"));
+  std::filesystem::remove_all(dir);
+}
+
+// A killed process whose parent has not reaped it (a zombie: under mpirun killed first, a rank's
+// parent is init, which in a container may never reap it) writes nothing more: its temporaries
+// are stale too. The child here exits at once and stays a zombie until waitpid below.
+TEST(AtomicFile, StaleTemporariesOfZombieProcessesAreRemoved) {
+  const std::filesystem::path dir = scratch("zombie");
+  std::filesystem::create_directories(dir);
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  ASSERT_GT(child, 0);
+  // Wait until it is a zombie (state 'Z' in /proc/PID/stat), at most 5 s.
+  for (int i = 0; i < 5000; ++i) {
+    std::ifstream stat("/proc/" + std::to_string(child) + "/stat");
+    std::string line;
+    std::getline(stat, line);
+    const auto paren = line.rfind(')');
+    if (paren != std::string::npos && paren + 2 < line.size() && line[paren + 2] == 'Z') break;
+    ::usleep(1000);
+  }
+  const std::string zombie = "melt.mp4.tmp-" + std::to_string(child) + "-28";
+  std::ofstream(dir / zombie) << "half an encode";
+  EXPECT_EQ(remove_stale_temporaries(dir), 1);
+  EXPECT_FALSE(std::filesystem::exists(dir / zombie));
+  int status = 0;
+  ::waitpid(child, &status, 0);
   std::filesystem::remove_all(dir);
 }
 }  // namespace

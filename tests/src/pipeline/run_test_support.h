@@ -12,6 +12,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <string>
@@ -78,6 +79,30 @@ inline void expect_no_temporaries(const fs::path& dir) {
     EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos) << e.path();
 }
 
+/// Sends `signal_number` to every running process with `out` in its command line until none is
+/// left (at most 30 s). OpenMPI puts each rank in a process group of its own: killing mpirun's
+/// group leaves the ranks running (they even finish the run), so a crash of the whole job must
+/// reach them too. Zombies (an empty /proc/PID/cmdline) count as gone.
+inline void signal_processes_naming(const fs::path& out, int signal_number) {
+  const std::string needle = out.string();
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  for (;;) {
+    bool found = false;
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator("/proc", ec)) {
+      const std::string name = e.path().filename().string();
+      if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos) continue;
+      std::ifstream in(e.path() / "cmdline", std::ios::binary);
+      const std::string cmdline((std::istreambuf_iterator<char>(in)), {});
+      if (cmdline.find(needle) == std::string::npos) continue;
+      found = true;
+      ::kill(static_cast<pid_t>(std::stol(name)), signal_number);
+    }
+    if (!found || std::chrono::steady_clock::now() > deadline) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+}
+
 /// Starts `args` (argv[0] searched on PATH) in a process group of its own, waits until
 /// OUT/frames/frame_000001.png exists (at most 120 s), sends `signal_number` to the group (or to
 /// the process only, if `group` is false) and returns the wait status. Its standard error goes to
@@ -108,6 +133,7 @@ inline int signal_once_a_frame_is_written(const std::vector<std::string>& args, 
          std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   ::kill(group ? -pid : pid, signal_number);
+  if (group) signal_processes_naming(out, signal_number);
   int status = 0;
   ::waitpid(pid, &status, 0);
   return status;
