@@ -137,8 +137,8 @@ RenderResult render_image_tiles(const Scene& scene, const RenderOptions& options
             const PixelEstimate<Sample> e = estimate_pixel<Sample>(
                 x, y, points, filter, *pixel_aa,
                 [&](float fx, float fy, std::uint32_t s) {
-                  return worker.sample(camera.generate(fx, fy),
-                                       CameraSampleContext{&points, s}, rng);
+                  return worker.sample(camera.generate(fx, fy), CameraSampleContext{&points, s},
+                                       rng);
                 },
                 [&](const Sample& v) { return worker.pixel_value(v, 1); });
             result.image.at(x, y) = worker.pixel_value(e.value, 1);
