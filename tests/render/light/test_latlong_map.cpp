@@ -7,6 +7,7 @@
 
 #include <OpenEXR/ImfRgbaFile.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -19,10 +20,13 @@
 namespace thaw::render {
 namespace {
 
+// One folder per test and process: CTest runs these tests as concurrent processes, and a folder
+// shared by name (the random seed, 0 unless shuffling) was removed by one test under another
+// (LatLongMap.BadFilesAreNamed failed with "no such file" on a fresh Debian 12 root).
 std::filesystem::path temp_dir() {
-  const auto dir =
-      std::filesystem::temp_directory_path() /
-      ("thaw_latlong_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("thaw_latlong_" + std::to_string(::getpid()) + "_" +
+                    ::testing::UnitTest::GetInstance()->current_test_info()->name());
   std::filesystem::create_directories(dir);
   return dir;
 }
