@@ -1,6 +1,8 @@
 // The grid enthalpy solver (sim/grid/enthalpy_solver.h) against exact answers: the planar
 // two-phase Neumann problem run inside the 3D and the axisymmetric grids (front position and
-// its observed order), the per-step energy balance, symmetry and thread-count invariance.
+// its observed order); the same at small and large Stefan numbers, melting and freezing, with the
+// heat through the held face checked against the exact solution's gradient and the energy
+// balance; the same slab along x, y and z. Symmetry and thread counts: test_grid_runs.cpp.
 #include "sim/grid/enthalpy_solver.h"
 
 #include <gtest/gtest.h>
@@ -11,6 +13,7 @@
 
 #include "sim/reference/neumann.h"
 #include "sim/scenario/scenario_file.h"
+#include "tests/sim/grid/planar_neumann_grid.h"
 
 namespace thaw::sim {
 namespace {
@@ -118,6 +121,97 @@ TEST(EnthalpySolver, NeumannFrontOrder3d) {
 }
 TEST(EnthalpySolver, NeumannFrontOrderAxisymmetric) {
   expect_order(GridField::Geometry::axisymmetric);
+}
+
+// --- the planar Neumann problem at other Stefan numbers, melting and freezing ----------------
+// (tests/sim/grid/planar_neumann_grid.h; the full set, with the far-field layers of two-phase
+// problems that need longer grids, is in test_enthalpy_solver_e2e.cpp.) The front is resolved by
+// 8, 16 and 32 cells at t1; its error is the largest over 16 instants (the enthalpy method's
+// error oscillates as the front crosses cells). What is asserted, and why:
+//  * front: the scheme is second order where the phase is pure and first order in the cell
+//    holding the front, whose effect on the front position partly cancels as the front crosses
+//    cells; the sub-cell front conductance makes it 1.5-2 (docs/validation.md). Asserted: the
+//    issue's target 1.5 on the mean order of the two refinements and its minimum 1 on each.
+//  * heat: the heat that entered through the held face, from the solver, against the exact
+//    solution's face gradient integrated over [t0, t1] (test's own finite differences and
+//    quadrature, not the solver's numbers nor NeumannSolution's closed-form flux). The total
+//    enthalpy is the integral of a field that is second-order accurate except in one cell per
+//    front, so the same bars as the front.
+//  * conservation: the solver's heat equals its own enthalpy change (sensible + latent) to
+//    round-off, 1e-12 of the heat; per step the 1e-8 (measured ~1e-15).
+//  * the reference itself: exact heat and exact enthalpy change agree to 1e-6 (quadrature and
+//    finite differences ~1e-8; the far wall's heat is counted on both sides).
+void expect_study(const test::PlanarNeumann& pn, GridField::Geometry g) {
+  const test::NeumannStudy st = test::study_planar_neumann(pn, g);
+  using S = test::NeumannStudy;
+  EXPECT_LT(st.exact_identity, 1e-6) << pn.name;
+  EXPECT_GE(S::order(st.front), 1.5) << pn.name;
+  EXPECT_GE(S::pair_order(st.front, 0), 1.0) << pn.name;
+  EXPECT_GE(S::pair_order(st.front, 1), 1.0) << pn.name;
+  EXPECT_GE(S::order(st.heat), 1.5) << pn.name;
+  EXPECT_GE(S::pair_order(st.heat, 0), 1.0) << pn.name;
+  EXPECT_GE(S::pair_order(st.heat, 1), 1.0) << pn.name;
+  EXPECT_LT(st.heat_vs_enthalpy, 1e-12) << pn.name;
+  EXPECT_LT(st.step_energy, 1e-8) << pn.name;
+}
+
+/// The cases whose far phase is at T_m (short grids: the unit-test subset).
+std::vector<test::PlanarNeumann> short_cases() {
+  const Materials d = default_materials();
+  return {
+      // small Stefan number: freezing from -1 C into water at T_m (St 0.006, lambda 0.055)
+      {"freeze -1|0 (St 0.006)", d, false, -1, 0},
+      // melting from +10 C into ice at T_m (St_water 0.14)
+      {"melt +10|0 (St 0.14)", d, true, 10, 0},
+      // large Stefan number: melting from +150 C into ice at T_m (St_water 2.05, lambda 0.81)
+      {"melt +150|0 (St 2.05)", d, true, 150, 0},
+  };
+}
+
+TEST(EnthalpySolver, NeumannStefanNumbersMeltingAndFreezingAxisymmetric) {
+  for (const test::PlanarNeumann& pn : short_cases())
+    expect_study(pn, GridField::Geometry::axisymmetric);
+}
+TEST(EnthalpySolver, NeumannStefanNumbersMeltingAndFreezing3d) {
+  for (const test::PlanarNeumann& pn : short_cases())
+    expect_study(pn, GridField::Geometry::cartesian3d);
+}
+
+TEST(EnthalpySolver, TheSameSlabAlongXYAndZGivesTheSameAnswer) {
+  // The two-phase freezing problem along each axis of the 3D grid, 2 x 2 cells across: the three
+  // runs do the same arithmetic on permuted cells except the order of the terms in each cell's
+  // sum (stencil order x, y, z) and of the CG's block sums, so they agree to round-off: the CG
+  // stops at a relative residual, and a few hundred steps of ~1e-15 relative differences stay
+  // below 1e-11 of L_v. An axis mixed up anywhere (an area, a stride, a wall index) is O(1).
+  const Materials d = default_materials();
+  const test::PlanarNeumann pn("freeze -20|+5", d, false, -20, 5);
+  const int n = 48;
+  const double dx = pn.length / n, dt = 0.25 * dx * dx / pn.exact.alpha1();
+  std::vector<std::vector<double>> fields;
+  for (int axis : {0, 1, 2})
+    fields.push_back(test::run_planar_neumann(pn, GridField::Geometry::cartesian3d, axis, n, 2, dt)
+                         .final_enthalpy);
+  // cell (c along the slab's axis, u, v across) of the run along `axis`
+  auto at = [&](int axis, int c, int u, int v) {
+    int ijk[3];
+    ijk[axis] = c;
+    ijk[axis == 0 ? 1 : 0] = u;
+    ijk[axis == 2 ? 1 : 2] = v;
+    const int nx = axis == 0 ? n : 2, ny = axis == 1 ? n : 2;
+    return fields[axis][ijk[0] + nx * (ijk[1] + ny * ijk[2])];
+  };
+  const double latent = d.latent_heat_per_volume();
+  double worst = 0, spread = 0;
+  for (int c = 0; c < n; ++c)
+    for (int u = 0; u < 2; ++u)
+      for (int v = 0; v < 2; ++v) {
+        worst = std::max({worst, std::abs(at(0, c, u, v) - at(1, c, u, v)) / latent,
+                          std::abs(at(2, c, u, v) - at(1, c, u, v)) / latent});
+        spread = std::max(spread, std::abs(at(1, c, u, v) - at(1, 0, 0, 0)) / latent);
+      }
+  std::printf("x, y, z runs differ by at most %.2e L_v\n", worst);
+  EXPECT_LT(worst, 1e-11);
+  EXPECT_GT(spread, 0.5);  // the field is not trivial: ice and water along the slab
 }
 
 }  // namespace
