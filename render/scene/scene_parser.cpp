@@ -9,6 +9,7 @@
 #include "render/media/medium_library.h"
 #include "render/media/medium_parser.h"
 #include "src/common/error.h"
+#include "src/common/text_file.h"
 #include "src/common/toml_table.h"
 
 namespace thaw::render {
@@ -403,15 +404,8 @@ SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem:
 }
 
 SceneDescription parse_scene_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec))
-    throw UserError(path.string(), "", "scene file not found");
-  const TomlTable probe = TomlTable::parse_file(path);  // reports missing/malformed files uniformly
-  (void)probe;
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return parse_scene_string(buffer.str(), path.string(), path.parent_path());
+  return parse_scene_string(read_text_file(path, "a TOML file", kMaxTomlFileBytes), path.string(),
+                            path.parent_path());
 }
 
 }  // namespace thaw::render

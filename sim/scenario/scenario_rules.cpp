@@ -76,6 +76,12 @@ bool held_inner(const Scenario& s) {
 bool uses_outer_temperature(const Scenario& s) {
   return s.outer_kind == OuterBoundary::temperature || s.outer_kind == OuterBoundary::convective;
 }
+bool cylinder(const Scenario& s) {
+  return s.grid == GridGeometry::none && s.geometry == Geometry::cylinder;
+}
+bool planar(const Scenario& s) {
+  return s.grid == GridGeometry::none && s.geometry == Geometry::planar;
+}
 bool convective(const Scenario& s) {
   return s.outer_kind == OuterBoundary::convective;
 }
@@ -94,6 +100,12 @@ bool flux(const Scenario& s) {
 const std::vector<KeyRange>& key_ranges() {
   static const std::vector<KeyRange> ranges = {
       {"shell.outer_radius_m", [](const Scenario& s) { return s.outer_radius_m; }, nullptr, always,
+       1e-4, 100, 1e-3, 1, true, "m", "a hand-sized continuum object"},
+      // After outer_radius_m, whose multiples they default to (a huge outer radius is named,
+      // not the infinite length derived from it).
+      {"shell.length_m", [](const Scenario& s) { return s.length_m; }, nullptr, cylinder, 1e-4, 100,
+       1e-3, 1, true, "m", "a hand-sized continuum object"},
+      {"shell.lateral_size_m", [](const Scenario& s) { return s.lateral_size_m; }, nullptr, planar,
        1e-4, 100, 1e-3, 1, true, "m", "a hand-sized continuum object"},
       {"shell.inner_radius_m",
        [](const Scenario& s) { return s.inner_radius_m / s.outer_radius_m; }, inner_m, has_core,
@@ -189,8 +201,6 @@ std::optional<ScenarioProblem> number_problem(const Scenario& s) {
       {"simulation.time_tolerance", s.time_tolerance},
       {"shell.inner_radius_m", s.inner_radius_m},
       {"shell.outer_radius_m", s.outer_radius_m},
-      {"shell.length_m", s.length_m},
-      {"shell.lateral_size_m", s.lateral_size_m},
       {"water.initial_temperature_c", s.water_initial_temperature_c},
       {"ice.initial_temperature_c", s.ice_initial_temperature_c},
       {"inner_boundary.temperature_c", s.inner_temperature_c},
@@ -222,7 +232,9 @@ std::optional<ScenarioProblem> simulation_problem(const Scenario& s) {
                                " s)"};
   if (s.duration_s / s.output_interval_s > 1e6)
     return ScenarioProblem{"simulation.output_interval_s",
-                           "gives more than 10^6 output rows; use a longer interval"};
+                           "(" + num(s.output_interval_s) +
+                               " s) with duration_s = " + num(s.duration_s) +
+                               " s gives more than 10^6 output rows; use a longer interval"};
   if (auto problem = cells_per_phase_problem(s.cells_per_phase))
     return ScenarioProblem{"simulation.cells_per_phase", *problem};
   if (!(s.time_tolerance > 0 && s.time_tolerance <= 1e-2))

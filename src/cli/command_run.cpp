@@ -3,16 +3,16 @@
 // command (src/pipeline). Parsing and the closing summary only.
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <utility>
 
 #include "src/cli/commands.h"
 #include "src/common/error.h"
 #include "src/common/progress.h"
+#include "src/common/text_file.h"
+#include "src/common/toml_table.h"
 #include "src/pipeline/frame_selection.h"
 #include "src/pipeline/pipeline.h"
 #include "src/pipeline/render_overrides.h"
@@ -76,11 +76,10 @@ void run_alone_or_as_rank(const RunArgs& a, pipeline::RunRanks* ranks) {
     scenario = pipeline::default_run_scenario();
     options.scenario_text = pipeline::default_run_scenario_text();
   } else {
-    scenario = pipeline::read_run_scenario(a.scenario);
-    std::ifstream in(a.scenario);
-    std::stringstream text;
-    text << in.rdbuf();
-    options.scenario_text = text.str();
+    // read once: the text parsed is the text fingerprinted (a pipe reads only once)
+    options.scenario_text = read_text_file(a.scenario, "a TOML file", kMaxTomlFileBytes);
+    scenario =
+        pipeline::parse_run_scenario(TomlTable::parse_string(options.scenario_text, a.scenario));
   }
   pipeline::apply_render_overrides(scenario, overrides);
   // A range past the film's last frame is an error before any work starts.

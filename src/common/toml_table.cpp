@@ -2,10 +2,10 @@
 
 #include <toml++/toml.h>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "src/common/error.h"
+#include "src/common/text_file.h"
 
 namespace thaw {
 
@@ -36,15 +36,7 @@ TomlTable TomlTable::parse_string(const std::string& text, const std::string& so
 }
 
 TomlTable TomlTable::parse_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw UserError(path.string(), "", "file not found");
-  if (std::filesystem::is_directory(path, ec))
-    throw UserError(path.string(), "", "is a directory, expected a TOML file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw UserError(path.string(), "", "cannot be read");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return parse_string(buffer.str(), path.string());
+  return parse_string(read_text_file(path, "a TOML file", kMaxTomlFileBytes), path.string());
 }
 
 std::string TomlTable::full_key(const std::string& key) const {

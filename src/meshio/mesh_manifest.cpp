@@ -8,6 +8,7 @@
 
 #include "src/common/error.h"
 #include "src/common/json_error.h"
+#include "src/common/text_file.h"
 
 namespace thaw::meshio {
 namespace {
@@ -128,15 +129,7 @@ MeshManifestFile parse_mesh_manifest(const std::string& text, const std::string&
 }
 
 MeshManifestFile read_mesh_manifest(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw UserError(path.string(), "", "file not found");
-  if (std::filesystem::is_directory(path, ec))
-    throw UserError(path.string(), "", "is a directory, expected a mesh manifest");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw UserError(path.string(), "", "cannot be read");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_mesh_manifest(text.str(), path.string());
+  return parse_mesh_manifest(read_text_file(path, "a mesh manifest"), path.string());
 }
 
 }  // namespace thaw::meshio

@@ -8,6 +8,7 @@
 #include <unordered_set>
 
 #include "src/common/error.h"
+#include "src/common/text_file.h"
 
 namespace thaw::meshio {
 namespace {
@@ -218,19 +219,7 @@ TriangleMesh parse_obj(const std::string& text, const std::string& source_name) 
 }
 
 TriangleMesh read_obj(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw UserError(path.string(), "", "no such file");
-  if (std::filesystem::is_directory(path, ec))
-    throw UserError(path.string(), "", "is a directory, expected an OBJ file");
-  // A device or pipe (/dev/zero, a FIFO) could be read forever.
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw UserError(path.string(), "", "is not a regular file, expected an OBJ file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw UserError(path.string(), "", "cannot open for reading");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw UserError(path.string(), "", "read error");
-  return parse_obj(buffer.str(), path.string());
+  return parse_obj(read_text_file(path, "an OBJ file"), path.string());
 }
 
 }  // namespace thaw::meshio

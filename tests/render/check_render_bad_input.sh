@@ -27,7 +27,7 @@ expect_bad() {
 # scene NAME SED_EXPRESSION: a copy of the good scene edited by sed, in $work
 scene() { sed -e "$2" "$good" >"$work/$1.toml"; echo "$work/$1.toml"; }
 
-expect_bad missing_scene "not found" "$work/nope.toml"
+expect_bad missing_scene "nope.toml: no such file" "$work/nope.toml"
 printf 'this is = = not toml\n' >"$work/malformed.toml"
 expect_bad malformed_toml "line 1" "$work/malformed.toml"
 expect_bad unknown_key "unknown key" "$(scene unknown_key 's/^max_depth = 10/max_dpth = 10/')"

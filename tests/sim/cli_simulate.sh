@@ -52,7 +52,7 @@ grep -q '"kind": "core_frozen"' "$work/drop/summary.json" || note "drop: no core
 grep -q '"kind": "break_through"' "$work/default/summary.json" || note "default: no break_through event"
 
 base=$("$thaw" simulate --print-default)
-check_bad missing_file "nonexistent.toml" "file not found" "@$work/nonexistent.toml"
+check_bad missing_file "nonexistent.toml" "no such file" "@$work/nonexistent.toml"
 check_bad malformed "malformed TOML" "line" "[simulation"
 check_bad unknown_key "shell.inner_radus_m" "unknown key" "${base/inner_radius_m/inner_radus_m}"
 check_bad negative "shell.inner_radius_m" "must not be negative" "${base/inner_radius_m = 0.02/inner_radius_m = -0.02}"

@@ -68,7 +68,7 @@ TEST(TomlTable, MalformedTomlNamesFileAndLine) {
 
 TEST(TomlTable, MissingFile) {
   const std::string msg = error_of([] { TomlTable::parse_file("/nonexistent/x.toml"); });
-  EXPECT_EQ(msg, "/nonexistent/x.toml: file not found");
+  EXPECT_EQ(msg, "/nonexistent/x.toml: no such file");
 }
 
 TEST(TomlTable, RangeHelpersQuoteTheValue) {
