@@ -1,11 +1,13 @@
 // Tests render/material/fresnel.h against published values (Hecht, Optics 5th ed., sec. 4.6),
 // energy conservation R + T = 1 with T from the Fresnel transmission amplitudes, Snell's law and
-// the critical angle.
+// the critical angle; each polarisation from both sides of the air|ice and ice|water interfaces,
+// through total internal reflection, and the reciprocity of the two sides.
 #include "render/material/fresnel.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 
 namespace thaw::render {
 namespace {
@@ -53,6 +55,99 @@ TEST(Fresnel, ReflectancePlusTransmittanceIsOne) {
       EXPECT_NEAR(fresnel_dielectric(static_cast<float>(ci), static_cast<float>(eta)) + t, 1.0,
                   1e-5)
           << "eta " << eta << " angle " << k;
+    }
+  }
+}
+
+/// Reflectance and transmittance of the s and p polarisations for light going from index n1
+/// into n2 at angle theta_i, from the complex amplitude coefficients (Born & Wolf, Principles of
+/// Optics, sec. 1.5.2-1.5.4): cos(theta_t) = sqrt(1 - sin^2(theta_t)) taken complex, so total
+/// internal reflection (sin theta_t > 1, cos theta_t imaginary, no transmitted power) needs no
+/// special case. T = Re(n2 cos_t) / (n1 cos_i) |t|^2 (the beam-area and impedance factor).
+struct Polarised {
+  double rs, rp, ts, tp;
+};
+Polarised polarised(double n1, double n2, double theta_i) {
+  using C = std::complex<double>;
+  const double ci = std::cos(theta_i), si = std::sin(theta_i);
+  const C ct = std::sqrt(C(1.0 - (n1 * si / n2) * (n1 * si / n2), 0.0));
+  const C rs = (n1 * ci - n2 * ct) / (n1 * ci + n2 * ct);
+  const C rp = (n2 * ci - n1 * ct) / (n2 * ci + n1 * ct);
+  const C ts = 2 * n1 * ci / (n1 * ci + n2 * ct);
+  const C tp = 2 * n1 * ci / (n2 * ci + n1 * ct);
+  const double beam = (n2 * ct).real() / (n1 * ci);
+  return {std::norm(rs), std::norm(rp), beam * std::norm(ts), beam * std::norm(tp)};
+}
+
+// The interfaces of a melting shell, each seen from both sides with the index of each side
+// (physics.md: ice 1.31, water 1.333; air 1.000293, Ciddor at 589 nm).
+struct Interface {
+  const char* name;
+  double n1, n2;  // from, to
+};
+constexpr Interface kInterfaces[] = {{"air|ice", 1.000293, 1.31},
+                                     {"ice|air", 1.31, 1.000293},
+                                     {"ice|water", 1.31, 1.333},
+                                     {"water|ice", 1.333, 1.31}};
+
+TEST(Fresnel, EachPolarisationConservesEnergyFromBothSidesOfEachInterface) {
+  // Every 0.1 degree from 0 to 90: R_s + T_s = 1 and R_p + T_p = 1 (double, 1e-12); the
+  // renderer's unpolarised reflectance is their mean (float evaluation: a few 1e-7 of values
+  // O(1), 1e-6 absolute, plus the cancellation in cos_t = sqrt(1 - sin^2 t) near the critical
+  // angle: sin^2 t carries ~3 float ulps (1.8e-7), so cos_t is off by 1.8e-7 / (2 cos_t), and
+  // |dR / dcos_t| <= 4 n2 / (n1 cos_i) (the s wave at small cos_t; the p wave alike): with n2 / n1
+  // <= 1.02 wherever cos_t is small, 4e-7 / (cos_t cos_i) more); beyond the critical angle both
+  // polarisations reflect everything, and so must the renderer (exactly 1).
+  for (const Interface& f : kInterfaces) {
+    const double critical = f.n1 > f.n2 ? std::asin(f.n2 / f.n1) : 10.0;
+    int tir = 0;
+    for (int k = 0; k <= 900; ++k) {
+      const double theta = std::min(k * kPi / 1800.0, kPi / 2 - 1e-9);
+      const Polarised p = polarised(f.n1, f.n2, theta);
+      EXPECT_NEAR(p.rs + p.ts, 1.0, 1e-12) << f.name << " " << k / 10.0 << " deg";
+      EXPECT_NEAR(p.rp + p.tp, 1.0, 1e-12) << f.name << " " << k / 10.0 << " deg";
+      const float r =
+          fresnel_dielectric(static_cast<float>(std::cos(theta)), static_cast<float>(f.n2 / f.n1));
+      if (theta > critical) {
+        ++tir;
+        EXPECT_NEAR(p.rs, 1.0, 1e-12) << f.name;
+        EXPECT_NEAR(p.rp, 1.0, 1e-12) << f.name;
+        EXPECT_EQ(r, 1.0f) << f.name << " " << k / 10.0 << " deg";
+      } else {
+        const double st = f.n1 * std::sin(theta) / f.n2;
+        const double tol = 1e-6 + 4e-7 / (std::sqrt(1 - st * st) * std::cos(theta));
+        EXPECT_NEAR(r, 0.5 * (p.rs + p.rp), tol) << f.name << " " << k / 10.0 << " deg";
+      }
+    }
+    // total internal reflection only from the denser side: ice -> air beyond 49.8 deg, water ->
+    // ice beyond 79.3 deg
+    if (f.n1 > f.n2)
+      EXPECT_EQ(tir, 900 - static_cast<int>(std::floor(critical * 1800 / kPi))) << f.name;
+    else
+      EXPECT_EQ(tir, 0) << f.name;
+  }
+  EXPECT_NEAR(std::asin(1.000293 / 1.31) * 180 / kPi, 49.78, 0.01);
+  EXPECT_NEAR(std::asin(1.31 / 1.333) * 180 / kPi, 79.34, 0.01);
+}
+
+TEST(Fresnel, BothSidesOfAnInterfaceReflectAlikeAtSnellRelatedAngles) {
+  // Stokes reciprocity: light arriving from n1 at theta_1 and from n2 at theta_2 (n1 sin theta_1
+  // = n2 sin theta_2) is reflected alike, r' = -r for each polarisation (Hecht sec. 4.10). A
+  // renderer that took the index of the wrong side (eta instead of 1 / eta on the way out) breaks
+  // this at O(R) away from normal incidence and near the critical angle.
+  for (const Interface& f : kInterfaces) {
+    if (f.n1 > f.n2) continue;  // each pair once, from its rarer side
+    for (int k = 0; k < 90; ++k) {
+      const double t1 = k * kPi / 180.0;
+      const double t2 = std::asin(f.n1 * std::sin(t1) / f.n2);
+      const float r12 =
+          fresnel_dielectric(static_cast<float>(std::cos(t1)), static_cast<float>(f.n2 / f.n1));
+      const float r21 =
+          fresnel_dielectric(static_cast<float>(std::cos(t2)), static_cast<float>(f.n1 / f.n2));
+      // float rounding of two evaluations, 1e-6 each, plus the cancellation near grazing bounded
+      // as in the test above: 4e-7 / (cos t1 cos t2)
+      EXPECT_NEAR(r12, r21, 2e-6 + 4e-7 / (std::cos(t1) * std::cos(t2)))
+          << f.name << " " << k << " deg";
     }
   }
 }
