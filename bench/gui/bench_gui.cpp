@@ -4,26 +4,23 @@
 //      the CPU time the whole process spent meanwhile (all threads: the GUI thread's parse, the
 //      worker's scene build and render; robust under load, where wall time depends on what else
 //      the 2 cores serve);
-//   2. slider scrub: milliseconds from setting the time slider to the step's meshes drawn in the
-//      3D view (show_step renders the VTK window synchronously), and to that frame shown (the
-//      view's paint that blits and swaps it, a later event-loop turn), over every step of a run;
+//   2. slider scrub: milliseconds from setting the time slider to the step's frame shown (the 3D
+//      view's render thread draws it, src/gui/view_render_thread.h, and the view paints the image
+//      it sends), and the GUI thread's own time in setting it, over every step of a run;
 //   3. per phase (start-up from just before the window's show(), new objects, edits, orbits,
 //      simulation, scrubbing): the longest the GUI thread went without serving its event loop,
 //      measured by a 5 ms timer (the gap between two ticks minus the 5 ms period), with the CPU
 //      time the GUI thread itself used in that gap, and the most GUI-thread CPU in any gap (a
-//      long gap with little CPU is the scheduler serving other processes of a loaded machine, or
-//      the GUI thread waiting for llvmpipe's rasterizer threads, not work on the GUI thread).
-// Start-up is `thaw gui`'s: when Mesa's shader cache is not known warm, the warm-up child first
-// (src/gui/shader_warmup.h; `bench_gui N nowarm` without it). An empty cache: run it with
-// MESA_SHADER_CACHE_DIR set to a new folder.
+//      long gap with little CPU is the scheduler serving other processes of a loaded machine,
+//      not work on the GUI thread).
+// A machine's first run (Mesa's shader cache empty): run it with MESA_SHADER_CACHE_DIR set to a
+// new folder (bench/gui/compare_blocks.sh does, alternating two builds).
 // Run it under Xvfb (the default without $DISPLAY): Qt's offscreen platform has no OpenGL for
 // VTK, so the 3D view is not drawn there and the scrub figures would mean nothing.
-// Usage: bench_gui [EDITS=10] [warm|nowarm] [objects|nopreload]. Prints one line per figure;
-// `objects` stops after start-up and the new objects.
+// Usage: bench_gui [EDITS=10] [objects|nopreload]. Prints one line per figure; `objects` stops
+// after start-up and the new objects; `nopreload`: without the OpenGL driver's preload.
 #include <time.h>
 
-#include <QVTKInteractor.h>
-#include <vtkCommand.h>
 #include <QApplication>
 #include <QElapsedTimer>
 #include <QProgressBar>
@@ -41,8 +38,6 @@
 
 #include "src/gui/main_window.h"
 #include "src/gui/opengl_preload.h"
-#include "src/gui/scene_props.h"
-#include "src/gui/shader_warmup.h"
 #include "src/gui/shell_view.h"
 #include "src/inspect/virtual_display.h"
 
@@ -76,20 +71,33 @@ double thread_cpu_ms() {
   return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
 }
 
-/// The GUI thread's blocks of one phase: the longest (wall) with the GUI thread's CPU in it, and
-/// the most GUI-thread CPU in any block.
+/// The calling thread's time spent runnable but waiting for a core so far (Linux's schedstat,
+/// its second field) [ms]; 0 where the kernel does not keep it.
+double thread_runqueue_wait_ms() {
+  std::FILE* f = std::fopen("/proc/thread-self/schedstat", "r");
+  if (!f) return 0;
+  unsigned long long run_ns = 0, wait_ns = 0;
+  const int n = std::fscanf(f, "%llu %llu", &run_ns, &wait_ns);
+  std::fclose(f);
+  return n == 2 ? 1e-6 * static_cast<double>(wait_ns) : 0;
+}
+
+/// The GUI thread's blocks of one phase: the longest (wall) with the GUI thread's CPU in it and
+/// its time waiting for a core (runnable, not scheduled: the machine's load), and the most
+/// GUI-thread CPU in any block.
 struct Blocks {
   qint64 longest_ms = 0;
-  double longest_cpu_ms = 0, most_cpu_ms = 0;
-  void add(qint64 gap_ms, double cpu_ms) {
-    if (gap_ms > longest_ms) longest_ms = gap_ms, longest_cpu_ms = cpu_ms;
+  double longest_cpu_ms = 0, longest_wait_ms = 0, most_cpu_ms = 0;
+  void add(qint64 gap_ms, double cpu_ms, double wait_ms) {
+    if (gap_ms > longest_ms)
+      longest_ms = gap_ms, longest_cpu_ms = cpu_ms, longest_wait_ms = wait_ms;
     most_cpu_ms = std::max(most_cpu_ms, cpu_ms);
   }
-  /// e.g. "172 ms (49 ms CPU)"
+  /// e.g. "172 ms (49 ms CPU, 80 ms waiting for a core)"
   std::string text() const {
-    char t[64];
-    std::snprintf(t, sizeof t, "%lld ms (%.0f ms CPU)", static_cast<long long>(longest_ms),
-                  longest_cpu_ms);
+    char t[96];
+    std::snprintf(t, sizeof t, "%lld ms (%.0f ms CPU, %.0f ms waiting for a core)",
+                  static_cast<long long>(longest_ms), longest_cpu_ms, longest_wait_ms);
     return t;
   }
 };
@@ -110,9 +118,10 @@ int main(int argc, char** argv) {
   if (!thaw::inspect::display_available())
     display = std::make_unique<thaw::inspect::DisplayLease>("bench_gui");
   // As `thaw gui` starts (src/gui/gui.cpp): the OpenGL driver loads on a thread of its own
-  // while the window is built (src/gui/opengl_preload.h); `bench_gui N warm|nowarm nopreload`:
-  // without it (show() loads it).
-  const bool preload = !(argc > 3 && std::string(argv[3]) == "nopreload");
+  // while the window is built (src/gui/opengl_preload.h); `bench_gui N nopreload`: without it
+  // (show() loads it).
+  const std::string mode = argc > 2 ? argv[2] : "";
+  const bool preload = mode != "nopreload";
   std::optional<thaw::gui::OpenGlPreload> opengl;
   if (preload) opengl.emplace();
   QApplication app(argc, argv);
@@ -135,7 +144,7 @@ int main(int argc, char** argv) {
   clock.start();
   Blocks blocks;
   qint64 last_tick = clock.elapsed();
-  double last_cpu_ms = thread_cpu_ms();
+  double last_cpu_ms = thread_cpu_ms(), last_wait_ms = thread_runqueue_wait_ms();
   const char* phase = "start-up";
   auto* sim_progress = w.findChild<QProgressBar*>("simulation_progress");
   std::vector<std::string> long_gaps;
@@ -143,44 +152,41 @@ int main(int argc, char** argv) {
   ticker.setTimerType(Qt::PreciseTimer);
   QObject::connect(&ticker, &QTimer::timeout, [&] {
     const qint64 now = clock.elapsed();
-    const double cpu = thread_cpu_ms();
+    const double cpu = thread_cpu_ms(), wait = thread_runqueue_wait_ms();
     const qint64 gap = std::max<qint64>(0, now - last_tick - 5);
-    blocks.add(gap, cpu - last_cpu_ms);
+    blocks.add(gap, cpu - last_cpu_ms, wait - last_wait_ms);
     if (gap > 50)
-      long_gaps.push_back(std::string(phase) + " at " + std::to_string(now) +
-                          " ms: " + std::to_string(gap) + " ms, GUI-thread CPU " +
-                          std::to_string(static_cast<int>(cpu - last_cpu_ms)) +
-                          " ms (simulation: " + sim_progress->text().toStdString() + ")");
+      long_gaps.push_back(
+          std::string(phase) + " at " + std::to_string(now) + " ms: " + std::to_string(gap) +
+          " ms, GUI-thread CPU " + std::to_string(static_cast<int>(cpu - last_cpu_ms)) +
+          " ms, waiting for a core " + std::to_string(static_cast<int>(wait - last_wait_ms)) +
+          " ms (simulation: " + sim_progress->text().toStdString() + ")");
     last_tick = now;
     last_cpu_ms = cpu;
+    last_wait_ms = wait;
   });
   ticker.start(5);
   w.show();
-  // As `thaw gui` starts (src/gui/gui.cpp): a child fills Mesa's shader cache first when it is
-  // not known warm (src/gui/shader_warmup.h); start-up below lasts until the view is complete.
-  // `bench_gui N nowarm`: without it (the view compiles its shaders itself, as before).
-  if (!(argc > 2 && std::string(argv[2]) == "nowarm"))
-    thaw::gui::warm_shaders_first(w.shell_view(), THAW_EXE, {});
 
   // Start-up (its own figure): the initial shell is meshed, the first preview rendered and the
-  // scene drawn in the 3D view over several turns (each new look compiles llvmpipe's shaders),
-  // then half a second more for the last draw's paint.
+  // scene drawn in the 3D view (on its render thread, which compiles llvmpipe's shaders there),
+  // then half a second more.
   if (!wait_until(
           [&] {
             return w.preview_full_size() && w.shell_view().scene_objects() > 0 &&
-                   !w.shell_view().warming_up();
+                   w.shell_view().triangles() > 0 && !w.shell_view().drawing();
           },
           120000))
     return std::puts("no preview"), 1;
-  // When the 3D view is complete (with a cold shader cache: after the warm-up child).
+  // When the 3D view is complete.
   const qint64 view_complete_ms = clock.elapsed();
   // The last draw's paint and the window's compositing follow in the next turns: still start-up.
   wait_until([] { return false; }, 500);
   const Blocks startup = std::exchange(blocks, {});
 
   // New objects (issue 14): a box, a sphere and a plane added one by one as the Scene tab's "add"
-  // does, each until the view has drawn it. A look no draw made before compiles its shaders on
-  // the GUI thread here unless the warm-up child drew it (look_catalog, src/gui/scene_props.h).
+  // does, each until the view has drawn it. A look no draw made before compiles its shaders (on
+  // the view's render thread).
   phase = "new objects";
   const std::size_t objects_before = w.document().array_size("render.objects");
   const std::size_t view_objects_before = w.shell_view().scene_objects();
@@ -188,32 +194,17 @@ int main(int argc, char** argv) {
     const std::size_t n = w.shell_view().scene_objects();
     if (!w.add_object(shape)) return std::puts("add_object failed"), 1;
     if (!wait_until(
-            [&] { return w.shell_view().scene_objects() == n + 1 && !w.shell_view().warming_up(); },
+            [&] { return w.shell_view().scene_objects() == n + 1 && !w.shell_view().drawing(); },
             60000))
       return std::puts("no new object drawn"), 1;
     wait_until([] { return false; }, 300);  // its paint
-  }
-  // Then one actor of every other look an edit can bring (metal, glass, emissive, a sphere
-  // light's lamp, ...: the catalog the child draws), one new look per draw as the view adds them.
-  {
-    const auto c = w.shell_view().camera();
-    thaw::render::CameraDescription camera;
-    camera.position = c.position;
-    camera.look_at = c.focal_point;
-    camera.up = c.view_up;
-    camera.vertical_fov_deg = c.vertical_fov_deg;
-    const std::size_t looks = w.shell_view().add_catalog(thaw::gui::look_catalog(camera));
-    if (!wait_until([&] { return !w.shell_view().warming_up(); }, 60000))
-      return std::puts("catalog not drawn"), 1;
-    wait_until([] { return false; }, 300);
-    std::printf("new looks drawn: %zu\n", looks);
   }
   std::printf("longest GUI-thread block: start-up %s, new objects %s\n", startup.text().c_str(),
               blocks.text().c_str());
   std::printf("before show(): waited %lld ms for the OpenGL driver's preload%s\n",
               static_cast<long long>(preload_wait_ms), preload ? "" : " (none)");
   std::fflush(stdout);
-  if (argc > 3 && std::string(argv[3]) == "objects") {
+  if (mode == "objects") {
     for (const std::string& g : long_gaps) std::printf("  GUI thread blocked: %s\n", g.c_str());
     return 0;
   }
@@ -244,15 +235,16 @@ int main(int argc, char** argv) {
   }
   const Blocks edits = std::exchange(blocks, {});
 
-  // Orbits: the interactor's start, 10 camera steps about the focus drawn quick, its end (the
-  // view drawn at rest, its camera written back as [render.camera]: the preview restarts and
-  // the floor, drawn about the camera's focus, is made anew), as a mouse drag does.
+  // Orbits: an interaction's start, 10 camera steps about the focus drawn quick (each until its
+  // frame is shown), its end (the view drawn at rest, its camera written back as
+  // [render.camera]: the preview restarts and the floor, drawn about the camera's focus, is made
+  // anew), as a mouse drag does.
   phase = "orbits";
   std::vector<double> orbit_step_ms;
   thaw::gui::ShellView& view = w.shell_view();
   for (int k = 0; k < std::max(1, n_edits / 2); ++k) {
     const auto c0 = view.camera();
-    view.interactor()->InvokeEvent(vtkCommand::StartInteractionEvent);
+    view.begin_interaction();
     for (int step = 1; step <= 10; ++step) {
       auto c = c0;
       const double a = 0.02 * step * ((k % 2) ? -1 : 1);  // radians about the vertical
@@ -262,10 +254,11 @@ int main(int argc, char** argv) {
       QElapsedTimer t;
       t.start();
       view.set_camera(c);
+      if (!wait_until([&] { return !view.drawing(); }, 5000))
+        return std::puts("an orbit step's frame was not shown"), 1;
       orbit_step_ms.push_back(t.nsecsElapsed() * 1e-6);
-      QCoreApplication::processEvents(QEventLoop::AllEvents);
     }
-    view.interactor()->InvokeEvent(vtkCommand::EndInteractionEvent);
+    view.end_interaction();
     if (!wait_until([&] { return w.preview_full_size(); }, 60000))
       return std::puts("no image after the orbit"), 1;
     wait_until([] { return false; }, 300);  // the floor made anew reaches the view
@@ -296,8 +289,10 @@ int main(int argc, char** argv) {
       scrub_ms.push_back(t.nsecsElapsed() * 1e-6);
       scrub_cpu_ms.push_back(thread_cpu_ms() - c0);
       scrub_process_ms.push_back(1e3 * (process_cpu_s() - p0));
-      // ... and its frame on the screen (the view's paint: blitted, swapped)
-      if (!wait_until([&] { return w.shell_view().frames_shown() > frames; }, 5000))
+      // ... and its frame on the screen (the view's paint of the render thread's image)
+      if (!wait_until(
+              [&] { return w.shell_view().frames_shown() > frames && !w.shell_view().drawing(); },
+              5000))
         return std::puts("a step's frame was not shown"), 1;
       scrub_shown_ms.push_back(t.nsecsElapsed() * 1e-6);
     }
@@ -307,11 +302,11 @@ int main(int argc, char** argv) {
   print_stats("edit -> 320x240 image shown [s] (wall)", full_s, "s");
   print_stats("  process CPU meanwhile [s]", full_cpu_s, "s");
   print_stats("request -> 320x240 image [s] (worker clock)", worker_s, "s");
-  print_stats("orbit step drawn (quick) [ms]", orbit_step_ms, "ms");
-  print_stats("slider -> step's meshes drawn [ms]", scrub_ms, "ms");
+  print_stats("orbit step -> frame shown (quick) [ms]", orbit_step_ms, "ms");
+  print_stats("slider -> step requested (GUI thread) [ms]", scrub_ms, "ms");
   print_stats("  GUI-thread CPU meanwhile [ms]", scrub_cpu_ms, "ms");
   print_stats("  process CPU meanwhile [ms] (llvmpipe, preview)", scrub_process_ms, "ms");
-  print_stats("slider -> step's frame shown (swapped) [ms]", scrub_shown_ms, "ms");
+  print_stats("slider -> step's frame shown (painted) [ms]", scrub_shown_ms, "ms");
   std::printf("simulate + mesh + load %d steps: %.2f s\n", slider->maximum() + 1, sim_s);
   std::printf("start-up: the 3D view complete after %lld ms\n",
               static_cast<long long>(view_complete_ms));

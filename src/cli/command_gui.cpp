@@ -12,7 +12,7 @@ namespace thaw::cli {
 void register_gui(CLI::App& app) {
   struct Args {
     std::string scenario, screenshot, tab;
-    bool simulate = false, warm_shaders = false;
+    bool simulate = false;
   };
   auto args = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand(
@@ -27,9 +27,6 @@ void register_gui(CLI::App& app) {
   sub->add_flag(
       "--simulate", args->simulate,
       "start the simulation at once (--screenshot waits for it and shows its middle step)");
-  // Hidden: the child process that fills Mesa's shader cache for the window
-  // (src/gui/shader_warmup.h).
-  sub->add_flag("--warm-shaders", args->warm_shaders)->group("");
   sub->callback([args] {
 #ifdef THAW_WITH_GUI
     gui::GuiOptions options;
@@ -37,7 +34,6 @@ void register_gui(CLI::App& app) {
     options.screenshot = args->screenshot;
     options.tab = args->tab;
     options.simulate = args->simulate;
-    options.warm_shaders = args->warm_shaders;
     const int code = gui::run_gui(options);
     if (code != 0) throw CLI::RuntimeError(code);
 #else

@@ -16,9 +16,6 @@ struct GuiOptions {
   std::string tab;
   /// start the simulation at once; --screenshot then waits for it and shows its middle step
   bool simulate = false;
-  /// --warm-shaders (hidden): the child of shader_warmup.h. Draws the window on a private Xvfb
-  /// until the 3D view has drawn all its looks (filling Mesa's shader cache) and exits 0
-  bool warm_shaders = false;
 };
 
 /// Runs the window until it is closed; returns the exit code. Throws thaw::UserError when the

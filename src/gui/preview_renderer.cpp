@@ -83,10 +83,10 @@ void lower_thread_priority(int nice) {
 }
 
 void PreviewRenderer::loop() {
-  // Below the GUI thread and llvmpipe's rasterizer threads, which draw the 3D view for it: the
-  // render threads (OpenMP, started from here, inherit it) take the cores only when the window
-  // does not need them. Under Linux's autogroup scheduling (one group per session) this only
-  // orders the threads of this program: other programs' share is unchanged.
+  // Below the GUI thread and the 3D view's render thread (view_render_thread.h, with llvmpipe's
+  // rasterizer threads): the render threads (OpenMP, started from here, inherit it) take the cores
+  // only when the window does not need them. Under Linux's autogroup scheduling (one group per
+  // session) this only orders the threads of this program: other programs' share is unchanged.
   lower_thread_priority(kPreviewNice);
   for (;;) {
     PreviewRequest request;

@@ -34,9 +34,9 @@ struct PreviewRequest {
 };
 
 /// Lowers the calling thread's scheduling priority to `nice`, so that the preview's renders, a
-/// simulation run and a film leave the GUI thread (and llvmpipe's threads drawing the 3D view for
-/// it) the cores whenever it needs them: the preview at kPreviewNice, the long runs (simulation,
-/// film) below it at kBackgroundNice.
+/// simulation run and a film leave the GUI thread (and the 3D view's render thread, at
+/// kViewNice) the cores whenever it needs them: the preview at kPreviewNice, the long runs
+/// (simulation, film) below it at kBackgroundNice.
 void lower_thread_priority(int nice);
 inline constexpr int kPreviewNice = 10, kBackgroundNice = 15;
 

@@ -52,11 +52,4 @@ SceneProps make_scene_props(const render::SceneDescription& desc,
                             const std::vector<const render::TriangleMesh*>& skip,
                             const SceneProps* previous = nullptr);
 
-/// One small actor of every look an edit can give the view's scene: each shape (sphere, box,
-/// plane, an in-memory mesh) with each kind of material (matte, a checker, metal, phong,
-/// emissive) and as a dielectric, and each kind of light, all within a few percent of the
-/// camera's distance about its focus (so in view: a culled actor compiles nothing). Drawn by the
-/// shader warm-up's child (shader_warmup.h) so that Mesa's cache holds them before an edit.
-SceneProps look_catalog(const render::CameraDescription& camera);
-
 }  // namespace thaw::gui

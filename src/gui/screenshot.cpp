@@ -1,9 +1,7 @@
 #include "src/gui/screenshot.h"
 
-#include <vtkRenderWindow.h>
 #include <QBuffer>
 #include <QElapsedTimer>
-#include <QPainter>
 #include <QTimer>
 #include <memory>
 
@@ -26,8 +24,8 @@ void take_screenshot_when_ready(MainWindow& window, const std::filesystem::path&
                               !window.renderer().busy();
     const bool invalid = !window.check().ok();
     if (window.simulation_running()) return;
-    const bool view_done = (window.renderer().initial_shell() != nullptr || invalid) &&
-                           !window.shell_view().warming_up();
+    const bool view_done =
+        (window.renderer().initial_shell() != nullptr || invalid) && !window.shell_view().drawing();
     if (!(preview_done || invalid) || !view_done) {
       if (clock->elapsed() > timeout_s * 1000) {
         poll->stop();
@@ -36,14 +34,8 @@ void take_screenshot_when_ready(MainWindow& window, const std::filesystem::path&
       return;
     }
     poll->stop();
-    // The window's widgets, then the 3D view's OpenGL window over its place (grab() sees only
-    // the widgets of Qt's backing store).
-    QPixmap shot = window.grab();
-    ShellView& view = window.shell_view();
-    if (const QImage drawn = view.image(); !drawn.isNull()) {
-      QPainter painter(&shot);
-      painter.drawImage(QRect(view.mapTo(&window, QPoint(0, 0)), view.size()), drawn);
-    }
+    // The window's widgets, the 3D view's last frame among them (a raster widget).
+    const QPixmap shot = window.grab();
     QByteArray bytes;
     QBuffer buffer(&bytes);
     buffer.open(QIODevice::WriteOnly);

@@ -2,9 +2,7 @@
 // saving and reloading; a bad value's message and blocked saving; an added object changing the
 // preview; a stale preview cancelled by an edit; cancelling and resuming "Render film"; the
 // screenshot of the default with its panels and a non-empty render.
-#include <QVTKInteractor.h>
 #include <vtkActor.h>
-#include <vtkCommand.h>
 #include <QApplication>
 #include <QComboBox>
 #include <QLabel>
@@ -31,7 +29,6 @@
 #include "src/gui/main_window.h"
 #include "src/gui/scene_props.h"
 #include "src/gui/screenshot.h"
-#include "src/gui/shader_warmup.h"
 #include "src/gui/shell_view.h"
 #include "src/inspect/virtual_display.h"
 
@@ -298,12 +295,12 @@ class TestMainWindow : public QObject {
     QVERIFY(!w.check().scenario->camera_set);
     // As an orbit ends: the view (in scene coordinates) looks from +x, slightly above, at the
     // shell's core, which the default places 3 cm above the floor at y = 0.
-    // The interactor's events around a mouse drag: drawn quick (no edges) while it lasts.
+    // An orbit's start and end, as a mouse drag makes them: drawn quick (no edges) meanwhile.
     QVERIFY(w.shell_view().edges_shown());
-    w.shell_view().interactor()->InvokeEvent(vtkCommand::StartInteractionEvent);
+    w.shell_view().begin_interaction();
     QVERIFY(!w.shell_view().edges_shown());
     w.shell_view().set_camera({{0.2, 0.08, 0.0}, {0.0, 0.03, 0.0}, {0.0, 1.0, 0.0}, 30.0});
-    w.shell_view().interactor()->InvokeEvent(vtkCommand::EndInteractionEvent);
+    w.shell_view().end_interaction();
     // At rest again with the scene of the new camera (or after ShellView::kSettleMs).
     QTRY_VERIFY_WITH_TIMEOUT(w.shell_view().edges_shown(), 10000);
     QVERIFY2(w.check().ok(), w.check().message.c_str());
@@ -320,10 +317,10 @@ class TestMainWindow : public QObject {
     QCOMPARE(v.position, (std::array<double, 3>{0.2, 0.08, 0.0}));
     // A camera the mouse left anywhere is written to a micrometre (the Scene tab and the file
     // read 0.123457, not 0.123456789).
-    w.shell_view().interactor()->InvokeEvent(vtkCommand::StartInteractionEvent);
+    w.shell_view().begin_interaction();
     w.shell_view().set_camera(
         {{0.123456789, 0.0812345678, 0.01}, {0.0, 0.03, 0.0}, {0.0, 1.0, 0.0}, 30.123456789});
-    w.shell_view().interactor()->InvokeEvent(vtkCommand::EndInteractionEvent);
+    w.shell_view().end_interaction();
     QVERIFY2(w.check().ok(), w.check().message.c_str());
     const auto& moved = w.check().scenario->scene.camera;
     QCOMPARE(moved.position, (thaw::render::Vec3d{0.123457, 0.081235, 0.01}));
@@ -353,80 +350,66 @@ class TestMainWindow : public QObject {
         w.shell_view().camera().position == (std::array<double, 3>{0.1, 0.3, 0.4}), 60000);
   }
 
-  // Start-up without a long block of the GUI thread: with software OpenGL the first draw of each
-  // look (translucent, textured, unlit, the label, the gradient) compiles its shaders, tens of
-  // ms each, so the view adds actors of new looks one per draw over several event-loop turns,
-  // and ends with all of them drawn.
-  void theViewWarmsUpOneNewLookPerDraw() {
+  // The view is drawn on its render thread (view_render_thread.h) and painted from the images it
+  // sends: the latest request wins (a burst of camera moves made while a draw is in progress is
+  // drawn once, with the last camera), and the frame shown is the last request's.
+  void theViewDrawsTheLatestRequestOffTheGuiThread() {
     MainWindow w{ScenarioDocument()};
     w.show();
     thaw::gui::ShellView& v = w.shell_view();
-    QTRY_VERIFY_WITH_TIMEOUT(
-        v.triangles() > 0 && v.scene_objects() > 0 && !v.warming_up() && w.preview_full_size(),
-        120000);
-    QCOMPARE(v.most_new_looks_per_draw(), 1);
-    QCOMPARE(v.early_turns(), 0L);
-    // Everything is drawn: the shell's two surfaces, the scene's objects and lights, the label.
-    QCOMPARE(v.drawn_props(), 2 + v.scene_objects() + v.scene_lights() + 1);
+    QTRY_VERIFY_WITH_TIMEOUT(v.triangles() > 0 && v.scene_objects() > 0 && !v.drawing(), 120000);
+    QVERIFY(!v.image().isNull());
+    QCOMPARE(v.image().size(), v.size() * v.devicePixelRatioF());
+    const long shown = v.frames_shown();
+    QVERIFY(shown > 0);
+    // 20 orbit steps without serving the event loop: each returns at once (no draw on this
+    // thread), and at most a few frames come of them, the last with the last camera.
+    const auto c0 = v.camera();
+    QElapsedTimer t;
+    t.start();
+    for (int k = 1; k <= 20; ++k) v.set_camera(thaw::gui::orbit(c0, 2.0 * k, 0.0));
+    QVERIFY2(t.elapsed() < 100, qPrintable(QString::number(t.elapsed())));
+    QVERIFY(v.drawing());
+    QTRY_VERIFY_WITH_TIMEOUT(!v.drawing(), 20000);
+    QVERIFY2(v.frames_shown() - shown < 20, qPrintable(QString::number(v.frames_shown() - shown)));
+    const QImage last = v.image();
+    // The same camera drawn again: the same pixels (the frame shown was the last request's).
+    v.set_camera(thaw::gui::orbit(c0, 40.0, 0.0));
+    QTRY_VERIFY_WITH_TIMEOUT(!v.drawing(), 20000);
+    QCOMPARE(mean_difference(v.image(), last), 0.0);
+    // and another camera, other pixels
+    v.set_camera(c0);
+    QTRY_VERIFY_WITH_TIMEOUT(!v.drawing(), 20000);
+    QVERIFY(mean_difference(v.image(), last) > 1.0);
   }
 
-  // The warm-up child's catalog (look_catalog, drawn by `thaw gui --warm-shaders`): the view
-  // adds exactly one actor of each of the catalog's looks (at rest and quick) it had not drawn,
-  // in turns, one new look per draw, and ends with every one of them drawn (so Mesa's cache
-  // holds the looks an edit brings; tests/src/gui/test_scene_props.cpp: the catalog has them all).
-  void theCatalogAddsOneActorPerLookNotDrawnYet() {
+  // A mouse drag on the view orbits its camera about the focal point (left button), drawn quick
+  // while it lasts, and its release writes the camera back as the scenario's [render.camera].
+  void aMouseDragOrbitsTheViewAndWritesTheCameraBack() {
     MainWindow w{ScenarioDocument()};
     w.show();
     thaw::gui::ShellView& v = w.shell_view();
-    QTRY_VERIFY_WITH_TIMEOUT(
-        v.triangles() > 0 && v.scene_objects() > 0 && !v.warming_up() && w.preview_full_size(),
-        120000);
-    const std::set<std::string> before = v.looks();
-    const std::size_t props_before = v.drawn_props();
-    const thaw::gui::SceneProps catalog =
-        thaw::gui::look_catalog(thaw::render::CameraDescription{});
-    std::set<std::string> wanted;
-    for (std::size_t k = 0; k < catalog.actors.size(); ++k) {
-      wanted.insert(thaw::gui::look_of(catalog.actors[k]));
-      if (!catalog.textures[k]) continue;
-      auto quick = vtkSmartPointer<vtkActor>::New();
-      quick->ShallowCopy(catalog.actors[k]);
-      quick->SetTexture(nullptr);
-      wanted.insert(thaw::gui::look_of(quick));
-    }
-    std::size_t missing = 0;
-    for (const auto& look : wanted) missing += before.count(look) == 0;
-    QVERIFY(missing > 0);  // the default scenario does not already show every look
-    QCOMPARE(v.add_catalog(catalog), missing);
-    QTRY_VERIFY_WITH_TIMEOUT(!v.warming_up(), 60000);
-    // Each turn waited for the last draw's frame (a turn queued by add_catalog itself drew again
-    // in the next event-loop pass: two draws in one block of the GUI thread).
-    QCOMPARE(v.early_turns(), 0L);
-    QCOMPARE(v.most_new_looks_per_draw(), 1);
-    QCOMPARE(v.drawn_props(), props_before + missing);
-    for (const auto& look : wanted) QVERIFY2(v.looks().count(look), look.c_str());
-  }
-
-  // The first-run warm-up (shader_warmup.h): while the child fills Mesa's shader cache the view
-  // holds every new look (its plain background only); a child that fails (exit code 3 here)
-  // still releases it, and the view ends complete, in turns as without a child.
-  void aFailedShaderWarmupStillCompletesTheView() {
-    MainWindow w{ScenarioDocument()};
-    thaw::gui::ShellView& v = w.shell_view();
-    v.hold();
-    w.show();
-    QTRY_VERIFY_WITH_TIMEOUT(
-        v.triangles() > 0 && v.scene_objects() > 0 && v.warming_up() && w.preview_full_size(),
-        120000);
-    QCOMPARE(v.drawn_props(), std::size_t{0});  // held: no look drawn, not even the label
-    thaw::gui::ShaderWarmup child("/bin/sh", {"-c", "exit 3"}, 60000);
-    QSignalSpy finished(&child, &thaw::gui::ShaderWarmup::finished);
-    connect(&child, &thaw::gui::ShaderWarmup::finished, &v, [&v] { v.release(); });
-    QTRY_VERIFY_WITH_TIMEOUT(finished.count() == 1 && !v.warming_up(), 60000);
-    QCOMPARE(finished.front().front().toBool(), false);
-    QVERIFY(!v.held());
-    QCOMPARE(v.most_new_looks_per_draw(), 1);
-    QCOMPARE(v.drawn_props(), 2 + v.scene_objects() + v.scene_lights() + 1);
+    QTRY_VERIFY_WITH_TIMEOUT(v.triangles() > 0 && v.scene_objects() > 0 && !v.drawing(), 120000);
+    QTRY_VERIFY_WITH_TIMEOUT(w.check().ok() && w.preview_full_size(), 120000);
+    const auto c0 = v.camera();
+    const QPoint from(v.width() / 2, v.height() / 2), to = from + QPoint(v.width() / 10, 0);
+    QMouseEvent press(QEvent::MouseButtonPress, from, Qt::LeftButton, Qt::LeftButton,
+                      Qt::NoModifier);
+    QApplication::sendEvent(&v, &press);
+    QVERIFY(!v.edges_shown());
+    QMouseEvent move(QEvent::MouseMove, to, Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(&v, &move);
+    QMouseEvent release(QEvent::MouseButtonRelease, to, Qt::LeftButton, Qt::NoButton,
+                        Qt::NoModifier);
+    QApplication::sendEvent(&v, &release);
+    // VTK's trackball: a tenth of the width is -20 degrees of azimuth about the view-up.
+    const auto c1 = v.camera();
+    const auto expected = thaw::gui::orbit(c0, -200.0 * (to.x() - from.x()) / v.width(), 0.0);
+    for (int k = 0; k < 3; ++k) QVERIFY(std::abs(c1.position[k] - expected.position[k]) < 1e-9);
+    QVERIFY2(w.check().ok(), w.check().message.c_str());
+    const auto& cam = w.check().scenario->scene.camera;
+    for (int k = 0; k < 3; ++k) QVERIFY(std::abs(cam.position[k] - c1.position[k]) <= 5e-7);
+    QTRY_VERIFY_WITH_TIMEOUT(v.edges_shown() && !v.drawing(), 10000);
   }
 
   void startAndCancelASimulation() {
