@@ -51,6 +51,23 @@ check_good foreign_errors "$work/foreign_errors.toml"
 grep -q '"kind": "core_frozen"' "$work/drop/summary.json" || note "drop: no core_frozen event"
 grep -q '"kind": "break_through"' "$work/default/summary.json" || note "default: no break_through event"
 
+# The energy balance is reported: the summary line gives the largest per-step error and every
+# row of interfaces.csv the cumulative one; both within the 1e-8 of the reference energy
+# (measured ~1e-15 per step), for the 1D default and an axisymmetric grid run.
+check_energy() {  # name, args...
+  local name=$1; shift
+  local out="$work/$name"
+  "$thaw" simulate "$@" --out "$out" > "$work/$name.stdout" 2>/dev/null || { note "$name: exit code $?"; return; }
+  local per_step
+  per_step=$(sed -n 's/.*max energy balance error \([0-9.e+-]*\),.*/\1/p' "$work/$name.stdout")
+  [ -n "$per_step" ] || { note "$name: no energy balance in the summary line"; return; }
+  awk -v e="$per_step" 'BEGIN { exit !(e < 1e-8) }' || note "$name: per-step energy error $per_step"
+  awk -F, 'NR > 1 && !($7 < 1e-8) { bad = 1 } END { exit bad }' "$out/interfaces.csv" \
+    || note "$name: a cumulative energy_balance_error above 1e-8"
+}
+check_energy energy_default
+check_energy energy_grid "$src/data/scenarios/bored_cylinder.toml"
+
 base=$("$thaw" simulate --print-default)
 check_bad missing_file "nonexistent.toml" "no such file" "@$work/nonexistent.toml"
 check_bad malformed "malformed TOML" "line" "[simulation"
