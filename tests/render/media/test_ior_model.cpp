@@ -84,7 +84,7 @@ TEST(IorModel, WaterAndIceDispersionAgainstPublishedValues) {
   const IorModel& water = preset("water-20c");
   EXPECT_NEAR(water.n_at(587.56), 1.3334, 5e-5);
   EXPECT_NEAR(water.abbe_number(), 55.76, 0.005);
-  // Ice Ih near the sodium D line (Hobbs, Ice Physics, 1974, table 3.x after Ehringhaus, -3 C):
+  // Ice Ih at the sodium D line (Ehringhaus 1917, -3 C, as quoted in Hobbs, Ice Physics, 1974):
   // ordinary ray 1.3090, extraordinary 1.3104; Warren & Brandt's table is for randomly oriented
   // ice, so its value must lie between the two.
   const double n_ice = preset("ice-ih").n_at(589.3);
