@@ -69,6 +69,7 @@ NeumannComparison run_neumann_problem(const NeumannProblem& p) {
         std::max(c.temperature_error_k,
                  std::abs(pt.temperature_c - ne.temperature(from_face(pt.r_m), p.t1_s)));
   c.energy_balance_error = snap.energy_balance_error;
+  c.heat_in_j = snap.heat_in_j;
   c.steps = solver.statistics().steps;
   return c;
 }

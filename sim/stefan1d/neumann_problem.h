@@ -25,6 +25,7 @@ struct NeumannComparison {
   double front_m = 0, exact_front_m = 0;  ///< distance of the front from the face at t1 [m]
   double temperature_error_k = 0;         ///< max |T - T_exact| over the profile points at t1
   double energy_balance_error = 0;        ///< cumulative, relative
+  double heat_in_j = 0;  ///< heat entered through both ends over [t0, t1] per m^2 (the solver's)
   long steps = 0;
   double relative_front_error() const { return std::abs(front_m - exact_front_m) / exact_front_m; }
 };
