@@ -7,8 +7,10 @@
 // "Shallow bounding volume hierarchies for fast SIMD ray tracing"; Embree's BVH4), which halves the
 // node visits and measured 1.5-2x faster than binary traversal on the S1 meshes. Traversal is
 // ordered front-to-back with a precomputed inverse direction and a conservative slab test
-// (pbrt-v4 Bounds3::IntersectP: far distances scaled by 1 + 2 gamma(3)), and templated on the
-// leaf test so primitive intersection inlines. Knows nothing about what the primitives are.
+// (pbrt-v4 Bounds3::IntersectP: far distances scaled by 1 + 2 gamma(3)). Each query (closest hit,
+// any hit, region) is one traversal templated on the node width, the node test and the leaf test,
+// so both widths and both instruction sets share it and primitive intersection inlines. Knows
+// nothing about what the primitives are.
 // Closest-hit and any-hit rays traverse a second collapse of the same binary tree into 8-wide
 // nodes (Embree's BVH8; Benthin et al. 2012) where the tree is large (on the default film, rays
 // starting on a surface inside the nested shells visited 16 4-wide nodes each; a small tree such
@@ -148,7 +150,9 @@ class Bvh {
   /// The same with a box test of a node's four children at once: `boxes_test(planes)` gets
   /// Bvh4Node::planes and returns the mask of the children to enter (never an unused slot).
   template <class BoxesTest, class LeafFn>
-  bool any_leaf_wide(BoxesTest&& boxes_test, LeafFn&& leaf) const;
+  bool any_leaf_wide(const BoxesTest& boxes_test, LeafFn&& leaf) const {
+    return any_leaf_in<4>(boxes_test, leaf);
+  }
 
   /// The same over the 8-wide nodes (wide8_nodes() must not be empty): `boxes8(planes)` gets
   /// Bvh8Node::planes. `boxes8_avx2`, a functor whose call operator is THAW_TARGET_AVX2, is
@@ -156,25 +160,26 @@ class Bvh {
   template <class Boxes8, class Boxes8Avx2, class LeafFn>
   bool any_leaf_wide8(const Boxes8& boxes8, const Boxes8Avx2& boxes8_avx2, LeafFn&& leaf) const {
 #if THAW_AVX2_DISPATCH
-    if (simd_level() == SimdLevel::avx2) return any_leaf8_avx2(boxes8_avx2, leaf);
+    if (simd_level() == SimdLevel::avx2) return any_leaf_avx2<8>(boxes8_avx2, leaf);
 #else
     (void)boxes8_avx2;
 #endif
-    return any_leaf8(boxes8, leaf);
+    return any_leaf_in<8>(boxes8, leaf);
   }
 
-  /// Slab test of the four children of `n`: bit i of the result is set if child i is met within
-  /// (0, t_max); its entry distance is t_enter[i].
-  static int hit_children(const Bvh4Node& n, const RayData& r, float t_max, float t_enter[4]);
-
-  /// The same for the eight children of an 8-wide node, as two SSE halves (scalar without SSE).
-  struct Children8 {
+  /// Slab test of the W children of a W-wide node (W a multiple of 4) on the baseline path: bit i
+  /// of the result is set if child i is met within (0, t_max); its entry distance is t_enter[i].
+  /// SSE, four children at a time (scalar without SSE).
+  template <int W>
+  struct Children {
     const RayData& r;
-    explicit Children8(const RayData& ray) : r(ray) {}
-    int operator()(const Bvh8Node& n, float t_max, float t_enter[8]) const;
+    explicit Children(const RayData& ray) : r(ray) {}
+    int operator()(const BvhWideNode<W>& n, float t_max, float t_enter[W]) const;
   };
+  using Children4 = Children<4>;
+  using Children8 = Children<8>;
 #if THAW_AVX2_DISPATCH
-  /// The same in one AVX2 pass: the same operations in the same order, so the same bits.
+  /// Children8 in one AVX2 pass: the same operations in the same order, so the same bits.
   struct Children8Avx2 {
     __m256 o[3], inv[3];
     int near_plane[3];
@@ -186,31 +191,37 @@ class Bvh {
  private:
   template <int W>
   std::uint32_t collapse(std::vector<BvhWideNode<W>>& out, std::uint32_t binary_index) const;
-  // The traversals over the 4-wide nodes (trees too small for the 8-wide ones).
-  template <class LeafFn>
-  bool closest4(const RayData& ray, float& t_max, LeafFn& leaf) const;
-  template <class LeafFn>
-  bool any4(const RayData& ray, float t_max, LeafFn& leaf) const;
-  // The traversals over the 8-wide nodes, with the node test `Children` (inlined into the
-  // per-instruction-set entry points below).
-  template <class Children, class LeafFn>
-  [[gnu::always_inline]] inline bool closest8(const RayData& ray, float& t_max, LeafFn& leaf) const;
-  template <class Children, class LeafFn>
-  [[gnu::always_inline]] inline bool any8(const RayData& ray, float t_max, LeafFn& leaf) const;
-  template <class Boxes8, class LeafFn>
-  [[gnu::always_inline]] inline bool any_leaf8(const Boxes8& boxes8, LeafFn& leaf) const;
+  /// The W-wide tree: rays use the 8-wide one where it exists, region queries either.
+  template <int W>
+  const std::vector<BvhWideNode<W>>& tree() const {
+    if constexpr (W == 8) {
+      return m_wide8;
+    } else {
+      static_assert(W == 4);
+      return m_wide;
+    }
+  }
+  // The three traversals, one per query, over the W-wide tree with the node test `Children`
+  // (or `BoxesTest`) inlined: the SSE entry points call them directly, the AVX2 ones below
+  // instantiate them in functions compiled for AVX2.
+  template <int W, class Children, class LeafFn>
+  [[gnu::always_inline]] inline bool closest(const RayData& ray, float& t_max, LeafFn& leaf) const;
+  template <int W, class Children, class LeafFn>
+  [[gnu::always_inline]] inline bool any(const RayData& ray, float t_max, LeafFn& leaf) const;
+  template <int W, class BoxesTest, class LeafFn>
+  [[gnu::always_inline]] inline bool any_leaf_in(const BoxesTest& boxes_test, LeafFn& leaf) const;
 #if THAW_AVX2_DISPATCH
-  template <class Boxes8, class LeafFn>
-  THAW_TARGET_AVX2 bool any_leaf8_avx2(const Boxes8& boxes8, LeafFn& leaf) const {
-    return any_leaf8(boxes8, leaf);
+  template <int W, class BoxesTest, class LeafFn>
+  THAW_TARGET_AVX2 bool any_leaf_avx2(const BoxesTest& boxes_test, LeafFn& leaf) const {
+    return any_leaf_in<W>(boxes_test, leaf);
   }
   template <class LeafFn>
   THAW_TARGET_AVX2 bool closest8_avx2(const RayData& ray, float& t_max, LeafFn& leaf) const {
-    return closest8<Children8Avx2>(ray, t_max, leaf);
+    return closest<8, Children8Avx2>(ray, t_max, leaf);
   }
   template <class LeafFn>
   THAW_TARGET_AVX2 bool any8_avx2(const RayData& ray, float t_max, LeafFn& leaf) const {
-    return any8<Children8Avx2>(ray, t_max, leaf);
+    return any<8, Children8Avx2>(ray, t_max, leaf);
   }
 #endif
   std::vector<BvhNode> m_nodes;
@@ -221,152 +232,18 @@ class Bvh {
 };
 
 // Depth is bounded by the build (SAH splits below depth 48, then median splits of at most 2^31
-// primitives: at most 80 binary levels). A 4-wide stack holds at most 3 entries per level, so
-// 256 entries can never overflow; an 8-wide node pushes at most 7 children and descends at least
-// one binary level, so 7 * 80 = 560 suffice.
-inline constexpr int kBvhStackSize = 256;
-inline constexpr int kBvh8StackSize = 560;
+// primitives: at most 80 binary levels, so at most 79 interior ones). A traversal keeps on its
+// stack at most W - 1 children of each W-wide node on the current path (any_leaf_in pushes all W
+// and pops one at once), and each W-wide node descends at least one binary level: (W - 1) * 80
+// entries can never overflow.
+inline constexpr int kBvhMaxBinaryDepth = 80;
+template <int W>
+inline constexpr int kBvhStackSize = (W - 1) * kBvhMaxBinaryDepth;
 
-inline int Bvh::hit_children(const Bvh4Node& n, const RayData& r, float t_max, float t_enter[4]) {
-  const float scale = 1.0f + 2.0f * gamma_bound(3);
-#if defined(__SSE2__)
-  const __m128 ox = r.o4[0], oy = r.o4[1], oz = r.o4[2];
-  const __m128 ix = r.inv4[0], iy = r.inv4[1], iz = r.inv4[2];
-  const __m128 tnx = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.planes[r.near_plane[0]]), ox), ix);
-  const __m128 tny = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.planes[r.near_plane[1]]), oy), iy);
-  const __m128 tnz = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.planes[r.near_plane[2]]), oz), iz);
-  const __m128 tfx = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.planes[r.near_plane[0] ^ 1]), ox), ix);
-  const __m128 tfy = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.planes[r.near_plane[1] ^ 1]), oy), iy);
-  const __m128 tfz = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.planes[r.near_plane[2] ^ 1]), oz), iz);
-  const __m128 t_near = _mm_max_ps(_mm_max_ps(tnx, tny), _mm_max_ps(tnz, _mm_setzero_ps()));
-  const __m128 t_far = _mm_mul_ps(
-      _mm_min_ps(_mm_min_ps(tfx, tfy), _mm_min_ps(tfz, _mm_set1_ps(t_max))), _mm_set1_ps(scale));
-  _mm_storeu_ps(t_enter, t_near);
-  return _mm_movemask_ps(_mm_cmple_ps(t_near, t_far));
-#else
-  int mask = 0;
-  for (int i = 0; i < 4; ++i) {
-    const float tnx = (n.planes[r.near_plane[0]][i] - r.origin.x) * r.inv_direction.x;
-    const float tny = (n.planes[r.near_plane[1]][i] - r.origin.y) * r.inv_direction.y;
-    const float tnz = (n.planes[r.near_plane[2]][i] - r.origin.z) * r.inv_direction.z;
-    const float tfx = (n.planes[r.near_plane[0] ^ 1][i] - r.origin.x) * r.inv_direction.x;
-    const float tfy = (n.planes[r.near_plane[1] ^ 1][i] - r.origin.y) * r.inv_direction.y;
-    const float tfz = (n.planes[r.near_plane[2] ^ 1][i] - r.origin.z) * r.inv_direction.z;
-    t_enter[i] = std::max(std::max(tnx, tny), std::max(tnz, 0.0f));
-    const float t_far = std::min(std::min(tfx, tfy), std::min(tfz, t_max)) * scale;
-    if (t_enter[i] <= t_far) mask |= 1 << i;
-  }
-  return mask;
-#endif
-}
-
-template <class LeafFn>
-inline bool Bvh::closest4(const RayData& ray, float& t_max, LeafFn& leaf) const {
-  if (m_wide.empty()) return false;
-  const Bvh4Node* nodes = m_wide.data();
-  struct Entry {
-    std::uint32_t ref, count;
-    float t;
-  };
-  Entry stack[kBvhStackSize];
-  int sp = 0;
-  bool hit = false;
-  // The root's own box is the union of its children's: testing the children suffices.
-  std::uint32_t ref = 0, count = 0;
-  while (true) {
-    if (count > 0) {
-      if (leaf(ref, count, t_max)) hit = true;
-    } else {
-      const Bvh4Node& n = nodes[ref];
-      float t[4];
-      int mask = hit_children(n, ray, t_max, t);
-      if (mask != 0) {
-        const int first = __builtin_ctz(static_cast<unsigned>(mask));
-        const int rest = mask & (mask - 1);
-        if (rest == 0) {  // one child hit: the common case deep in the tree
-          ref = n.child[first];
-          count = n.count[first];
-          continue;
-        }
-        if ((rest & (rest - 1)) == 0) {  // two: visit the nearer, push the farther
-          int a = first, b = __builtin_ctz(static_cast<unsigned>(rest));
-          if (t[b] < t[a]) std::swap(a, b);
-          stack[sp++] = {n.child[b], n.count[b], t[b]};
-          ref = n.child[a];
-          count = n.count[a];
-          continue;
-        }
-        // Three or four: nearest next, the others on the stack, farthest deepest.
-        Entry e[4];
-        int k = 0;
-        while (mask) {
-          const int i = __builtin_ctz(static_cast<unsigned>(mask));
-          mask &= mask - 1;
-          Entry c{n.child[i], n.count[i], t[i]};
-          int j = k++;
-          while (j > 0 && e[j - 1].t < c.t) {  // sort by decreasing distance
-            e[j] = e[j - 1];
-            --j;
-          }
-          e[j] = c;
-        }
-        for (int j = 0; j < k - 1; ++j) stack[sp++] = e[j];
-        ref = e[k - 1].ref;
-        count = e[k - 1].count;
-        continue;
-      }
-    }
-    // Pop the next subtree that may still hold a closer hit.
-    while (true) {
-      if (sp == 0) return hit;
-      const Entry& e = stack[--sp];
-      if (e.t <= t_max) {
-        ref = e.ref;
-        count = e.count;
-        break;
-      }
-    }
-  }
-}
-
-template <class LeafFn>
-inline bool Bvh::any4(const RayData& ray, float t_max, LeafFn& leaf) const {
-  if (m_wide.empty()) return false;
-  const Bvh4Node* nodes = m_wide.data();
-  struct Entry {
-    std::uint32_t ref, count;
-  };
-  Entry stack[kBvhStackSize];
-  int sp = 0;
-  std::uint32_t ref = 0, count = 0;
-  while (true) {
-    if (count > 0) {
-      if (leaf(ref, count, t_max)) return true;
-    } else {
-      const Bvh4Node& n = nodes[ref];
-      float t[4];
-      int mask = hit_children(n, ray, t_max, t);
-      if (mask != 0) {
-        int i = __builtin_ctz(static_cast<unsigned>(mask));
-        mask &= mask - 1;
-        while (mask) {  // any order will do for an any-hit query
-          const int j = __builtin_ctz(static_cast<unsigned>(mask));
-          mask &= mask - 1;
-          stack[sp++] = {n.child[j], n.count[j]};
-        }
-        ref = n.child[i];
-        count = n.count[i];
-        continue;
-      }
-    }
-    if (sp == 0) return false;
-    --sp;
-    ref = stack[sp].ref;
-    count = stack[sp].count;
-  }
-}
-
-inline int Bvh::Children8::operator()(const Bvh8Node& n, float t_max, float t_enter[8]) const {
+template <int W>
+inline int Bvh::Children<W>::operator()(const BvhWideNode<W>& n, float t_max,
+                                        float t_enter[W]) const {
+  static_assert(W % 4 == 0);
   const float scale = 1.0f + 2.0f * gamma_bound(3);
 #if defined(__SSE2__)
   const __m128 ox = r.o4[0], oy = r.o4[1], oz = r.o4[2];
@@ -378,7 +255,7 @@ inline int Bvh::Children8::operator()(const Bvh8Node& n, float t_max, float t_en
   const float* fy = n.planes[r.near_plane[1] ^ 1];
   const float* fz = n.planes[r.near_plane[2] ^ 1];
   int mask = 0;
-  for (int h = 0; h < 8; h += 4) {
+  for (int h = 0; h < W; h += 4) {
     const __m128 tnx = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(nx + h), ox), ix);
     const __m128 tny = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(ny + h), oy), iy);
     const __m128 tnz = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(nz + h), oz), iz);
@@ -394,7 +271,7 @@ inline int Bvh::Children8::operator()(const Bvh8Node& n, float t_max, float t_en
   return mask;
 #else
   int mask = 0;
-  for (int i = 0; i < 8; ++i) {
+  for (int i = 0; i < W; ++i) {
     const float tnx = (n.planes[r.near_plane[0]][i] - r.origin.x) * r.inv_direction.x;
     const float tny = (n.planes[r.near_plane[1]][i] - r.origin.y) * r.inv_direction.y;
     const float tnz = (n.planes[r.near_plane[2]][i] - r.origin.z) * r.inv_direction.z;
@@ -444,16 +321,16 @@ THAW_TARGET_AVX2 inline int Bvh::Children8Avx2::operator()(const Bvh8Node& n, fl
 }
 #endif
 
-template <class Children, class LeafFn>
-inline bool Bvh::closest8(const RayData& ray, float& t_max, LeafFn& leaf) const {
-  if (m_wide8.empty()) return false;
-  const Bvh8Node* nodes = m_wide8.data();
+template <int W, class Children, class LeafFn>
+inline bool Bvh::closest(const RayData& ray, float& t_max, LeafFn& leaf) const {
+  const std::vector<BvhWideNode<W>>& nodes = tree<W>();
+  if (nodes.empty()) return false;
   const Children children(ray);
   struct Entry {
     std::uint32_t ref, count;
     float t;
   };
-  Entry stack[kBvh8StackSize];
+  Entry stack[kBvhStackSize<W>];
   int sp = 0;
   bool hit = false;
   // The root's own box is the union of its children's: testing the children suffices.
@@ -462,8 +339,8 @@ inline bool Bvh::closest8(const RayData& ray, float& t_max, LeafFn& leaf) const 
     if (count > 0) {
       if (leaf(ref, count, t_max)) hit = true;
     } else {
-      const Bvh8Node& n = nodes[ref];
-      alignas(32) float t[8];
+      const BvhWideNode<W>& n = nodes[ref];
+      alignas(32) float t[W];
       auto mask = static_cast<unsigned>(children(n, t_max, t));
       if (mask != 0) {
         const int first = __builtin_ctz(mask);
@@ -482,7 +359,7 @@ inline bool Bvh::closest8(const RayData& ray, float& t_max, LeafFn& leaf) const 
           continue;
         }
         // Three or more: nearest next, the others on the stack, farthest deepest.
-        Entry e[8];
+        Entry e[W];
         int k = 0;
         while (mask) {
           const int i = __builtin_ctz(mask);
@@ -514,23 +391,23 @@ inline bool Bvh::closest8(const RayData& ray, float& t_max, LeafFn& leaf) const 
   }
 }
 
-template <class Children, class LeafFn>
-inline bool Bvh::any8(const RayData& ray, float t_max, LeafFn& leaf) const {
-  if (m_wide8.empty()) return false;
-  const Bvh8Node* nodes = m_wide8.data();
+template <int W, class Children, class LeafFn>
+inline bool Bvh::any(const RayData& ray, float t_max, LeafFn& leaf) const {
+  const std::vector<BvhWideNode<W>>& nodes = tree<W>();
+  if (nodes.empty()) return false;
   const Children children(ray);
   struct Entry {
     std::uint32_t ref, count;
   };
-  Entry stack[kBvh8StackSize];
+  Entry stack[kBvhStackSize<W>];
   int sp = 0;
   std::uint32_t ref = 0, count = 0;
   while (true) {
     if (count > 0) {
       if (leaf(ref, count, t_max)) return true;
     } else {
-      const Bvh8Node& n = nodes[ref];
-      alignas(32) float t[8];
+      const BvhWideNode<W>& n = nodes[ref];
+      alignas(32) float t[W];
       auto mask = static_cast<unsigned>(children(n, t_max, t));
       if (mask != 0) {
         const int i = __builtin_ctz(mask);
@@ -554,22 +431,22 @@ inline bool Bvh::any8(const RayData& ray, float t_max, LeafFn& leaf) const {
 
 template <class LeafFn>
 bool Bvh::intersect_at(SimdLevel level, const RayData& ray, float& t_max, LeafFn&& leaf) const {
-  if (m_wide8.empty()) return closest4(ray, t_max, leaf);
+  if (m_wide8.empty()) return closest<4, Children4>(ray, t_max, leaf);
 #if THAW_AVX2_DISPATCH
   if (level == SimdLevel::avx2) return closest8_avx2(ray, t_max, leaf);
 #endif
   (void)level;
-  return closest8<Children8>(ray, t_max, leaf);
+  return closest<8, Children8>(ray, t_max, leaf);
 }
 
 template <class LeafFn>
 bool Bvh::occluded_at(SimdLevel level, const RayData& ray, float t_max, LeafFn&& leaf) const {
-  if (m_wide8.empty()) return any4(ray, t_max, leaf);
+  if (m_wide8.empty()) return any<4, Children4>(ray, t_max, leaf);
 #if THAW_AVX2_DISPATCH
   if (level == SimdLevel::avx2) return any8_avx2(ray, t_max, leaf);
 #endif
   (void)level;
-  return any8<Children8>(ray, t_max, leaf);
+  return any<8, Children8>(ray, t_max, leaf);
 }
 
 template <class BoxTest, class LeafFn>
@@ -588,47 +465,23 @@ bool Bvh::any_leaf(BoxTest&& box_test, LeafFn&& leaf) const {
       std::forward<LeafFn>(leaf));
 }
 
-template <class BoxesTest, class LeafFn>
-bool Bvh::any_leaf_wide(BoxesTest&& boxes_test, LeafFn&& leaf) const {
-  if (m_wide.empty()) return false;
+template <int W, class BoxesTest, class LeafFn>
+inline bool Bvh::any_leaf_in(const BoxesTest& boxes_test, LeafFn& leaf) const {
+  const std::vector<BvhWideNode<W>>& nodes = tree<W>();
+  if (nodes.empty()) return false;
   struct Entry {
     std::uint32_t ref, count;
   };
-  Entry stack[kBvhStackSize];
+  Entry stack[kBvhStackSize<W>];
   int sp = 0;
   Entry e{0, 0};  // the root: its children are tested
   while (true) {
     if (e.count > 0) {
       if (leaf(e.ref, e.count)) return true;
     } else {
-      const Bvh4Node& n = m_wide[e.ref];
+      const BvhWideNode<W>& n = nodes[e.ref];
       auto mask = static_cast<unsigned>(boxes_test(n.planes));
       while (mask) {  // in child order, as any_leaf pushes them
-        const int i = __builtin_ctz(mask);
-        mask &= mask - 1;
-        stack[sp++] = {n.child[i], n.count[i]};
-      }
-    }
-    if (sp == 0) return false;
-    e = stack[--sp];
-  }
-}
-
-template <class Boxes8, class LeafFn>
-inline bool Bvh::any_leaf8(const Boxes8& boxes8, LeafFn& leaf) const {
-  struct Entry {
-    std::uint32_t ref, count;
-  };
-  Entry stack[kBvh8StackSize];
-  int sp = 0;
-  Entry e{0, 0};  // the root: its children are tested
-  while (true) {
-    if (e.count > 0) {
-      if (leaf(e.ref, e.count)) return true;
-    } else {
-      const Bvh8Node& n = m_wide8[e.ref];
-      auto mask = static_cast<unsigned>(boxes8(n.planes));
-      while (mask) {  // in child order, as any_leaf_wide pushes them
         const int i = __builtin_ctz(mask);
         mask &= mask - 1;
         stack[sp++] = {n.child[i], n.count[i]};
