@@ -112,19 +112,17 @@ TaskResult decode(const std::string& text) {
 }
 
 // The unit mesh multiplied by `scale_m` (the radius of `shape`, or 1 without reuse), with the
-// outward normals of `shape` (the surface it now approximates) if wanted.
-TriangleMesh scaled_copy(const TriangleMesh& unit, double scale_m, const ShellShape& shape,
-                         bool normals) {
-  TriangleMesh m;
+// outward normals of `shape` (the surface it now approximates) if wanted, into `m` (its storage
+// reused: obj_writer.h's ObjBuffers says why).
+void scaled_copy(const TriangleMesh& unit, double scale_m, const ShellShape& shape, bool normals,
+                 TriangleMesh& m) {
   m.faces = unit.faces;
-  m.vertices.reserve(unit.vertices.size());
+  m.vertices.clear();
   for (const auto& v : unit.vertices)
     m.vertices.push_back({v[0] * scale_m, v[1] * scale_m, v[2] * scale_m});
-  if (normals) {
-    m.normals.reserve(m.vertices.size());
+  m.normals.clear();
+  if (normals)
     for (const auto& v : m.vertices) m.normals.push_back(shape.outward_normal(v));
-  }
-  return m;
 }
 
 void validate_geometry(const sim::ShellGeometry& g, const fs::path& summary) {
@@ -430,7 +428,10 @@ TaskResult write_surface(const Task& t, const FormPlan& plan, std::size_t k, con
   const std::size_t form = plan.form_of[k];
   try {
     if (!m.error[form].empty()) throw MeshError(m.error[form]);
-    const TriangleMesh mesh = scaled_copy(m.unit[form], plan.scale_of[k], t.shape, options.normals);
+    // One surface after another on this thread: the same storage for each (ObjBuffers).
+    thread_local TriangleMesh mesh;
+    thread_local ObjBuffers buffers;
+    scaled_copy(m.unit[form], plan.scale_of[k], t.shape, options.normals, mesh);
     measure(t.shape, mesh, r);
     const StepRecord& rec = manifest.steps[t.step_index];
     char comment[256];
@@ -438,7 +439,7 @@ TaskResult write_surface(const Task& t, const FormPlan& plan, std::size_t k, con
                   "thaw mesh: step %ld, %s surface of a %s, radius %.17g m", rec.step,
                   t.inner ? "inner (water|ice)" : "outer (ice|air)",
                   sim::to_string(t.shape.geometry), t.shape.radius_m);
-    write_obj(out_dir / surface_file_name(rec.step, t.inner), mesh, comment);
+    write_obj(out_dir / surface_file_name(rec.step, t.inner), mesh, comment, buffers);
   } catch (const UserError& e) {  // only writing throws these here
     r.write_problem = e.problem();
   } catch (const std::exception& e) {

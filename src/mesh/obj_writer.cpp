@@ -14,4 +14,11 @@ void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh,
   write_file_atomic(path, format_obj(mesh, comment));
 }
 
+void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh,
+               const std::string& comment, ObjBuffers& buffers) {
+  to_file_mesh(mesh, buffers.file);
+  meshio::format_obj(buffers.file, comment, buffers.text);
+  write_file_atomic(path, buffers.text);
+}
+
 }  // namespace thaw::mesh

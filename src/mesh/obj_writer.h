@@ -9,6 +9,7 @@
 #include <string>
 
 #include "src/mesh/triangle_mesh.h"
+#include "src/meshio/triangle_mesh.h"
 
 namespace thaw::mesh {
 
@@ -18,5 +19,20 @@ std::string format_obj(const TriangleMesh& mesh, const std::string& comment = ""
 /// Writes format_obj(mesh, comment) to `path` atomically; throws thaw::UserError on failure.
 void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh,
                const std::string& comment = "");
+
+/// What write_obj builds on the way to the file (the file's mesh and its text, ~1 MB for the
+/// default film's surfaces), kept by a caller that writes many meshes on one thread. Allocated
+/// afresh for every surface, that memory went back to the kernel after each one whenever the C
+/// library's trim threshold happened to be low (it adapts to the process's history: under MPI a
+/// rank's history differs), and its ~300 pages were faulted in again for the next: 15% more CPU
+/// per surface in a rank than in a single process (docs/pipeline.md).
+struct ObjBuffers {
+  meshio::TriangleMesh file;
+  std::string text;
+};
+
+/// write_obj through `buffers` (same bytes).
+void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh,
+               const std::string& comment, ObjBuffers& buffers);
 
 }  // namespace thaw::mesh

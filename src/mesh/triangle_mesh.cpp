@@ -11,17 +11,23 @@
 namespace thaw::mesh {
 
 meshio::TriangleMesh to_file_mesh(const TriangleMesh& mesh) {
+  meshio::TriangleMesh file;
+  to_file_mesh(mesh, file);
+  return file;
+}
+
+void to_file_mesh(const TriangleMesh& mesh, meshio::TriangleMesh& file) {
   const bool normals = !mesh.normals.empty();
   THAW_CHECK(!normals || mesh.normals.size() == mesh.vertices.size(), "one normal per vertex");
-  meshio::TriangleMesh file;
-  file.vertices = mesh.vertices;
-  file.triangles.reserve(mesh.faces.size());
+  file.vertices = mesh.vertices;  // copy-assignment reuses the storage it has
+  file.triangles.clear();
   for (const auto& f : mesh.faces) file.triangles.push_back({f[0], f[1], f[2]});
+  file.normals.clear();
+  file.normal_triangles.clear();
   if (normals) {
     file.normals = mesh.normals;
     file.normal_triangles = file.triangles;
   }
-  return file;
 }
 
 TriangleMesh from_file_mesh(const meshio::TriangleMesh& file) {

@@ -25,6 +25,10 @@ struct TriangleMesh {
 /// any, indexed like the vertices.
 meshio::TriangleMesh to_file_mesh(const TriangleMesh& mesh);
 
+/// to_file_mesh into `file`, replacing its contents but keeping its storage (one buffer reused
+/// over many meshes).
+void to_file_mesh(const TriangleMesh& mesh, meshio::TriangleMesh& file);
+
 /// The mesher's mesh from a file's: vertices and triangles as they are; the normals only when
 /// the file indexes them like the vertices (as to_file_mesh writes them), else none. THAW_CHECK
 /// that the vertex count fits int indices (the reader has checked every index against it).

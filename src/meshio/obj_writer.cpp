@@ -39,10 +39,16 @@ void append_line(std::string& out, const char* tag, const std::array<double, 3>&
 }  // namespace
 
 std::string format_obj(const TriangleMesh& mesh, const std::string& comment) {
+  std::string out;
+  format_obj(mesh, comment, out);
+  return out;
+}
+
+void format_obj(const TriangleMesh& mesh, const std::string& comment, std::string& out) {
   const bool normals = !mesh.normal_triangles.empty();
   THAW_CHECK(!normals || mesh.normal_triangles.size() == mesh.triangles.size(),
              "one normal triple per triangle");
-  std::string out;
+  out.clear();
   out.reserve(mesh.vertices.size() * 70 + mesh.normals.size() * 40 + mesh.triangles.size() * 40 +
               256);
   if (!comment.empty()) out += "# " + comment + "\n";
@@ -62,7 +68,6 @@ std::string format_obj(const TriangleMesh& mesh, const std::string& comment) {
     }
     out += '\n';
   }
-  return out;
 }
 
 void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh,

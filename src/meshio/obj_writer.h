@@ -12,6 +12,11 @@ namespace thaw::meshio {
 /// The OBJ text of `mesh`; `comment` (if not empty) becomes a first `# ` line.
 std::string format_obj(const TriangleMesh& mesh, const std::string& comment = "");
 
+/// format_obj into `out`, replacing its text but keeping its storage: a caller writing many
+/// meshes reuses one buffer instead of allocating (and the C library perhaps returning to the
+/// kernel, to fault in again) a fresh one for each.
+void format_obj(const TriangleMesh& mesh, const std::string& comment, std::string& out);
+
 /// Writes format_obj(mesh, comment) to `path` atomically; throws thaw::UserError on failure.
 void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh,
                const std::string& comment = "");

@@ -72,14 +72,19 @@ std::vector<std::string> RanksMeshFarm::run(long n, int threads,
 }
 
 std::vector<Chunk> guided_chunks(long n, int ranks, int threads) {
-  // Guided self-scheduling (Polychronopoulos & Kuck 1987): each chunk takes 1 / (2 R) of what is
-  // left, in whole multiples of the threads, so the first chunks are large (few hand-outs) and the
-  // last ones a chunk of `threads` items (the ranks finish within one item of each other).
+  // Guided self-scheduling (Polychronopoulos & Kuck 1987), with each chunk taking 1 / (4 R) of
+  // what is left (their 1 / R, halved twice), in whole multiples of the threads: the first chunks
+  // are large (few hand-outs) and the last ones a chunk of `threads` items (the ranks finish within
+  // one item of each other). Not 1 / (2 R): a chunk, once taken, is its rank's to finish, and on
+  // a shared machine a rank can lose its core for a while; the default film's first chunk of 26
+  // surfaces (~45 ms) then held the whole stage up by up to 80 ms while the other rank idled
+  // (docs/pipeline.md). At 1 / (4 R) it is 13, for 5 more hand-outs of ~0.1 ms (overlapped:
+  // a rank asks for its next chunk ahead).
   std::vector<Chunk> chunks;
   const long p = std::max(1, threads), r = std::max(1, ranks);
   for (long first = 0; first < n;) {
     const long left = n - first;
-    const long share = (left + 2 * r - 1) / (2 * r);
+    const long share = (left + 4 * r - 1) / (4 * r);
     const long count = std::min(left, std::max(p, (share + p - 1) / p * p));
     chunks.push_back({first, count});
     first += count;
@@ -93,7 +98,7 @@ std::vector<std::string> RanksMeshFarm::run_on_ranks(long n, int threads,
   if (m_ranks.size() == 1) return MeshFarm::run(n, threads, work, done);
   // Every hand-out is a round trip to the leader's dispatcher (a millisecond idle, tens under
   // load); a 1D series' surfaces take ~5 ms each, so one surface per hand-out lost a fifth of a
-  // rank. Guided chunks of `threads`-multiples keep every thread busy with ~2 R log(n) hand-outs.
+  // rank. Guided chunks of `threads`-multiples keep every thread busy with ~4 R log(n) hand-outs.
   const int per_rank = threads > 0 ? threads : omp_get_max_threads();
   const std::vector<Chunk> chunks = guided_chunks(n, m_ranks.size(), per_rank);
   std::vector<long> positions(chunks.size());

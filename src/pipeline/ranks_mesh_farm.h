@@ -14,7 +14,7 @@ struct Chunk {
 };
 
 /// n items cut for `ranks` ranks of `threads` threads: in order, covering [0, n), chunk sizes
-/// non-increasing, multiples of `threads` but for the last, each about 1 / (2 ranks) of what is
+/// non-increasing, multiples of `threads` but for the last, each about 1 / (4 ranks) of what is
 /// left and at least `threads`.
 std::vector<Chunk> guided_chunks(long n, int ranks, int threads);
 

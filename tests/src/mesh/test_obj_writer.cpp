@@ -65,5 +65,28 @@ TEST(ObjWriter, WritesAtomically) {
     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
 }
 
+// Buffers reused from a larger mesh with normals for a smaller one without: the same bytes as a
+// fresh write, nothing left over from the first mesh (no stale normals, lines or "//" faces).
+TEST(ObjWriter, ReusedBuffersWriteTheSameBytes) {
+  const auto dir = std::filesystem::path(THAW_BINARY_DIR) / "test_obj_writer_buffers";
+  std::filesystem::create_directories(dir);
+  TriangleMesh big = tetrahedron();
+  big.vertices.push_back({2, 2, 2});
+  big.faces.push_back({1, 2, 4});
+  big.normals.assign(big.vertices.size(), {0, 1, 0});
+  ObjBuffers buffers;
+  write_obj(dir / "big.obj", big, "big", buffers);
+  write_obj(dir / "small.obj", tetrahedron(), "t", buffers);
+  const auto text = [](const std::filesystem::path& p) {
+    std::ifstream in(p);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  };
+  EXPECT_EQ(text(dir / "big.obj"), format_obj(big, "big"));
+  EXPECT_EQ(text(dir / "small.obj"), format_obj(tetrahedron(), "t"));
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace thaw::mesh

@@ -43,6 +43,24 @@ TEST(TriangleMesh, FileMeshRoundTripKeepsEverythingBitForBit) {
   EXPECT_EQ(plain.faces, unit_cube().faces);
 }
 
+// Converting into a file mesh that held a larger mesh with normals gives what a fresh conversion
+// gives: every array replaced, none kept from before.
+TEST(TriangleMesh, FileMeshIntoReusedStorageEqualsAFreshOne) {
+  TriangleMesh with_normals = unit_cube();
+  set_angle_weighted_normals(with_normals);
+  meshio::TriangleMesh file;
+  to_file_mesh(with_normals, file);
+  TriangleMesh small;
+  small.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  small.faces = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  to_file_mesh(small, file);
+  const meshio::TriangleMesh fresh = to_file_mesh(small);
+  EXPECT_EQ(file.vertices, fresh.vertices);
+  EXPECT_EQ(file.triangles, fresh.triangles);
+  EXPECT_TRUE(file.normals.empty());
+  EXPECT_TRUE(file.normal_triangles.empty());
+}
+
 // A file whose normals are not one per vertex, indexed like the vertices, has no vertex normals
 // the mesher could keep: they are dropped, not misassigned.
 TEST(TriangleMesh, FileNormalsWithTheirOwnIndicesAreNotTakenAsVertexNormals) {

@@ -65,6 +65,10 @@ TEST(FormatObj, NumbersAreWhatPrintfWrites) {
   m.triangles = {{0, 0, 0}};
   EXPECT_EQ(format_obj(m, ""),
             printf_line("v %.17g %.17g %.17g\n", values[0], values[1], values[2]) + "f 1 1 1\n");
+  // Into a buffer that held a longer text: replaced, nothing of it left.
+  std::string reused = "# stale\n" + expect + expect;
+  format_obj(m, "", reused);
+  EXPECT_EQ(reused, format_obj(m, ""));
 }
 
 }  // namespace
