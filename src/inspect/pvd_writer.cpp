@@ -150,6 +150,16 @@ PvdWriter::PvdWriter(fs::path pvd_path) : m_pvd(std::move(pvd_path)) {
   m_staging.emplace(m_data_dir);
 }
 
+PvdWriter::PvdWriter(fs::path pvd_path, fs::path write_dir)
+    : m_pvd(std::move(pvd_path)), m_foreign_dir(std::move(write_dir)) {
+  m_data_dir = m_pvd.parent_path() / (m_pvd.stem().string() + "_vtp");
+}
+
+fs::path PvdWriter::write_dir() const {
+  if (m_staging) return m_staging->path();
+  return m_foreign_dir.empty() ? m_data_dir : m_foreign_dir;
+}
+
 namespace {
 std::string data_set_name(long step, int part) {
   char name[64];
@@ -166,9 +176,8 @@ void PvdWriter::add(long step, double time_s, SurfacePart part, const TriangleMe
 
 void PvdWriter::write(long step, SurfacePart part, const TriangleMesh* mesh,
                       const std::vector<PointScalars>& scalars) const {
-  write_vtp(
-      (m_staging ? m_staging->path() : m_data_dir) / data_set_name(step, static_cast<int>(part)),
-      mesh ? *mesh : TriangleMesh{}, mesh ? scalars : std::vector<PointScalars>{});
+  write_vtp(write_dir() / data_set_name(step, static_cast<int>(part)),
+            mesh ? *mesh : TriangleMesh{}, mesh ? scalars : std::vector<PointScalars>{});
 }
 
 void PvdWriter::record(long step, double time_s, SurfacePart part) {
@@ -220,9 +229,11 @@ void write_pvd_series(const fs::path& simdir, const fs::path& out_pvd,
 namespace {
 
 // One step of the series: its surfaces read once, sampled, placed, written and handed to the
-// caller's hook. Throws (the caller keeps the exception: this runs inside an OpenMP loop).
-void write_series_step(const fs::path& simdir, const MeshedStep& s, const PvdWriter& writer,
-                       const PvdSeriesOptions& options) {
+// caller's hook; returns where it was placed. Throws (the caller keeps the exception: this runs
+// inside an OpenMP loop).
+std::optional<std::array<double, 3>> write_series_step(const fs::path& simdir, const MeshedStep& s,
+                                                       const PvdWriter& writer,
+                                                       const PvdSeriesOptions& options) {
   char field_name[64];
   std::snprintf(field_name, sizeof field_name, "step_%06ld.grid", s.step);
   std::optional<sim::GridField> field;
@@ -256,17 +267,90 @@ void write_series_step(const fs::path& simdir, const MeshedStep& s, const PvdWri
     writer.write(s.step, part, &*m, scalars);
     if (options.surface) options.surface(s, part, &*m);
   }
+  return offset;
+}
+
+// The series over the processes of options.farm (PvdSeriesOptions::farm). A step's result
+// travels to the leader as text: "+" and its offset (17 digits: read back exactly; nothing
+// without a placement), "E" and the failure's message, or "I": interrupted.
+StepOffsets write_series_on_farm(const fs::path& out_pvd, const fs::path& simdir,
+                                 const SimulationFolder& folder, const PvdSeriesOptions& options) {
+  mesh::MeshFarm& farm = *options.farm;
+  // The leader stages the data sets' folder; every process learns where ("+path" or "-error"),
+  // so that none waits for a leader that has given up.
+  std::optional<PvdWriter> writer;
+  std::string said;
+  if (farm.leader()) try {
+      writer.emplace(out_pvd);
+      said = '+';  // appended: GCC 12's -Wrestrict misreads "+" + path (a false positive)
+      said += writer->write_dir().string();
+    } catch (const UserError& e) {
+      said = '-';
+      said += e.what();
+    }
+  const std::string word = farm.share(said);
+  if (word.empty() || word[0] == '-')
+    throw UserError("", "", word.empty() ? out_pvd.string() + ": not staged" : word.substr(1));
+  if (!farm.leader()) writer.emplace(out_pvd, fs::path(word.substr(1)));
+  const auto total = static_cast<std::int64_t>(folder.steps.size());
+  std::int64_t done = 0;
+  std::exception_ptr progress_failure;
+  const std::vector<std::string> texts = farm.run(
+      total, options.threads,
+      [&](long k) -> std::string {
+        if (interrupt_requested()) return "I";
+        try {
+          const auto offset = write_series_step(simdir, folder.steps[static_cast<std::size_t>(k)],
+                                                *writer, options);
+          char text[96] = "+";
+          if (offset)
+            std::snprintf(text, sizeof text, "+%.17g %.17g %.17g", (*offset)[0], (*offset)[1],
+                          (*offset)[2]);
+          return text;
+        } catch (const std::exception& e) {
+          return std::string("E") + e.what();
+        } catch (...) {
+          return "Eunknown failure";
+        }
+      },
+      [&] {  // on the leader, one call at a time; an interrupt thrown here stops at the end
+        ++done;
+        if (options.progress && !progress_failure) try {
+            options.progress(done, total);
+          } catch (...) {
+            progress_failure = std::current_exception();
+          }
+      });
+  if (!farm.leader()) return {};
+  if (progress_failure) std::rethrow_exception(progress_failure);
+  throw_if_interrupted();
+  StepOffsets offsets;
+  for (std::size_t i = 0; i < texts.size(); ++i) {
+    const std::string& text = texts[i];
+    if (text.empty() || text[0] != '+')
+      throw UserError("", "", text.size() > 1 && text[0] == 'E' ? text.substr(1) : "interrupted");
+    std::array<double, 3> offset{};
+    if (std::sscanf(text.c_str(), "+%lf %lf %lf", &offset[0], &offset[1], &offset[2]) == 3)
+      offsets[folder.steps[i].step] = offset;
+  }
+  for (const MeshedStep& s : folder.steps)
+    for (const SurfacePart part : {SurfacePart::inner, SurfacePart::outer})
+      writer->record(s.step, s.time_s, part);
+  writer->commit();
+  return offsets;
 }
 
 }  // namespace
 
-void write_pvd_series(const fs::path& simdir, const fs::path& out_pvd,
-                      const PvdSeriesOptions& options) {
+StepOffsets write_pvd_series(const fs::path& simdir, const fs::path& out_pvd,
+                             const PvdSeriesOptions& options) {
   const SimulationFolder folder = read_simulation_folder(simdir);
   if (!folder.meshed)
     throw UserError((simdir / "mesh" / "manifest.json").string(), "",
                     "not found: mesh the simulation first (thaw mesh)");
+  if (options.farm) return write_series_on_farm(out_pvd, simdir, folder, options);
   PvdWriter writer(out_pvd);
+  std::vector<std::optional<std::array<double, 3>>> placed(folder.steps.size());
   const auto total = static_cast<std::int64_t>(folder.steps.size());
   std::vector<std::exception_ptr> failure(folder.steps.size());
   std::int64_t done = 0;
@@ -277,7 +361,7 @@ void write_pvd_series(const fs::path& simdir, const fs::path& out_pvd,
     const auto i = static_cast<std::size_t>(k);
     if (interrupt_requested()) continue;  // thrown after the loop
     try {
-      write_series_step(simdir, folder.steps[i], writer, options);
+      placed[i] = write_series_step(simdir, folder.steps[i], writer, options);
 #pragma omp critical(thaw_pvd_series_progress)
       {
         ++done;
@@ -298,6 +382,10 @@ void write_pvd_series(const fs::path& simdir, const fs::path& out_pvd,
     for (const SurfacePart part : {SurfacePart::inner, SurfacePart::outer})
       writer.record(s.step, s.time_s, part);
   writer.commit();
+  StepOffsets offsets;
+  for (std::size_t i = 0; i < placed.size(); ++i)
+    if (placed[i]) offsets[folder.steps[i].step] = *placed[i];
+  return offsets;
 }
 
 }  // namespace thaw::inspect

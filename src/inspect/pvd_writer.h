@@ -8,6 +8,7 @@
 #include <array>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "src/common/progress.h"
 #include "src/inspect/simulation_folder.h"
 #include "src/inspect/triangle_mesh.h"
+#include "src/mesh/mesh_farm.h"
 
 namespace thaw::inspect {
 
@@ -33,6 +35,10 @@ class PvdWriter {
   /// `pvd_path`: the collection file; the .vtp files go in the folder `<stem>_vtp/` beside it
   /// (staged until commit()). Throws thaw::UserError if that folder cannot be created.
   explicit PvdWriter(std::filesystem::path pvd_path);
+  /// A writer of data sets into `write_dir`, the folder another process's PvdWriter for
+  /// `pvd_path` has staged (the ranks of thaw run): write() only; that process records and
+  /// commits.
+  PvdWriter(std::filesystem::path pvd_path, std::filesystem::path write_dir);
 
   /// Writes step `step`'s `part` surface (nullptr: vanished, written as an empty data set so the
   /// part disappears at that time instead of ParaView holding the last surface). time_s: simulated
@@ -53,6 +59,8 @@ class PvdWriter {
 
   const std::filesystem::path& pvd_path() const { return m_pvd; }
   const std::filesystem::path& data_dir() const { return m_data_dir; }
+  /// Where write() puts the data sets now: the staged folder until commit(), then data_dir().
+  std::filesystem::path write_dir() const;
   /// Number of data sets referenced so far.
   std::size_t size() const { return m_entries.size(); }
 
@@ -63,6 +71,7 @@ class PvdWriter {
     std::string file;  // relative to the .pvd's folder, '/'-separated
   };
   std::filesystem::path m_pvd, m_data_dir;
+  std::filesystem::path m_foreign_dir;  ///< another process's staged folder (second constructor)
   std::optional<StagingDirectory> m_staging;  ///< until the first commit()
   std::vector<Entry> m_entries;
 };
@@ -106,11 +115,23 @@ struct PvdSeriesOptions {
   /// Steps written at once (OpenMP threads; <= 0: OpenMP's default). The files are the same for
   /// any number.
   int threads = 1;
+  /// Several processes writing one series (thaw run under MPI; nullptr: this process alone).
+  /// Every process calls write_pvd_series with the same arguments: the leader stages the data
+  /// sets' folder and shares its path, the farm hands the steps out (each process writing its
+  /// steps on `threads` threads), and the leader records and commits them. `progress` is called
+  /// on the leader only, `placement` and `surface` wherever a step is written.
+  mesh::MeshFarm* farm = nullptr;
 };
 
-/// write_pvd_series with PvdSeriesOptions. A failure (the first in step order) is thrown after
-/// every step has been attempted; nothing is committed then.
-void write_pvd_series(const std::filesystem::path& simdir, const std::filesystem::path& out_pvd,
-                      const PvdSeriesOptions& options);
+/// Where `placement` put each step (by step number): nothing without a placement.
+using StepOffsets = std::map<long, std::array<double, 3>>;
+
+/// write_pvd_series with PvdSeriesOptions; returns the offset each step was placed at (with a
+/// farm: every step's on the leader, nothing on the others). A failure (the first in step order)
+/// is thrown after every step has been attempted; nothing is committed then. With a farm the
+/// leader throws it as a UserError with the failure's message, and a failure to stage as well on
+/// every process; the other processes throw nothing else.
+StepOffsets write_pvd_series(const std::filesystem::path& simdir,
+                             const std::filesystem::path& out_pvd, const PvdSeriesOptions& options);
 
 }  // namespace thaw::inspect

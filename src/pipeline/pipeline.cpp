@@ -626,72 +626,96 @@ void film_stage(Run& r, long frame_count) {
 }
 
 /// 5. Inspect: the radius plot, the ParaView series, the Blender OBJ sequence and (grid runs) the
-/// OpenVDB volumes, the surfaces placed where the film shows them (the leader).
+/// OpenVDB volumes, the surfaces placed where the film shows them. Under MPI the steps are handed
+/// out like the mesh stage's items (each rank writes its steps' .vtp into the leader's staged
+/// folder and its world-space OBJs), the last rank draws the plot meanwhile, and the leader
+/// commits the series and writes the grid runs' field exports.
 void inspect_stage(Run& r, const mesh::MeshManifest& meshes) {
   const RunScenario& sc = r.sc;
   const RunOptions& o = r.o;
+  RunRanks& ranks = r.ranks;
+  const bool leader = r.leader;
   const fs::path& out = r.out;
   const fs::path& simdir = r.simdir;
   const ContentHash& mesh_hash = r.mesh_hash;
   RunManifest& manifest = r.manifest;
   RunReport& report = r.report;
-  if (r.wanted("inspect")) {
-    report.plot = out / "plot.png";
-    report.pvd = out / "meshes.pvd";
-    report.handoff_obj = out / "handoff" / "obj";
-    ContentHash inspect_hash;
-    // /5: .vtp/.vti arrays inline (Debian 12's ParaView cannot read appended data), fields placed.
-    inspect_hash.add("inspect/5").add(mesh_hash.hex()).add(sc.shell.rest_on_floor ? "floor" : "");
-    for (double v : sc.shell.center) inspect_hash.add(v);
-    inspect_hash.add(sc.shell.floor_y);
+  if (!r.wanted("inspect")) return;
+  report.plot = out / "plot.png";
+  report.pvd = out / "meshes.pvd";
+  report.handoff_obj = out / "handoff" / "obj";
+  ContentHash inspect_hash;
+  // /5: .vtp/.vti arrays inline (Debian 12's ParaView cannot read appended data), fields placed.
+  inspect_hash.add("inspect/5").add(mesh_hash.hex()).add(sc.shell.rest_on_floor ? "floor" : "");
+  for (double v : sc.shell.center) inspect_hash.add(v);
+  inspect_hash.add(sc.shell.floor_y);
 #if THAW_OPENVDB
-    // A build with OpenVDB adds the volumes to an older run's (/2: axisymmetric runs' too).
-    inspect_hash.add("openvdb/2");
+  // A build with OpenVDB adds the volumes to an older run's (/2: axisymmetric runs' too).
+  inspect_hash.add("openvdb/2");
 #endif
-    StageClock clock(report, "inspect");
-    const bool up_to_date = manifest.begin_stage("inspect", inspect_hash.hex()) &&
-                            fs::exists(report.plot) && fs::exists(report.pvd) &&
-                            fs::exists(report.handoff_obj);
-    if (up_to_date) {
-      clock.timing().skipped = true;
-      say(o, stage_title(5, "inspect") + ": up to date");
-    } else {
-      ProgressReporter progress(stage_title(5, "inspect"), static_cast<long>(meshes.steps.size()),
-                                o.quiet);
-      // One pass over the surfaces, each OBJ read once: placed by its outer surface as the film
-      // shows it, written as .vtp and as the world-space OBJ, steps on this process's threads.
-      std::map<long, std::array<double, 3>> offset_of_step;
-      for (const mesh::StepRecord& step : meshes.steps) offset_of_step[step.step] = {};
-      ensure_directory(report.handoff_obj);
-      inspect::PvdSeriesOptions series;
-      series.progress = interruptible(progress.callback());
-      series.placement = [&](const inspect::MeshedStep& s, const meshio::TriangleMesh* outer) {
-        return offset_of_step.at(s.step) = rendered_offset(sc, outer);  // a key of its own
-      };
-      series.surface = [&](const inspect::MeshedStep& s, inspect::SurfacePart part,
-                           const meshio::TriangleMesh* placed) {
-        write_world_obj(report.handoff_obj, s.step, s.time_s, part == inspect::SurfacePart::inner,
-                        placed);
-      };
-      series.threads = o.jobs;
-      inspect::write_pvd_series(simdir, report.pvd, series);
-      inspect::write_radius_plot(simdir, report.plot);
-      // Grid runs: the solver's fields as a ParaView image series, placed like the meshes.
-      if (inspect::write_field_series(simdir, out / "fields.pvd", {},
-                                      [&](long step) { return offset_of_step.at(step); }) > 0)
-        report.fields_pvd = out / "fields.pvd";
-#if THAW_OPENVDB
-      // Grid runs: the fields as OpenVDB volumes (axisymmetric ones revolved), placed like the
-      // OBJ sequence.
-      if (write_vdb_sequence(simdir, out / "handoff" / "vdb",
-                             [&](long step) { return offset_of_step.at(step); }) > 0)
-        report.handoff_vdb = out / "handoff" / "vdb";
-#endif
-      progress.finish();
-      manifest.mark_stage_complete("inspect");
-      clock.timing().items_done = 1;
-    }
+  StageClock clock(report, "inspect");
+  bool up_to_date = false;
+  on_leader(ranks, [&] {
+    up_to_date = manifest.begin_stage("inspect", inspect_hash.hex()) && fs::exists(report.plot) &&
+                 fs::exists(report.pvd) && fs::exists(report.handoff_obj);
+  });
+  if (ranks.broadcast(up_to_date ? "up to date" : "") == "up to date") {
+    clock.timing().skipped = true;
+    say(o, stage_title(5, "inspect") + ": up to date");
+    return;
   }
+  on_every_rank(ranks, [&] {
+    ProgressReporter progress(stage_title(5, "inspect"), static_cast<long>(meshes.steps.size()),
+                              o.quiet);
+    if (leader) ensure_directory(report.handoff_obj);  // before the series' folder is shared
+    // The plot by the last rank (alone: this process) before it joins the steps, so that under
+    // MPI it overlaps the others' steps. Its failure waits until the steps are done: the other
+    // ranks wait for this one's share of them.
+    std::string plot_error;
+    if (ranks.rank() == ranks.size() - 1) try {
+        inspect::write_radius_plot(simdir, report.plot);
+      } catch (const std::exception& e) {
+        if (ranks.size() == 1) throw;
+        plot_error = dynamic_cast<const UserError*>(&e)
+                         ? e.what()
+                         : std::string("internal error: ") + e.what();
+      }
+    // One pass over the surfaces, each OBJ read once: placed by its outer surface as the film
+    // shows it, written as .vtp and as the world-space OBJ, steps on each rank's threads.
+    RanksMeshFarm farm(ranks);
+    inspect::PvdSeriesOptions series;
+    series.progress = interruptible(progress.callback());
+    series.placement = [&](const inspect::MeshedStep&, const meshio::TriangleMesh* outer) {
+      return rendered_offset(sc, outer);
+    };
+    series.surface = [&](const inspect::MeshedStep& s, inspect::SurfacePart part,
+                         const meshio::TriangleMesh* placed) {
+      write_world_obj(report.handoff_obj, s.step, s.time_s, part == inspect::SurfacePart::inner,
+                      placed);
+    };
+    series.threads = o.jobs;
+    if (ranks.size() > 1) series.farm = &farm;
+    const inspect::StepOffsets placed = inspect::write_pvd_series(simdir, report.pvd, series);
+    if (!plot_error.empty()) throw UserError("", "", plot_error);
+    if (!leader) return;
+    std::map<long, std::array<double, 3>> offset_of_step;
+    for (const mesh::StepRecord& step : meshes.steps) offset_of_step[step.step] = {};
+    for (const auto& [step, offset] : placed) offset_of_step[step] = offset;
+    // Grid runs: the solver's fields as a ParaView image series, placed like the meshes.
+    if (inspect::write_field_series(simdir, out / "fields.pvd", {},
+                                    [&](long step) { return offset_of_step.at(step); }) > 0)
+      report.fields_pvd = out / "fields.pvd";
+#if THAW_OPENVDB
+    // Grid runs: the fields as OpenVDB volumes (axisymmetric ones revolved), placed like the
+    // OBJ sequence.
+    if (write_vdb_sequence(simdir, out / "handoff" / "vdb",
+                           [&](long step) { return offset_of_step.at(step); }) > 0)
+      report.handoff_vdb = out / "handoff" / "vdb";
+#endif
+    progress.finish();
+    manifest.mark_stage_complete("inspect");
+    clock.timing().items_done = 1;
+  });
 }
 
 }  // namespace
@@ -713,8 +737,8 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
   r.report.frames = static_cast<int>(frame_count);
   if (r.o.stage == "mesh") return finish_report(r.report, start);
   const bool all_frames_done = render_stage(r, meshes, rows);
-  if (!r.leader || r.o.stage == "render" || !all_frames_done) return finish_report(r.report, start);
-  film_stage(r, frame_count);
+  if (r.o.stage == "render" || !all_frames_done) return finish_report(r.report, start);
+  on_leader(r.ranks, [&] { film_stage(r, frame_count); });  // the other ranks wait for inspect
   if (r.partial_meshes) {  // the inspect outputs are of every step's surfaces
     if (r.wanted("inspect"))
       say(r.o, stage_title(5, "inspect") +

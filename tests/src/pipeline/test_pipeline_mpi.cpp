@@ -1,7 +1,8 @@
 // `mpirun -np N thaw run` (THAW_MPI, src/pipeline/run_ranks_mpi.cpp) on the tiny scenario: the
-// frames and film equal a single-process run's byte for byte, a run killed under MPI resumes with
-// another number of ranks, and a bad option under MPI is still one error line with exit code 2.
-// More ranks than this machine's cores (--oversubscribe), so the dynamic hand-out is exercised.
+// meshes, frames, film and inspect outputs equal a single-process run's byte for byte, a run killed
+// under MPI resumes with another number of ranks, and a bad option under MPI is still one error
+// line with exit code 2. More ranks than this machine's cores (--oversubscribe), so the dynamic
+// hand-out is exercised.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -56,6 +57,15 @@ TEST_F(ThawRunMpi, ThreeRanksGiveTheSingleProcessRunByteForByte) {
   EXPECT_EQ(count_video_frames(farmed / "melt.mp4"), 4);
   // The meshes too: every rank meshed its share of the surfaces into the one folder.
   EXPECT_EQ(files_under(farmed / "sim/mesh"), files_under(single / "sim/mesh"));
+  // And the inspect outputs: the ranks wrote their steps' .vtp into the leader's staged folder
+  // and their world-space OBJs, the last rank drew the plot.
+  const auto vtp = files_under(farmed / "meshes_vtp");
+  EXPECT_EQ(vtp.size(), 8u);  // 4 steps x 2 surfaces
+  EXPECT_EQ(vtp, files_under(single / "meshes_vtp"));
+  EXPECT_EQ(read_file(farmed / "meshes.pvd"), read_file(single / "meshes.pvd"));
+  EXPECT_EQ(files_under(farmed / "handoff"), files_under(single / "handoff"));
+  EXPECT_EQ(read_file(farmed / "plot.png"), read_file(single / "plot.png"));
+  EXPECT_NE(r.output.find("inspect: 4/4 done"), std::string::npos) << r.output;
   expect_no_temporaries(farmed);
 }
 
