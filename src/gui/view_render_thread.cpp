@@ -32,7 +32,13 @@ struct ViewRenderThread::Scene {
   std::vector<vtkSmartPointer<vtkTexture>> known_textures;
 
   void make(int width, int height);
+  /// Makes the renderer show `frame`: its actors (place_actors), their look (apply_look), the
+  /// label, the camera and the size.
   void apply(const ViewFrame& frame);
+  /// The renderer's actors and their order as the frame's; the shell placed.
+  void place_actors(const ViewFrame& frame);
+  /// The quick look or the look at rest.
+  void apply_look(const ViewFrame& frame);
   QImage draw(int width, int height);
   void sweep();
   void release_all();
@@ -65,6 +71,21 @@ void ViewRenderThread::Scene::make(int width, int height) {
 }
 
 void ViewRenderThread::Scene::apply(const ViewFrame& frame) {
+  place_actors(frame);
+  apply_look(frame);
+  if (frame.label != (label->GetInput() ? label->GetInput() : ""))
+    label->SetInput(frame.label.c_str());
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetPosition(frame.camera.position.data());
+  camera->SetFocalPoint(frame.camera.focal_point.data());
+  camera->SetViewUp(frame.camera.view_up.data());
+  camera->SetViewAngle(frame.camera.vertical_fov_deg);
+  renderer->ResetCameraClippingRange();
+  const int* size = window->GetSize();
+  if (size[0] != frame.width || size[1] != frame.height) window->SetSize(frame.width, frame.height);
+}
+
+void ViewRenderThread::Scene::place_actors(const ViewFrame& frame) {
   // The actors in drawing order: the scene's, then the water, then the ice.
   std::vector<vtkActor*> wanted;
   for (const auto& a : frame.scene) wanted.push_back(a);
@@ -89,6 +110,9 @@ void ViewRenderThread::Scene::apply(const ViewFrame& frame) {
     if (at[0] != p.position[0] || at[1] != p.position[1] || at[2] != p.position[2])
       p.actor->SetPosition(p.position[0], p.position[1], p.position[2]);
   }
+}
+
+void ViewRenderThread::Scene::apply_look(const ViewFrame& frame) {
   // The quick look (ViewFrame::quick), or the look at rest: each changed only when it differs
   // (a property set again would mark the actor modified).
   if (frame.outer && frame.outer->GetProperty()->GetEdgeVisibility() == frame.quick)
@@ -105,16 +129,6 @@ void ViewRenderThread::Scene::apply(const ViewFrame& frame) {
     if (now[0] != c[0] || now[1] != c[1] || now[2] != c[2])
       actor->GetProperty()->SetColor(c[0], c[1], c[2]);
   }
-  if (frame.label != (label->GetInput() ? label->GetInput() : ""))
-    label->SetInput(frame.label.c_str());
-  vtkCamera* camera = renderer->GetActiveCamera();
-  camera->SetPosition(frame.camera.position.data());
-  camera->SetFocalPoint(frame.camera.focal_point.data());
-  camera->SetViewUp(frame.camera.view_up.data());
-  camera->SetViewAngle(frame.camera.vertical_fov_deg);
-  renderer->ResetCameraClippingRange();
-  const int* size = window->GetSize();
-  if (size[0] != frame.width || size[1] != frame.height) window->SetSize(frame.width, frame.height);
 }
 
 QImage ViewRenderThread::Scene::draw(int width, int height) {
