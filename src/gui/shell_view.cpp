@@ -102,7 +102,9 @@ void ShellView::paintEvent(QPaintEvent*) {
 
 void ShellView::resizeEvent(QResizeEvent* event) {
   QWidget::resizeEvent(event);
-  if (m_requested > 0) draw();
+  // Also the first layout's: the render thread makes its OpenGL context and draws the plain
+  // gradient while the initial shell is still being meshed.
+  draw();
 }
 
 void ShellView::set_camera(const ViewCamera& camera) {

@@ -47,6 +47,9 @@ struct ViewRenderThread::Scene {
 void ViewRenderThread::Scene::make(int width, int height) {
   window = vtkSmartPointer<vtkRenderWindow>::New();
   window->SetOffScreenRendering(1);  // VTK's own frame buffer: read back, painted by Qt
+  // No glXSwapBuffers after a draw: with Mesa's software driver it sends the hidden window's
+  // pixels to the X server, which the GUI thread's requests then wait behind.
+  window->SwapBuffersOff();
   window->SetAlphaBitPlanes(1);
   window->SetMultiSamples(0);
   window->SetSize(width, height);
