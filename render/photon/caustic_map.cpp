@@ -15,6 +15,7 @@
 #include "render/spectrum/colour.h"
 #include "render/spectrum/rgb_uplift.h"
 #include "render/spectrum/sampled_wavelengths.h"
+#include "src/common/interrupt.h"
 
 namespace thaw::render::photon {
 
@@ -160,7 +161,8 @@ CausticMap CausticMap::build(const Scene& scene, int threads, const std::atomic<
     PathEvents events;
 #pragma omp for schedule(dynamic, 1)
     for (long long c = 0; c < chunks; ++c) {
-      if (cancel && cancel->load(std::memory_order_relaxed)) continue;
+      // Ctrl-C / SIGTERM: skip the remaining chunks (the caller writes nothing, interrupt.h).
+      if ((cancel && cancel->load(std::memory_order_relaxed)) || interrupt_requested()) continue;
       ChunkResult& part = parts[static_cast<std::size_t>(c)];
       try {
         const long long g0 = c * kChunk, g1 = std::min(photons, g0 + kChunk);

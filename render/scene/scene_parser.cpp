@@ -94,7 +94,8 @@ ImageSettings parse_image(const TomlTable& img, ImageSettings image) {
   image.background = color3(img, "background", image.background);
   image.min_weight = checked(img, "min_weight", img.get_double("min_weight", image.min_weight),
                              min_weight_problem);
-  image.exposure = img.get_double("exposure", image.exposure);
+  image.exposure =
+      checked(img, "exposure", img.get_double("exposure", image.exposure), exposure_problem);
   if (img.has("spectral")) image.spectral = parse_spectral(img);
   image.dispersion = *dispersion_from_name(checked(
       img, "dispersion", img.get_string("dispersion", "adaptive"), dispersion_name_problem));

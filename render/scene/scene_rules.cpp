@@ -49,7 +49,8 @@ std::optional<SceneProblem> image_problem(const ImageSettings& img) {
       {"max_depth", max_depth_problem(img.max_depth)},
       {"min_weight", min_weight_problem(img.min_weight)},
       {"dispersion_wavelengths", dispersion_wavelengths_problem(img.dispersion_wavelengths)},
-      {"dispersion_resolution_nm", dispersion_resolution_problem(img.dispersion_resolution_nm)}};
+      {"dispersion_resolution_nm", dispersion_resolution_problem(img.dispersion_resolution_nm)},
+      {"exposure", exposure_problem(img.exposure)}};
   for (const auto& [key, problem] : rules)
     if (problem) return SceneProblem{std::string("image.") + key, *problem};
   return std::nullopt;
@@ -115,6 +116,10 @@ std::optional<std::string> dispersion_resolution_problem(double resolution_nm) {
   return real_between(resolution_nm, kMinDispersionResolutionNm, kMaxDispersionResolutionNm, " nm");
 }
 
+std::optional<std::string> exposure_problem(double stops) {
+  return real_between(stops, -kMaxExposureStops, kMaxExposureStops, " stops");
+}
+
 std::optional<std::string> dispersion_name_problem(std::string_view name) {
   if (dispersion_from_name(name)) return std::nullopt;
   return "must be \"adaptive\", \"split\" or \"hero\" (got \"" + std::string(name) + "\")";
@@ -126,8 +131,8 @@ std::optional<std::string> wavelength_pattern_name_problem(std::string_view name
 }
 
 std::optional<std::string> vertical_fov_problem(double degrees) {
-  if (degrees > 0.0 && degrees < 180.0) return std::nullopt;
-  return "must be in (0, 180) degrees (got " + num(degrees) + ")";
+  if (degrees >= kMinFovDeg && degrees < 180.0) return std::nullopt;
+  return "must be in [" + num(kMinFovDeg) + ", 180) degrees (got " + num(degrees) + ")";
 }
 
 std::optional<std::string> light_radius_problem(double radius) {
@@ -147,12 +152,12 @@ std::optional<std::string> ior_problem(double ior) {
 
 std::optional<std::string> caustic_photons_problem(long long photons) {
   if (photons >= kMinCausticPhotons && photons <= kMaxCausticPhotons) return std::nullopt;
-  return "must be between 1 and 1e9 (got " + std::to_string(photons) + ")";
+  return "must be between " + std::to_string(kMinCausticPhotons) + " and 1e7 (got " +
+         std::to_string(photons) + "); each takes about 200 bytes of memory";
 }
 
 std::optional<std::string> caustic_radius_problem(double radius) {
-  if (radius > 0.0 && radius < 1e30) return std::nullopt;
-  return "must be positive and finite (got " + num(radius) + ")";
+  return real_between(radius, kMinCausticRadius, kMaxCausticRadius, " scene units");
 }
 
 std::optional<std::string> environment_intensity_problem(double intensity) {
@@ -200,8 +205,11 @@ std::optional<std::string> placement_problem(double reach, double detail) {
 }
 
 std::optional<SceneProblem> camera_problem(const CameraDescription& cam) {
-  if (!finite3(cam.position)) return SceneProblem{"position", "must be finite"};
-  if (!finite3(cam.look_at)) return SceneProblem{"look_at", "must be finite"};
+  const std::string within = "must be finite and within " + num(kMaxCoordinate) + " of the origin";
+  if (!finite3(cam.position) || max_abs(cam.position) > kMaxCoordinate)
+    return SceneProblem{"position", within};
+  if (!finite3(cam.look_at) || max_abs(cam.look_at) > kMaxCoordinate)
+    return SceneProblem{"look_at", within};
   if (!finite3(cam.up) || length3(cam.up) == 0.0)
     return SceneProblem{"up", "must be a finite, non-zero vector"};
   if (auto p = vertical_fov_problem(cam.vertical_fov_deg))
@@ -230,8 +238,8 @@ std::optional<SceneProblem> object_problem(const ObjectDescription& o) {
   switch (o.shape) {
     case ObjectDescription::Shape::sphere:
       if (!finite3(o.center)) return SceneProblem{"center", "must be finite"};
-      if (!(o.radius > 0.0) || !std::isfinite(o.radius))
-        return SceneProblem{"radius", "must be positive and finite (got " + num(o.radius) + ")"};
+      if (auto p = real_between(o.radius, kMinObjectSize, kMaxCoordinate, " scene units"))
+        return SceneProblem{"radius", *p};
       if (auto p = placement_problem(max_abs(o.center) + o.radius, o.radius))
         return SceneProblem{"center", *p};
       return std::nullopt;

@@ -28,8 +28,22 @@ inline constexpr int kMinDispersionWavelengths = 4, kMaxDispersionWavelengths = 
 inline constexpr double kMinDispersionResolutionNm = 0.05, kMaxDispersionResolutionNm = 100.0;
 /// Accepted constant index of refraction of a medium: [1, 10) (no transparent solid exceeds ~4).
 inline constexpr double kMinIor = 1.0, kMaxIor = 10.0;
-/// Accepted [caustics] photons (a count outside is a mistake, not a quality setting).
-inline constexpr long long kMinCausticPhotons = 1, kMaxCausticPhotons = 1000000000LL;
+/// Accepted [caustics] photons (a count outside is a mistake, not a quality setting). Memory
+/// grows with the count: 1e7 photons took 2.1 GB (peak RSS, a 24x16 test scene whose caustics
+/// land on a floor), so 1e9, the old limit, asked for about 200 GB and a typo of 1e9 for 1e6
+/// ran out of memory after minutes instead of being refused.
+inline constexpr long long kMinCausticPhotons = 1, kMaxCausticPhotons = 10000000LL;
+/// Accepted [caustics] radius [scene units]: its square stays a normal single-precision number.
+inline constexpr double kMinCausticRadius = 1e-12, kMaxCausticRadius = 1e12;
+/// Accepted [camera] vertical_fov_deg: [kMinFovDeg, 180) degrees (below, the pixel footprint
+/// underflows single precision; 1e-3 degrees is a 3.6-arcsecond telescope).
+inline constexpr double kMinFovDeg = 1e-3;
+/// Accepted [image] exposure [stops]: 2^64 still multiplies a pixel to a finite float.
+inline constexpr double kMaxExposureStops = 64.0;
+/// Largest coordinate of the camera's position and look_at, and smallest and largest size of an
+/// analytic object [scene units]: single precision (the renderer's) must hold them and their
+/// squares.
+inline constexpr double kMaxCoordinate = 1e15, kMinObjectSize = 1e-15;
 /// Single precision (the renderer's coordinates) must resolve an object's detail (a mesh's mean
 /// edge, a sphere's radius, a box's thinnest side) to at least this many parts: rounding then
 /// moves a vertex by at most 1/128 of an edge, so an edge turns by at most about 1/64 rad (facet
@@ -47,6 +61,7 @@ std::optional<std::string> max_depth_problem(long long depth);
 std::optional<std::string> min_weight_problem(double weight);
 std::optional<std::string> dispersion_wavelengths_problem(long long count);
 std::optional<std::string> dispersion_resolution_problem(double resolution_nm);
+std::optional<std::string> exposure_problem(double stops);
 /// [image] dispersion and wavelength_pattern values by name, as in scene files and the flags of
 /// `thaw render`; nullopt for an unknown name.
 std::optional<ImageSettings::Dispersion> dispersion_from_name(std::string_view name);

@@ -37,10 +37,23 @@ std::string unknown_command(const CLI::App& app, int argc, char** argv) {
   return "unknown command \"" + std::string(argv[1]) + "\"; the commands: " + known;
 }
 
+// `--width ""` or an empty positional: CLI11 takes an empty value as "not given" and runs with
+// the default. Every option that takes a value refuses an empty one, naming the option.
+void forbid_empty_values(CLI::App& app) {
+  const CLI::Validator non_empty(
+      [](std::string& value) { return value.empty() ? std::string("must not be empty") : ""; }, "",
+      "NonEmpty");
+  for (CLI::Option* opt : app.get_options())
+    if (opt->get_type_size_max() > 0) opt->check(non_empty);
+  for (CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+    forbid_empty_values(*sub);
+}
+
 }  // namespace
 
 int run_app(CLI::App& app, int argc, char** argv) {
   thaw::install_interrupt_handlers();
+  forbid_empty_values(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

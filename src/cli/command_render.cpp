@@ -69,7 +69,7 @@ void apply_image_flags(const RenderArgs& a, render::ImageSettings& image) {
         "--wavelength-pattern", *a.wavelength_pattern, render::wavelength_pattern_name_problem));
   if (a.max_depth)
     image.max_depth = checked("--max-depth", *a.max_depth, render::max_depth_problem);
-  if (a.exposure) image.exposure = *a.exposure;
+  if (a.exposure) image.exposure = checked("--exposure", *a.exposure, render::exposure_problem);
 }
 
 void run_render(const RenderArgs& a) {

@@ -53,6 +53,15 @@ TEST(SceneRules, RealLimitsRejectNaNAndOutOfRange) {
   EXPECT_TRUE(light_radius_problem(1e39));  // finite in double, infinite in float
   EXPECT_EQ(*adaptive_threshold_problem(0.0), "must be between 0.0001 and 1 display units (got 0)");
   EXPECT_TRUE(image_pixels_problem(kMaxImageSide, kMaxImageSide));
+  // Found by the bad-input sweep (tests/src/cli/bad_input_sweep.sh): each of these was accepted.
+  EXPECT_TRUE(vertical_fov_problem(1e-300));  // the pixel footprint underflowed
+  EXPECT_FALSE(vertical_fov_problem(kMinFovDeg));
+  EXPECT_EQ(*exposure_problem(std::nan("")), "must be between -64 and 64 stops (got nan)");
+  EXPECT_TRUE(exposure_problem(1e308));  // 2^exposure was infinite: NaN pixels
+  EXPECT_FALSE(exposure_problem(-kMaxExposureStops));
+  EXPECT_TRUE(caustic_radius_problem(1e-300));  // 0 in single precision: an internal check failed
+  EXPECT_FALSE(caustic_radius_problem(kMinCausticRadius));
+  EXPECT_TRUE(caustic_photons_problem(kMaxCausticPhotons + 1));
   EXPECT_FALSE(image_pixels_problem(kMaxImageSide, kMaxImagePixels / kMaxImageSide));
 }
 
@@ -149,6 +158,34 @@ TEST(SceneRules, FarSmallSphereIsAPlacementErrorAtTheCentre) {
   ball.outside = "vacuum";
   d.objects.push_back(ball);
   EXPECT_NE(build_problem(d).find("ball.center: reaches"), std::string::npos) << build_problem(d);
+}
+
+// Found by the bad-input sweep: a camera at 1e308 (finite) overflowed the viewing direction's
+// length and was reported as "up must not be parallel"; a sphere of radius 1e-300 or 1e308 was
+// reported against its centre. Each names its own key now.
+TEST(SceneRules, HugeCameraAndSphereSizesNameTheirKey) {
+  CameraDescription cam;
+  cam.position = {1e308, 0.0, 0.0};
+  cam.look_at = {0.0, 0.0, 0.0};
+  cam.vertical_fov_deg = 40.0;
+  ASSERT_TRUE(camera_problem(cam));
+  EXPECT_EQ(camera_problem(cam)->key, "position");
+  cam.position = {0.0, 0.0, 5.0};
+  cam.look_at = {0.0, -1e20, 0.0};
+  ASSERT_TRUE(camera_problem(cam));
+  EXPECT_EQ(camera_problem(cam)->key, "look_at");
+  cam.look_at = {0.0, 0.0, kMaxCoordinate};
+  EXPECT_FALSE(camera_problem(cam));
+  ObjectDescription ball;
+  ball.shape = ObjectDescription::Shape::sphere;
+  ball.center = {0.0, 0.0, 0.0};
+  for (double r : {1e-300, 1e308, 0.0, -1.0}) {
+    ball.radius = r;
+    ASSERT_TRUE(object_problem(ball)) << r;
+    EXPECT_EQ(object_problem(ball)->key, "radius") << r;
+  }
+  ball.radius = 1.0;
+  EXPECT_FALSE(object_problem(ball));
 }
 
 }  // namespace

@@ -201,6 +201,323 @@ EOF
   fi
 }
 
+# --- thaw render --------------------------------------------------------------------------------
+# A small scene with every kind of table: sky with a panel, a sphere light and a point light,
+# every material kind, dielectric sphere and mesh, box, plane, caustics (few photons).
+write_scene() {
+  cp "$SRC/data/scenes/meshes/sphere_r0.7.obj" "$IN/ball.obj"
+  cat >"$IN/scene.toml" <<'SCENE'
+[image]
+width = 24
+height = 16
+samples_per_pixel = 2
+max_depth = 6
+background = [0.2, 0.2, 0.3]
+exposure = 0.0
+
+[caustics]
+enabled = true
+photons = 2000
+
+[environment]
+kind = "sky"
+zenith = [0.1, 0.1, 0.2]
+horizon = [0.4, 0.4, 0.4]
+ground = [0.2, 0.2, 0.2]
+light_surfaces = true
+occlusion_samples = 2
+haze_distance = 40.0
+
+[[environment.panels]]
+direction = [0.0, 1.0, 0.0]
+width_deg = 20.0
+height_deg = 10.0
+intensity = 2.0
+edge_deg = 1.0
+
+[camera]
+position = [0.0, 1.0, 5.0]
+look_at = [0.0, 0.0, 0.0]
+up = [0.0, 1.0, 0.0]
+vertical_fov_deg = 40.0
+
+[ambient]
+color = [1.0, 1.0, 1.0]
+intensity = 0.1
+
+[[lights]]
+kind = "sphere"
+position = [-3.0, 4.0, 3.0]
+radius = 0.3
+samples = 2
+color = [1.0, 1.0, 1.0]
+intensity = 20.0
+falloff = "inverse_square"
+
+[[lights]]
+kind = "point"
+position = [3.0, 4.0, 3.0]
+intensity = 0.5
+
+[media.ice]
+ior = 1.31
+[media.water]
+preset = "water-0c"
+
+[materials.floor]
+kind = "matte"
+checker = { colors = [[0.9, 0.9, 0.9], [0.6, 0.1, 0.1]], size = 0.5 }
+[materials.shiny]
+kind = "phong"
+color = [0.2, 0.5, 0.2]
+ks = 0.3
+shininess = 40.0
+[materials.mirror]
+kind = "metal"
+color = [0.9, 0.9, 0.9]
+[materials.glow]
+kind = "emissive"
+color = [1.0, 0.8, 0.5]
+intensity = 2.0
+
+[[objects]]
+name = "ball"
+shape = "sphere"
+center = [0.0, 0.0, 0.0]
+radius = 1.0
+inside = "ice"
+outside = "vacuum"
+
+[[objects]]
+name = "core"
+shape = "mesh"
+file = "ball.obj"
+scale = 1.0
+translate = [0.0, 0.0, 0.0]
+inside = "water"
+outside = "ice"
+
+[[objects]]
+name = "block"
+shape = "box"
+min = [1.5, -1.0, -0.5]
+max = [2.5, 0.0, 0.5]
+material = "shiny"
+
+[[objects]]
+name = "floor"
+shape = "plane"
+point = [0.0, -1.0, 0.0]
+normal = [0.0, 1.0, 0.0]
+material = "floor"
+SCENE
+}
+
+# render_keys MODE VALUES... : every key of the list on stdin set to each value in the base scene
+render_keys() {
+  local mode=$1 sec key v
+  shift
+  while IFS=' ' read -r sec key; do
+    for v in "$@"; do
+      set_key "$IN/scene.toml" "$sec" "$key" "$v" >"$IN/k.toml"
+      check "render.$sec.$key=$v" "$mode" "$key" -- "$THAW" render "$IN/k.toml" -o "$OUT/x.png" -q
+    done
+  done
+}
+
+RENDER_NUMBER_KEYS="image width
+image height
+image samples_per_pixel
+image max_depth
+image exposure
+image min_samples
+image adaptive_threshold
+image filter_radius
+image min_weight
+image dispersion_wavelengths
+image dispersion_resolution_nm
+caustics photons
+caustics radius
+environment occlusion_samples
+environment haze_distance
+environment exponent
+environment intensity
+environment.panels width_deg
+environment.panels height_deg
+environment.panels intensity
+environment.panels edge_deg
+camera vertical_fov_deg
+ambient intensity
+lights radius
+lights samples
+lights intensity
+media.ice ior
+materials.shiny ks
+materials.shiny shininess
+materials.shiny ior
+materials.glow intensity
+objects radius
+objects scale"
+
+RENDER_VECTOR_KEYS="image background
+environment zenith
+environment up
+environment.panels direction
+environment.panels color
+camera position
+camera look_at
+camera up
+ambient color
+lights position
+lights color
+materials.shiny color
+objects center"
+
+# scene_with TEXT: the base scene with TEXT appended, in $IN/k.toml
+scene_with() { printf '%s\n%b\n' "$(cat "$IN/scene.toml")" "$1" >"$IN/k.toml"; }
+
+group_render() {
+  write_scene
+  local base=$IN/scene.toml f o flag v
+  local RK=("$THAW" render "$IN/k.toml" -o "$OUT/x.png" -q)
+  "$THAW" render "$base" -o "$OUT/check.png" -q || { echo "FAIL render: the base scene does not render"; failed=$((failed + 1)); }
+  rm -f "$OUT/check.png"
+  for f in $FILES; do
+    file_case "render.$f" "$f\.toml" render "$IN/$f.toml" -o "$OUT/x.png"
+  done
+  file_case render.dev_zero "/dev/zero.*not a regular file" render /dev/zero -o "$OUT/x.png"
+  file_case render.missing "no_such\.toml: no such file" render "$IN/no_such.toml" -o "$OUT/x.png"
+  # -o: unknown or missing extensions, a folder, a missing or read-only folder, the input itself
+  for o in x.jpg x x.PNG.bak x.toml .png; do
+    bad "render.output=$o" "output|format|extension" -- "$THAW" render "$base" -o "$OUT/$o"
+  done
+  bad render.output_is_dir "out" -- "$THAW" render "$base" -o "$OUT"
+  bad render.output_missing_dir "no/such" -- "$THAW" render "$base" -o "$OUT/no/such/x.png"
+  bad render.output_in_file "scene\.toml" -- "$THAW" render "$base" -o "$base/x.png"
+  bad render.output_is_input "scene\.toml" -- "$THAW" render "$base" -o "$base"
+  bad render.output_empty "output|''" -- "$THAW" render "$base" -o ""
+  if [ "$(id -u)" -ne 0 ]; then
+    mkdir -p "$IN/ro" && chmod 555 "$IN/ro"
+    bad render.output_read_only "ro" -- "$THAW" render "$base" -o "$IN/ro/x.png"
+  fi
+  # flags
+  for flag in --width --height --spp --max-depth --threads --dispersion-wavelengths --png-bits; do
+    for v in 0 -5 100000 1e99 nan 99999999999999999999 '' x 3.5; do
+      bad "render.$flag=$v" "$flag" -- "$THAW" render "$base" -o "$OUT/x.png" "$flag" "$v"
+    done
+  done
+  for flag in --exposure --dispersion-resolution-nm; do
+    for v in nan inf -inf 1e308 -1e308 x ''; do
+      bad "render.$flag=$v" "$flag" -- "$THAW" render "$base" -o "$OUT/x.png" "$flag" "$v"
+    done
+  done
+  either render.exposure=-30 "exposure" -- "$THAW" render "$base" -o "$OUT/x.png" --exposure -30
+  either render.exposure=100 "exposure" -- "$THAW" render "$base" -o "$OUT/x.png" --exposure 100
+  bad render.size_1e6 "--width|--height" -- "$THAW" render "$base" -o "$OUT/x.png" --width 1000000 --height 1000000
+  bad render.size_16384_square "--width|--height" -- "$THAW" render "$base" -o "$OUT/x.png" --width 16384 --height 16384
+  bad render.dispersion_empty "--dispersion" -- "$THAW" render "$base" -o "$OUT/x.png" --dispersion ""
+  bad render.pattern_bad "--wavelength-pattern" -- "$THAW" render "$base" -o "$OUT/x.png" --wavelength-pattern diagonal
+  bad render.unknown_flag "--frobnicate" -- "$THAW" render "$base" -o "$OUT/x.png" --frobnicate
+  # every key: wrong types, non-finite, extreme values; vectors of the wrong length, NaN inside
+  render_keys bad '"text"' 'true' '[1, 2]' '{ a = 1 }' 'nan' 'inf' '-inf' <<<"$RENDER_NUMBER_KEYS"
+  render_keys either '0' '-1' '1e-300' '1e308' '-1e308' '9223372036854775807' '1e9' <<<"$RENDER_NUMBER_KEYS"
+  render_keys bad '[1.0, 2.0]' '[1.0, 2.0, 3.0, 4.0]' '[]' '[1.0, nan, 0.0]' '[1.0, "a", 0.0]' '1.0' <<<"$RENDER_VECTOR_KEYS"
+  render_keys either '[1e308, 1e308, 1e308]' '[-1e308, 0.0, 0.0]' '[0.0, 0.0, 0.0]' '[1e-300, 0.0, 0.0]' '[1e9, 1e9, 1e9]' <<<"$RENDER_VECTOR_KEYS"
+  # self-inconsistent scenes
+  set_key "$base" camera look_at '[0.0, 1.0, 5.0]' >"$IN/k.toml"
+  bad render.look_at_is_position "look_at|position" -- "${RK[@]}"
+  sed 's/^up = \[0.0, 1.0, 0.0\]/up = [0.0, 0.0, -1.0]/; s/^position = \[0.0, 1.0, 5.0\]/position = [0.0, 0.0, 5.0]/' "$base" >"$IN/k.toml"
+  bad render.up_along_view "up" -- "${RK[@]}"
+  for v in 0 180 -10 360 1e-300 1e-4; do
+    set_key "$base" camera vertical_fov_deg "$v" >"$IN/k.toml"
+    bad "render.fov=$v" "vertical_fov_deg" -- "${RK[@]}"
+  done
+  for v in '[2.0, -0.5, 0.0]' '[0.0, 0.0, 0.0]' '[0.0, -3.0, 0.5]'; do
+    set_key "$base" camera position "$v" >"$IN/k.toml"
+    either "render.camera_at_$v" "position|medium" -- "${RK[@]}"
+  done
+  set_key "$base" lights radius 0 >"$IN/k.toml"
+  bad render.zero_area_light "radius" -- "${RK[@]}"
+  set_key "$base" lights position '[0.0, 0.0, 0.0]' >"$IN/k.toml"
+  either render.light_inside_ball "lights|position|inside" -- "${RK[@]}"
+  sed 's/^min = \[1.5, -1.0, -0.5\]/min = [2.5, 0.0, 0.5]/; s/^max = \[2.5, 0.0, 0.5\]/max = [1.5, -1.0, -0.5]/' "$base" >"$IN/k.toml"
+  bad render.box_min_gt_max "min|max" -- "${RK[@]}"
+  sed 's/^normal = .*/normal = [0.0, 0.0, 0.0]/' "$base" >"$IN/k.toml"
+  bad render.plane_zero_normal "normal" -- "${RK[@]}"
+  sed 's/^radius = 1.0/radius = 0.5/' "$base" >"$IN/k.toml"
+  either render.ball_inside_core "radius|core|ball|overlap|nest" -- "${RK[@]}"
+  for v in 1e-300 1e300 0 -1; do
+    sed "s/size = 0.5 }/size = $v }/" "$base" >"$IN/k.toml"
+    either "render.checker_size=$v" "size" -- "${RK[@]}"
+  done
+  sed 's/^photons = 2000/photons = 1000000000/' "$base" >"$IN/k.toml"
+  bad render.photons_1e9 "photons" -- "${RK[@]}"
+  scene_with '[media.ice]\nior = 1.2'
+  bad render.duplicate_medium "media|ice" -- "${RK[@]}"
+  scene_with '[media.vacuum]\nior = 1.0'
+  bad render.vacuum_redefined "vacuum" -- "${RK[@]}"
+  for v in '[700.0, 400.0], n = [1.5, 1.6]' '[400.0, 700.0], n = [1.5]' '[], n = []' \
+    '[400.0, 700.0], n = [1.5, nan]' '[400.0, 700.0], n = [0.5, 0.6]' '[400.0, 400.0], n = [1.5, 1.6]' \
+    '[400.0], n = [1.5]'; do
+    scene_with "[media.glass]\ntable = { wavelength_nm = $v }"
+    bad "render.ior_table=$v" "glass|wavelength_nm|table" -- "${RK[@]}"
+  done
+  scene_with '[media.glass]\ntable = { wavelength_nm = [1.0, 1e9], n = [1.5, 1.6] }'
+  either render.ior_table_wide "glass|wavelength_nm|table" -- "${RK[@]}"
+  scene_with '[media.glass]\npreset = "unobtainium"'
+  bad render.unknown_preset "glass|preset" -- "${RK[@]}"
+  scene_with '[media.glass]\nior = 1.5\nabsorption_per_m = -1.0'
+  bad render.negative_absorption "absorption_per_m" -- "${RK[@]}"
+  scene_with '[media.glass]\nior = 1.5\nabsorption_per_m = { wavelength_nm = [400.0, 700.0], per_m = [1.0, -1.0] }'
+  bad render.negative_absorption_table "absorption_per_m|per_m" -- "${RK[@]}"
+  scene_with '[media.glass]\nsellmeier = { b = [1.0, 0.2, 1.0], c = [0.3, 0.02, 100.0] }'
+  bad render.sellmeier_pole "glass|sellmeier" -- "${RK[@]}"
+  scene_with '[media.glass]\ncauchy = { a = 1.5, b = -1e9 }'
+  bad render.cauchy_below_1 "glass|cauchy" -- "${RK[@]}"
+  scene_with '[[objects]]\nshape = "torus"\nmaterial = "floor"'
+  bad render.unknown_shape "shape" -- "${RK[@]}"
+  scene_with '[nonsense]\nx = 1'
+  bad render.unknown_section "nonsense" -- "${RK[@]}"
+  sed '/^\[camera\]/,/^$/d' "$base" >"$IN/k.toml"
+  bad render.no_camera "camera" -- "${RK[@]}"
+  # files the scene refers to: the mesh and a lat-long environment map
+  : >"$IN/empty.obj"
+  cp "$IN/garbage.toml" "$IN/garbage.obj"
+  printf 'v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$IN/nan.obj"
+  printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3' >"$IN/truncated.obj"
+  printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4294967298\n' >"$IN/wrap.obj"
+  printf 'v 1e300 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$IN/far.obj"
+  printf 'v 0 0 0\nv 0 0 0\nv 0 0 0\nf 1 2 3\n' >"$IN/degenerate.obj"
+  ln -sf "$IN/no_such_target.obj" "$IN/dangling.obj"
+  for f in no_such empty garbage nan truncated wrap far degenerate dangling; do
+    sed "s|^file = \"ball.obj\"|file = \"$f.obj\"|" "$base" >"$IN/k.toml"
+    bad "render.mesh_$f" "$f\.obj" -- "${RK[@]}"
+  done
+  for f in /dev/zero '' . "$IN/fifo.toml"; do
+    sed "s|^file = \"ball.obj\"|file = \"$f\"|" "$base" >"$IN/k.toml"
+    bad "render.mesh=$f" "file|$f" -- "${RK[@]}"
+  done
+  printf '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100000 +X 200000\n' >"$IN/huge.hdr"
+  printf '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1000000000 +X 2000000000\n' >"$IN/huger.hdr"
+  printf '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y -2 +X -4\n' >"$IN/negative.hdr"
+  printf '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 0 +X 0\n' >"$IN/zero.hdr"
+  printf '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 2\n\xff\xff\xff\xff\xff\xff\xff\xff' >"$IN/bright.hdr"
+  : >"$IN/empty.hdr"
+  cp "$IN/garbage.toml" "$IN/garbage.hdr"
+  cp "$IN/garbage.toml" "$IN/garbage.exr"
+  printf 'v/1\x01\x00\x00\x00' >"$IN/magic_only.exr"
+  for f in huge.hdr huger.hdr negative.hdr zero.hdr empty.hdr garbage.hdr no_such.hdr garbage.exr magic_only.exr; do
+    sed "/^\[environment\]/,/^\[camera\]/c\\[environment]\nkind = \"latlong\"\nfile = \"$f\"\n\n[camera]" "$base" >"$IN/k.toml"
+    bad "render.envmap_$f" "${f//./\\.}" -- "${RK[@]}"
+  done
+  sed "/^\[environment\]/,/^\[camera\]/c\\[environment]\nkind = \"latlong\"\nfile = \"bright.hdr\"\n\n[camera]" "$base" >"$IN/k.toml"
+  either render.envmap_brightest "bright\.hdr" -- "${RK[@]}"
+  for f in /dev/zero "$IN" "$IN/fifo.toml"; do
+    sed "/^\[environment\]/,/^\[camera\]/c\\[environment]\nkind = \"latlong\"\nfile = \"$f\"\n\n[camera]" "$base" >"$IN/k.toml"
+    bad "render.envmap=$f" "environment\.file" -- "${RK[@]}"
+  done
+}
+
 group_"$GROUP"
 echo "$GROUP: $passed passed, $failed failed, $known known failures of other parts"
 [ "$failed" -eq 0 ]
