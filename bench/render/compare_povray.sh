@@ -5,9 +5,13 @@
 # 2 threads, and time vs object count (2, 4, 8, 16 spheres of S4) at 1000x1000.
 # usage: bench/render/compare_povray.sh [THAW_EXECUTABLE] [SHARED_SCENES_DIR] [RUNS]
 # Writes markdown tables to stdout and hyperfine JSON to $OUT (default /tmp/thaw-bench-render).
+# BEFORE=path/to/other/thaw also times that binary (e.g. main before a change) in the same
+# hyperfine runs of the reference-scene table, so that both ratios see the same machine load, and
+# says whether the two wrote the same PNG bytes.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 thaw=$(realpath "${1:-$root/build/thaw}")
+before=${BEFORE:+$(realpath "$BEFORE")}
 shared=$(realpath "${2:-$root/../shared/scenes}")
 runs=${3:-5}
 out=${OUT:-/tmp/thaw-bench-render}
@@ -24,27 +28,40 @@ scenes="$root/data/scenes"
 povray_cmd() {
   echo "cd $pov && povray +I$1.pov +O$out/$1_pov.png +FN +W${2%x*} +H${2#*x} -A +WT$3 -D -V File_Gamma=sRGB 2>/dev/null"
 }
-thaw_cmd() {  # SCENE WxH THREADS
-  echo "$thaw render $1 -o $out/$(basename "$1" .toml)_thaw.png --width ${2%x*} --height ${2#*x} --threads $3 --quiet"
+thaw_cmd() {  # SCENE WxH THREADS [BINARY: the BEFORE one]
+  echo "${4:-$thaw} render $1 -o $out/$(basename "$1" .toml)_thaw${4:+_before}.png --width ${2%x*} --height ${2#*x} --threads $3 --quiet"
 }
-# wall-time means [s] of command 0 (POV-Ray) and 1 (thaw) in a hyperfine JSON file, their ratio,
-# and the ratio of CPU time (user + system): the fairer figure when the machine is shared.
+# wall-time means [s] of command 0 (POV-Ray) and command I (default 1: thaw) in a hyperfine JSON
+# file, their ratio, and the ratio of CPU time (user + system): the fairer figure when the machine
+# is shared. With ONLY=1 just the last two (for the BEFORE binary's columns).
 ratio() {
-  python3 -c "import json,sys; r=json.load(open(sys.argv[1]))['results']; a,b=r[0]['mean'],r[1]['mean']; ca,cb=r[0]['user']+r[0]['system'],r[1]['user']+r[1]['system']; print(f'{a:.3f} | {b:.3f} | {a/b:.2f}x | {ca/cb:.2f}x')" "$1"
+  python3 -c "import json,sys; r=json.load(open(sys.argv[1]))['results']; i=int(sys.argv[2]); a,b=r[0]['mean'],r[i]['mean']; ca,cb=r[0]['user']+r[0]['system'],r[i]['user']+r[i]['system']; c=[f'{a:.3f}',f'{b:.3f}',f'{a/b:.2f}x',f'{ca/cb:.2f}x']; print(' | '.join(c[1:] if sys.argv[3]=='1' else c))" "$1" "${2:-1}" "${ONLY:-0}"
 }
 
 echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores; load $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "thaw $("$thaw" --version | cut -d' ' -f2), $(povray --version 2>&1 | grep -m1 -o 'POV-Ray [0-9.]*' || echo POV-Ray 3.7)"
 echo
 if [ "${MAIN:-1}" = 1 ]; then  # MAIN=0 skips the reference-scene table
-echo "| scene | size | POV-Ray [s] | thaw [s] | speed-up (wall) | speed-up (CPU) |"
-echo "|---|---|---|---|---|---|"
+if [ -n "$before" ]; then
+  echo "| scene | size | POV-Ray [s] | thaw [s] | speed-up (wall) | speed-up (CPU) | before [s] | before speed-up (wall) | before speed-up (CPU) | same PNG |"
+  echo "|---|---|---|---|---|---|---|---|---|---|"
+else
+  echo "| scene | size | POV-Ray [s] | thaw [s] | speed-up (wall) | speed-up (CPU) |"
+  echo "|---|---|---|---|---|---|"
+fi
 for spec in "s1_ice_shell_mesh:s1_ice_shell_mesh:640x640" "s1_ice_shell:s1_ice_shell:640x640" \
             "s4_spheres16:s4_spheres16:2000x2000" "s3_dispersion_nodisp:s3_dispersion_nodisp:1000x1000"; do
   IFS=: read -r povname toml size <<<"$spec"
-  hyperfine --style none --warmup 1 --runs "$runs" --export-json "$out/$povname.json" \
-    "$(povray_cmd "$povname" "$size" 2)" "$(thaw_cmd "$scenes/$toml.toml" "$size" 2)" >/dev/null
-  echo "| $povname | $size | $(ratio "$out/$povname.json") |"
+  cmds=("$(povray_cmd "$povname" "$size" 2)" "$(thaw_cmd "$scenes/$toml.toml" "$size" 2)")
+  [ -n "$before" ] && cmds+=("$(thaw_cmd "$scenes/$toml.toml" "$size" 2 "$before")")
+  hyperfine --style none --warmup 1 --runs "$runs" --export-json "$out/$povname.json" "${cmds[@]}" >/dev/null
+  if [ -n "$before" ]; then
+    same=no
+    cmp -s "$out/${toml}_thaw.png" "$out/${toml}_thaw_before.png" && same=yes
+    echo "| $povname | $size | $(ratio "$out/$povname.json") | $(ONLY=1 ratio "$out/$povname.json" 2) | $same |"
+  else
+    echo "| $povname | $size | $(ratio "$out/$povname.json") |"
+  fi
 done
 fi
 
