@@ -258,5 +258,41 @@ TEST(EnthalpySolverE2e, IsothermalIceAblatesAtTheFluxOverTheLatentHeat) {
   }
 }
 
+TEST(EnthalpySolverE2e, AblatingSphereKeepsItsPolesOnTheAxisymmetricGrid) {
+  // The same ablating sphere (ice at T_m, q = 2000 W/m^2, 600 s) on fine axisymmetric cells
+  // (0.125 mm, 80 per radius) with short steps (0.5 s, so that the step's share of a cell's melt
+  // is not what is measured): the column of cells on the axis holds the polar diameter (its
+  // fractions times the cell), which must follow a(t) = a0 - q t / L_v like the rest of the
+  // surface. The cap there is a face parallel to the grid, whose area estimate is exact; what is
+  // left is the smearing of the receding surface over two or three partly drained cells: bar
+  // half a cell. Measured -0.36 cells. Before the surface area handed on between cells was
+  // weighted by the rings' sizes (enthalpy_solver.cpp, share_weight), a ring next to the axis
+  // took as much of its neighbours' heat as one several times its size: the poles sank 4.6
+  // cells (0.58 mm; 0.41 cells at 0.5 mm).
+  const Materials mat = default_materials();
+  const double a0 = 0.01, q = 2000, lv = mat.latent_heat_per_volume(), cell = 0.000125;
+  Scenario sc;
+  sc.grid = GridGeometry::axisymmetric;
+  sc.shape.outer.kind = ShapeKind::sphere;
+  sc.shape.outer.radius_m = a0;
+  sc.cell_size_m = cell;
+  sc.materials = mat;
+  sc.ice_initial_temperature_c = mat.melting_point_c;
+  sc.outer_kind = OuterBoundary::flux;
+  sc.flux_w_m2 = q;
+  GridProblem problem = build_grid_problem(sc);
+  problem.max_step_s = 0.5;
+  EnthalpySolver solver(problem);
+  solver.advance_to(600);
+  const std::vector<double>& m = solver.material_fraction();
+  double column = 0;
+  for (int j = 0; j < problem.cells[1]; ++j)
+    column += m[static_cast<std::size_t>(j) * problem.cells[0]];
+  const double pole = 0.5 * column * cell, exact = a0 - q * 600 / lv;
+  std::printf("polar radius %.5f mm vs %.5f mm: %.3f cells\n", pole * 1e3, exact * 1e3,
+              (pole - exact) / cell);
+  EXPECT_LT(std::abs(pole - exact), 0.5 * cell);
+}
+
 }  // namespace
 }  // namespace thaw::sim
