@@ -328,6 +328,85 @@ TEST(PvdWriter, OptionsFailureCommitsNothing) {
   EXPECT_TRUE(fs::is_empty(out)) << fs::directory_iterator(out)->path();
 }
 
+// Several processes (thaw run under MPI): the farm hands the steps out. Here the farm is this
+// process alone (MeshFarm's own run: every item here), which takes the farm's path: each step's
+// offset travels back as text, and the files are those of the series without a farm.
+TEST(PvdWriter, FarmedSeriesGivesTheSameFilesAndEveryStepsOffset) {
+  testing::ScratchDir dir("pvd_farm");
+  const auto rows = testing::write_sphere_simulation(dir.path() / "sim", 4);
+  PvdSeriesOptions options;
+  options.placement = [](const MeshedStep& s, const TriangleMesh*) {
+    return std::array<double, 3>{0.1 * static_cast<double>(s.step), 1.0 / 3.0, -2e-7};
+  };
+  const fs::path alone = dir.path() / "alone" / "melt.pvd";
+  const fs::path farmed = dir.path() / "farmed" / "melt.pvd";
+  const StepOffsets expected = write_pvd_series(dir.path() / "sim", alone, options);
+  mesh::MeshFarm farm;
+  options.farm = &farm;
+  const StepOffsets offsets = write_pvd_series(dir.path() / "sim", farmed, options);
+  ASSERT_EQ(offsets.size(), rows.size());
+  EXPECT_EQ(offsets, expected);  // 17 digits: exactly the placement's doubles
+  for (const auto& row : rows)
+    EXPECT_EQ(offsets.at(row.step)[0], 0.1 * static_cast<double>(row.step));
+  EXPECT_EQ(file_bytes(farmed), file_bytes(alone));
+  for (const auto& e : fs::directory_iterator(alone.parent_path() / "melt_vtp"))
+    EXPECT_EQ(file_bytes(farmed.parent_path() / "melt_vtp" / e.path().filename()),
+              file_bytes(e.path()))
+        << e.path();
+}
+
+// A process other than the leader writes its steps into the folder the leader staged (the path
+// the farm shares), commits nothing and returns no offsets; a step failing there travels as text
+// and the leader throws it as one UserError, committing nothing.
+class FarmHere : public mesh::MeshFarm {
+ public:
+  FarmHere(bool leader, std::string shared) : m_leader(leader), m_shared(std::move(shared)) {}
+  bool leader() const override { return m_leader; }
+  std::string share(const std::string& text) override { return m_leader ? text : m_shared; }
+
+ private:
+  bool m_leader;
+  std::string m_shared;
+};
+
+TEST(PvdWriter, FarmedSeriesOnAnotherProcessWritesIntoTheLeadersStagedFolder) {
+  testing::ScratchDir dir("pvd_farm_other");
+  testing::write_sphere_simulation(dir.path() / "sim", 3);
+  const fs::path pvd = dir.path() / "out" / "melt.pvd";
+  const PvdWriter leaders(pvd);  // stages out/melt_vtp
+  FarmHere other(false, "+" + leaders.write_dir().string());
+  PvdSeriesOptions options;
+  options.farm = &other;
+  EXPECT_TRUE(write_pvd_series(dir.path() / "sim", pvd, options).empty());
+  EXPECT_EQ(std::distance(fs::directory_iterator(leaders.write_dir()), fs::directory_iterator()),
+            6);  // 3 steps x 2 surfaces
+  EXPECT_FALSE(fs::exists(pvd));
+  EXPECT_FALSE(fs::exists(pvd.parent_path() / "melt_vtp"));
+  // The leader's word that it could not stage is every process's error.
+  FarmHere refused(false, "-out/melt_vtp: cannot create output directory");
+  options.farm = &refused;
+  EXPECT_THROW(write_pvd_series(dir.path() / "sim", pvd, options), UserError);
+}
+
+TEST(PvdWriter, FarmedSeriesFailureIsOneUserErrorOnTheLeaderAndCommitsNothing) {
+  testing::ScratchDir dir("pvd_farm_fail");
+  testing::write_sphere_simulation(dir.path() / "sim", 4);
+  PvdSeriesOptions options;
+  options.surface = [&](const MeshedStep& s, SurfacePart, const TriangleMesh*) {
+    if (s.step == 2) throw UserError("hook.obj", "", "disk full");
+  };
+  FarmHere leader(true, "");
+  options.farm = &leader;
+  const fs::path out = dir.path() / "out";
+  try {
+    write_pvd_series(dir.path() / "sim", out / "melt.pvd", options);
+    ADD_FAILURE() << "no error";
+  } catch (const UserError& e) {
+    EXPECT_STREQ(e.what(), "hook.obj: disk full");
+  }
+  EXPECT_TRUE(fs::is_empty(out)) << fs::directory_iterator(out)->path();
+}
+
 TEST(PvdWriter, UnwritableOutputIsUserError) {
   testing::ScratchDir dir("pvd");
   write_file_atomic(dir.path() / "file", "x");
