@@ -20,6 +20,8 @@ class MeshFarm {
   virtual bool leader() const { return true; }
   /// The leader's `text` on every process (what others pass is ignored).
   virtual std::string share(const std::string& text) { return text; }
+  /// How many processes share the work (with one process: 1).
+  virtual int processes() const { return 1; }
   /// Calls work(k) exactly once for each k in [0, n), somewhere, and returns on the leader the
   /// text each call returned, indexed by k (on other processes: n empty texts). On the leader,
   /// done() is called once per finished item, never concurrently. Here: `threads` OpenMP threads

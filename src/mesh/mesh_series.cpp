@@ -361,11 +361,12 @@ void take_kept_forms(const FormPlan& plan, const fs::path& partial_dir, FormMesh
     }
 }
 
-// Meshes form k and keeps it for a resumed run and the other processes, before its checks
-// (check_form, in write_surfaces: the form is the one serial step of a 1D series, so its checks
-// run while the surfaces are copied from it); a failure is stored in m.error[k], never thrown.
+// Meshes form k and (if `keep`) keeps it for a resumed run and the other processes, before its
+// checks (check_form, in write_surfaces: the form is the one serial step of a 1D series, so its
+// checks run while the surfaces are copied from it); a failure is stored in m.error[k], never
+// thrown.
 void mesh_form(const FormPlan& plan, std::size_t k, const MeshOptions& unit_options,
-               const fs::path& partial_dir, FormMeshes& m) {
+               const fs::path& partial_dir, FormMeshes& m, bool keep = true) {
   try {
     const SimilarSurface& form = plan.forms[k];
     if (const int n = plan.geodesic[k]; n > 0) {
@@ -376,8 +377,9 @@ void mesh_form(const FormPlan& plan, std::size_t k, const MeshOptions& unit_opti
       m.unit[k] = surface.mesh();
       m.unchecked[k] = std::move(surface);
     }
-    store_cached_form(form_cache_file(partial_dir, plan.description[k]), plan.description[k],
-                      m.unit[k]);
+    if (keep)
+      store_cached_form(form_cache_file(partial_dir, plan.description[k]), plan.description[k],
+                        m.unit[k]);
     m.have[k] = 1;
   } catch (const std::exception& e) {
     m.error[k] = e.what();
@@ -395,6 +397,26 @@ void mesh_missing_forms(const FormPlan& plan, const MeshOptions& unit_options, i
   std::vector<std::size_t> to_mesh;
   for (std::size_t k = 0; k < plan.forms.size(); ++k)
     if (!m.have[k]) to_mesh.push_back(k);
+  // A geodesic form takes ~2 ms. With fewer forms than processes and all of them geodesic (the
+  // default film: one), a farm would have the other processes wait for them and then read them
+  // back from the cache (~1 ms each): every process builds its missing ones itself (the same
+  // bytes), the leader keeping them for a resumed run. Decided from the plan, the same on every
+  // process (the forms kept may differ: another process may have stored one meanwhile), so that
+  // they all take the farm or none does.
+  const bool all_geodesic =
+      std::all_of(plan.geodesic.begin(), plan.geodesic.end(), [](int n) { return n > 0; });
+  if (farm.processes() > 1 && all_geodesic &&
+      plan.forms.size() < static_cast<std::size_t>(farm.processes())) {
+    for (const std::size_t k : to_mesh) {
+      if (interrupt_requested()) {
+        m.error[k] = "interrupted";  // thrown after the surfaces, as from the farm
+        continue;
+      }
+      mesh_form(plan, k, unit_options, partial_dir, m, farm.leader());
+      if (farm.leader()) progress.one_done();
+    }
+    return;
+  }
   // Nothing may throw out of the farmed work: every failure is stored or returned as text.
   const std::vector<std::string> results = farm.run(
       static_cast<long>(to_mesh.size()), jobs,

@@ -35,6 +35,7 @@ class RanksMeshFarm final : public mesh::MeshFarm {
   explicit RanksMeshFarm(RunRanks& ranks) : m_ranks(ranks) {}
   bool leader() const override { return m_ranks.leader(); }
   std::string share(const std::string& text) override { return m_ranks.broadcast(text); }
+  int processes() const override { return m_ranks.size(); }
   std::vector<std::string> run(long n, int threads, const std::function<std::string(long)>& work,
                                const std::function<void()>& done) override;
   /// One entry per run(), in order.

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <vector>
@@ -207,6 +208,55 @@ TEST(MeshSeries, SphereSeriesMeshedOnceAndScaled) {
     EXPECT_LE(deepest_facet, s.outer.distance_bound_m) << s.step;
   }
   EXPECT_EQ(m.steps[0].inner.triangles, m.steps[1].outer.triangles);
+}
+
+// One of two processes sharing a series (thaw run under MPI): the items run here, and the farm
+// counts its runs. `shared`: what the leader says (the others' share()), "" on the leader.
+class OneOfTwo final : public MeshFarm {
+ public:
+  explicit OneOfTwo(std::string shared = "") : m_shared(std::move(shared)) {}
+  bool leader() const override { return m_shared.empty(); }
+  std::string share(const std::string& text) override { return leader() ? text : m_shared; }
+  int processes() const override { return 2; }
+  std::vector<std::string> run(long n, int threads, const std::function<std::string(long)>& work,
+                               const std::function<void()>& done) override {
+    ++runs;
+    return MeshFarm::run(n, threads, work, done);
+  }
+  int runs = 0;
+
+ private:
+  std::string m_shared;
+};
+
+// The default sphere series has one geodesic form, fewer than the processes: each process builds
+// it itself instead of one building it while the others wait to read it back. Only the surfaces
+// go through the farm; the leader alone keeps the form for a resume; the bytes are those of one
+// process.
+TEST(MeshSeries, FewerGeodesicFormsThanProcessesAreBuiltByEachProcess) {
+  MeshOptions o;
+  o.jobs = 1;
+  const fs::path alone = fresh_copy("sphere", "geodesic_alone");
+  ASSERT_EQ(mesh_simulation_folder(alone, o).distinct_meshes, 1);
+  const fs::path led = fresh_copy("sphere", "geodesic_leader");
+  OneOfTwo leader;
+  mesh_simulation_folder(led, o, {}, leader);
+  EXPECT_EQ(leader.runs, 1);  // the surfaces (and the form's check)
+  for (const auto& e : fs::directory_iterator(alone / "mesh"))
+    EXPECT_EQ(read_text(led / "mesh" / e.path().filename()), read_text(e.path()))
+        << e.path().filename();
+  // Another process writes its surfaces into the leader's staged folder and keeps no form.
+  const fs::path other = fresh_copy("sphere", "geodesic_other");
+  fs::create_directories(other / "staged");
+  OneOfTwo follower("+" + (other / "staged").string());
+  mesh_simulation_folder(other, o, {}, follower);
+  EXPECT_EQ(follower.runs, 1);
+  for (const auto& e : fs::directory_iterator(alone / "mesh")) {
+    if (e.path().extension() != ".obj") continue;
+    EXPECT_EQ(read_text(other / "staged" / e.path().filename()), read_text(e.path()))
+        << e.path().filename();
+  }
+  EXPECT_TRUE(!fs::exists(other / "mesh.partial") || fs::is_empty(other / "mesh.partial"));
 }
 
 // thaw run --frames: the steps of its frames alone, written beside the kept forms, so that the
