@@ -219,7 +219,12 @@ void ViewRenderThread::run() {
   // threads, started with the OpenGL context made here, inherit it. Under load the GUI thread
   // then gets a core first whenever its event loop has work.
   lower_thread_priority(kViewNice);
+  // The render window, its OpenGL context and a first (empty) draw at once, while the window is
+  // still being built: their X requests (display connection, GLX, the hidden window) then do not
+  // queue at the X server with those of the window's show() on the GUI thread.
   Scene scene;
+  scene.make(64, 64);
+  scene.window->Render();
   while (true) {
     ViewFrame frame;
     {
@@ -230,7 +235,6 @@ void ViewRenderThread::run() {
       m_pending.reset();
     }
     if (frame.width <= 0 || frame.height <= 0) continue;
-    if (!scene.window) scene.make(frame.width, frame.height);
     scene.apply(frame);
     const QImage image = scene.draw(frame.width, frame.height);
     const auto serial = static_cast<quint64>(frame.serial);

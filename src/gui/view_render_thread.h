@@ -63,7 +63,7 @@ constexpr int kViewNice = 5;
 class ViewRenderThread : public QObject {
   Q_OBJECT
  public:
-  /// Starts the thread (its render window is made with the first request).
+  /// Starts the thread, which makes its render window and OpenGL context at once.
   explicit ViewRenderThread(QObject* parent = nullptr);
   /// Drops a request not started, waits for the draw in progress, releases every OpenGL resource
   /// on the thread and joins it.
