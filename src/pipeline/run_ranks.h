@@ -29,9 +29,10 @@ class RunRanks {
   /// items are handed out and every rank then throws thaw::UserError with that rank's message
   /// (the first failure); items finished before stay finished. Every rank must call farm with
   /// equal items. `ahead`: how many items a rank other than the leader asks for before it needs
-  /// them (each hand-out is a round trip to the leader: asked ahead, it overlaps the rank's work;
-  /// at the end such a rank may hold up to `ahead` items that an idle rank could have taken, so
-  /// for short items only).
+  /// them (each hand-out is a round trip to the leader: asked ahead, it overlaps the rank's work).
+  /// Of the last items (fewer than ranks) a rank gets none ahead: it gets one once its item in
+  /// hand is done, so the last items go to whichever rank is free first. For short items: a rank
+  /// may still hold up to `ahead` items a little before the end.
   virtual std::vector<std::string> farm(const std::vector<long>& items,
                                         const std::function<std::string(long)>& work,
                                         const std::function<void(long, long)>& done, int ahead = 0);

@@ -156,14 +156,40 @@ class MpiRanks final : public RunRanks {
       const long n = ++finished;
       if (done) done(n, index);
     };
+    // Items not yet taken by anyone.
+    const auto left = [&]() -> std::size_t {
+      const std::size_t taken = next;
+      return taken < items.size() ? items.size() - taken : 0;
+    };
     const auto dispatch = [&] {
       // The indexes each worker holds, oldest first: its "done" message carries the oldest's
       // text. Every message is answered; a worker has `depth` requests open until it has been
       // answered "no more" that many times, and sends nothing after.
       std::vector<std::deque<long>> busy(static_cast<std::size_t>(m_size));
       std::vector<int> ends(static_cast<std::size_t>(m_size), 0);
+      // Requests held back: a worker that asked ahead while it has work in hand is not given one
+      // of the last items (fewer than ranks): whichever rank is free first takes it, rather than
+      // it waiting behind that worker's current item while another rank idles. Answered once the
+      // worker's item is done, or with "no more" once nothing is left.
+      std::vector<int> held(static_cast<std::size_t>(m_size), 0);
+      const auto answer = [&](std::size_t source) {
+        const long index = take();
+        const long item = index < 0 ? -1 : items[static_cast<std::size_t>(index)];
+        if (index >= 0) busy[source].push_back(index);
+        MPI_Send(&item, 1, MPI_LONG, static_cast<int>(source), kTagItem, MPI_COMM_WORLD);
+        return item < 0 && ++ends[source] == depth;  // this worker asks no more
+      };
+      const auto hold = [&](std::size_t source) {
+        return !busy[source].empty() && !failed && left() > 0 &&
+               left() < static_cast<std::size_t>(m_size);
+      };
       Backoff backoff;
       for (int active = m_size - 1; active > 0;) {
+        for (std::size_t source = 1; source < held.size(); ++source)
+          if (held[source] > 0 && !hold(source)) {
+            --held[source];
+            if (answer(source)) --active;
+          }
         int flag = 0;
         MPI_Status status;
         MPI_Iprobe(MPI_ANY_SOURCE, kTagAsk, MPI_COMM_WORLD, &flag, &status);
@@ -188,11 +214,15 @@ class MpiRanks final : public RunRanks {
             fail(message.substr(1));
           }
         }
-        const long index = take();
-        const long item = index < 0 ? -1 : items[static_cast<std::size_t>(index)];
-        if (index >= 0) busy[source].push_back(index);
-        MPI_Send(&item, 1, MPI_LONG, status.MPI_SOURCE, kTagItem, MPI_COMM_WORLD);
-        if (item < 0 && ++ends[source] == depth) --active;
+        // Answers go out in the order asked (a held request first): they are all alike.
+        if (held[source] > 0 && !hold(source)) {
+          --held[source];
+          if (answer(source)) --active;
+        }
+        if (hold(source))
+          ++held[source];
+        else if (answer(source))
+          --active;
       }
     };
     if (m_threads) {
