@@ -211,9 +211,11 @@ TEST(EnthalpySolverE2e, IsothermalIceAblatesAtTheFluxOverTheLatentHeat) {
   //    estimate changes by a few % as it crosses a cell (+-3 % per 100 s measured on the cube's
   //    flat faces), i.e. ~3 % of a cell of ice early or late: bar 0.05 cell. Measured (0.5 mm
   //    cells): axisymmetric sphere 0.55 % of the depth, 3D sphere 0.24 %, cube 0.027 cells
-  //    (1.1 % of the depth after 100 s, 0.13 % after 600 s); the axisymmetric sphere's excess
-  //    grows at 0.25 mm cells (0.74 %: its area estimate of the smeared surface runs 0.4-0.6 %
-  //    high; docs/validation.md).
+  //    (1.1 % of the depth after 100 s, 0.13 % after 600 s). The spheres' excess is mostly the
+  //    step: the area held over a step is the shrinking sphere's at the step's start, an excess
+  //    depth (q / L_v) dt ln(a0 / a), 0.4-0.7 % with these up-to-10 s steps at any cell size
+  //    (AblatingSpheresStepExcessIsTheHeldAreasLag below; docs/validation.md, "Ablation
+  //    excess"); at 0.125 mm cells the near-axis faces also roughen (+1.1 %, not asserted).
   const Materials mat = default_materials();
   const double a0 = 0.01, q = 2000, lv = mat.latent_heat_per_volume();
   struct Case {
@@ -256,6 +258,56 @@ TEST(EnthalpySolverE2e, IsothermalIceAblatesAtTheFluxOverTheLatentHeat) {
                 c.cell * 1e3, 100 * worst);
     EXPECT_LT(solver.statistics().max_step_energy_error, 1e-8);
   }
+}
+
+TEST(EnthalpySolverE2e, AblatingSpheresStepExcessIsTheHeldAreasLag) {
+  // The ablating sphere above (axisymmetric, 0.5 mm cells, q = 2000 W/m^2, 600 s) with fixed
+  // steps of 10, 5 and 2.5 s. The surface area (|grad m| V) is computed from the fractions at a
+  // step's start and held over the step, while the sphere shrinks: the step heats the area at
+  // a_n instead of about a_(n+1/2), a relative excess of A'(a) (da / 2) / A = q dt / (L_v a)
+  // per step for a sphere (A ~ a^2, da = q dt / L_v). The radius then recedes at
+  // (q / L_v)(1 + q dt / (L_v a)), and integrating over a(t) the excess depth is
+  // (q / L_v) dt ln(a0 / a): first order in the step, here 16.3 um (0.42 % of the depth) per
+  // 5 s of step. That is the 0.4-0.6 % excess of the default (10 s) steps above; it does not
+  // depend on the cell size (docs/validation.md). Asserted on the differences between the runs
+  // (the same grid, so the spatial error cancels): dt 10 vs 5 and 5 vs 2.5 against the formula.
+  // Bar 20 % of the prediction: the dropped second-order term is q dt / (L_v a) <= 1.1 % at
+  // 10 s and a = 6.1 mm; the rest is the area estimate's swing as the surface crosses cells,
+  // which the lag multiplies (the sphere's estimated area wanders +-0.3 % per 50 s against
+  // its smooth shrinkage of 8 % per 50 s: 4 %), and the first steps' start-up (the 0.05 s
+  // first step in every run). Measured 15.40 and 7.05 um against 16.30 and 8.15 (-5.5 %,
+  // -13.5 %). An area taken at the step's midpoint removes the lag and must replace this test
+  // by a bound on the differences (docs/validation.md, "Ablation excess", the proposed fix).
+  const Materials mat = default_materials();
+  const double a0 = 0.01, q = 2000, lv = mat.latent_heat_per_volume(), t_end = 600;
+  auto excess_depth = [&](double step_s) {
+    Scenario sc;
+    sc.grid = GridGeometry::axisymmetric;
+    sc.shape.outer.kind = ShapeKind::sphere;
+    sc.shape.outer.radius_m = a0;
+    sc.cell_size_m = 0.0005;
+    sc.materials = mat;
+    sc.ice_initial_temperature_c = mat.melting_point_c;
+    sc.outer_kind = OuterBoundary::flux;
+    sc.flux_w_m2 = q;
+    GridProblem problem = build_grid_problem(sc);
+    problem.fixed_step_s = step_s;
+    EnthalpySolver solver(problem);
+    const double v0 = solver.snapshot().ice_volume_m3;
+    solver.advance_to(t_end);
+    const double size = a0 * std::cbrt(solver.snapshot().ice_volume_m3 / v0);
+    return (a0 - size) - q * t_end / lv;
+  };
+  const double e10 = excess_depth(10), e5 = excess_depth(5), e25 = excess_depth(2.5);
+  const double a = a0 - q * t_end / lv;
+  const double per_second = q / lv * std::log(a0 / a);  // excess depth per second of step
+  std::printf(
+      "excess depth %.2f / %.2f / %.2f um at 10 / 5 / 2.5 s steps; differences %.2f and "
+      "%.2f um against %.2f and %.2f um predicted\n",
+      e10 * 1e6, e5 * 1e6, e25 * 1e6, (e10 - e5) * 1e6, (e5 - e25) * 1e6, 5 * per_second * 1e6,
+      2.5 * per_second * 1e6);
+  EXPECT_NEAR(e10 - e5, 5 * per_second, 0.2 * 5 * per_second);
+  EXPECT_NEAR(e5 - e25, 2.5 * per_second, 0.2 * 2.5 * per_second);
 }
 
 TEST(EnthalpySolverE2e, AblatingSphereKeepsItsPolesOnTheAxisymmetricGrid) {
