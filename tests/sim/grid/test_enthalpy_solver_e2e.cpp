@@ -274,8 +274,8 @@ TEST(EnthalpySolverE2e, AblatingSpheresStepExcessIsTheHeldAreasLag) {
   // Bar 20 % of the prediction: the dropped second-order term is q dt / (L_v a) <= 1.1 % at
   // 10 s and a = 6.1 mm; the rest is the area estimate's swing as the surface crosses cells,
   // which the lag multiplies (the sphere's estimated area wanders +-0.3 % per 50 s against
-  // its smooth shrinkage of 8 % per 50 s: 4 %), and the first steps' start-up (the 0.05 s
-  // first step in every run). Measured 15.40 and 7.05 um against 16.30 and 8.15 (-5.5 %,
+  // its smooth shrinkage of 8 % per 50 s: 4 %), and the difference of the two runs' lags
+  // at their first steps. Measured 15.40 and 7.05 um against 16.30 and 8.15 (-5.5 %,
   // -13.5 %). An area taken at the step's midpoint removes the lag and must replace this test
   // by a bound on the differences (docs/validation.md, "Ablation excess", the proposed fix).
   const Materials mat = default_materials();
