@@ -10,6 +10,7 @@
 #include "src/common/atomic_file.h"
 #include "src/common/check.h"
 #include "src/common/error.h"
+#include "src/common/output_file.h"
 
 namespace thaw::render {
 
@@ -142,30 +143,17 @@ void write_pfm(const std::filesystem::path& path, const Image& image) {
   write_file_atomic(path, encode_pfm(image));
 }
 
-namespace {
-std::string lower_extension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-}  // namespace
-
 bool is_exr_path(const std::filesystem::path& path) {
   return lower_extension(path) == ".exr";
 }
 
 void check_output_path(const std::filesystem::path& path) {
-  const std::string ext = lower_extension(path);
-  if (ext != ".png" && ext != ".pfm" && ext != ".exr")
-    throw UserError(path.string(), "",
-                    "unsupported output format '" + ext + "' (expected .png, .pfm or .exr)");
+  check_output_file(path, {".png", ".pfm", ".exr"});  // src/common/output_file.h
   const std::filesystem::path dir =
       path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
   std::error_code ec;
   if (!std::filesystem::is_directory(dir, ec))
     throw UserError(path.string(), "", "output folder '" + dir.string() + "' does not exist");
-  if (std::filesystem::is_directory(path, ec)) throw UserError(path.string(), "", "is a directory");
 }
 
 void write_image(const std::filesystem::path& path, const Image& image, double exposure,

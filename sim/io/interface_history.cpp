@@ -10,6 +10,7 @@
 #include "src/common/atomic_file.h"
 #include "src/common/error.h"
 #include "src/common/json_error.h"
+#include "src/common/text_file.h"
 
 namespace thaw::sim {
 
@@ -69,9 +70,8 @@ std::vector<std::string> split_commas(const std::string& line) {
 
 std::vector<InterfaceRecord> read_interfaces_csv(const std::filesystem::path& file) {
   const std::string name = file.string();
-  std::ifstream in(file);
-  if (!in)
-    throw UserError(name, "", std::filesystem::exists(file) ? "cannot be read" : "file not found");
+  // text_file.h: a directory, a device or a pipe is refused by name before it is opened
+  std::istringstream in(read_text_file(file, "a CSV file"));
   std::string line;
   if (!std::getline(in, line)) throw UserError(name, "line 1", "empty file, expected a CSV header");
   if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -142,13 +142,11 @@ std::vector<InterfaceRecord> read_interfaces_csv(const std::filesystem::path& fi
 
 ShellGeometry read_shell_geometry(const std::filesystem::path& summary_json) {
   const std::string name = summary_json.string();
-  std::ifstream in(summary_json);
-  if (!in)
-    throw UserError(name, "",
-                    std::filesystem::exists(summary_json) ? "cannot be read" : "file not found");
+  // A directory used to throw basic_filebuf's "Is a directory" (exit 3): read_text_file names it.
+  const std::string text = read_text_file(summary_json, "a JSON file");
   nlohmann::json j;
   try {
-    in >> j;
+    j = nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
     throw UserError(name, "", "malformed JSON: " + json_problem(e));
   }

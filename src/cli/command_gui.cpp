@@ -1,13 +1,27 @@
 // thaw gui [SCENARIO.toml] [--screenshot PATH]: argument parsing only (src/gui does the work).
+#include <filesystem>
 #include <string>
+#include <system_error>
 
 #include "src/cli/commands.h"
 #include "src/common/error.h"
+#include "src/common/output_file.h"
 #ifdef THAW_WITH_GUI
 #include "src/gui/gui.h"
 #endif
 
 namespace thaw::cli {
+
+namespace {
+/// Before Qt starts: a .png in a folder that exists (the window is saved as PNG only).
+void check_screenshot_path(const std::filesystem::path& path) {
+  check_output_file(path, {".png"});
+  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : ".";
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec))
+    throw UserError(path.string(), "--screenshot", "folder '" + dir.string() + "' does not exist");
+}
+}  // namespace
 
 void register_gui(CLI::App& app) {
   struct Args {
@@ -28,6 +42,7 @@ void register_gui(CLI::App& app) {
       "--simulate", args->simulate,
       "start the simulation at once (--screenshot waits for it and shows its middle step)");
   sub->callback([args] {
+    if (!args->screenshot.empty()) check_screenshot_path(args->screenshot);
 #ifdef THAW_WITH_GUI
     gui::GuiOptions options;
     options.scenario = args->scenario;

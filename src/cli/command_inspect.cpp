@@ -11,6 +11,7 @@
 #include "src/cli/commands.h"
 #include "src/common/error.h"
 #include "src/common/interrupt.h"
+#include "src/common/output_file.h"
 #include "src/common/progress.h"
 #include "src/inspect/mesh_report.h"
 #include "src/inspect/pvd_writer.h"
@@ -31,7 +32,15 @@ struct InspectArgs {
   std::optional<long> step;
 };
 
+/// The output names, before any work: a .pvd, PNG pictures (a missing folder is created).
+void check_outputs(const InspectArgs& a) {
+  if (!a.pvd.empty()) check_output_file(a.pvd, {".pvd"});
+  if (!a.screenshot.empty()) check_output_file(a.screenshot, {".png"});
+  if (!a.plot.empty()) check_output_file(a.plot, {".png"});
+}
+
 void run_inspect(const InspectArgs& a) {
+  check_outputs(a);
   const fs::path path(a.path);
   std::error_code ec;
   if (!fs::exists(path, ec)) throw UserError(a.path, "", "no such file or folder");

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <exception>
 
 namespace thaw {
 
@@ -13,9 +14,17 @@ ProgressReporter::ProgressReporter(std::string title, std::int64_t total, bool q
       m_quiet(quiet),
       m_tty(::isatty(STDERR_FILENO) != 0),
       m_start(std::chrono::steady_clock::now()),
-      m_last_print(m_start) {}
+      m_last_print(m_start),
+      m_exceptions_at_start(std::uncaught_exceptions()) {}
 
 ProgressReporter::~ProgressReporter() {
+  // Unwinding from an error: no "done" line (the error's one line follows); a bar is cleared.
+  if (std::uncaught_exceptions() > m_exceptions_at_start) {
+    std::lock_guard<std::mutex> lock(m_mutex);
+    if (!m_quiet && m_tty && !m_finished) std::fputs("\r\033[K", stderr);
+    m_finished = true;
+    return;
+  }
   finish();
 }
 

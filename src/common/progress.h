@@ -23,7 +23,8 @@ class ProgressReporter {
   void advance(std::int64_t items = 1);
   void set_done(std::int64_t items_done);
   /// Prints the final line, "title: 41/41 done in 2.10 s"; called by the destructor if not
-  /// called before.
+  /// called before, unless the destructor runs because an error is unwinding the work (then
+  /// nothing is printed: the error is the one line).
   void finish();
   /// The final line of work that legitimately stopped short of its total, saying why:
   /// "title: 51/80 steps: the ice is gone (2.10 s)" for finish_early("steps: the ice is gone").
@@ -43,6 +44,7 @@ class ProgressReporter {
   bool m_quiet, m_tty, m_finished = false;
   std::atomic<std::int64_t> m_done{0};
   std::chrono::steady_clock::time_point m_start, m_last_print;
+  int m_exceptions_at_start;  ///< std::uncaught_exceptions() when made: the destructor unwinds?
   int m_last_decile = -1;
   std::mutex m_mutex;
 };

@@ -20,6 +20,10 @@ namespace thaw::gui {
 int run_gui(const GuiOptions& options) {
   ScenarioDocument document =
       options.scenario.empty() ? ScenarioDocument() : ScenarioDocument::load(options.scenario);
+  // --screenshot is a batch run: a scenario that breaks a rule is its one-line error, exit 2, no
+  // picture (as for `thaw run`); the interactive window opens it to be fixed.
+  if (!options.screenshot.empty())
+    if (const ScenarioCheck c = document.check(); !c.ok()) throw UserError("", "", c.message);
   // Qt's xcb platform needs an X display; --screenshot may start a private Xvfb for it (as
   // `thaw inspect --screenshot` does). The offscreen platform needs none.
   const char* platform = std::getenv("QT_QPA_PLATFORM");

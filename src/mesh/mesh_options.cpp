@@ -7,20 +7,25 @@
 #include <nlohmann/json.hpp>
 
 #include "src/common/error.h"
+#include "src/common/number_text.h"
 
 namespace thaw::mesh {
 
 void validate(const MeshOptions& o) {
   auto positive = [](const char* name, double v) {
     if (!std::isfinite(v) || !(v > 0))
-      throw UserError("", name, "must be a finite number > 0, got " + std::to_string(v));
+      throw UserError("", name, "must be a finite number > 0, got " + shortest_text(v));
   };
   auto non_negative = [](const char* name, double v) {
     if (!std::isfinite(v) || v < 0)
       throw UserError("", name,
-                      "must be a finite number >= 0 (0 = automatic), got " + std::to_string(v));
+                      "must be a finite number >= 0 (0 = automatic), got " + shortest_text(v));
   };
   non_negative("edge_length_m", o.edge_length_m);
+  if (o.edge_length_m > 0 && o.edge_length_m < kMinEdgeLengthM)
+    throw UserError("", "edge_length_m",
+                    "must be 0 (automatic) or at least " + shortest_text(kMinEdgeLengthM) +
+                        " m, got " + shortest_text(o.edge_length_m));
   non_negative("distance_m", o.distance_m);
   non_negative("scene_radius_m", o.scene_radius_m);
   positive("relative_distance", o.relative_distance);
@@ -32,11 +37,15 @@ void validate(const MeshOptions& o) {
     throw UserError("", "angle_deg",
                     "must be in (0, 30] (CGAL guarantees termination only up to 30), got " +
                         std::to_string(o.angle_deg));
-  if (o.triangles < 0 || (o.triangles > 0 && o.triangles < 50) || o.triangles > 50'000'000)
+  if (o.triangles < 0 || (o.triangles > 0 && o.triangles < 50) ||
+      o.triangles > kMaxTrianglesPerSurface)
     throw UserError("", "triangles",
                     "must be 0 (unused) or in [50, 5e7], got " + std::to_string(o.triangles));
-  if (o.max_triangles < 0)
-    throw UserError("", "max_triangles", "must be >= 0, got " + std::to_string(o.max_triangles));
+  // CLI11 saturates 99999999999999999999 to 2^63 - 1: a budget above the per-surface limit is a
+  // typo, not a setting.
+  if (o.max_triangles < 0 || o.max_triangles > kMaxTrianglesPerSurface)
+    throw UserError("", "max_triangles",
+                    "must be 0 (none) or at most 5e7, got " + std::to_string(o.max_triangles));
   if (o.jobs < 0 || o.jobs > 4096)
     throw UserError("", "jobs", "must be in [0, 4096], got " + std::to_string(o.jobs));
   if (o.relative_error_bound > 1e-2)
@@ -114,6 +123,24 @@ double estimate_triangles(const ShellShape& s, const SurfaceCriteria& c) {
   const double flat = 2 * a * a, curved = s.area() - flat;
   const double rf = std::min(c.facet_size_m, 2 * r);
   return 1.32 * (curved / (rc * rc) + flat / (rf * rf));
+}
+
+void check_triangle_count(const ShellShape& s, const SurfaceCriteria& c) {
+  const double n = estimate_triangles(s, c);
+  if (n <= kMaxTrianglesPerSurface) return;
+  // The size bound alone (no distance bound): does the edge length already ask for too many?
+  SurfaceCriteria size_only = c;
+  size_only.facet_distance_m = std::numeric_limits<double>::infinity();
+  const bool edge = estimate_triangles(s, size_only) > kMaxTrianglesPerSurface;
+  char count[32];
+  std::snprintf(count, sizeof count, "%.2g", n);
+  throw UserError(
+      "", edge ? "edge_length_m" : "distance_m",
+      std::string(edge ? "the edge length " + shortest_text(c.facet_size_m * std::sqrt(3.0)) + " m"
+                       : "the distance bound " + shortest_text(c.facet_distance_m) + " m") +
+          " gives about " + count + " triangles on a surface of radius " +
+          shortest_text(s.radius_m) + " m, more than the " + "5e7 a surface may have; use a " +
+          (edge ? "longer edge" : "larger distance") + " or --triangles");
 }
 
 bool too_thin_to_mesh(const ShellShape& s, const MeshOptions& o) {

@@ -57,6 +57,14 @@ struct MeshOptions {
   bool distance_relaxed = false;
 };
 
+/// Most triangles one surface may have: the limit of `triangles` and of what the criteria may
+/// ask for (check_triangle_count). A typo such as an edge of 1e-6 m on a 3 cm shell asked for
+/// ~1e10 and ran for ever; Mesh_3 needs gigabytes at this limit already.
+inline constexpr double kMaxTrianglesPerSurface = 5e7;
+/// Shortest accepted edge_length_m (0 = automatic) [m]: a hundredth of the shortest shell the
+/// solver accepts (1e-4 m).
+inline constexpr double kMinEdgeLengthM = 1e-6;
+
 /// Throws thaw::UserError (file "", where = option name) for a non-finite or out-of-range option.
 void validate(const MeshOptions& options);
 
@@ -92,6 +100,10 @@ SurfaceCriteria criteria_for(const ShellShape& shape, const MeshOptions& options
 /// flat faces, r = min(facet_size, 2 half-thickness) (Delaunay refinement of a thin plate needs
 /// a spacing of about its thickness; measured). Within ~25 % on the shapes here.
 double estimate_triangles(const ShellShape& shape, const SurfaceCriteria& criteria);
+
+/// Throws thaw::UserError naming edge_length_m (or distance_m when the size bound alone would
+/// fit) when `criteria` would give `shape` more than kMaxTrianglesPerSurface triangles.
+void check_triangle_count(const ShellShape& shape, const SurfaceCriteria& criteria);
 
 /// True when even with no distance bound a slab surface would exceed options.max_triangles
 /// (a plate too thin for its lateral size); such surfaces are recorded, not meshed.

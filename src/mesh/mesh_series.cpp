@@ -260,6 +260,7 @@ std::optional<Task> surface_task(std::size_t step_index, bool inner, const sim::
     const double d = t.criteria.facet_distance_m;
     t.criteria = criteria_for(t.shape, options, std::max(std::min(d, 0.5 * shell), d / 8));
   }
+  check_triangle_count(t.shape, t.criteria);  // before any work: a typo must not run for ever
   s.file = surface_file_name(rec.step, inner);
   s.distance_bound_m = t.criteria.facet_distance_m;
   s.exact_volume_m3 = t.shape.volume();

@@ -107,10 +107,12 @@ void check_medium_declared(const TomlTable& shell, const render::SceneDescriptio
 
 std::string fps_problem(double fps) {
   // Players handle up to a few hundred frames per second; above that a typo is likelier.
-  constexpr double kMaxFps = 240;
-  if (fps > 0 && fps <= kMaxFps) return "";
+  // Below 0.01 (a frame per 100 s) ffmpeg cannot parse the rate: 1e-300 was accepted and
+  // the film stage failed after every frame was rendered.
+  constexpr double kMinFps = 0.01, kMaxFps = 240;
+  if (fps >= kMinFps && fps <= kMaxFps) return "";
   char buf[128];
-  std::snprintf(buf, sizeof buf, "must be greater than 0 and at most %g frames per second (got %g)",
+  std::snprintf(buf, sizeof buf, "must be between %g and %g frames per second (got %g)", kMinFps,
                 kMaxFps, fps);
   return buf;
 }

@@ -29,6 +29,9 @@ declare -A KNOWN=(
   # time_tolerance, on a physical input); 1e-6 K runs in 0.07 s.
   ["simulate.outer_boundary.temperature_c=1e-300"]="physics: step collapse at T_air - T_m < 1e-7 K"
   ["simulate.outer_boundary.temperature_c=1e-9"]="physics: step collapse at T_air - T_m < 1e-7 K"
+  # src/gui (gui): --tab is checked once the window exists, after Qt has printed its own line
+  # ("QStandardPaths: XDG_RUNTIME_DIR not set ..." under the offscreen platform): two lines.
+  ["gui.unknown_tab"]="gui: Qt's line before the --tab error"
 )
 
 # --- helpers -----------------------------------------------------------------------------------
@@ -516,6 +519,229 @@ group_render() {
     sed "/^\[environment\]/,/^\[camera\]/c\\[environment]\nkind = \"latlong\"\nfile = \"$f\"\n\n[camera]" "$base" >"$IN/k.toml"
     bad "render.envmap=$f" "environment\.file" -- "${RK[@]}"
   done
+}
+
+# --- thaw run ----------------------------------------------------------------------------------
+# The tiny end-to-end scenario (4 frames of 64x64): a bad value must be refused before any work;
+# an accepted one is run with --stage simulate (every section is still parsed and checked).
+group_run() {
+  local base=$IN/run.toml v f sec key
+  cp "$SRC/tests/src/pipeline/data/tiny.toml" "$base"
+  local R=("$THAW" run "$base" --out "$OUT/run" -q)
+  for f in $FILES; do
+    file_case "run.$f" "$f\.toml" run "$IN/$f.toml" --out "$OUT/run"
+  done
+  file_case run.dev_zero "/dev/zero.*not a regular file" run /dev/zero --out "$OUT/run"
+  file_case run.missing "no_such\.toml: no such file" run "$IN/no_such.toml" --out "$OUT/run"
+  for v in 5-3 1:10:0 -1 1- - : 3:2 3:2:1 a-b 1.5 99999999999999999999 '' 4 100 9223372036854775807 ' 1' 1-2-3 1:2:3:4; do
+    bad "run.--frames=$v" "--frames" -- "${R[@]}" --frames "$v"
+  done
+  for v in 0:0 0-0 0:9223372036854775807:9223372036854775807 3 0:3:2; do
+    either "run.--frames=$v" "--frames" -- "${R[@]}" --frames "$v" --stage simulate
+  done
+  for v in 0x0 100000x100000 -5x3 1000000x1000000 16384x16384 x 640x 640x480x3 ' 640x480' 1e3x1e3 \
+    0x480 640x0 '' 640*480 9223372036854775807x1 4294967360x1; do
+    bad "run.--size=$v" "--size" -- "${R[@]}" --size "$v"
+  done
+  either run.--size=64X48 "--size" -- "${R[@]}" --size 64X48 --stage simulate
+  for v in 0 -1 65537 1e99 nan 99999999999999999999 '' x 2.5; do
+    bad "run.--spp=$v" "--spp" -- "${R[@]}" --spp "$v"
+  done
+  for v in 0 -1 nan inf -inf 1e308 1e-300 241 '' x; do
+    bad "run.--fps=$v" "--fps" -- "${R[@]}" --fps "$v"
+  done
+  for v in unknown '' SIMULATE 'render ' all; do
+    bad "run.--stage=$v" "--stage" -- "${R[@]}" --stage "$v"
+  done
+  for v in -1 -99999999999 x '' 1e3; do
+    bad "run.--jobs=$v" "--jobs" -- "${R[@]}" --jobs "$v"
+  done
+  either run.--jobs=100000 "--jobs" -- "${R[@]}" --jobs 100000 --stage simulate
+  : >"$IN/a_file"
+  bad run.out_is_file "a_file" -- "$THAW" run "$base" --out "$IN/a_file" -q
+  bad run.out_in_file "a_file" -- "$THAW" run "$base" --out "$IN/a_file/run" -q
+  bad run.out_is_input "run\.toml" -- "$THAW" run "$base" --out "$base" -q
+  bad run.out_empty "--out" -- "$THAW" run "$base" --out "" -q
+  # every key of the sections thaw run adds
+  while IFS=' ' read -r sec key; do
+    for v in '"text"' 'true' '[1, 2]' '{ a = 1 }' 'nan' 'inf' '-inf'; do
+      set_key "$base" "$sec" "$key" "$v" >"$IN/k.toml"
+      bad "run.$sec.$key=$v" "$key" -- "$THAW" run "$IN/k.toml" --out "$OUT/run" -q --stage simulate
+    done
+    for v in '0' '-1' '1e-300' '1e308' '-1e308' '9223372036854775807' '1e9'; do
+      set_key "$base" "$sec" "$key" "$v" >"$IN/k.toml"
+      either "run.$sec.$key=$v" "$key" -- "$THAW" run "$IN/k.toml" --out "$OUT/run" -q --stage simulate
+    done
+  done <<'EOF'
+film fps
+film frames
+film time_lapse
+mesh edge_length_m
+mesh triangles
+mesh angle_deg
+mesh distance_m
+mesh relative_distance
+mesh min_radius_m
+mesh max_triangles
+render.image width
+render.image height
+render.image samples_per_pixel
+render.shell floor_y
+EOF
+  for v in '[1e308, 0.0, 0.0]' '[0.0, 1e9, 0.0]' '[1.0, 2.0]' '[0.0, nan, 0.0]'; do
+    set_key "$base" render.shell center "$v" >"$IN/k.toml"
+    bad "run.render.shell.center=$v" "center" -- "$THAW" run "$IN/k.toml" --out "$OUT/run" -q
+  done
+  for key in ice_medium water_medium outside_medium; do
+    set_key "$base" render.shell "$key" '"unobtainium"' >"$IN/k.toml"
+    bad "run.render.shell.$key" "$key" -- "$THAW" run "$IN/k.toml" --out "$OUT/run" -q
+  done
+  set_key "$base" film time_lapse 60 >"$IN/k.toml"
+  bad run.frames_and_time_lapse "time_lapse|frames" -- "$THAW" run "$IN/k.toml" --out "$OUT/run" -q
+  set_key "$base" film frames 100000 >"$IN/k.toml"
+  either run.frames_gt_steps "frames" -- "$THAW" run "$IN/k.toml" --out "$OUT/run" -q --stage simulate
+  set_key "$base" film frames_format '"tiff"' >"$IN/k.toml"
+  bad run.frames_format "frames_format" -- "$THAW" run "$IN/k.toml" --out "$OUT/run" -q
+  printf '%s\n[render.nonsense]\nx = 1\n' "$(cat "$base")" >"$IN/k.toml"
+  bad run.unknown_render_table "nonsense" -- "$THAW" run "$IN/k.toml" --out "$OUT/run" -q
+  printf '%s\n[film.extra]\nx = 1\n' "$(cat "$base")" >"$IN/k.toml"
+  bad run.unknown_film_table "extra" -- "$THAW" run "$IN/k.toml" --out "$OUT/run" -q
+  set_key "$base" render.camera position '[0.0, 0.012, 0.0]' >"$IN/k.toml"
+  bad run.camera_at_look_at "look_at|position" -- "$THAW" run "$IN/k.toml" --out "$OUT/run" -q
+  set_key "$base" simulation duration_s 0 >"$IN/k.toml"
+  bad run.zero_duration "duration_s" -- "$THAW" run "$IN/k.toml" --out "$OUT/run" -q
+  # a finished run's folder: a bad rerun must leave every file of it as it was
+  "$THAW" run "$base" --out "$IN/done" -q >/dev/null 2>&1
+  local sums
+  sums=$(cd "$IN/done" && find . -type f -exec md5sum {} + | LC_ALL=C sort)
+  bad run.rerun_bad_frames "--frames" -- "$THAW" run "$base" --out "$IN/done" -q --frames 9-1
+  set_key "$base" render.image width 0 >"$IN/k.toml"
+  bad run.rerun_bad_width "width" -- "$THAW" run "$IN/k.toml" --out "$IN/done" -q
+  if [ "$sums" != "$(cd "$IN/done" && find . -type f -exec md5sum {} + | LC_ALL=C sort)" ]; then
+    failed=$((failed + 1))
+    echo "FAIL run.rerun_keeps_output: a refused rerun changed the finished run's files"
+  fi
+}
+
+# --- thaw mesh ---------------------------------------------------------------------------------
+group_mesh() {
+  local sim=$IN/sim v flag
+  "$THAW" simulate "$SRC/tests/src/pipeline/data/tiny.toml" --out "$sim" -q
+  local M=("$THAW" mesh "$sim" -q)
+  bad mesh.missing "no_such" -- "$THAW" mesh "$IN/no_such"
+  bad mesh.empty_dir "interfaces\.csv" -- "$THAW" mesh "$OUT"
+  bad mesh.file "empty\.toml" -- "$THAW" mesh "$IN/empty.toml"
+  bad mesh.empty_name "SIMDIR|must not be empty" -- "$THAW" mesh ""
+  bad mesh.dev_zero "/dev/zero" -- "$THAW" mesh /dev/zero
+  for f in interfaces.csv summary.json; do
+    for kind in empty garbage truncated nan dir; do
+      rm -rf "$IN/s_$kind" && cp -r "$sim" "$IN/s_$kind"
+      case $kind in
+        empty) : >"$IN/s_$kind/$f" ;;
+        garbage) cp "$IN/garbage.toml" "$IN/s_$kind/$f" ;;
+        truncated) head -c 100 "$sim/$f" >"$IN/s_$kind/$f" ;;
+        nan) sed -i 's/0\.0[0-9]*/nan/g' "$IN/s_$kind/$f" ;;
+        dir) rm -f "$IN/s_$kind/$f" && mkdir "$IN/s_$kind/$f" ;;
+      esac
+      bad "mesh.$f.$kind" "$f" -- "$THAW" mesh "$IN/s_$kind" -q
+      rm -rf "$IN/s_$kind"
+    done
+  done
+  for flag in --edge-length --angle --distance --relative-distance --min-radius; do
+    # 1e308 is a valid "no bound" (edge, distances) or "every surface vanished" (min radius)
+    either "mesh.$flag=1e308" "${flag#--}|$flag" -- "${M[@]}" "$flag" 1e308
+    for v in -1 nan inf -1e308 x ''; do
+      bad "mesh.$flag=$v" "${flag#--}|${flag//-/_}|$flag|angle|distance|edge|radius" -- "${M[@]}" "$flag" "$v"
+    done
+  done
+  for flag in --triangles --max-triangles --jobs; do
+    for v in -1 99999999999999999999 1e99 x ''; do
+      bad "mesh.$flag=$v" "${flag#--}|$flag|triangles|jobs" -- "${M[@]}" "$flag" "$v"
+    done
+  done
+  either mesh.--edge-length=1e-9 "edge" -- "${M[@]}" --edge-length 1e-9
+  either mesh.--triangles=1000000000 "triangles" -- "${M[@]}" --triangles 1000000000
+  either mesh.--max-triangles=0 "triangles" -- "${M[@]}" --max-triangles 0 --edge-length 1e-4
+  rm -rf "$sim/mesh"
+  : >"$sim/mesh"
+  bad mesh.output_is_file "mesh" -- "${M[@]}"
+  rm -f "$sim/mesh"
+}
+
+# --- thaw inspect ------------------------------------------------------------------------------
+group_inspect() {
+  local data=$SRC/tests/src/inspect/data f
+  cp "$data/cube.obj" "$IN/cube.obj"
+  cp -r "$data/melt" "$IN/melt"
+  mkdir -p "$IN/dir.png" "$IN/dir.pvd"
+  bad inspect.missing "no_such\.obj" -- "$THAW" inspect "$IN/no_such.obj"
+  bad inspect.empty_name "PATH|must not be empty" -- "$THAW" inspect ""
+  bad inspect.empty_dir "out" -- "$THAW" inspect "$OUT"
+  bad inspect.dev_zero "/dev/zero" -- "$THAW" inspect /dev/zero
+  bad inspect.fifo "fifo\.toml" -- "$THAW" inspect "$IN/fifo.toml"
+  : >"$IN/empty.obj"
+  cp "$IN/garbage.toml" "$IN/garbage.obj"
+  printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3' >"$IN/truncated.obj"
+  printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4\n' >"$IN/negative_index.obj"
+  printf 'v 1e308 1e308 1e308\nv -1e308 0 0\nv 0 1e308 0\nf 1 2 3\n' >"$IN/overflow.obj"
+  for f in empty garbage truncated negative_index; do
+    bad "inspect.$f" "$f\.obj" -- "$THAW" inspect "$IN/$f.obj"
+  done
+  either inspect.overflow "overflow\.obj" -- "$THAW" inspect "$IN/overflow.obj"
+  bad inspect.step_on_obj "--step" -- "$THAW" inspect "$IN/cube.obj" --step 1
+  bad inspect.plot_on_obj "--plot" -- "$THAW" inspect "$IN/cube.obj" --plot "$OUT/p.png"
+  for v in -1 99999999999999999999 x ''; do
+    bad "inspect.--step=$v" "--step" -- "$THAW" inspect "$IN/melt" -q --step "$v" --screenshot "$OUT/s.png"
+  done
+  bad inspect.step_beyond "--step|step" -- "$THAW" inspect "$IN/melt" -q --step 99999 --screenshot "$OUT/s.png"
+  # a missing folder for a picture or a .pvd is created (documented): only names are refused
+  for o in x.jpg x "$IN/cube.obj/x.png" "$OUT" "$IN/dir.png" "$IN/melt/interfaces.csv"; do
+    bad "inspect.--screenshot=$o" "screenshot|x\.jpg|png|such|out|cube|csv" -- "$THAW" inspect "$IN/melt" -q --screenshot "$o"
+    bad "inspect.--plot=$o" "plot|x\.jpg|png|such|out|cube|csv" -- "$THAW" inspect "$IN/melt" -q --plot "$o"
+  done
+  for o in x.vtk x "$IN/cube.obj/x.pvd" "$OUT" "$IN/melt/interfaces.csv" "$IN/dir.pvd"; do
+    bad "inspect.--pvd=$o" "pvd|x\.vtk|such|out|cube|interfaces" -- "$THAW" inspect "$IN/melt" -q --pvd "$o"
+  done
+  rm -rf "$IN/m2" && cp -r "$IN/melt" "$IN/m2" && cp "$IN/garbage.toml" "$IN/m2/mesh/manifest.json"
+  bad inspect.manifest_garbage "manifest\.json" -- "$THAW" inspect "$IN/m2"
+  rm -rf "$IN/m2" && cp -r "$IN/melt" "$IN/m2" && rm -f "$IN"/m2/mesh/*inner*.obj
+  bad inspect.mesh_file_missing "m2|obj" -- "$THAW" inspect "$IN/m2"
+  rm -rf "$IN/m2"
+}
+
+# --- thaw materials ----------------------------------------------------------------------------
+group_materials() {
+  local v
+  for v in water-4c '' ' water-0c' WATER-0C ../../etc/passwd "$(printf 'a\tb')"; do
+    bad "materials.name=$v" "medium|name|must not be empty" -- "$THAW" materials "$v"
+  done
+  for v in nan inf -inf -1 0 379.9 780.1 1e308 x ''; do
+    bad "materials.--wavelength-nm=$v" "--wavelength-nm" -- "$THAW" materials water-0c --wavelength-nm "$v"
+  done
+  bad materials.wavelength_without_name "--wavelength-nm|name|medium" -- "$THAW" materials --wavelength-nm 500
+}
+
+# --- thaw gui --screenshot (bad files only; QT_QPA_PLATFORM=offscreen) -------------------------
+group_gui() {
+  export QT_QPA_PLATFORM=offscreen
+  local f base=$IN/run.toml
+  cp "$SRC/tests/src/pipeline/data/tiny.toml" "$base"
+  local G=(--screenshot "$OUT/shot.png")
+  for f in $FILES; do
+    bad "gui.$f" "$f\.toml" -- "$THAW" gui "$IN/$f.toml" "${G[@]}"
+  done
+  bad gui.dev_zero "/dev/zero" -- "$THAW" gui /dev/zero "${G[@]}"
+  bad gui.missing "no_such\.toml" -- "$THAW" gui "$IN/no_such.toml" "${G[@]}"
+  set_key "$base" simulation duration_s nan >"$IN/k.toml"
+  bad gui.nan_key "duration_s" -- "$THAW" gui "$IN/k.toml" "${G[@]}"
+  set_key "$base" render.image width 0 >"$IN/k.toml"
+  bad gui.bad_render_key "width" -- "$THAW" gui "$IN/k.toml" "${G[@]}"
+  printf '%s\n[nonsense]\nx = 1\n' "$(cat "$base")" >"$IN/k.toml"
+  bad gui.unknown_section "nonsense" -- "$THAW" gui "$IN/k.toml" "${G[@]}"
+  bad gui.unknown_tab "--tab|tab" -- "$THAW" gui "$base" "${G[@]}" --tab nonsense
+  bad gui.screenshot_missing_dir "no/such|screenshot" -- "$THAW" gui "$base" --screenshot "$OUT/no/such/x.png"
+  bad gui.screenshot_bad_ext "x\.jpg|screenshot" -- "$THAW" gui "$base" --screenshot "$OUT/x.jpg"
+  bad gui.screenshot_empty "--screenshot" -- "$THAW" gui "$base" --screenshot ""
 }
 
 group_"$GROUP"

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+
 #include <string>
 
 namespace thaw {
@@ -37,6 +39,19 @@ TEST(Progress, FinalLinesSayDoneOrWhyTheWorkStoppedShort) {
   EXPECT_NE(err.find("[3/5] render: 41/41 done in "), std::string::npos) << err;
   EXPECT_NE(err.find("[1/5] simulate: 51/80 steps: the ice is gone ("), std::string::npos) << err;
   EXPECT_EQ(err.find("51/80 done"), std::string::npos) << err;
+}
+
+// Found by the bad-input sweep: `thaw inspect` on a folder whose mesh file is missing printed
+// "inspect: 0/3 done in 0.00 s" before its error line (the destructor's final line while the
+// error unwound): two lines for one error, and a false "done".
+TEST(Progress, NoFinalLineWhileAnErrorUnwinds) {
+  ::testing::internal::CaptureStderr();
+  try {
+    ProgressReporter p("inspect", 3);
+    throw std::runtime_error("mesh file missing");
+  } catch (const std::runtime_error&) {
+  }
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
 }
 
 }  // namespace

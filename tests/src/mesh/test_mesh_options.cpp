@@ -35,6 +35,42 @@ TEST(MeshOptions, ValidateRejectsOutOfRange) {
   rejects([](MeshOptions& o) { o.relative_error_bound = 0.1; });
 }
 
+// Found by the bad-input sweep (tests/src/cli/bad_input_sweep.sh): --edge-length 1e-6 on a
+// 1.5 cm shell (about 5e9 triangles) ran for minutes (the budget relaxes only the distance bound),
+// and edge_length_m = 1e-300 was reported against render.shell.center by thaw run.
+TEST(MeshOptions, AnEdgeOrDistanceAskingForTooManyTrianglesIsRefused) {
+  MeshOptions tiny_edge;
+  tiny_edge.edge_length_m = 1e-300;
+  try {
+    validate(tiny_edge);
+    ADD_FAILURE() << "1e-300 accepted";
+  } catch (const UserError& e) {
+    EXPECT_EQ(e.where(), "edge_length_m");
+    EXPECT_EQ(e.problem(), "must be 0 (automatic) or at least 1e-06 m, got 1e-300");
+  }
+  const ShellShape ball = make(sim::Geometry::sphere, 0.015, 0);
+  auto refused_key = [&](const MeshOptions& o) -> std::string {
+    try {
+      check_triangle_count(ball, criteria_for(ball, o));
+    } catch (const UserError& e) {
+      return e.where();
+    }
+    return "";
+  };
+  MeshOptions edge;
+  edge.edge_length_m = 1e-6;  // 1.32 A / (e / sqrt 3)^2 = 1.1e10 triangles
+  EXPECT_EQ(refused_key(edge), "edge_length_m");
+  MeshOptions distance;
+  distance.max_triangles = 0;  // no budget to relax it
+  distance.distance_m = 1e-12;
+  EXPECT_EQ(refused_key(distance), "distance_m");
+  // The defaults, and an edge giving about 1e6 triangles, pass.
+  EXPECT_EQ(refused_key(MeshOptions{}), "");
+  MeshOptions fine;
+  fine.edge_length_m = 1e-4;
+  EXPECT_EQ(refused_key(fine), "");
+}
+
 TEST(MeshOptions, DefaultCriteriaOfA3cmSphere) {
   const SurfaceCriteria c = criteria_for(make(sim::Geometry::sphere, 0.03, 0), MeshOptions{});
   EXPECT_DOUBLE_EQ(c.facet_distance_m, 3e-5);
