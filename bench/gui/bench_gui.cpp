@@ -19,7 +19,9 @@
 // VTK, so the 3D view is not drawn there and the scrub figures would mean nothing.
 // Usage: bench_gui [EDITS=10] [objects|nopreload]. Prints one line per figure; `objects` stops
 // after start-up and the new objects; `nopreload`: without the OpenGL driver's preload.
+#include <sys/syscall.h>
 #include <time.h>
+#include <unistd.h>
 
 #include <QApplication>
 #include <QElapsedTimer>
@@ -27,12 +29,18 @@
 #include <QSlider>
 #include <QTimer>
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -112,6 +120,71 @@ void print_stats(const char* what, std::vector<double> v, const char* unit) {
               unit);
 }
 
+/// What the GUI thread is doing while its event loop is late: a thread that every 5 ms, when the
+/// 5 ms ticker has not run for 30 ms, samples the GUI thread's state from /proc (its scheduler
+/// state, the kernel function it sleeps in and its system call with the first argument's count
+/// of poll descriptors: a poll on one descriptor is Qt's xcb waiting for the X server's reply, a
+/// futex a lock another thread holds). Counts per kind, printed at the end (diagnosis of blocks
+/// that are neither the GUI thread's CPU nor its waits for a core).
+class LateLoopSampler {
+ public:
+  LateLoopSampler() : m_tid(static_cast<long>(::syscall(SYS_gettid))) {
+    tick();
+    m_thread = std::thread([this] { run(); });
+  }
+  ~LateLoopSampler() {
+    m_stop = true;
+    m_thread.join();
+  }
+  /// The ticker ran (GUI thread).
+  void tick() { m_last_tick_ns = now_ns(); }
+  std::map<std::string, int> samples() {
+    std::lock_guard<std::mutex> lock(m_mutex);
+    return m_samples;
+  }
+
+ private:
+  static long long now_ns() {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(
+               std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+  }
+  std::string read(const char* what) const {
+    std::ifstream in("/proc/self/task/" + std::to_string(m_tid) + "/" + what);
+    std::string text;
+    std::getline(in, text);
+    return text;
+  }
+  void run() {
+    while (!m_stop) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      if (now_ns() - m_last_tick_ns < 30'000'000) continue;
+      const std::string stat = read("stat");
+      const std::size_t paren = stat.rfind(')');
+      const std::string state = paren + 2 < stat.size() ? stat.substr(paren + 2, 1) : "?";
+      std::string syscall = read("syscall");
+      // "number arg1 arg2 ...": keep the number and, for poll (7) and ppoll (271), the count
+      if (const std::size_t sp = syscall.find(' '); sp != std::string::npos) {
+        const std::string number = syscall.substr(0, sp);
+        std::string count;
+        if (number == "7" || number == "271") {
+          const std::size_t a = syscall.find(' ', sp + 1), b = syscall.find(' ', a + 1);
+          if (a != std::string::npos) count = " nfds " + syscall.substr(a + 1, b - a - 1);
+        }
+        syscall = "syscall " + number + count;
+      }
+      std::lock_guard<std::mutex> lock(m_mutex);
+      ++m_samples[state + " " + read("wchan") + " " + syscall];
+    }
+  }
+  long m_tid;
+  std::atomic<long long> m_last_tick_ns{0};
+  std::atomic<bool> m_stop{false};
+  std::mutex m_mutex;
+  std::map<std::string, int> m_samples;
+  std::thread m_thread;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -152,6 +225,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> long_gaps;
   QTimer ticker;
   ticker.setTimerType(Qt::PreciseTimer);
+  LateLoopSampler late;
   QObject::connect(&ticker, &QTimer::timeout, [&] {
     const qint64 now = clock.elapsed();
     const double cpu = thread_cpu_ms(), wait = thread_runqueue_wait_ms();
@@ -164,6 +238,7 @@ int main(int argc, char** argv) {
           " ms, waiting for a core " + std::to_string(static_cast<int>(wait - last_wait_ms)) +
           " ms (simulation: " + sim_progress->text().toStdString() + ")");
     last_tick = now;
+    late.tick();
     last_cpu_ms = cpu;
     last_wait_ms = wait;
   });
@@ -330,5 +405,8 @@ int main(int argc, char** argv) {
       startup.longest_own_ms, edits.longest_own_ms, orbits.longest_own_ms,
       simulation.longest_own_ms, scrubbing.longest_own_ms);
   for (const std::string& g : long_gaps) std::printf("  GUI thread blocked: %s\n", g.c_str());
+  for (const auto& [what, n] : late.samples())
+    std::printf("  GUI thread while its loop was 30+ ms late (5 ms samples): %d x %s\n", n,
+                what.c_str());
   return 0;
 }
