@@ -23,7 +23,7 @@ for run in $(seq 1 "$runs"); do
     for state in empty warm; do
       echo "== run $run, $which, $state shader cache ($(date -u +%T), load $(cut -d' ' -f1 /proc/loadavg))"
       MESA_SHADER_CACHE_DIR="$cache" "${bench[$which]}" "$edits" 2>/dev/null |
-        grep -E "longest GUI-thread block|less its waits|most GUI-thread CPU|frame shown|320x240 image shown|blocked|view complete" ||
+        grep -E "longest GUI-thread block|less its waits|most GUI-thread CPU|frame shown|320x240 image shown|blocked|view complete|late" ||
         echo "   (bench_gui failed)"
     done
   done

@@ -801,6 +801,9 @@ void MainWindow::camera_from_view() {
 }
 
 void MainWindow::on_shell_ready() {
+  // A run's step shown meanwhile (the slider, or --simulate finishing before the initial shell
+  // was meshed) stays: the view shows the initial shell only without one.
+  if (m_run && m_step >= 0) return;
   if (auto shell = m_renderer->initial_shell()) {
     m_view->show_step(*shell, shell_offset_of(*shell), true);
     if (!shell->note.empty()) m_status->setText(QString::fromStdString(shell->note));

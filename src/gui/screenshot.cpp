@@ -24,8 +24,9 @@ void take_screenshot_when_ready(MainWindow& window, const std::filesystem::path&
                               !window.renderer().busy();
     const bool invalid = !window.check().ok();
     if (window.simulation_running()) return;
-    const bool view_done =
-        (window.renderer().initial_shell() != nullptr || invalid) && !window.shell_view().drawing();
+    // the view's latest frame received, and drawn at rest (not quick: a slider move settles)
+    const bool view_done = (window.renderer().initial_shell() != nullptr || invalid) &&
+                           !window.shell_view().drawing() && !window.shell_view().quick();
     if (!(preview_done || invalid) || !view_done) {
       if (clock->elapsed() > timeout_s * 1000) {
         poll->stop();

@@ -42,8 +42,7 @@ ShellView::ShellView(QWidget* parent) : QWidget(parent) {
   // its plain background; the rest of the window works.
   if (inspect::display_available()) {
     m_render = new ViewRenderThread(this);
-    connect(m_render, &ViewRenderThread::frameReady, this, &ShellView::on_frame,
-            Qt::QueuedConnection);
+    connect(m_render, &ViewRenderThread::frameReady, this, &ShellView::on_frame);
   }
   m_settle_timer = new QTimer(this);
   m_settle_timer->setSingleShot(true);

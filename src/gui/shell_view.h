@@ -76,6 +76,8 @@ class ShellView : public QWidget {
   long frames_shown() const { return m_frames_shown; }
   /// Triangles drawn (both surfaces), for tests.
   long triangles() const { return m_triangles; }
+  /// Whether the view is drawn quick (set_quick) now.
+  bool quick() const { return m_quick; }
   /// Whether the outer surface is drawn with its triangle edges (false while quick).
   bool edges_shown() const { return m_outer && !m_quick; }
   /// Whether the view waits for the frame of its latest request (false without a display, where

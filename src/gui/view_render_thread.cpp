@@ -12,9 +12,16 @@
 #include <vtkTexture.h>
 #include <vtkUnsignedCharArray.h>
 
+#include <sys/eventfd.h>
+#include <unistd.h>
+
+#include <QSocketNotifier>
+#include <cstdint>
 #include <cstring>
+#include <memory>
 #include <utility>
 
+#include "src/common/check.h"
 #include "src/gui/preview_renderer.h"
 
 namespace thaw::gui {
@@ -188,30 +195,36 @@ void ViewRenderThread::Scene::release_all() {
 }
 
 ViewRenderThread::ViewRenderThread(QObject* parent) : QObject(parent) {
+  m_event_fd = ::eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
+  THAW_CHECK(m_event_fd >= 0, "eventfd for the 3D view's frames");
+  m_notifier = new QSocketNotifier(m_event_fd, QSocketNotifier::Read, this);
+  connect(m_notifier, &QSocketNotifier::activated, this, [this] { take_frame(); });
   m_thread = std::thread([this] { run(); });
 }
 
 ViewRenderThread::~ViewRenderThread() {
-  {
-    std::lock_guard<std::mutex> lock(m_mutex);
-    m_stop = true;
-    m_pending.reset();
-  }
-  m_wake.notify_one();
+  m_stop = true;
+  delete m_pending.exchange(new ViewFrame());  // wakes the thread
+  m_pending.notify_one();
   m_thread.join();
+  delete m_pending.exchange(nullptr);
+  delete m_drawn_frame.exchange(nullptr);
+  delete m_notifier;
+  ::close(m_event_fd);
 }
 
 void ViewRenderThread::request(ViewFrame frame) {
-  {
-    std::lock_guard<std::mutex> lock(m_mutex);
-    m_pending = std::move(frame);
-  }
-  m_wake.notify_one();
+  // The request the thread had not started (if any) is dropped here: its actors are either drawn
+  // before (then the thread holds them too) or never drawn (no OpenGL resources to release).
+  delete m_pending.exchange(new ViewFrame(std::move(frame)));
+  m_pending.notify_one();
 }
 
-long ViewRenderThread::frames_drawn() const {
-  std::lock_guard<std::mutex> lock(m_mutex);
-  return m_drawn;
+void ViewRenderThread::take_frame() {
+  std::uint64_t count = 0;
+  (void)!::read(m_event_fd, &count, sizeof count);
+  const std::unique_ptr<Drawn> drawn(m_drawn_frame.exchange(nullptr));
+  if (drawn) emit frameReady(drawn->image, drawn->serial);
 }
 
 void ViewRenderThread::run() {
@@ -226,25 +239,20 @@ void ViewRenderThread::run() {
   scene.make(64, 64);
   scene.window->Render();
   while (true) {
-    ViewFrame frame;
-    {
-      std::unique_lock<std::mutex> lock(m_mutex);
-      m_wake.wait(lock, [this] { return m_stop || m_pending; });
-      if (m_stop) break;
-      frame = std::move(*m_pending);
-      m_pending.reset();
-    }
-    if (frame.width <= 0 || frame.height <= 0) continue;
-    scene.apply(frame);
-    const QImage image = scene.draw(frame.width, frame.height);
-    const auto serial = static_cast<quint64>(frame.serial);
-    frame = {};  // the actors it held: the sweep below may release them
+    m_pending.wait(nullptr);
+    if (m_stop) break;
+    std::unique_ptr<ViewFrame> frame(m_pending.exchange(nullptr));
+    if (!frame || frame->width <= 0 || frame->height <= 0) continue;
+    scene.apply(*frame);
+    const QImage image = scene.draw(frame->width, frame->height);
+    const auto serial = static_cast<quint64>(frame->serial);
+    frame.reset();  // the actors it held: the sweep below may release them
     scene.sweep();
-    {
-      std::lock_guard<std::mutex> lock(m_mutex);
-      ++m_drawn;
-    }
-    emit frameReady(image, serial);
+    ++m_drawn;
+    // handed over: a frame the GUI thread had not taken yet is replaced
+    delete m_drawn_frame.exchange(new Drawn{image, serial});
+    const std::uint64_t one = 1;
+    (void)!::write(m_event_fd, &one, sizeof one);
   }
   scene.release_all();
 }

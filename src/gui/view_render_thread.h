@@ -15,10 +15,8 @@
 #include <QObject>
 
 #include <array>
-#include <condition_variable>
+#include <atomic>
 #include <cstdint>
-#include <mutex>
-#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -27,6 +25,7 @@
 
 class vtkActor;
 class vtkTexture;
+class QSocketNotifier;
 
 namespace thaw::gui {
 
@@ -63,31 +62,44 @@ constexpr int kViewNice = 5;
 class ViewRenderThread : public QObject {
   Q_OBJECT
  public:
-  /// Starts the thread, which makes its render window and OpenGL context at once.
+  /// Starts the thread, which makes its render window and OpenGL context at once. Make it on the
+  /// GUI thread: frameReady is emitted there.
   explicit ViewRenderThread(QObject* parent = nullptr);
   /// Drops a request not started, waits for the draw in progress, releases every OpenGL resource
   /// on the thread and joins it.
   ~ViewRenderThread() override;
   ViewRenderThread(const ViewRenderThread&) = delete;
   ViewRenderThread& operator=(const ViewRenderThread&) = delete;
-  /// Requests `frame`, replacing a request the thread has not started yet.
+  /// Requests `frame`, replacing a request the thread has not started yet. Never waits for the
+  /// render thread (no lock is shared with it: a lock it held while waiting for a core under load
+  /// would stop the GUI thread too).
   void request(ViewFrame frame);
   /// Frames drawn so far (any thread).
-  long frames_drawn() const;
+  long frames_drawn() const { return m_drawn; }
 
  signals:
-  /// The frame of request `serial` drawn (emitted on the render thread: queued to the GUI
-  /// thread's receivers). Rows top-down, as Qt's.
+  /// The frame of request `serial` drawn (emitted on the GUI thread when the render thread
+  /// hands it over; a newer frame handed over meanwhile replaces it). Rows top-down, as Qt's.
   void frameReady(QImage image, quint64 serial);
 
  private:
   struct Scene;  // the thread's VTK objects
+  struct Drawn {
+    QImage image;
+    quint64 serial;
+  };
   void run();
-  mutable std::mutex m_mutex;
-  std::condition_variable m_wake;
-  std::optional<ViewFrame> m_pending;
-  bool m_stop = false;
-  long m_drawn = 0;
+  /// The GUI thread: takes the frame the render thread handed over (its eventfd was written).
+  void take_frame();
+  // Both ways without a lock: the latest request and the latest frame are single slots swapped
+  // atomically; the render thread sleeps on its slot (a futex wait, C++20 atomic wait), the GUI
+  // thread's event loop is woken by an eventfd (a system call, not Qt's posted-event lock).
+  std::atomic<ViewFrame*> m_pending{nullptr};
+  std::atomic<Drawn*> m_drawn_frame{nullptr};
+  std::atomic<bool> m_stop{false};
+  std::atomic<long> m_drawn{0};
+  int m_event_fd = -1;
+  QSocketNotifier* m_notifier = nullptr;
   std::thread m_thread;
 };
 
