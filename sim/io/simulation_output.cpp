@@ -127,4 +127,18 @@ void write_simulation_outputs(const std::filesystem::path& dir, const Simulation
   write_file_atomic(dir / "summary.json", j.dump(2) + "\n");
 }
 
+std::optional<std::string> foreign_entry(const std::filesystem::path& dir) {
+  static const char* const kOwn[] = {"interfaces.csv", "summary.json", "profiles",
+                                     "fields",         "mesh",         "mesh.partial"};
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) return std::nullopt;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    bool own = name.find(".tmp-") != std::string::npos;
+    for (const char* n : kOwn) own = own || name == n;
+    if (!own) return name;
+  }
+  return std::nullopt;
+}
+
 }  // namespace thaw::sim

@@ -4,6 +4,8 @@
 // for the 1D geometries or fields/step_NNNNNN.grid for the grid ones. The sim's file-format
 // layer: the solver core never sees these formats.
 #include <filesystem>
+#include <optional>
+#include <string>
 
 #include "sim/simulate.h"
 
@@ -12,5 +14,11 @@ namespace thaw::sim {
 /// Writes interfaces.csv, profiles/step_NNNNNN.csv and summary.json into `dir` (which must
 /// exist; use a thaw::StagingDirectory for an all-or-nothing result folder).
 void write_simulation_outputs(const std::filesystem::path& dir, const SimulationResult& result);
+
+/// The first entry of the existing folder `dir` that no thaw command writes into a result folder
+/// (interfaces.csv, summary.json, profiles/, fields/, and thaw mesh's mesh/, mesh.partial/ and
+/// its temporaries *.tmp-*), or nullopt (also for a missing or empty folder). A result folder is
+/// replaced as a whole, so `thaw simulate --out .` in a folder of one's own would delete it.
+std::optional<std::string> foreign_entry(const std::filesystem::path& dir);
 
 }  // namespace thaw::sim

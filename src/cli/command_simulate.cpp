@@ -37,6 +37,11 @@ void run_simulate(const SimulateArgs& a) {
   const std::filesystem::path out(a.out);
   if (std::filesystem::exists(out) && !std::filesystem::is_directory(out))
     throw UserError(a.out, "--out", "exists and is not a directory");
+  if (const auto foreign = sim::foreign_entry(out))
+    throw UserError(a.out, "--out",
+                    "holds '" + *foreign +
+                        "', which thaw did not write; the result folder is replaced as a whole, "
+                        "so give a new or empty folder (or a previous result folder)");
   StagingDirectory staging(out);
   sim::SimulationResult result;
   {

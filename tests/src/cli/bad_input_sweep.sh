@@ -127,6 +127,10 @@ group_simulate() {
   bad simulate.out_in_file "a_file" -- "$THAW" simulate --out "$IN/a_file/sim"
   bad simulate.out_is_input "scenario\.toml" -- "$THAW" simulate "$base" --out "$base"
   bad simulate.out_empty "--out|out" -- "$THAW" simulate --out ""
+  # a folder of one's own: it would be replaced as a whole
+  mkdir -p "$IN/mine" && echo "precious" >"$IN/mine/notes.txt"
+  bad simulate.out_is_users_folder "mine.*notes\.txt" -- "$THAW" simulate --out "$IN/mine" -q
+  [ -f "$IN/mine/notes.txt" ] || { failed=$((failed + 1)); echo "FAIL simulate.out_is_users_folder: notes.txt deleted"; }
   # every key of the default scenario: wrong types and non-finite numbers are errors naming it,
   # extreme numbers either run or are refused naming it (never a crash, a hang or exit 3)
   local sec key
