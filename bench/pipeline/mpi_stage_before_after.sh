@@ -8,7 +8,7 @@
 # inspect stage's from thaw's summary (10 ms). For the mesh stage also the CPU seconds of the farm
 # phases' items (run_items/mesh/costs_rank_NNN: what the work cost inside each rank, whatever the
 # waiting). Efficiency = A / (2 B) from the median wall times, and (mesh) from the CPU records
-# (A's items against the busiest rank's, phase by phase; bench/pipeline/mpi_scaling.sh explains
+# (the surfaces' items: A's against the busiest rank's; bench/pipeline/mpi_scaling.sh explains
 # that estimate). The stage's outputs of all four are checked byte-identical.
 # Usage: [STAGE=mesh|inspect] [RUNS=9] bench/pipeline/mpi_stage_before_after.sh OLD_BUILD NEW_BUILD
 set -euo pipefail
@@ -25,10 +25,20 @@ echo "load before: $(cut -d' ' -f1-3 /proc/loadavg) ($(date -u +%H:%M) UTC); sta
 "$new/thaw" run --out "$work/base" --stage simulate -q
 [ "$stage" = inspect ] && "$new/thaw" run --out "$work/base" --stage mesh -q
 
-critical_cpu() {  # folder: sum over farm phases of the busiest rank's item CPU seconds
+# The surfaces' farm phase (the last: a build whose ranks each make the geodesic form farm no
+# forms) and its busiest rank's item CPU seconds.
+critical_cpu() {  # folder
   [ "$stage" = mesh ] || { echo 0; return; }
   cat "$1/run_items/mesh/"costs_rank_* | tr ';' '\n' |
-    awk '{ k = $2; if ($10 > m[k]) m[k] = $10 } END { for (k in m) s += m[k]; printf "%.4f", s }'
+    awk '{ if ($2 > k) { k = $2; m = 0 } if ($2 == k && $10 > m) m = $10 } END { printf "%.4f", m }'
+}
+# The surfaces' CPU per item over all ranks [ms] (a build that records items_here; else 0): what
+# a surface costs in that configuration, whatever the balance between the ranks.
+item_ms() {  # folder
+  [ "$stage" = mesh ] || { echo 0; return; }
+  cat "$1/run_items/mesh/"costs_rank_* | tr ';' '\n' |
+    awk '{ if ($2 > k) { k = $2; c = 0; n = 0 } if ($2 == k) { c += $10; n += $12 } }
+         END { printf "%.3f", n > 0 ? 1000 * c / n : 0 }'
 }
 wall() {  # folder log: the stage's wall seconds
   if [ "$stage" = mesh ]; then cat "$1/run_items/mesh/stage_s"; else awk -v s="$stage" '$1 == s { print $2 }' "$2"; fi
@@ -43,7 +53,8 @@ one() {  # build config(A|B) name: one stage; appends "wall cpu" to $work/NAME.t
   cp -r "$work/base" "$work/$name"
   [ "$stage" = mesh ] && rm -rf "$work/$name/sim/mesh"
   "${pre[@]}" "$build/thaw" run --out "$work/$name" --stage "$stage" -j 1 > "$work/$name.log" 2>&1
-  echo "$(wall "$work/$name" "$work/$name.log") $(critical_cpu "$work/$name")" >> "$work/$name.txt"
+  echo "$(wall "$work/$name" "$work/$name.log") $(critical_cpu "$work/$name") $(item_ms "$work/$name")" \
+    >> "$work/$name.txt"
 }
 names=(old_A old_B new_A new_B)
 for i in $(seq "$runs"); do
@@ -67,7 +78,7 @@ col() { awk -v f="$2" '{ print $f }' "$work/$1.txt"; }
 echo "$stage outputs byte-identical in all $runs runs (old and new, 1 process and 2 ranks)"
 for name in "${names[@]}"; do
   line="$name wall s: $(col "$name" 1 | xargs) (median $(col "$name" 1 | median))"
-  [ "$stage" = mesh ] && line+="; item CPU s (B: busiest rank per phase): median $(col "$name" 2 | median)"
+  [ "$stage" = mesh ] && line+="; surfaces item CPU s (B: busiest rank): median $(col "$name" 2 | median), per surface $(col "$name" 3 | median) ms"
   echo "$line"
 done
 for b in old new; do

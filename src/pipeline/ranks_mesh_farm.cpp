@@ -41,9 +41,10 @@ std::string cost_note(const std::vector<FarmCost>& costs) {
   std::string note;
   for (std::size_t k = 0; k < costs.size(); ++k) {
     char buf[128];
-    std::snprintf(buf, sizeof buf, "%sfarm %zu items %ld cpu_s %.4f wall_s %.4f work_cpu_s %.4f",
+    std::snprintf(buf, sizeof buf,
+                  "%sfarm %zu items %ld cpu_s %.4f wall_s %.4f work_cpu_s %.4f items_here %ld",
                   k ? "; " : "", k, costs[k].items, costs[k].cpu_s, costs[k].wall_s,
-                  costs[k].work_cpu_s);
+                  costs[k].work_cpu_s, costs[k].items_here);
     note += buf;
   }
   return note;
@@ -56,18 +57,21 @@ std::vector<std::string> RanksMeshFarm::run(long n, int threads,
   const auto wall0 = std::chrono::steady_clock::now();
   std::mutex mutex;
   double work_cpu = 0;
+  long items_here = 0;
   const auto timed = [&](long k) {
     const double t0 = cpu_s(CLOCK_THREAD_CPUTIME_ID);
     std::string text = work(k);
     const double spent = cpu_s(CLOCK_THREAD_CPUTIME_ID) - t0;
     const std::lock_guard<std::mutex> lock(mutex);
     work_cpu += spent;
+    ++items_here;
     return text;
   };
   std::vector<std::string> results = run_on_ranks(n, threads, timed, done);
   m_costs.push_back(
       {n, cpu_s(CLOCK_PROCESS_CPUTIME_ID) - cpu0,
-       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count(), work_cpu});
+       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count(), work_cpu,
+       items_here});
   return results;
 }
 

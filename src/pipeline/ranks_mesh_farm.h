@@ -28,6 +28,8 @@ struct FarmCost {
   /// CPU seconds of this process's threads inside the items' work (no waiting, polling or
   /// hand-out): what the phase's items cost here, whatever the load.
   double work_cpu_s = 0;
+  /// Items worked on by this process (with work_cpu_s: the CPU an item cost in this rank).
+  long items_here = 0;
 };
 
 class RanksMeshFarm final : public mesh::MeshFarm {
@@ -49,7 +51,8 @@ class RanksMeshFarm final : public mesh::MeshFarm {
   std::vector<FarmCost> m_costs;
 };
 
-/// costs as one line: "farm 0 items 1 cpu_s 0.1234 wall_s 0.1300; farm 1 items ...".
+/// costs as one line: "farm 0 items 1 cpu_s 0.1234 wall_s 0.1300 work_cpu_s 0.1200 items_here 1;
+/// farm 1 items ...".
 std::string cost_note(const std::vector<FarmCost>& costs);
 
 }  // namespace thaw::pipeline

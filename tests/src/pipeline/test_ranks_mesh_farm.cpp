@@ -93,9 +93,12 @@ TEST(RanksMeshFarm, EveryRunsCostIsRecordedPerPhase) {
   EXPECT_GE(farm.costs()[0].work_cpu_s, 0.03);
   EXPECT_GE(farm.costs()[0].cpu_s, farm.costs()[0].work_cpu_s);
   EXPECT_EQ(farm.costs()[1].work_cpu_s, 0.0);
-  EXPECT_EQ(cost_note({{3, 0.5, 0.75, 0.25}, {1, 1, 2, 0.125}}),
-            "farm 0 items 3 cpu_s 0.5000 wall_s 0.7500 work_cpu_s 0.2500; "
-            "farm 1 items 1 cpu_s 1.0000 wall_s 2.0000 work_cpu_s 0.1250");
+  // This fake's ranks run every chunk here: all 3 items worked on in this process.
+  EXPECT_EQ(farm.costs()[0].items_here, 3);
+  EXPECT_EQ(farm.costs()[1].items_here, 0);
+  EXPECT_EQ(cost_note({{3, 0.5, 0.75, 0.25, 2}, {1, 1, 2, 0.125, 0}}),
+            "farm 0 items 3 cpu_s 0.5000 wall_s 0.7500 work_cpu_s 0.2500 items_here 2; "
+            "farm 1 items 1 cpu_s 1.0000 wall_s 2.0000 work_cpu_s 0.1250 items_here 0");
 }
 
 TEST(RanksMeshFarm, OneRankIsThisProcessesThreads) {
