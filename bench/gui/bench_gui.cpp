@@ -155,6 +155,19 @@ class LateLoopSampler {
     std::getline(in, text);
     return text;
   }
+  /// The file (or [heap], [stack:...], "anonymous") of the mapping holding `address`.
+  static std::string mapping_of(unsigned long long address) {
+    std::ifstream maps("/proc/self/maps");
+    std::string line;
+    while (std::getline(maps, line)) {
+      unsigned long long from = 0, to = 0;
+      if (std::sscanf(line.c_str(), "%llx-%llx", &from, &to) != 2) continue;
+      if (address < from || address >= to) continue;
+      const std::size_t slash = line.find_first_of("/[");
+      return slash == std::string::npos ? "anonymous" : line.substr(slash);
+    }
+    return "unmapped";
+  }
   void run() {
     while (!m_stop) {
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -170,6 +183,13 @@ class LateLoopSampler {
         if (number == "7" || number == "271") {
           const std::size_t a = syscall.find(' ', sp + 1), b = syscall.find(' ', a + 1);
           if (a != std::string::npos) count = " nfds " + syscall.substr(a + 1, b - a - 1);
+        }
+        // for a futex (202), the mapping its word lies in (a library's data: glibc's malloc
+        // arena or the dynamic loader's lock; [heap] or an anonymous mapping: a lock of an
+        // object, or another thread's malloc arena)
+        if (number == "202") {
+          const std::size_t a = syscall.find(' ', sp + 1);
+          count = " in " + mapping_of(std::stoull(syscall.substr(sp + 1, a - sp - 1), nullptr, 16));
         }
         syscall = "syscall " + number + count;
       }
