@@ -38,7 +38,7 @@ item_ms() {  # folder
   [ "$stage" = mesh ] || { echo 0; return; }
   cat "$1/run_items/mesh/"costs_rank_* | tr ';' '\n' |
     awk '{ if ($2 > k) { k = $2; c = 0; n = 0 } if ($2 == k) { c += $10; n += $12 } }
-         END { printf "%.3f", n > 0 ? 1000 * c / n : 0 }'
+         END { printf "%.3f", (n > 0 ? 1000 * c / n : 0) }'
 }
 wall() {  # folder log: the stage's wall seconds
   if [ "$stage" = mesh ]; then cat "$1/run_items/mesh/stage_s"; else awk -v s="$stage" '$1 == s { print $2 }' "$2"; fi
