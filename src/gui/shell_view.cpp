@@ -32,7 +32,30 @@ void grow(std::array<double, 6>& box, const inspect::TriangleMesh& mesh,
     }
 }
 
+/// The mean edge length of `mesh`'s triangles [m] (0 without triangles).
+double mean_edge_length(const inspect::TriangleMesh& mesh) {
+  double sum = 0;
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const auto& a = mesh.vertices[static_cast<std::size_t>(t[k])];
+      const auto& b = mesh.vertices[static_cast<std::size_t>(t[(k + 1) % 3])];
+      sum += std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+    }
+  return mesh.triangles.empty() ? 0 : sum / (3.0 * static_cast<double>(mesh.triangles.size()));
+}
+
 }  // namespace
+
+bool ShellView::edges_shown() const {
+  if (!m_outer || m_quick || m_edge_length_m <= 0) return false;
+  // The edge's size on the screen at the shell's distance: the view's height in pixels spans
+  // 2 d tan(fov / 2) there.
+  const auto& p = m_camera.position;
+  const double d = std::hypot(p[0] - m_offset[0], p[1] - m_offset[1], p[2] - m_offset[2]);
+  const double span_m =
+      2.0 * d * std::tan(0.5 * m_camera.vertical_fov_deg * 3.14159265358979 / 180);
+  return span_m > 0 && m_edge_length_m / span_m * height() >= kEdgeMinPx;
+}
 
 ShellView::ShellView(QWidget* parent) : QWidget(parent) {
   setAttribute(Qt::WA_OpaquePaintEvent);  // paintEvent covers every pixel
@@ -69,6 +92,7 @@ void ShellView::draw() {
   if (m_outer) frame.shell.push_back({m_outer, m_offset});
   frame.outer = m_outer;
   frame.quick = m_quick;
+  frame.edges = edges_shown();
   frame.label = m_label;
   frame.camera = m_camera;
   const qreal ratio = devicePixelRatioF();
@@ -239,6 +263,7 @@ void ShellView::show_step(const ShellStep& step, const std::array<double, 3>& of
   if (step.outer_actor && !step.outer_view.triangles.empty()) {
     m_outer = step.outer_actor;
     m_triangles += static_cast<long>(step.outer_view.triangles.size());
+    m_edge_length_m = mean_edge_length(step.outer_view);
     grow(box, step.outer_view, offset);
   }
   m_offset = offset;

@@ -78,8 +78,11 @@ class ShellView : public QWidget {
   long triangles() const { return m_triangles; }
   /// Whether the view is drawn quick (set_quick) now.
   bool quick() const { return m_quick; }
-  /// Whether the outer surface is drawn with its triangle edges (false while quick).
-  bool edges_shown() const { return m_outer && !m_quick; }
+  /// Whether the outer surface is drawn with its triangle edges: at rest, and only where its
+  /// triangles' mean edge is at least kEdgeMinPx on the screen (closer, 1-pixel edge lines read
+  /// as salt-and-pepper noise over the ice and the water behind it, not as a mesh).
+  bool edges_shown() const;
+  static constexpr double kEdgeMinPx = 12;
   /// Whether the view waits for the frame of its latest request (false without a display, where
   /// the view stays undrawn).
   bool drawing() const { return m_render && m_received < m_requested; }
@@ -119,6 +122,8 @@ class ShellView : public QWidget {
   std::array<double, 3> m_offset{0, 0, 0};
   std::string m_label;
   long m_triangles = 0;
+  /// the outer surface's mean triangle edge [m]
+  double m_edge_length_m = 0;
   std::vector<vtkSmartPointer<vtkActor>> m_scene;
   std::vector<vtkSmartPointer<vtkTexture>> m_scene_textures;
   std::vector<std::array<double, 3>> m_quick_colors;

@@ -125,8 +125,8 @@ void ViewRenderThread::Scene::place_actors(const ViewFrame& frame) {
 void ViewRenderThread::Scene::apply_look(const ViewFrame& frame) {
   // The quick look (ViewFrame::quick), or the look at rest: each changed only when it differs
   // (a property set again would mark the actor modified).
-  if (frame.outer && frame.outer->GetProperty()->GetEdgeVisibility() == frame.quick)
-    frame.outer->GetProperty()->SetEdgeVisibility(!frame.quick);
+  if (frame.outer && frame.outer->GetProperty()->GetEdgeVisibility() != frame.edges)
+    frame.outer->GetProperty()->SetEdgeVisibility(frame.edges);
   for (std::size_t k = 0; k < frame.scene.size() && k < frame.textures.size(); ++k) {
     vtkTexture* texture = frame.textures[k];
     if (!texture) continue;

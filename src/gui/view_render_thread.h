@@ -43,12 +43,15 @@ struct ViewFrame {
   std::vector<vtkSmartPointer<vtkTexture>> textures;
   std::vector<std::array<double, 3>> quick_colors;
   std::vector<Placed> shell;
-  /// the outer surface (one of `shell`), drawn with its triangle edges unless quick
+  /// the outer surface (one of `shell`)
   vtkSmartPointer<vtkActor> outer;
-  /// Drawn quick (while the slider moves or the view is orbited): the ice without its triangle
-  /// edges (with llvmpipe their extra pass made a draw 2.5x slower) and each textured actor in
-  /// its texture's mean colour (llvmpipe's texture sampling was most of a draw's CPU time).
+  /// Drawn quick (while the slider moves or the view is orbited): each textured actor in its
+  /// texture's mean colour (llvmpipe's texture sampling was most of a draw's CPU time).
   bool quick = false;
+  /// The outer surface drawn with its triangle edges (ShellView decides: never while quick,
+  /// where their extra pass made a draw 2.5x slower with llvmpipe, nor when they are too close
+  /// on the screen).
+  bool edges = false;
   std::string label;
   ViewCamera camera{};
   /// in pixels

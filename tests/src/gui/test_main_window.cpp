@@ -296,13 +296,13 @@ class TestMainWindow : public QObject {
     // As an orbit ends: the view (in scene coordinates) looks from +x, slightly above, at the
     // shell's core, which the default places 3 cm above the floor at y = 0.
     // An orbit's start and end, as a mouse drag makes them: drawn quick (no edges) meanwhile.
-    QVERIFY(w.shell_view().edges_shown());
+    QVERIFY(!w.shell_view().quick());
     w.shell_view().begin_interaction();
-    QVERIFY(!w.shell_view().edges_shown());
+    QVERIFY(w.shell_view().quick());
     w.shell_view().set_camera({{0.2, 0.08, 0.0}, {0.0, 0.03, 0.0}, {0.0, 1.0, 0.0}, 30.0});
     w.shell_view().end_interaction();
     // At rest again with the scene of the new camera (or after ShellView::kSettleMs).
-    QTRY_VERIFY_WITH_TIMEOUT(w.shell_view().edges_shown(), 10000);
+    QTRY_VERIFY_WITH_TIMEOUT(!w.shell_view().quick(), 10000);
     QVERIFY2(w.check().ok(), w.check().message.c_str());
     const auto& sc = *w.check().scenario;
     QVERIFY(sc.camera_set);
@@ -383,6 +383,24 @@ class TestMainWindow : public QObject {
     QVERIFY(mean_difference(v.image(), last) > 1.0);
   }
 
+  // The ice's triangle edges are drawn only where they read as a mesh (ShellView::kEdgeMinPx
+  // apart on the screen, and at rest): at the default framing (2.5 mm edges) they were 1-pixel
+  // lines a few pixels apart, salt-and-pepper over the ice and the water behind it.
+  void theIceEdgesAreDrawnOnlyWhereTheyReadAsAMesh() {
+    MainWindow w{ScenarioDocument()};
+    w.show();
+    thaw::gui::ShellView& v = w.shell_view();
+    QTRY_VERIFY_WITH_TIMEOUT(v.triangles() > 0 && v.scene_objects() > 0 && !v.drawing(), 120000);
+    QVERIFY(!v.quick());
+    QVERIFY(!v.edges_shown());
+    // Four times closer: the edges four times longer on the screen.
+    v.set_camera(thaw::gui::dolly(v.camera(), 4.0));
+    QVERIFY(v.edges_shown());
+    v.begin_interaction();
+    QVERIFY(!v.edges_shown());  // quick
+    v.end_interaction();
+  }
+
   // A mouse drag on the view orbits its camera about the focal point (left button), drawn quick
   // while it lasts, and its release writes the camera back as the scenario's [render.camera].
   void aMouseDragOrbitsTheViewAndWritesTheCameraBack() {
@@ -396,7 +414,7 @@ class TestMainWindow : public QObject {
     QMouseEvent press(QEvent::MouseButtonPress, from, Qt::LeftButton, Qt::LeftButton,
                       Qt::NoModifier);
     QApplication::sendEvent(&v, &press);
-    QVERIFY(!v.edges_shown());
+    QVERIFY(v.quick());
     QMouseEvent move(QEvent::MouseMove, to, Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
     QApplication::sendEvent(&v, &move);
     QMouseEvent release(QEvent::MouseButtonRelease, to, Qt::LeftButton, Qt::NoButton,
@@ -409,7 +427,7 @@ class TestMainWindow : public QObject {
     QVERIFY2(w.check().ok(), w.check().message.c_str());
     const auto& cam = w.check().scenario->scene.camera;
     for (int k = 0; k < 3; ++k) QVERIFY(std::abs(cam.position[k] - c1.position[k]) <= 5e-7);
-    QTRY_VERIFY_WITH_TIMEOUT(v.edges_shown() && !v.drawing(), 10000);
+    QTRY_VERIFY_WITH_TIMEOUT(!v.quick() && !v.drawing(), 10000);
   }
 
   void startAndCancelASimulation() {
@@ -467,8 +485,8 @@ class TestMainWindow : public QObject {
         w.findChild<QLabel*>("time_label")->text(),
         QString("%1 min").arg(run->rows[static_cast<std::size_t>(last)].time_s / 60.0, 0, 'f', 1));
     // While the slider moves the ice is drawn without its triangle edges; once it rests, with.
-    QVERIFY(!w.shell_view().edges_shown());
-    QTRY_VERIFY_WITH_TIMEOUT(w.shell_view().edges_shown(), 10000);
+    QVERIFY(w.shell_view().quick());
+    QTRY_VERIFY_WITH_TIMEOUT(!w.shell_view().quick(), 10000);
     QVERIFY(wait_for_full_size(w));
     QVERIFY(mean_difference(at_start, w.preview_image()) > 1.0);
     // An edit of the simulation makes the run stale.
