@@ -18,6 +18,9 @@
 namespace thaw::gui {
 
 int run_gui(const GuiOptions& options) {
+  if (!options.tab.empty() && !is_tab_title(options.tab))
+    throw UserError("", "--tab",
+                    "no tab '" + options.tab + "' (render, scenario, simulation, scene)");
   ScenarioDocument document =
       options.scenario.empty() ? ScenarioDocument() : ScenarioDocument::load(options.scenario);
   // --screenshot is a batch run: a scenario that breaks a rule is its one-line error, exit 2, no
@@ -43,9 +46,7 @@ int run_gui(const GuiOptions& options) {
   static char* argv[] = {name, nullptr};
   QApplication app(argc, argv);
   MainWindow window(std::move(document));
-  if (!options.tab.empty() && !window.select_tab(options.tab))
-    throw UserError("", "--tab",
-                    "no tab '" + options.tab + "' (render, scenario, simulation, scene)");
+  if (!options.tab.empty()) window.select_tab(options.tab);
   if (opengl) opengl->wait();
   window.show();
   if (options.simulate) {

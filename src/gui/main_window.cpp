@@ -70,11 +70,11 @@ MainWindow::MainWindow(ScenarioDocument document, QWidget* parent)
 
   m_tabs = new QTabWidget;
   m_tabs->setObjectName("tabs");
-  m_tabs->addTab(make_render_tab(), "Render");
-  m_tabs->addTab(scrolled(make_scenario_tab()), "Scenario");
-  m_tabs->addTab(make_simulation_tab(), "Simulation");
+  m_tabs->addTab(make_render_tab(), kTabTitles[0]);
+  m_tabs->addTab(scrolled(make_scenario_tab()), kTabTitles[1]);
+  m_tabs->addTab(make_simulation_tab(), kTabTitles[2]);
   m_scene = new ScenePanel(*this);
-  m_tabs->addTab(scrolled(m_scene), "Scene");
+  m_tabs->addTab(scrolled(m_scene), kTabTitles[3]);
   auto* right = new QWidget;
   auto* rv = new QVBoxLayout(right);
   rv->setContentsMargins(0, 0, 0, 0);
@@ -696,6 +696,12 @@ void MainWindow::show_frame(int index) {
   show_image();
   m_status->setText(QString("film frame %1/%2").arg(index + 1).arg(m_frames.size()));
   m_frame_label->setText(QString("frame %1/%2").arg(index + 1).arg(m_frames.size()));
+}
+
+bool is_tab_title(const std::string& name) {
+  for (const char* title : kTabTitles)
+    if (QString::fromStdString(name).compare(title, Qt::CaseInsensitive) == 0) return true;
+  return false;
 }
 
 bool MainWindow::select_tab(const std::string& name) {

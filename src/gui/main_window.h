@@ -6,9 +6,11 @@
 // progressive preview (PreviewRenderer, off the GUI thread).
 #include <QImage>
 #include <QMainWindow>
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <string>
 
 #include "src/gui/film_runner.h"
 #include "src/gui/preview_renderer.h"
@@ -26,6 +28,13 @@ class QTimer;
 class QVBoxLayout;
 
 namespace thaw::gui {
+
+/// The window's tabs in order, by title (`--tab` takes one, case-insensitive).
+inline constexpr std::array<const char*, 4> kTabTitles = {"Render", "Scenario", "Simulation",
+                                                          "Scene"};
+/// Whether `name` is one of kTabTitles, case-insensitive (checked before Qt starts, so a bad
+/// --tab is one line).
+bool is_tab_title(const std::string& name);
 
 class KeyForm;
 class ShellView;

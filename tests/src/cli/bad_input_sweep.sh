@@ -29,9 +29,6 @@ declare -A KNOWN=(
   # time_tolerance, on a physical input); 1e-6 K runs in 0.07 s.
   ["simulate.outer_boundary.temperature_c=1e-300"]="physics: step collapse at T_air - T_m < 1e-7 K"
   ["simulate.outer_boundary.temperature_c=1e-9"]="physics: step collapse at T_air - T_m < 1e-7 K"
-  # src/gui (gui): --tab is checked once the window exists, after Qt has printed its own line
-  # ("QStandardPaths: XDG_RUNTIME_DIR not set ..." under the offscreen platform): two lines.
-  ["gui.unknown_tab"]="gui: Qt's line before the --tab error"
 )
 
 # --- helpers -----------------------------------------------------------------------------------
