@@ -95,9 +95,10 @@ struct EnthalpySolver::Impl {
   std::vector<double> cg_r, cg_z, cg_p, cg_p2, cg_q, dtemp, diag, rhs;
   std::vector<double> partial_rz, partial_res, partial_pq, partial_newton;  ///< per-block partials
   std::vector<double> area_g, area_w, area_share;  ///< update_surface_area's work arrays
-  /// The fractions whose gradient gives the surface area: m, or m with the surface moved half a
-  /// step ahead (update_surface_area).
-  std::vector<double> m_geo;
+  /// m with the surface moved half a step ahead (update_surface_area)
+  std::vector<double> m_moved;
+  /// The fractions whose gradient gives the surface area: m itself, or m_moved.
+  const double* m_geo = nullptr;
   double recession_m_s = 0;  ///< mean speed of the draining surface in the last step [m/s]
   bool area_stale = false;   ///< the surface moved, or the area was taken ahead: recompute
   bool area_ahead = false;   ///< the current area was taken ahead of the fractions
@@ -143,7 +144,7 @@ struct EnthalpySolver::Impl {
     for (auto* v :
          {&rate, &hn,           &t,      &t_start,    &f_start, &kx,    &ky,   &kz,    &bq0,
           &bq1,  &surface_area, &cg_r,   &cg_z,       &cg_p,    &cg_p2, &cg_q, &dtemp, &diag,
-          &rhs,  &area_g,       &area_w, &area_share, &m_geo})
+          &rhs,  &area_g,       &area_w, &area_share, &m_moved})
       v->assign(static_cast<std::size_t>(n), 0.0);
     const auto blocks = static_cast<std::size_t>(block_count());
     for (auto* v : {&partial_rz, &partial_res, &partial_pq, &partial_newton})
@@ -856,16 +857,20 @@ struct EnthalpySolver::Impl {
   /// sphere broke through 27 s earlier). One ratio for the whole grid: bodies receding at
   /// different relative rates keep a first-order remainder in their difference.
   ///
-  /// Four phases of the team (each writes only its own cells): the moved fractions; the
-  /// gradient areas; the material cells' shares (with the air neighbours' areas and the
-  /// remnant rule below); the areas of the exposed cells (with the shares of their unexposed
-  /// neighbours).
+  /// Three or four phases of the team (each writes only its own cells): the moved fractions
+  /// (lead_m > 0 only); the gradient areas; the material cells' shares (with the air neighbours'
+  /// areas and the remnant rule below); the areas of the exposed cells (with the shares of their
+  /// unexposed neighbours).
   void update_surface_area(BlockTeam& team, double lead_m = 0) {
-    team.for_blocks([&](long bl) {
-      for_cells(bl, [&](long c, int i, int j, int k) {
-        m_geo[c] = lead_m > 0 ? std::max(0.0, m[c] - lead_m * central_gradient(i, j, k)) : m[c];
+    m_geo = m.data();  // the fractions as they are: no copy
+    if (lead_m > 0) {
+      team.for_blocks([&](long bl) {
+        for_cells(bl, [&](long c, int i, int j, int k) {
+          m_moved[c] = std::max(0.0, m[c] - lead_m * central_gradient(i, j, k));
+        });
       });
-    });
+      m_geo = m_moved.data();
+    }
     team.for_blocks([&](long bl) { for_cells(bl, [&](auto... a) { area_gradient(a...); }); });
     team.for_blocks([&](long bl) { for_cells(bl, [&](auto... a) { area_share_of(a...); }); });
     team.for_blocks([&](long bl) { for_cells(bl, [&](auto... a) { area_final(a...); }); });
