@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <ctime>
+#include <exception>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -671,14 +672,12 @@ void inspect_stage(Run& r, const mesh::MeshManifest& meshes) {
     // The plot by the last rank (alone: this process) before it joins the steps, so that under
     // MPI it overlaps the others' steps. Its failure waits until the steps are done: the other
     // ranks wait for this one's share of them.
-    std::string plot_error;
+    std::exception_ptr plot_failure;  // rethrown as it was (a UserError stays one)
     if (ranks.rank() == ranks.size() - 1) try {
         inspect::write_radius_plot(simdir, report.plot);
-      } catch (const std::exception& e) {
+      } catch (...) {
         if (ranks.size() == 1) throw;
-        plot_error = dynamic_cast<const UserError*>(&e)
-                         ? e.what()
-                         : std::string("internal error: ") + e.what();
+        plot_failure = std::current_exception();
       }
     // One pass over the surfaces, each OBJ read once: placed by its outer surface as the film
     // shows it, written as .vtp and as the world-space OBJ, steps on each rank's threads.
@@ -696,7 +695,7 @@ void inspect_stage(Run& r, const mesh::MeshManifest& meshes) {
     series.threads = o.jobs;
     if (ranks.size() > 1) series.farm = &farm;
     const inspect::StepOffsets placed = inspect::write_pvd_series(simdir, report.pvd, series);
-    if (!plot_error.empty()) throw UserError("", "", plot_error);
+    if (plot_failure) std::rethrow_exception(plot_failure);
     if (!leader) return;
     std::map<long, std::array<double, 3>> offset_of_step;
     for (const mesh::StepRecord& step : meshes.steps) offset_of_step[step.step] = {};
