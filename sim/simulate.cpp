@@ -5,10 +5,10 @@
 #include <cstdio>
 #include <numbers>
 
+#include "base/check.h"
+#include "base/error.h"
 #include "sim/grid/grid_builder.h"
 #include "sim/scenario/scenario_rules.h"
-#include "src/common/check.h"
-#include "src/common/error.h"
 
 namespace thaw::sim {
 

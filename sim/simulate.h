@@ -1,17 +1,18 @@
 #pragma once
 // The simulation as a library call, for `thaw simulate` and the `thaw run` pipeline: run a
 // scenario, sampling the state at exactly the requested output times. Part of the sim core (no
-// TOML, no JSON): the result folder is written by sim/io/simulation_output.h. Knows nothing of
+// TOML, no JSON): the result folder is written by sim/format/simulation_output.h. Knows nothing of
 // the command line; progress goes through a callback.
 #include <filesystem>
 #include <vector>
 
+#include "base/progress.h"
 #include "sim/grid/enthalpy_solver.h"
-#include "sim/io/grid_field.h"
-#include "sim/io/interface_history.h"
+#include "sim/grid/grid_field.h"
+#include "sim/scenario/geometry.h"
+#include "sim/scenario/interface_record.h"
 #include "sim/scenario/scenario.h"
 #include "sim/stefan1d/front_fixing.h"
-#include "src/common/progress.h"
 
 namespace thaw::sim {
 

@@ -10,10 +10,10 @@
 #include <unistd.h>
 #include <filesystem>
 
+#include "base/obj_reader.h"
+#include "base/obj_writer.h"
 #include "src/inspect/mesh_report.h"
 #include "src/inspect/pvd_writer.h"
-#include "src/meshio/obj_reader.h"
-#include "src/meshio/obj_writer.h"
 #include "tests/src/inspect/icosphere.h"
 
 namespace {

@@ -29,13 +29,14 @@
 #include <filesystem>
 #include <string>
 
-#include "src/common/atomic_file.h"
+#include "base/atomic_file.h"
+#include "base/obj_reader.h"
+#include "sim/format/interface_history.h"
 #include "src/mesh/geodesic_sphere.h"
 #include "src/mesh/grid_mesher.h"
 #include "src/mesh/mesh_series.h"
 #include "src/mesh/obj_writer.h"
 #include "src/mesh/surface_mesher.h"
-#include "src/meshio/obj_reader.h"
 #include "tests/src/mesh/grid_field_samples.h"
 
 namespace {

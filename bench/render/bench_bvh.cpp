@@ -9,9 +9,9 @@
 #include <cmath>
 #include <random>
 
+#include "render/format/scene_parser.h"
 #include "render/geometry/obj_loader.h"
 #include "render/scene/scene.h"
-#include "render/scene/scene_parser.h"
 
 namespace thaw::render {
 namespace {

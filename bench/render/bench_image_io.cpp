@@ -18,13 +18,13 @@
 #include <OpenImageIO/imageio.h>
 #endif
 
+#include "render/format/scene_parser.h"
 #include "render/image/exr_io.h"
 #include "render/image/image_io.h"
 #include "render/image/png_encoder.h"
 #include "render/integrator/aov_pass.h"
 #include "render/integrator/whitted.h"
 #include "render/scene/scene.h"
-#include "render/scene/scene_parser.h"
 
 namespace thaw::render {
 namespace {

@@ -11,9 +11,9 @@
 #include <cmath>
 #include <string>
 
+#include "render/format/scene_parser.h"
 #include "render/photon/caustic_map.h"
 #include "render/scene/scene.h"
-#include "render/scene/scene_parser.h"
 
 namespace thaw::render {
 namespace {

@@ -16,8 +16,8 @@
 #include <ctime>
 #include <string>
 
+#include "sim/format/scenario_file.h"
 #include "sim/grid/grid_rules.h"
-#include "sim/scenario/scenario_file.h"
 #include "sim/simulate.h"
 
 namespace {

@@ -6,7 +6,7 @@
 //   BM_SolverOnly           the default without writing profiles (solver and snapshots only)
 #include <benchmark/benchmark.h>
 
-#include "sim/scenario/scenario_file.h"
+#include "sim/format/scenario_file.h"
 #include "sim/simulate.h"
 
 namespace {

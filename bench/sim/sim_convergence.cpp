@@ -8,7 +8,7 @@
 #include <cstring>
 #include <vector>
 
-#include "sim/scenario/scenario_file.h"
+#include "sim/format/scenario_file.h"
 #include "sim/simulate.h"
 #include "sim/stefan1d/neumann_problem.h"
 

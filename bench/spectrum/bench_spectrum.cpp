@@ -3,8 +3,8 @@
 // Beer-Lambert transmittance, and the film's spectrum -> XYZ -> sRGB conversion.
 #include <benchmark/benchmark.h>
 
+#include "render/format/medium_library.h"
 #include "render/media/medium.h"
-#include "render/media/medium_library.h"
 #include "render/spectrum/colour.h"
 #include "render/spectrum/rgb_uplift.h"
 #include "render/spectrum/sampled_wavelengths.h"

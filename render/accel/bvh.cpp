@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "src/common/check.h"
+#include "base/check.h"
 
 namespace thaw::render {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "src/common/check.h"
+#include "base/check.h"
 
 namespace thaw::render {
 

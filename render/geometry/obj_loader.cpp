@@ -1,6 +1,6 @@
 #include "render/geometry/obj_loader.h"
 
-#include "src/meshio/obj_reader.h"
+#include "base/obj_reader.h"
 
 namespace thaw::render {
 

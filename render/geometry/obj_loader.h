@@ -1,6 +1,6 @@
 #pragma once
 // Reads a Wavefront OBJ file into the renderer's TriangleMesh through thaw's one strict OBJ
-// reader (src/meshio/obj_reader.h: polygons triangulated, 1-based and negative indices, every
+// reader (base/obj_reader.h: polygons triangulated, 1-based and negative indices, every
 // malformed number, index or line an error naming the file and line), then converts: float
 // positions, 32-bit indices, unit `vn` normals when every face has them. Errors are
 // thaw::UserError naming the file.

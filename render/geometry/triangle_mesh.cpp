@@ -7,7 +7,7 @@
 #include <map>
 #include <unordered_map>
 
-#include "src/common/error.h"
+#include "base/error.h"
 
 namespace thaw::render {
 

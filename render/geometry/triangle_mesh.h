@@ -4,7 +4,7 @@
 // outward-oriented surface), smooth normals, a similarity transform. Filled from an OBJ file
 // (render/geometry/obj_loader.h) or directly by code (the pipeline's in-memory shell meshes).
 // Knows nothing about materials, the BVH or files.
-// Why not the file type (src/meshio/triangle_mesh.h): the renderer works in single precision with
+// Why not the file type (base/triangle_mesh.h): the renderer works in single precision with
 // 32-bit indices (half the memory of a two-million-triangle mesh, the BVH's own precision) and
 // unit normals; from_file_mesh below is the one conversion from the file type.
 #include <array>
@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "base/triangle_mesh.h"
 #include "render/math/vec3.h"
-#include "src/meshio/triangle_mesh.h"
 
 namespace thaw::render {
 

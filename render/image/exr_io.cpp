@@ -14,8 +14,8 @@
 
 #include <vector>
 
-#include "src/common/atomic_file.h"
-#include "src/common/check.h"
+#include "base/atomic_file.h"
+#include "base/check.h"
 #include "thaw_version.h"
 
 namespace thaw::render {

@@ -5,12 +5,12 @@
 #include <cmath>
 #include <cstring>
 
+#include "base/atomic_file.h"
+#include "base/check.h"
+#include "base/error.h"
+#include "base/output_file.h"
 #include "render/image/exr_io.h"
 #include "render/image/png_encoder.h"
-#include "src/common/atomic_file.h"
-#include "src/common/check.h"
-#include "src/common/error.h"
-#include "src/common/output_file.h"
 
 namespace thaw::render {
 
@@ -148,7 +148,7 @@ bool is_exr_path(const std::filesystem::path& path) {
 }
 
 void check_output_path(const std::filesystem::path& path) {
-  check_output_file(path, {".png", ".pfm", ".exr"});  // src/common/output_file.h
+  check_output_file(path, {".png", ".pfm", ".exr"});  // base/output_file.h
   const std::filesystem::path dir =
       path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
   std::error_code ec;

@@ -1,5 +1,5 @@
 #pragma once
-// Image files, always written atomically (temporary file + rename, src/common/atomic_file.h):
+// Image files, always written atomically (temporary file + rename, base/atomic_file.h):
 // PNG, 8- or 16-bit sRGB after scaling by 2^exposure and clamping to [0, 1] (IEC 61966-2-1
 // transfer curve; encoded in parallel by render/image/png_encoder.h), PFM, linear 32-bit float
 // RGB for HDR work (bottom row first, little endian), and EXR (render/image/exr_io.h).

@@ -9,7 +9,7 @@
 #include <cstring>
 #include <vector>
 
-#include "src/common/check.h"
+#include "base/check.h"
 
 namespace thaw::render {
 namespace {

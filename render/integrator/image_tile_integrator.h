@@ -31,14 +31,14 @@
 #include <optional>
 #include <vector>
 
+#include "base/interrupt.h"
+#include "base/progress.h"
 #include "render/film/adaptive_pixel.h"
 #include "render/integrator/render_result.h"
 #include "render/light/light_sampling.h"
 #include "render/math/rng.h"
 #include "render/sampling/pixel_sampler.h"
 #include "render/scene/scene.h"
-#include "src/common/interrupt.h"
-#include "src/common/progress.h"
 
 namespace thaw::render {
 

@@ -5,13 +5,13 @@
 #include <cstring>
 #include <vector>
 
+#include "base/fnv_hash.h"
 #include "render/integrator/image_tile_integrator.h"
 #include "render/integrator/whitted_shading.h"
 #include "render/material/fresnel.h"
 #include "render/math/rng.h"
 #include "render/spectrum/colour.h"
 #include "render/spectrum/rgb_uplift.h"
-#include "src/common/fnv_hash.h"
 
 namespace thaw::render {
 

@@ -10,9 +10,9 @@
 // unrefracted, without shadow).
 #include <cstdint>
 
+#include "base/progress.h"
 #include "render/integrator/render_result.h"
 #include "render/scene/scene.h"
-#include "src/common/progress.h"
 
 namespace thaw::render {
 

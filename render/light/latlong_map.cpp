@@ -8,7 +8,7 @@
 #include <memory>
 #include <numbers>
 
-#include "src/common/check.h"
+#include "base/check.h"
 
 // stb_image's Radiance reader only, with internal linkage (tests link their own stb_image).
 #define STB_IMAGE_STATIC

@@ -7,8 +7,8 @@
 #include <sstream>
 #include <utility>
 
+#include "base/error.h"
 #include "render/media/wavelength_table.h"
-#include "src/common/error.h"
 
 namespace thaw::render::media {
 namespace {

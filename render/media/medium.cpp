@@ -4,8 +4,8 @@
 #include <utility>
 #include <vector>
 
-#include "src/common/check.h"
-#include "src/common/error.h"
+#include "base/check.h"
+#include "base/error.h"
 
 namespace thaw::render::media {
 Medium::Medium(std::string name, IorModel ior, Absorption absorption, std::string source)

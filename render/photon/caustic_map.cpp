@@ -9,13 +9,13 @@
 #include <new>
 #include <vector>
 
+#include "base/interrupt.h"
 #include "render/photon/light_cone.h"
 #include "render/photon/low_discrepancy.h"
 #include "render/photon/photon_tracer.h"
 #include "render/spectrum/colour.h"
 #include "render/spectrum/rgb_uplift.h"
 #include "render/spectrum/sampled_wavelengths.h"
-#include "src/common/interrupt.h"
 
 namespace thaw::render::photon {
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "base/check.h"
 #include "render/math/rng.h"
-#include "src/common/check.h"
 
 namespace thaw::render::photon {
 

@@ -9,7 +9,7 @@
 #include <immintrin.h>
 #endif
 
-#include "src/common/check.h"
+#include "base/check.h"
 
 namespace thaw::render::photon {
 

@@ -9,13 +9,13 @@
 #include <optional>
 #include <set>
 
+#include "base/error.h"
 #include "render/geometry/box.h"
 #include "render/geometry/obj_loader.h"
 #include "render/geometry/plane.h"
 #include "render/geometry/shadow_cone.h"
 #include "render/geometry/sphere.h"
 #include "render/scene/scene_rules.h"
-#include "src/common/error.h"
 
 namespace thaw::render {
 

@@ -1,5 +1,5 @@
 #pragma once
-// What a scene is, as plain data: parsed from TOML by render/scene/scene_parser.h or filled in by
+// What a scene is, as plain data: parsed from TOML by render/format/scene_parser.h or filled in by
 // code (the pipeline adds its two shell meshes this way), then turned into a renderable Scene by
 // build_scene() (render/scene/scene.h), which validates names and geometry. Double precision,
 // scene units (metres for thaw's own scenes), linear RGB. Knows nothing about TOML.

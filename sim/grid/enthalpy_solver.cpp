@@ -7,8 +7,8 @@
 
 #include <omp.h>
 
+#include "base/check.h"
 #include "sim/grid/block_team.h"
-#include "src/common/check.h"
 
 namespace thaw::sim {
 

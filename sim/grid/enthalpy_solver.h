@@ -32,8 +32,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/grid/grid_field.h"
 #include "sim/grid/grid_problem.h"
-#include "sim/io/grid_field.h"
 
 namespace thaw::sim {
 

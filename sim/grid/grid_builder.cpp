@@ -4,8 +4,8 @@
 #include <cmath>
 #include <optional>
 
+#include "base/check.h"
 #include "sim/grid/grid_rules.h"
-#include "src/common/check.h"
 
 namespace thaw::sim {
 

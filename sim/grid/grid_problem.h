@@ -6,7 +6,7 @@
 #include <array>
 #include <vector>
 
-#include "sim/io/grid_field.h"
+#include "sim/grid/grid_field.h"
 #include "sim/scenario/scenario.h"
 
 namespace thaw::sim {

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "src/common/error.h"
-#include "src/common/number_text.h"
+#include "base/error.h"
+#include "base/number_text.h"
 
 namespace thaw::sim {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "src/common/check.h"
+#include "base/check.h"
 
 namespace thaw::sim {
 

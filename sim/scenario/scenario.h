@@ -4,7 +4,8 @@
 // accuracy knobs. Knows nothing of TOML or of how the solver works.
 #include <string>
 
-#include "sim/io/interface_history.h"
+#include "sim/scenario/geometry.h"
+#include "sim/scenario/interface_record.h"
 #include "sim/shape/shape.h"
 
 namespace thaw::sim {

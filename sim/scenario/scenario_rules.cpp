@@ -5,9 +5,9 @@
 #include <optional>
 #include <vector>
 
+#include "base/error.h"
+#include "base/number_text.h"
 #include "sim/grid/grid_rules.h"
-#include "src/common/error.h"
-#include "src/common/number_text.h"
 
 // GCC 12 reports a false -Wrestrict inside std::string's operator+(const char*, string&&) once
 // these messages are inlined into one function (GCC bug 105651, fixed in GCC 13).

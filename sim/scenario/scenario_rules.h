@@ -1,6 +1,6 @@
 #pragma once
 // The physics rules every scenario must satisfy, written once: the scenario parser (with the
-// key's line, sim/scenario/scenario_file.h), scenarios built in code (validate_scenario, called
+// key's line, sim/format/scenario_file.h), scenarios built in code (validate_scenario, called
 // by the solvers) and the naming of the likely cause when a solver fails on a valid scenario.
 // Part of the sim core: knows nothing of TOML or JSON (ranges documented in docs/simulate.md).
 #include <cstdint>

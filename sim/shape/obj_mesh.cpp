@@ -5,10 +5,10 @@
 #include <limits>
 #include <numbers>
 
-#include "src/common/error.h"
-#include "src/meshio/edge_topology.h"
-#include "src/meshio/obj_reader.h"
-#include "src/meshio/point3.h"
+#include "base/edge_topology.h"
+#include "base/error.h"
+#include "base/obj_reader.h"
+#include "base/point3.h"
 
 namespace thaw::sim {
 
@@ -112,7 +112,7 @@ ObjMesh read_obj_mesh(const std::filesystem::path& file, double scale, const V3&
     fail("needs a closed surface (at least 4 triangles), found " +
          std::to_string(mesh.triangles.size()));
   // Closed, edge-manifold and consistently oriented: every edge used by exactly two triangles,
-  // once in each direction (linear-time edge hash, src/meshio/edge_topology.h).
+  // once in each direction (linear-time edge hash, base/edge_topology.h).
   const meshio::EdgeTopology topo = meshio::edge_topology(obj.vertices, obj.triangles);
   if (topo.non_manifold_edges > 0 || topo.inconsistent_edges > 0)
     fail("not manifold or inconsistently oriented: " +

@@ -1,6 +1,6 @@
 #pragma once
 // A closed, outward-oriented triangle mesh read from a Wavefront OBJ file by thaw's one strict
-// reader (src/meshio/obj_reader.h, a plain library), and its signed distance: distance to the
+// reader (base/obj_reader.h, a plain library), and its signed distance: distance to the
 // nearest triangle, negative inside by the generalised winding number (Jacobson et al. 2013,
 // "Robust inside-outside segmentation using generalized winding numbers"). Knows nothing of grids.
 #include <array>

@@ -7,10 +7,10 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "base/check.h"
+#include "base/error.h"
 #include "sim/reference/neumann.h"
 #include "sim/scenario/scenario_rules.h"
-#include "src/common/check.h"
-#include "src/common/error.h"
 
 namespace thaw::sim {
 

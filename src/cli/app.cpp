@@ -6,8 +6,8 @@
 #include <new>
 #include <string>
 
-#include "src/common/error.h"
-#include "src/common/interrupt.h"
+#include "base/error.h"
+#include "base/interrupt.h"
 #include "thaw_version.h"
 
 namespace thaw::cli {

@@ -3,9 +3,9 @@
 #include <string>
 #include <system_error>
 
+#include "base/error.h"
+#include "base/output_file.h"
 #include "src/cli/commands.h"
-#include "src/common/error.h"
-#include "src/common/output_file.h"
 #ifdef THAW_WITH_GUI
 #include "src/gui/gui.h"
 #endif

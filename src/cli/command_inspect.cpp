@@ -8,17 +8,17 @@
 #include <optional>
 #include <string>
 
+#include "base/error.h"
+#include "base/interrupt.h"
+#include "base/obj_reader.h"
+#include "base/output_file.h"
+#include "base/progress.h"
 #include "src/cli/commands.h"
-#include "src/common/error.h"
-#include "src/common/interrupt.h"
-#include "src/common/output_file.h"
-#include "src/common/progress.h"
 #include "src/inspect/mesh_report.h"
 #include "src/inspect/pvd_writer.h"
 #include "src/inspect/radius_plot.h"
 #include "src/inspect/screenshot.h"
 #include "src/inspect/simulation_folder.h"
-#include "src/meshio/obj_reader.h"
 
 namespace thaw::cli {
 namespace fs = std::filesystem;

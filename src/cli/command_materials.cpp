@@ -7,10 +7,10 @@
 #include <optional>
 #include <string>
 
+#include "base/error.h"
+#include "render/format/medium_library.h"
 #include "render/media/medium.h"
-#include "render/media/medium_library.h"
 #include "src/cli/commands.h"
-#include "src/common/error.h"
 
 namespace thaw::cli {
 namespace {

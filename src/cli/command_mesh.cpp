@@ -6,8 +6,8 @@
 #include <memory>
 #include <string>
 
+#include "base/progress.h"
 #include "src/cli/commands.h"
-#include "src/common/progress.h"
 #include "src/mesh/mesh_series.h"
 
 namespace thaw::cli {

@@ -7,17 +7,17 @@
 #include <optional>
 #include <string>
 
+#include "base/error.h"
+#include "base/interrupt.h"
+#include "base/progress.h"
+#include "render/format/scene_parser.h"
 #include "render/image/exr_io.h"
 #include "render/image/image_io.h"
 #include "render/integrator/aov_pass.h"
 #include "render/integrator/whitted.h"
 #include "render/scene/scene.h"
-#include "render/scene/scene_parser.h"
 #include "render/scene/scene_rules.h"
 #include "src/cli/commands.h"
-#include "src/common/error.h"
-#include "src/common/interrupt.h"
-#include "src/common/progress.h"
 
 namespace thaw::cli {
 namespace {

@@ -8,11 +8,11 @@
 #include <string>
 #include <utility>
 
+#include "base/error.h"
+#include "base/format/toml_table.h"
+#include "base/progress.h"
+#include "base/text_file.h"
 #include "src/cli/commands.h"
-#include "src/common/error.h"
-#include "src/common/progress.h"
-#include "src/common/text_file.h"
-#include "src/common/toml_table.h"
 #include "src/pipeline/frame_selection.h"
 #include "src/pipeline/pipeline.h"
 #include "src/pipeline/render_overrides.h"

@@ -6,14 +6,14 @@
 #include <memory>
 #include <string>
 
-#include "sim/io/simulation_output.h"
-#include "sim/scenario/scenario_file.h"
+#include "base/atomic_file.h"
+#include "base/error.h"
+#include "base/interrupt.h"
+#include "base/progress.h"
+#include "sim/format/scenario_file.h"
+#include "sim/format/simulation_output.h"
 #include "sim/simulate.h"
 #include "src/cli/commands.h"
-#include "src/common/atomic_file.h"
-#include "src/common/error.h"
-#include "src/common/interrupt.h"
-#include "src/common/progress.h"
 
 namespace thaw::cli {
 namespace {

@@ -14,9 +14,9 @@
 #include <string_view>
 #include <system_error>
 
+#include "base/interrupt.h"
 #include "src/cli/app.h"
 #include "src/cli/commands.h"
-#include "src/common/interrupt.h"
 
 namespace {
 

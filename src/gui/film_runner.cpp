@@ -1,6 +1,6 @@
 #include "src/gui/film_runner.h"
 
-#include "src/common/interrupt.h"
+#include "base/interrupt.h"
 #include "src/gui/preview_renderer.h"
 #include "src/pipeline/pipeline.h"
 

@@ -2,7 +2,7 @@
 // "Render film": `thaw run` itself (src/pipeline/pipeline.h: simulate, mesh, render, film,
 // inspect, resumable) on the window's scenario into a chosen folder, on a background thread.
 // Progress is the count of finished frames in DIR/frames (the pipeline has no callback). Cancel
-// uses the pipeline's own interrupt (src/common/interrupt.h, as Ctrl-C on `thaw run`): the run
+// uses the pipeline's own interrupt (base/interrupt.h, as Ctrl-C on `thaw run`): the run
 // stops at its next safe point (between simulation outputs, meshes, frames and tiles; ffmpeg is
 // stopped), unwinding removes its temporary files, so nothing is half-written, and a rerun into
 // the same folder resumes. That interrupt is process-wide: while it is set, other renders in the

@@ -7,8 +7,8 @@
 #include <memory>
 #include <optional>
 
-#include "src/common/error.h"
-#include "src/common/interrupt.h"
+#include "base/error.h"
+#include "base/interrupt.h"
 #include "src/gui/film_runner.h"
 #include "src/gui/main_window.h"
 #include "src/gui/opengl_preload.h"
@@ -57,7 +57,7 @@ int run_gui(const GuiOptions& options) {
       window.show_step(static_cast<int>(window.simulation_run()->steps.size() / 2));
     });
   }
-  // Ctrl-C or SIGTERM (src/common/interrupt.h only raises a flag) closes the window; the
+  // Ctrl-C or SIGTERM (base/interrupt.h only raises a flag) closes the window; the
   // film's own cancel raises the same flag and is told apart (film_runner.h).
   QTimer interrupt_poll;
   QObject::connect(&interrupt_poll, &QTimer::timeout, &app, [&app] {

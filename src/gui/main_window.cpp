@@ -19,7 +19,7 @@
 #include <cmath>
 #include <map>
 
-#include "src/common/error.h"
+#include "base/error.h"
 #include "src/gui/key_form.h"
 #include "src/gui/radius_plot.h"
 #include "src/gui/scene_panel.h"

@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <utility>
 
-#include "src/common/check.h"
+#include "base/check.h"
 
 namespace thaw::gui {
 

@@ -5,11 +5,11 @@
 
 #include <cmath>
 
+#include "base/error.h"
+#include "base/interrupt.h"
 #include "render/image/image_io.h"
 #include "render/integrator/whitted.h"
 #include "render/scene/scene.h"
-#include "src/common/error.h"
-#include "src/common/interrupt.h"
 #include "src/gui/film_runner.h"
 
 namespace thaw::gui {

@@ -5,7 +5,7 @@
 #include <QWidget>
 #include <vector>
 
-#include "sim/io/interface_history.h"
+#include "sim/format/interface_history.h"
 
 namespace thaw::gui {
 

@@ -5,10 +5,10 @@
 #include <regex>
 #include <sstream>
 
-#include "src/common/atomic_file.h"
-#include "src/common/check.h"
-#include "src/common/error.h"
-#include "src/common/toml_table.h"
+#include "base/atomic_file.h"
+#include "base/check.h"
+#include "base/error.h"
+#include "base/format/toml_table.h"
 #include "src/gui/toml_text.h"
 
 namespace thaw::gui {

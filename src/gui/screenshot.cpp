@@ -5,8 +5,8 @@
 #include <QTimer>
 #include <memory>
 
-#include "src/common/atomic_file.h"
-#include "src/common/error.h"
+#include "base/atomic_file.h"
+#include "base/error.h"
 #include "src/gui/main_window.h"
 #include "src/gui/shell_view.h"
 

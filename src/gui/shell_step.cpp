@@ -3,8 +3,8 @@
 #include <vtkAlgorithm.h>
 #include <vtkMapper.h>
 
+#include "base/error.h"
 #include "render/geometry/obj_loader.h"
-#include "src/common/error.h"
 #include "src/inspect/surface_actor.h"
 #include "src/mesh/shell_shape.h"
 #include "src/mesh/surface_mesher.h"

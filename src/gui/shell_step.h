@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "render/geometry/triangle_mesh.h"
-#include "sim/io/interface_history.h"
+#include "sim/format/interface_history.h"
 #include "src/inspect/triangle_mesh.h"
 #include "src/mesh/triangle_mesh.h"
 #include "src/pipeline/run_scenario.h"

@@ -2,11 +2,11 @@
 
 #include <chrono>
 
-#include "sim/io/simulation_output.h"
+#include "base/atomic_file.h"
+#include "base/error.h"
+#include "base/interrupt.h"
+#include "sim/format/simulation_output.h"
 #include "sim/simulate.h"
-#include "src/common/atomic_file.h"
-#include "src/common/error.h"
-#include "src/common/interrupt.h"
 #include "src/gui/preview_renderer.h"
 #include "src/mesh/mesh_series.h"
 

@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <sstream>
 
-#include "src/common/check.h"
-#include "src/common/number_text.h"
+#include "base/check.h"
+#include "base/number_text.h"
 
 namespace thaw::gui::toml_text {
 namespace {

@@ -21,7 +21,7 @@
 #include <memory>
 #include <utility>
 
-#include "src/common/check.h"
+#include "base/check.h"
 #include "src/gui/preview_renderer.h"
 
 namespace thaw::gui {

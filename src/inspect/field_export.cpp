@@ -11,8 +11,9 @@
 #include <cstdlib>
 #include <vector>
 
-#include "src/common/atomic_file.h"
-#include "src/common/error.h"
+#include "base/atomic_file.h"
+#include "base/error.h"
+#include "sim/format/grid_field_file.h"
 
 namespace thaw::inspect {
 namespace fs = std::filesystem;

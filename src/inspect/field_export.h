@@ -1,6 +1,6 @@
 #pragma once
-// The grid solver's fields (sim/io/grid_field.h, DIR/sim/fields/step_NNNNNN.grid) as VTK image
-// data for ParaView: one .vti per step with the cell data temperature_c [C], ice_fraction and
+// The grid solver's fields (sim/format/grid_field_file.h, DIR/sim/fields/step_NNNNNN.grid) as VTK
+// image data for ParaView: one .vti per step with the cell data temperature_c [C], ice_fraction and
 // water_fraction [0, 1] on the solver's own cells (origin and spacing in metres; an axisymmetric
 // field is the (r, y) half-plane, x = r, one cell thick in z), and a .pvd time series of them
 // (timestep = simulated time [s]), placed like the surfaces of meshes.pvd (pvd_writer.h's
@@ -9,8 +9,8 @@
 #include <array>
 #include <filesystem>
 
-#include "sim/io/grid_field.h"
-#include "src/common/progress.h"
+#include "base/progress.h"
+#include "sim/format/grid_field_file.h"
 #include "src/inspect/pvd_writer.h"
 
 namespace thaw::inspect {

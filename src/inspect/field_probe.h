@@ -1,12 +1,12 @@
 #pragma once
-// The temperature of a grid run's material (sim/io/grid_field.h) at any point of the meshes'
-// frame, for the surface temperature point data of the hand-off .vtp files. Trilinear over the
-// eight nearest cell centres, each weighted by its material (ice + water) fraction: a surface
+// The temperature of a grid run's material (sim/format/grid_field_file.h) at any point of the
+// meshes' frame, for the surface temperature point data of the hand-off .vtp files. Trilinear over
+// the eight nearest cell centres, each weighted by its material (ice + water) fraction: a surface
 // vertex lies between material cells and the air padding around the body, and the air's held
 // temperature is not the surface's. Knows nothing of VTK or meshes.
 #include <array>
 
-#include "sim/io/grid_field.h"
+#include "sim/format/grid_field_file.h"
 
 namespace thaw::inspect {
 

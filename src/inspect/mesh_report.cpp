@@ -13,12 +13,12 @@
 #include <nlohmann/json.hpp>
 #include <numeric>
 
-#include "src/common/check.h"
-#include "src/common/error.h"
+#include "base/check.h"
+#include "base/edge_topology.h"
+#include "base/error.h"
+#include "base/obj_reader.h"
+#include "base/point3.h"
 #include "src/inspect/vtk_polydata.h"
-#include "src/meshio/edge_topology.h"
-#include "src/meshio/obj_reader.h"
-#include "src/meshio/point3.h"
 
 namespace thaw::inspect {
 namespace {
@@ -120,7 +120,7 @@ SortedTriangles sort_triangles(const TriangleMesh& mesh) {
 }
 
 /// Edges, boundary / non-manifold / inconsistent counts, components and edge lengths in linear
-/// time (a hash table of edges: src/meshio/edge_topology.h). vtkFeatureEdges is not used: it is
+/// time (a hash table of edges: base/edge_topology.h). vtkFeatureEdges is not used: it is
 /// quadratic in the triangles around an edge and runs out of memory beyond ~850k vertices.
 void add_topology(const TriangleMesh& mesh, const Triangles& topo, MeshReport& r) {
   const meshio::EdgeTopology topology = meshio::edge_topology(mesh.vertices, topo);

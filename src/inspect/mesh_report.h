@@ -1,7 +1,7 @@
 #pragma once
 // What `thaw inspect` says about one triangle surface: counts, topology (boundary and non-manifold
 // edges, orientation), size (volume, area, bounding box) and element quality (angles, aspect
-// ratio). Topology by linear-time edge hashing (src/meshio/edge_topology.h), size and quality with
+// ratio). Topology by linear-time edge hashing (base/edge_topology.h), size and quality with
 // VTK (vtkMassProperties, vtkMeshQuality), duplicated vertices and degenerate faces counted here.
 // The mesh is inspected as given: nothing is merged or repaired first. Needs no display.
 #include <array>

@@ -15,15 +15,16 @@
 #include <exception>
 #include <optional>
 
-#include "src/common/atomic_file.h"
-#include "src/common/check.h"
-#include "src/common/error.h"
-#include "src/common/interrupt.h"
+#include "base/atomic_file.h"
+#include "base/check.h"
+#include "base/error.h"
+#include "base/interrupt.h"
+#include "base/obj_reader.h"
+#include "sim/format/grid_field_file.h"
 #include "src/inspect/field_probe.h"
 #include "src/inspect/simulation_folder.h"
 #include "src/inspect/vtk_messages.h"
 #include "src/inspect/vtk_polydata.h"
-#include "src/meshio/obj_reader.h"
 
 namespace thaw::inspect {
 namespace fs = std::filesystem;

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "src/common/atomic_file.h"
-#include "src/common/progress.h"
+#include "base/atomic_file.h"
+#include "base/progress.h"
 #include "src/inspect/simulation_folder.h"
 #include "src/inspect/triangle_mesh.h"
 #include "src/mesh/mesh_farm.h"

@@ -21,7 +21,8 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "src/common/error.h"
+#include "base/error.h"
+#include "sim/format/interface_history.h"
 #include "src/inspect/virtual_display.h"
 #include "src/inspect/vtk_png.h"
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/io/interface_history.h"
+#include "sim/format/interface_history.h"
 
 namespace thaw::inspect {
 

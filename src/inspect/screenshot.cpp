@@ -20,14 +20,14 @@
 #include <limits>
 #include <tuple>
 
-#include "src/common/error.h"
-#include "src/common/progress.h"
+#include "base/error.h"
+#include "base/obj_reader.h"
+#include "base/progress.h"
 #include "src/inspect/simulation_folder.h"
 #include "src/inspect/surface_actor.h"
 #include "src/inspect/virtual_display.h"
 #include "src/inspect/vtk_png.h"
 #include "src/inspect/vtk_polydata.h"
-#include "src/meshio/obj_reader.h"
 
 namespace thaw::inspect {
 namespace fs = std::filesystem;

@@ -6,8 +6,9 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 
-#include "src/common/error.h"
-#include "src/meshio/mesh_manifest.h"
+#include "base/error.h"
+#include "base/format/mesh_manifest.h"
+#include "sim/format/interface_history.h"
 
 namespace thaw::inspect {
 namespace fs = std::filesystem;

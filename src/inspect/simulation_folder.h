@@ -11,8 +11,8 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "sim/io/interface_history.h"
-#include "src/common/progress.h"
+#include "base/progress.h"
+#include "sim/format/interface_history.h"
 #include "src/inspect/mesh_report.h"
 
 namespace thaw::inspect {

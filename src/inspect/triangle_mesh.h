@@ -1,7 +1,7 @@
 #pragma once
-// The inspector's mesh is the mesh files' own type (src/meshio/triangle_mesh.h): what the file
+// The inspector's mesh is the mesh files' own type (base/triangle_mesh.h): what the file
 // holds, nothing merged, reordered or repaired, so the inspector reports the file as it is.
-#include "src/meshio/triangle_mesh.h"
+#include "base/triangle_mesh.h"
 
 namespace thaw::inspect {
 

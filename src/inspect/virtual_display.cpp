@@ -14,8 +14,8 @@
 #include <mutex>
 #include <optional>
 
-#include "src/common/error.h"
-#include "src/common/subprocess.h"
+#include "base/error.h"
+#include "base/subprocess.h"
 
 extern char** environ;
 

@@ -7,7 +7,7 @@
 
 #include <mutex>
 
-#include "src/common/error.h"
+#include "base/error.h"
 
 namespace thaw::inspect {
 namespace {

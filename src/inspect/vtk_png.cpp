@@ -5,8 +5,8 @@
 #include <vtkRenderWindow.h>
 #include <vtkWindowToImageFilter.h>
 
-#include "src/common/atomic_file.h"
-#include "src/common/error.h"
+#include "base/atomic_file.h"
+#include "base/error.h"
 
 namespace thaw::inspect {
 namespace fs = std::filesystem;

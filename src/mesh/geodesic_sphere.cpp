@@ -6,7 +6,7 @@
 #include <map>
 #include <numbers>
 
-#include "src/common/check.h"
+#include "base/check.h"
 
 namespace thaw::mesh {
 

@@ -9,7 +9,7 @@
 // nothing about files.
 #include <string>
 
-#include "sim/io/grid_field.h"
+#include "sim/format/grid_field_file.h"
 #include "src/mesh/triangle_mesh.h"
 
 namespace thaw::mesh {

@@ -6,13 +6,13 @@
 #include <optional>
 
 #include <nlohmann/json.hpp>
-#include "sim/io/grid_field.h"
-#include "sim/io/interface_history.h"
+#include "sim/format/grid_field_file.h"
+#include "sim/format/interface_history.h"
 
-#include "src/common/atomic_file.h"
-#include "src/common/error.h"
-#include "src/common/fnv_hash.h"
-#include "src/common/interrupt.h"
+#include "base/atomic_file.h"
+#include "base/error.h"
+#include "base/fnv_hash.h"
+#include "base/interrupt.h"
 #include "src/mesh/grid_mesher.h"
 #include "src/mesh/obj_writer.h"
 #include "thaw_version.h"

@@ -1,7 +1,7 @@
 #pragma once
 // Meshes every step of a grid (axisymmetric or 3D) simulation folder: SIMDIR/interfaces.csv lists
-// the steps, SIMDIR/fields/step_NNNNNN.grid holds each step's field (sim/io/grid_field.h). Writes
-// the same SIMDIR/mesh/ as the 1D series (mesh_series.h: step_NNNNNN_outer.obj, _inner.obj,
+// the steps, SIMDIR/fields/step_NNNNNN.grid holds each step's field (sim/format/grid_field_file.h).
+// Writes the same SIMDIR/mesh/ as the 1D series (mesh_series.h: step_NNNNNN_outer.obj, _inner.obj,
 // manifest.json "thaw-mesh/1"), so the pipeline, the renderer and `thaw inspect` read both alike.
 // Steps are meshed in parallel (OpenMP, one grid mesher per step), byte-identical for any thread
 // count; the folder is staged and replaces SIMDIR/mesh only when every step succeeded.
@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <string>
 
-#include "src/common/progress.h"
+#include "base/progress.h"
 #include "src/mesh/mesh_options.h"
 #include "src/mesh/mesh_series.h"
 

@@ -6,7 +6,7 @@
 #include <deque>
 #include <unordered_map>
 
-#include "src/meshio/point3.h"
+#include "base/point3.h"
 
 namespace thaw::mesh {
 

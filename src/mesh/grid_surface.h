@@ -11,7 +11,7 @@
 //          the convention of the 1D inner surface (a closed surface around the water).
 // After break-through the cavity joins the outside and only `outer` is left. Knows nothing about
 // CGAL or files.
-#include "sim/io/grid_field.h"
+#include "sim/format/grid_field_file.h"
 #include "src/mesh/node_lattice.h"
 #include "src/mesh/triangle_mesh.h"
 

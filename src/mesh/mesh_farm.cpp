@@ -2,7 +2,7 @@
 
 #include <omp.h>
 
-#include "src/common/error.h"
+#include "base/error.h"
 
 namespace thaw::mesh {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "src/common/atomic_file.h"
+#include "base/atomic_file.h"
 
 namespace thaw::mesh {
 

@@ -6,8 +6,8 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
-#include "src/common/error.h"
-#include "src/common/number_text.h"
+#include "base/error.h"
+#include "base/number_text.h"
 
 namespace thaw::mesh {
 

@@ -10,17 +10,18 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "src/common/atomic_file.h"
-#include "src/common/error.h"
-#include "src/common/fnv_hash.h"
-#include "src/common/interrupt.h"
+#include "base/atomic_file.h"
+#include "base/error.h"
+#include "base/fnv_hash.h"
+#include "base/format/mesh_manifest.h"
+#include "base/interrupt.h"
+#include "base/obj_reader.h"
+#include "sim/format/interface_history.h"
 #include "src/mesh/geodesic_sphere.h"
 #include "src/mesh/grid_series.h"
 #include "src/mesh/obj_writer.h"
 #include "src/mesh/similar_surface.h"
 #include "src/mesh/surface_mesher.h"
-#include "src/meshio/mesh_manifest.h"
-#include "src/meshio/obj_reader.h"
 #include "thaw_version.h"
 
 namespace thaw::mesh {

@@ -13,8 +13,8 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "sim/io/interface_history.h"
-#include "src/common/progress.h"
+#include "base/progress.h"
+#include "sim/format/interface_history.h"
 #include "src/mesh/mesh_farm.h"
 #include "src/mesh/mesh_options.h"
 

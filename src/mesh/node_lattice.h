@@ -10,7 +10,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "sim/io/grid_field.h"
+#include "sim/format/grid_field_file.h"
 
 namespace thaw::mesh {
 

@@ -1,7 +1,7 @@
 #include "src/mesh/obj_writer.h"
 
-#include "src/common/atomic_file.h"
-#include "src/meshio/obj_writer.h"
+#include "base/atomic_file.h"
+#include "base/obj_writer.h"
 
 namespace thaw::mesh {
 

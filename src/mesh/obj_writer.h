@@ -1,6 +1,6 @@
 #pragma once
 // Wavefront OBJ output of the mesher's TriangleMesh through the one OBJ writer
-// (src/meshio/obj_writer.h), the contract the renderer and inspector read:
+// (base/obj_writer.h), the contract the renderer and inspector read:
 // `v x y z` at 17 significant digits (round-trips doubles exactly), optional `vn` (9 significant
 // digits: float precision is plenty for shading normals), 1-based `f i j k` or `f i//i j//j k//k`,
 // counter-clockwise seen from outside. Deterministic text (C locale formatting), written
@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <string>
 
+#include "base/triangle_mesh.h"
 #include "src/mesh/triangle_mesh.h"
-#include "src/meshio/triangle_mesh.h"
 
 namespace thaw::mesh {
 

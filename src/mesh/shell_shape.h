@@ -11,7 +11,7 @@
 // Knows nothing about CGAL, files or options.
 #include <array>
 
-#include "sim/io/interface_history.h"
+#include "sim/format/interface_history.h"
 
 namespace thaw::mesh {
 

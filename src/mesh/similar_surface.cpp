@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "src/common/check.h"
+#include "base/check.h"
 
 namespace thaw::mesh {
 

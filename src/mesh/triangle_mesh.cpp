@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <limits>
 
-#include "src/common/check.h"
+#include "base/check.h"
 
 namespace thaw::mesh {
 

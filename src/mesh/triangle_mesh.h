@@ -1,14 +1,14 @@
 #pragma once
 // An indexed triangle mesh in memory: what the mesher produces and the OBJ writer, the tests and
 // the pipeline consume. Plain data, no CGAL; knows nothing about how it was made.
-// Why not the file type (src/meshio/triangle_mesh.h): the mesher's algorithms (CGAL output, grid
+// Why not the file type (base/triangle_mesh.h): the mesher's algorithms (CGAL output, grid
 // marching tetrahedra, remeshing, Taubin smoothing) keep one unit normal per vertex and int
 // indices; the file type keeps what an OBJ file says (normals with their own indices, 64-bit
 // indices). to_file_mesh / from_file_mesh below are the one conversion between the two.
 #include <array>
 #include <vector>
 
-#include "src/meshio/triangle_mesh.h"
+#include "base/triangle_mesh.h"
 
 namespace thaw::mesh {
 

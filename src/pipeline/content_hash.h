@@ -1,12 +1,12 @@
 #pragma once
 // Content fingerprints for deciding what is up to date: 64-bit FNV-1a over bytes (Fowler, Noll,
-// Vo; src/common/fnv_hash.h). Not cryptographic: it detects edits, it does not resist forgery.
+// Vo; base/fnv_hash.h). Not cryptographic: it detects edits, it does not resist forgery.
 #include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
 
-#include "src/common/fnv_hash.h"
+#include "base/fnv_hash.h"
 
 namespace thaw::pipeline {
 

@@ -2,9 +2,9 @@
 
 #include <cstdio>
 
-#include "src/common/atomic_file.h"
-#include "src/common/error.h"
-#include "src/common/subprocess.h"
+#include "base/atomic_file.h"
+#include "base/error.h"
+#include "base/subprocess.h"
 
 namespace thaw::pipeline {
 namespace fs = std::filesystem;

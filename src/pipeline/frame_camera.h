@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "render/scene/scene_description.h"
-#include "sim/io/interface_history.h"
+#include "sim/format/interface_history.h"
 
 namespace thaw::pipeline {
 

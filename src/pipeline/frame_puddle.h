@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "render/scene/scene_description.h"
-#include "sim/io/interface_history.h"
+#include "sim/format/interface_history.h"
 #include "src/pipeline/puddle.h"
 
 namespace thaw::pipeline {

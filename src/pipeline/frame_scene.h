@@ -8,7 +8,7 @@
 #include <optional>
 
 #include "render/scene/scene_description.h"
-#include "sim/io/interface_history.h"
+#include "sim/format/interface_history.h"
 #include "src/pipeline/run_scenario.h"
 #include "src/pipeline/water_budget.h"
 

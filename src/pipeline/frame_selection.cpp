@@ -3,7 +3,7 @@
 #include <charconv>
 #include <string_view>
 
-#include "src/common/error.h"
+#include "base/error.h"
 
 namespace thaw::pipeline {
 namespace {

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "src/common/atomic_file.h"
-#include "src/meshio/obj_writer.h"
+#include "base/atomic_file.h"
+#include "base/obj_writer.h"
 #include "src/pipeline/frame_scene.h"
 
 namespace thaw::pipeline {

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "src/meshio/triangle_mesh.h"
+#include "base/triangle_mesh.h"
 #include "src/pipeline/run_scenario.h"
 
 namespace thaw::pipeline {

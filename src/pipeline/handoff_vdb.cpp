@@ -8,9 +8,10 @@
 #include <mutex>
 #include <vector>
 
-#include "src/common/atomic_file.h"
-#include "src/common/check.h"
-#include "src/common/error.h"
+#include "base/atomic_file.h"
+#include "base/check.h"
+#include "base/error.h"
+#include "sim/format/grid_field_file.h"
 
 namespace thaw::pipeline {
 namespace fs = std::filesystem;

@@ -13,7 +13,7 @@
 #include <functional>
 #include <string>
 
-#include "sim/io/grid_field.h"
+#include "sim/format/grid_field_file.h"
 
 namespace thaw::pipeline {
 

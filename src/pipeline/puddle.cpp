@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "src/common/check.h"
+#include "base/check.h"
 
 namespace thaw::pipeline {
 namespace {

@@ -3,8 +3,8 @@
 #include <charconv>
 #include <cstdio>
 
+#include "base/error.h"
 #include "render/scene/scene_rules.h"
-#include "src/common/error.h"
 
 namespace thaw::pipeline {
 namespace {

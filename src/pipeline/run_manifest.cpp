@@ -5,9 +5,9 @@
 #include <nlohmann/json.hpp>
 #include <string_view>
 
-#include "src/common/atomic_file.h"
-#include "src/common/check.h"
-#include "src/common/fnv_hash.h"
+#include "base/atomic_file.h"
+#include "base/check.h"
+#include "base/fnv_hash.h"
 #include "src/pipeline/content_hash.h"
 
 namespace thaw::pipeline {

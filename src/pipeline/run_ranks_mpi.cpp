@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "src/common/error.h"
+#include "base/error.h"
 #include "src/pipeline/run_ranks.h"
 
 namespace thaw::pipeline {

@@ -3,12 +3,12 @@
 #include <cmath>
 #include <cstdio>
 
-#include "render/scene/scene_parser.h"
+#include "base/error.h"
+#include "base/format/toml_table.h"
+#include "render/format/scene_parser.h"
 #include "render/scene/scene_rules.h"
+#include "sim/format/scenario_file.h"
 #include "sim/grid/grid_rules.h"
-#include "sim/scenario/scenario_file.h"
-#include "src/common/error.h"
-#include "src/common/toml_table.h"
 
 namespace thaw::pipeline {
 namespace fs = std::filesystem;

@@ -2,7 +2,7 @@
 
 #include <numbers>
 
-#include "src/common/check.h"
+#include "base/check.h"
 
 namespace thaw::pipeline {
 

@@ -21,7 +21,7 @@
 // whose volumes are 3-D even where interfaces.csv gives them per m (cylinder) or per m^2 (planar).
 #include <vector>
 
-#include "sim/io/interface_history.h"
+#include "sim/format/interface_history.h"
 
 namespace thaw::pipeline {
 

@@ -1,6 +1,6 @@
-// libFuzzer target: the interfaces.csv reader (sim/io/interface_history.h) on arbitrary bytes.
-#include "sim/io/interface_history.h"
-#include "src/common/error.h"
+// libFuzzer target: the interfaces.csv reader (sim/format/interface_history.h) on arbitrary bytes.
+#include "base/error.h"
+#include "sim/format/interface_history.h"
 #include "tests/fuzz/fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

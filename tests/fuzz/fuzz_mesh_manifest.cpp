@@ -1,6 +1,6 @@
-// libFuzzer target: the thaw-mesh/1 manifest reader (src/meshio/mesh_manifest.h).
-#include "src/common/error.h"
-#include "src/meshio/mesh_manifest.h"
+// libFuzzer target: the thaw-mesh/1 manifest reader (base/format/mesh_manifest.h).
+#include "base/error.h"
+#include "base/format/mesh_manifest.h"
 #include "tests/fuzz/fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

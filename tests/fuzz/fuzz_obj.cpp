@@ -1,11 +1,11 @@
-// libFuzzer target: the strict OBJ reader (src/meshio/obj_reader.h) and, on what it accepts, the
+// libFuzzer target: the strict OBJ reader (base/obj_reader.h) and, on what it accepts, the
 // edge topology and the writer's round trip (read(write(m)) == m for the vertices and triangles).
 #include <cstdlib>
 
-#include "src/common/error.h"
-#include "src/meshio/edge_topology.h"
-#include "src/meshio/obj_reader.h"
-#include "src/meshio/obj_writer.h"
+#include "base/edge_topology.h"
+#include "base/error.h"
+#include "base/obj_reader.h"
+#include "base/obj_writer.h"
 #include "tests/fuzz/fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

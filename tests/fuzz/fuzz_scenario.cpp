@@ -1,6 +1,6 @@
-// libFuzzer target: the scenario parser (sim/scenario/scenario_file.h) on arbitrary text.
-#include "sim/scenario/scenario_file.h"
-#include "src/common/error.h"
+// libFuzzer target: the scenario parser (sim/format/scenario_file.h) on arbitrary text.
+#include "base/error.h"
+#include "sim/format/scenario_file.h"
 #include "tests/fuzz/fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

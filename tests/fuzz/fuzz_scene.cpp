@@ -1,7 +1,7 @@
-// libFuzzer target: the scene parser (render/scene/scene_parser.h) on arbitrary text. Mesh files
+// libFuzzer target: the scene parser (render/format/scene_parser.h) on arbitrary text. Mesh files
 // resolve against an empty folder, so only absolute paths reach the file system.
-#include "render/scene/scene_parser.h"
-#include "src/common/error.h"
+#include "base/error.h"
+#include "render/format/scene_parser.h"
 #include "tests/fuzz/fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,15 +1,15 @@
 // render's core alone (thaw_render_core: no TOML, no JSON; this binary links nothing else): a
 // scene described in code is checked by the scene rules, built and rendered without the file
-// layer (render/scene/scene_parser.h, render/media/medium_parser.h). A core that reached for a
+// layer (render/format/scene_parser.h, render/format/medium_parser.h). A core that reached for a
 // file format would not link.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "base/error.h"
 #include "render/integrator/whitted.h"
 #include "render/scene/scene.h"
 #include "render/scene/scene_rules.h"
-#include "src/common/error.h"
 
 namespace thaw::render {
 namespace {

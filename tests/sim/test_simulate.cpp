@@ -8,9 +8,10 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "sim/io/simulation_output.h"
-#include "sim/scenario/scenario_file.h"
-#include "src/common/error.h"
+#include "base/error.h"
+#include "sim/format/interface_history.h"
+#include "sim/format/scenario_file.h"
+#include "sim/format/simulation_output.h"
 
 namespace thaw::sim {
 namespace {

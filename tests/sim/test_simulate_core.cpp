@@ -1,14 +1,14 @@
 // sim's core alone (thaw_sim_core: no TOML, no JSON; this binary links nothing else): a scenario
 // built in code is validated, simulated and named for its problems without the file layer
-// (sim/scenario/scenario_file.h, sim/io/simulation_output.h). A core that reached for a file
+// (sim/format/scenario_file.h, sim/format/simulation_output.h). A core that reached for a file
 // format would not link.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "base/error.h"
 #include "sim/scenario/scenario_rules.h"
 #include "sim/simulate.h"
-#include "src/common/error.h"
 
 namespace thaw::sim {
 namespace {

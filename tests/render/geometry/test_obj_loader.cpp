@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "src/common/error.h"
+#include "base/error.h"
 
 namespace thaw::render {
 namespace {

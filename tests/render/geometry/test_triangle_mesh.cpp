@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "src/common/error.h"
+#include "base/error.h"
 #include "tests/render/test_util.h"
 
 namespace thaw::render {

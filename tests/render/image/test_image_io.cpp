@@ -12,7 +12,7 @@
 #include <filesystem>
 #include <limits>
 
-#include "src/common/error.h"
+#include "base/error.h"
 
 namespace thaw::render {
 namespace {

@@ -8,15 +8,15 @@
 #include <memory>
 #include <string>
 
+#include "base/error.h"
+#include "render/format/scene_parser.h"
 #include "render/integrator/spectral_whitted.h"
 #include "render/integrator/whitted.h"
 #include "render/material/fresnel.h"
 #include "render/math/rng.h"
 #include "render/media/refraction.h"
-#include "render/scene/scene_parser.h"
 #include "render/spectrum/colour.h"
 #include "render/spectrum/rgb_uplift.h"
-#include "src/common/error.h"
 
 namespace thaw::render {
 namespace {

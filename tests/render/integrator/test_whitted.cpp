@@ -21,10 +21,10 @@
 #include <numbers>
 #include <string>
 
+#include "render/format/medium_library.h"
+#include "render/format/scene_parser.h"
 #include "render/light/latlong_map.h"
-#include "render/media/medium_library.h"
 #include "render/photon/caustic_map.h"
-#include "render/scene/scene_parser.h"
 #include "tests/render/test_util.h"
 
 namespace thaw::render {

@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/error.h"
+#include "render/format/medium_library.h"
 #include "render/media/absorption.h"
-#include "render/media/medium_library.h"
-#include "src/common/error.h"
 
 namespace thaw::render::media {
 namespace {

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "base/error.h"
+#include "render/format/medium_library.h"
 #include "render/media/ior_model.h"
 #include "render/media/medium.h"
-#include "render/media/medium_library.h"
-#include "src/common/error.h"
 
 namespace thaw::render::media {
 namespace {

@@ -5,11 +5,11 @@
 
 #include <string>
 
+#include "base/error.h"
+#include "base/format/toml_table.h"
+#include "render/format/medium_library.h"
+#include "render/format/medium_parser.h"
 #include "render/media/medium.h"
-#include "render/media/medium_library.h"
-#include "render/media/medium_parser.h"
-#include "src/common/error.h"
-#include "src/common/toml_table.h"
 
 namespace thaw::render::media {
 namespace {

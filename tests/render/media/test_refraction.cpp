@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "render/media/medium_library.h"
+#include "render/format/medium_library.h"
 #include "render/media/refraction.h"
 
 namespace thaw::render::optics {

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <string>
 
+#include "base/error.h"
 #include "render/media/absorption.h"
 #include "render/media/ior_model.h"
-#include "src/common/error.h"
 
 namespace thaw::render::media {
 namespace {

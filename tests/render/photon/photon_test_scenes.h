@@ -2,8 +2,8 @@
 // Scenes shared by the photon tests: built from TOML text like a user's file.
 #include <string>
 
+#include "render/format/scene_parser.h"
 #include "render/scene/scene.h"
-#include "render/scene/scene_parser.h"
 
 namespace thaw::render::photon::test {
 

@@ -5,7 +5,7 @@
 
 #include <random>
 
-#include "src/common/error.h"
+#include "base/error.h"
 #include "tests/render/test_util.h"
 
 namespace thaw::render {

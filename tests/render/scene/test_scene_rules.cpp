@@ -7,9 +7,9 @@
 
 #include <cmath>
 
+#include "base/error.h"
+#include "render/format/scene_parser.h"
 #include "render/scene/scene.h"
-#include "render/scene/scene_parser.h"
-#include "src/common/error.h"
 #include "tests/render/test_util.h"
 
 namespace thaw::render {

@@ -12,9 +12,9 @@
 #include <utility>
 #include <vector>
 
+#include "sim/format/scenario_file.h"
 #include "sim/grid/enthalpy_solver.h"
 #include "sim/reference/neumann.h"
-#include "sim/scenario/scenario_file.h"
 
 namespace thaw::sim::test {
 

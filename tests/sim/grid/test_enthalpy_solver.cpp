@@ -11,8 +11,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "sim/format/scenario_file.h"
 #include "sim/reference/neumann.h"
-#include "sim/scenario/scenario_file.h"
 #include "tests/sim/grid/planar_neumann_grid.h"
 
 namespace thaw::sim {

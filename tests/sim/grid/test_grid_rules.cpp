@@ -6,8 +6,8 @@
 
 #include <string>
 
-#include "sim/scenario/scenario_file.h"
-#include "src/common/error.h"
+#include "base/error.h"
+#include "sim/format/scenario_file.h"
 
 namespace thaw::sim {
 namespace {

@@ -11,10 +11,10 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 
+#include "sim/format/scenario_file.h"
+#include "sim/format/simulation_output.h"
 #include "sim/grid/enthalpy_solver.h"
 #include "sim/grid/grid_builder.h"
-#include "sim/io/simulation_output.h"
-#include "sim/scenario/scenario_file.h"
 #include "sim/simulate.h"
 
 namespace thaw::sim {

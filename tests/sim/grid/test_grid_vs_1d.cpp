@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <numbers>
 
-#include "sim/scenario/scenario_file.h"
+#include "sim/format/scenario_file.h"
 #include "sim/simulate.h"
 
 namespace thaw::sim {

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "src/common/error.h"
+#include "base/error.h"
 
 namespace thaw::sim {
 namespace {

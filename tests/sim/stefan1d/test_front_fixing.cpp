@@ -10,10 +10,10 @@
 #include <utility>
 #include <vector>
 
+#include "base/error.h"
+#include "sim/format/scenario_file.h"
 #include "sim/reference/neumann.h"
-#include "sim/scenario/scenario_file.h"
 #include "sim/stefan1d/neumann_problem.h"
-#include "src/common/error.h"
 
 namespace thaw::sim {
 namespace {

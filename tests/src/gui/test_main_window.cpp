@@ -25,7 +25,7 @@
 #include <set>
 #include <string>
 
-#include "src/common/interrupt.h"
+#include "base/interrupt.h"
 #include "src/gui/main_window.h"
 #include "src/gui/scene_props.h"
 #include "src/gui/screenshot.h"

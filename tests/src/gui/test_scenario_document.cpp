@@ -10,9 +10,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "src/common/atomic_file.h"
-#include "src/common/error.h"
-#include "src/common/toml_table.h"
+#include "base/atomic_file.h"
+#include "base/error.h"
+#include "base/format/toml_table.h"
 
 namespace thaw::gui {
 namespace {

@@ -8,7 +8,7 @@
 
 #include <filesystem>
 
-#include "src/common/subprocess.h"
+#include "base/subprocess.h"
 #include "src/inspect/virtual_display.h"
 
 #define THAW_SKIP_WITHOUT_X()                                                  \

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "sim/format/grid_field_file.h"
 #include "tests/src/inspect/test_meshes.h"
 
 namespace thaw::inspect {

@@ -12,10 +12,10 @@
 #include <string>
 #include <utility>
 
-#include "sim/io/interface_history.h"
-#include "src/common/atomic_file.h"
+#include "base/atomic_file.h"
+#include "base/obj_writer.h"
+#include "sim/format/interface_history.h"
 #include "src/inspect/triangle_mesh.h"
-#include "src/meshio/obj_writer.h"
 #include "tests/src/inspect/icosphere.h"
 
 namespace thaw::inspect::testing {

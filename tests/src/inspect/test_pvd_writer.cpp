@@ -18,9 +18,9 @@
 #include <map>
 #include <mutex>
 
-#include "sim/io/grid_field.h"
-#include "src/common/error.h"
-#include "tests/src/common/file_size_limit.h"
+#include "base/error.h"
+#include "sim/format/grid_field_file.h"
+#include "tests/base/file_size_limit.h"
 #include "tests/src/inspect/test_meshes.h"
 
 namespace thaw::inspect {

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "src/common/error.h"
+#include "base/error.h"
 #include "tests/src/inspect/render_check.h"
 #include "tests/src/inspect/test_meshes.h"
 

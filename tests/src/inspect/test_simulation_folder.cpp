@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-#include "src/common/error.h"
+#include "base/error.h"
 #include "tests/src/inspect/test_meshes.h"
 
 namespace thaw::inspect {

@@ -8,8 +8,8 @@
 #include <optional>
 #include <string>
 
-#include "src/common/error.h"
-#include "src/common/subprocess.h"
+#include "base/error.h"
+#include "base/subprocess.h"
 
 namespace thaw::inspect {
 namespace {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <functional>
 
-#include "sim/io/grid_field.h"
+#include "sim/format/grid_field_file.h"
 
 namespace thaw::mesh::testing {
 

@@ -11,9 +11,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "sim/io/interface_history.h"
-#include "src/common/error.h"
-#include "src/common/interrupt.h"
+#include "base/error.h"
+#include "base/interrupt.h"
+#include "sim/format/grid_field_file.h"
+#include "sim/format/interface_history.h"
 #include "tests/src/mesh/grid_field_samples.h"
 
 namespace thaw::mesh {

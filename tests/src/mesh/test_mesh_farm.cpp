@@ -12,7 +12,7 @@
 #include <fstream>
 #include <string>
 
-#include "src/common/error.h"
+#include "base/error.h"
 
 namespace thaw::mesh {
 namespace {

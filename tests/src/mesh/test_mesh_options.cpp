@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-#include "src/common/error.h"
+#include "base/error.h"
 
 namespace thaw::mesh {
 namespace {

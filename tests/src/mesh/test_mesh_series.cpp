@@ -17,9 +17,9 @@
 #include <sstream>
 #include <vector>
 
-#include "src/common/error.h"
-#include "src/common/interrupt.h"
-#include "tests/src/common/file_size_limit.h"
+#include "base/error.h"
+#include "base/interrupt.h"
+#include "tests/base/file_size_limit.h"
 
 namespace thaw::mesh {
 namespace {

@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include "src/common/error.h"
-#include "src/common/subprocess.h"
+#include "base/error.h"
+#include "base/subprocess.h"
 
 namespace thaw::pipeline {
 namespace {

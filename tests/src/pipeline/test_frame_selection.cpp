@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "src/common/error.h"
+#include "base/error.h"
 
 namespace thaw::pipeline {
 namespace {

@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "src/common/subprocess.h"
+#include "base/subprocess.h"
 #include "src/pipeline/film_encoder.h"
 
 namespace thaw::pipeline {

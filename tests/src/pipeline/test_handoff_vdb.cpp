@@ -10,7 +10,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include "src/common/error.h"
+#include "base/error.h"
+#include "sim/format/grid_field_file.h"
 
 namespace thaw::pipeline {
 namespace {

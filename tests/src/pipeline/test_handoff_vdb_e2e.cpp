@@ -18,8 +18,8 @@
 #include <array>
 #include <limits>
 
-#include "src/common/subprocess.h"
-#include "src/meshio/obj_reader.h"
+#include "base/obj_reader.h"
+#include "base/subprocess.h"
 #include "tests/src/pipeline/run_test_support.h"
 
 namespace thaw::pipeline {

@@ -20,7 +20,7 @@
 #include <sstream>
 #include <thread>
 
-#include "src/common/subprocess.h"
+#include "base/subprocess.h"
 #include "src/pipeline/film_encoder.h"
 #include "src/pipeline/handoff_export.h"
 #include "tests/src/pipeline/run_test_support.h"

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "src/common/subprocess.h"
+#include "base/subprocess.h"
 #include "src/pipeline/film_encoder.h"
 #include "tests/src/pipeline/run_test_support.h"
 

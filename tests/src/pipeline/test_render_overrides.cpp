@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "render/scene/scene_parser.h"
-#include "src/common/error.h"
+#include "base/error.h"
+#include "render/format/scene_parser.h"
 
 namespace thaw::pipeline {
 namespace {

@@ -7,8 +7,8 @@
 
 #include <string>
 
-#include "src/common/error.h"
-#include "src/common/toml_table.h"
+#include "base/error.h"
+#include "base/format/toml_table.h"
 
 namespace thaw::pipeline {
 namespace {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "sim/scenario/scenario_file.h"
+#include "sim/format/scenario_file.h"
 #include "sim/simulate.h"
 
 namespace thaw::pipeline {

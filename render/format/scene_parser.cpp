@@ -1,0 +1,412 @@
+#include "render/format/scene_parser.h"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "base/error.h"
+#include "base/format/toml_table.h"
+#include "base/text_file.h"
+#include "render/format/medium_library.h"
+#include "render/format/medium_parser.h"
+#include "render/light/latlong_map.h"
+
+namespace thaw::render {
+
+namespace {
+
+double length3(const Vec3d& v) {
+  return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+/// A unit vector: |v| must be 1 to within 1e-6 relative (a float's worth of rounding in the file).
+Vec3d unit_vec3(const TomlTable& t, const std::string& key) {
+  const Vec3d v = t.get_vec3(key);
+  const double len = length3(v);
+  if (len == 0.0) t.fail(key, "must not be the zero vector");
+  if (std::abs(len - 1.0) > 1e-6)
+    t.fail(key, "must be a unit vector (its length is " + std::to_string(len) + ")");
+  return v;
+}
+
+RgbD color3(const TomlTable& t, const std::string& key, const RgbD& fallback) {
+  const RgbD c = t.get_vec3(key, fallback);
+  for (double v : c)
+    if (v < 0.0) t.fail(key, "colour components must not be negative");
+  return c;
+}
+
+/// `value` unless `rule` finds a problem with it, which is then the file's error at `key`.
+template <typename T, typename Rule>
+T checked(const TomlTable& t, const std::string& key, T value, Rule rule) {
+  if (const std::optional<std::string> problem = rule(value)) t.fail(key, *problem);
+  return value;
+}
+
+/// An integer key checked by `rule` on its full 64-bit value, before it is narrowed to int.
+template <typename Rule>
+int int_key(const TomlTable& t, const std::string& key, int fallback, Rule rule) {
+  return static_cast<int>(checked<long long>(t, key, t.get_int(key, fallback), rule));
+}
+
+/// [image] spectral = "auto" | true | false.
+ImageSettings::Spectral parse_spectral(const TomlTable& img) {
+  // TomlTable has no type query: try the two accepted types in turn.
+  try {
+    return img.get_bool("spectral", false) ? ImageSettings::Spectral::on
+                                           : ImageSettings::Spectral::off;
+  } catch (const UserError&) {
+  }
+  std::string text;
+  try {
+    text = img.get_string("spectral");
+  } catch (const UserError&) {
+  }
+  if (text != "auto") img.fail("spectral", "must be \"auto\", true or false");
+  return ImageSettings::Spectral::automatic;
+}
+
+/// [image]; every limit is a rule of render/scene/scene_rules.h.
+ImageSettings parse_image(const TomlTable& img, ImageSettings image) {
+  image.width = int_key(img, "width", image.width, image_side_problem);
+  image.height = int_key(img, "height", image.height, image_side_problem);
+  if (const auto problem = image_pixels_problem(image.width, image.height))
+    img.fail("height", *problem);
+  image.samples_per_pixel =
+      int_key(img, "samples_per_pixel", image.samples_per_pixel, samples_per_pixel_problem);
+  image.adaptive = img.get_bool("adaptive", image.adaptive);
+  image.min_samples = int_key(img, "min_samples", image.min_samples, min_samples_problem);
+  image.adaptive_threshold = checked(img, "adaptive_threshold",
+                                     img.get_double("adaptive_threshold", image.adaptive_threshold),
+                                     adaptive_threshold_problem);
+  const std::string filter = img.get_string("filter", filter_name(image.filter));
+  if (const auto kind = filter_kind_from_name(filter))
+    image.filter = *kind;
+  else
+    img.fail("filter",
+             "unknown filter \"" + filter + "\" (expected \"box\", \"gaussian\" or \"mitchell\")");
+  image.filter_radius = checked(
+      img, "filter_radius", img.get_double("filter_radius", default_filter_radius(image.filter)),
+      filter_radius_problem);
+  image.texture_filter = img.get_bool("texture_filter", image.texture_filter);
+  image.max_depth = int_key(img, "max_depth", image.max_depth, max_depth_problem);
+  image.background = color3(img, "background", image.background);
+  image.min_weight = checked(img, "min_weight", img.get_double("min_weight", image.min_weight),
+                             min_weight_problem);
+  image.exposure =
+      checked(img, "exposure", img.get_double("exposure", image.exposure), exposure_problem);
+  if (img.has("spectral")) image.spectral = parse_spectral(img);
+  image.dispersion = *dispersion_from_name(checked(
+      img, "dispersion", img.get_string("dispersion", "adaptive"), dispersion_name_problem));
+  image.dispersion_resolution_nm =
+      checked(img, "dispersion_resolution_nm",
+              img.get_double("dispersion_resolution_nm", image.dispersion_resolution_nm),
+              dispersion_resolution_problem);
+  image.dispersion_wavelengths = int_key(
+      img, "dispersion_wavelengths", image.dispersion_wavelengths, dispersion_wavelengths_problem);
+  image.wavelength_pattern = *wavelength_pattern_from_name(
+      checked(img, "wavelength_pattern", img.get_string("wavelength_pattern", "shared"),
+              wavelength_pattern_name_problem));
+  const std::string film = img.get_string("spectral_film", "ratio");
+  if (film == "ratio")
+    image.spectral_film = ImageSettings::SpectralFilm::ratio;
+  else if (film == "unbiased")
+    image.spectral_film = ImageSettings::SpectralFilm::unbiased;
+  else
+    img.fail("spectral_film", "must be \"ratio\" or \"unbiased\" (got \"" + film + "\")");
+  return image;
+}
+
+TextureDescription parse_texture(const TomlTable& m) {
+  TextureDescription tex;
+  if (m.has("checker")) {
+    if (m.has("color")) m.fail("color", "give either color or checker, not both");
+    const TomlTable c = m.table("checker");
+    tex.kind = TextureDescription::Kind::checker;
+    const auto colors = c.get_vec3s("colors");
+    if (colors.size() != 2) c.fail("colors", "expected two colours [[r, g, b], [r, g, b]]");
+    for (const auto& col : colors)
+      for (double v : col)
+        if (v < 0.0) c.fail("colors", "colour components must not be negative");
+    tex.checker_colors = {colors[0], colors[1]};
+    tex.checker_size = c.require_positive("size", c.get_double("size"));
+    tex.checker_offset = c.get_vec3("offset", {0.0, 0.0, 0.0});
+  } else {
+    tex.kind = TextureDescription::Kind::solid;
+    tex.color = color3(m, "color", {0.8, 0.8, 0.8});
+  }
+  return tex;
+}
+
+MaterialDescription parse_material(const std::string& name, const TomlTable& m) {
+  MaterialDescription mat;
+  mat.name = name;
+  const std::string kind = m.get_string("kind");
+  if (kind == "matte") {
+    mat.kind = MaterialDescription::Kind::matte;
+    mat.texture = parse_texture(m);
+  } else if (kind == "metal") {
+    mat.kind = MaterialDescription::Kind::metal;
+    mat.texture = parse_texture(m);
+  } else if (kind == "phong") {
+    mat.kind = MaterialDescription::Kind::phong;
+    mat.texture = parse_texture(m);
+    mat.ka = m.require_non_negative("ka", m.get_double("ka", 0.1));
+    mat.kd = m.require_non_negative("kd", m.get_double("kd", 0.9));
+    mat.ks = m.require_non_negative("ks", m.get_double("ks", 0.0));
+    mat.shininess = m.require_positive("shininess", m.get_double("shininess", 32.0));
+    mat.reflectance = m.require_non_negative("reflectance", m.get_double("reflectance", 0.0));
+    mat.transmittance = m.require_non_negative("transmittance", m.get_double("transmittance", 0.0));
+    mat.ior = m.require_positive("ior", m.get_double("ior", 1.0));
+  } else if (kind == "emissive") {
+    mat.kind = MaterialDescription::Kind::emissive;
+    mat.emission = color3(m, "color", {1.0, 1.0, 1.0});
+    mat.emission_intensity = m.require_non_negative("intensity", m.get_double("intensity", 1.0));
+  } else {
+    m.fail("kind",
+           "unknown material kind '" + kind + "' (expected matte, metal, phong or emissive)");
+  }
+  return mat;
+}
+
+/// [environment]: constant, sky or latlong; the keys of the other kinds stay unread (unknown-key
+/// errors). A lat-long map's file is read here, once (a film's frames share it).
+void parse_environment(const TomlTable& env, SceneDescription& s) {
+  EnvironmentDescription& e = s.environment;
+  const std::string kind = env.get_string("kind", "constant");
+  e.light_surfaces = env.get_bool("light_surfaces", false);
+  e.occlusion_samples =
+      int_key(env, "occlusion_samples", e.occlusion_samples, environment_samples_problem);
+  e.haze_distance =
+      checked(env, "haze_distance", env.get_double("haze_distance", 0.0), environment_haze_problem);
+  if (kind == "constant") {
+    e.kind = EnvironmentDescription::Kind::constant;
+    return;
+  }
+  if (kind == "sky") {
+    e.kind = EnvironmentDescription::Kind::sky;
+    e.zenith = color3(env, "zenith", e.zenith);
+    e.horizon = color3(env, "horizon", e.horizon);
+    e.ground = color3(env, "ground", e.ground);
+    if (env.has("up")) e.up = unit_vec3(env, "up");
+    e.exponent = checked(env, "exponent", env.get_double("exponent", e.exponent),
+                         environment_exponent_problem);
+    for (const TomlTable& t : env.array_of_tables("panels")) {
+      PanelDescription panel;
+      panel.direction = unit_vec3(t, "direction");
+      panel.width_deg = checked(t, "width_deg", t.get_double("width_deg"), panel_size_problem);
+      panel.height_deg = checked(t, "height_deg", t.get_double("height_deg"), panel_size_problem);
+      panel.edge_deg =
+          checked(t, "edge_deg", t.get_double("edge_deg", panel.edge_deg), panel_edge_problem);
+      panel.color = color3(t, "color", panel.color);
+      panel.intensity = checked(t, "intensity", t.get_double("intensity", panel.intensity),
+                                environment_intensity_problem);
+      e.panels.push_back(panel);
+    }
+  } else if (kind == "latlong") {
+    e.kind = EnvironmentDescription::Kind::latlong;
+    e.file = env.get_string("file");
+    e.rotation_deg = checked(env, "rotation_deg", env.get_double("rotation_deg", 0.0),
+                             environment_rotation_problem);
+    const std::filesystem::path path = std::filesystem::path(e.file).is_absolute()
+                                           ? std::filesystem::path(e.file)
+                                           : s.base_dir / e.file;
+    std::string problem;
+    auto map = load_latlong_map(path.string(), problem);
+    if (!map) env.fail("file", "'" + path.string() + "' " + problem);
+    e.map = std::make_shared<const LatLongMap>(std::move(*map));
+  } else {
+    env.fail("kind", "unknown environment '" + kind + "' (expected constant, sky or latlong)");
+  }
+  e.intensity =
+      checked(env, "intensity", env.get_double("intensity", 1.0), environment_intensity_problem);
+}
+
+CausticSettings parse_caustics(const TomlTable& c) {
+  CausticSettings caustics;
+  caustics.enabled = c.get_bool("enabled", true);
+  if (c.has("photons"))
+    caustics.photons =
+        checked<long long>(c, "photons", c.get_int("photons"), caustic_photons_problem);
+  if (c.has("radius"))
+    caustics.radius = checked(c, "radius", c.get_double("radius"), caustic_radius_problem);
+  return caustics;
+}
+
+CameraDescription parse_camera(const TomlTable& cam) {
+  CameraDescription camera;
+  camera.position = cam.get_vec3("position");
+  camera.look_at = cam.get_vec3("look_at");
+  camera.up = cam.has("up") ? unit_vec3(cam, "up") : Vec3d{0.0, 1.0, 0.0};
+  camera.vertical_fov_deg =
+      checked(cam, "vertical_fov_deg", cam.get_double("vertical_fov_deg"), vertical_fov_problem);
+  camera.medium = cam.get_string("medium", "");
+  if (const auto problem = camera_problem(camera)) cam.fail(problem->key, problem->problem);
+  return camera;
+}
+
+LightDescription parse_light(const TomlTable& l) {
+  LightDescription light;
+  const std::string kind = l.get_string("kind", "point");
+  if (kind == "point") {
+    light.kind = LightDescription::Kind::point;
+  } else if (kind == "sphere") {
+    light.kind = LightDescription::Kind::sphere;
+    light.radius = checked(l, "radius", l.get_double("radius"), light_radius_problem);
+    light.samples = int_key(l, "samples", light.samples, light_samples_problem);
+  } else {
+    l.fail("kind", "unknown light kind '" + kind + "' (expected point or sphere)");
+  }
+  light.position = l.get_vec3("position");
+  light.color = color3(l, "color", light.color);
+  light.intensity = l.require_non_negative("intensity", l.get_double("intensity", 1.0));
+  const std::string falloff = l.get_string("falloff", "none");
+  if (falloff == "none")
+    light.falloff = LightDescription::Falloff::none;
+  else if (falloff == "inverse_square")
+    light.falloff = LightDescription::Falloff::inverse_square;
+  else
+    l.fail("falloff", "unknown falloff '" + falloff + "' (expected none or inverse_square)");
+  return light;
+}
+
+/// [media.NAME] tables into `s.media`; returns every medium name an object may use.
+std::set<std::string> parse_media(const TomlTable& root, SceneDescription& s) {
+  std::set<std::string> media{"vacuum"};
+  const auto med = root.optional_table("media");
+  if (!med) return media;
+  for (const std::string& name : med->keys()) {
+    const TomlTable m = med->table(name);
+    MediumDescription md;
+    md.name = name;
+    if (m.has("ior")) md.ior = checked(m, "ior", m.get_double("ior"), ior_problem);
+    if (name == "vacuum")
+      m.fail(m.has("ior") ? "ior" : "", "'vacuum' is predefined (n = 1) and cannot be redefined");
+    // Everything else a medium may say (preset, sellmeier, ..., absorption): render/media.
+    md.spec = media::resolve_preset(media::parse_medium_spec(m, name));
+    media.insert(name);
+    s.media.push_back(md);
+  }
+  return media;
+}
+
+/// [materials.NAME] tables into `s.materials`; returns their names.
+std::set<std::string> parse_materials(const TomlTable& root, SceneDescription& s) {
+  std::set<std::string> materials;
+  if (auto mats = root.optional_table("materials")) {
+    for (const std::string& name : mats->keys()) {
+      s.materials.push_back(parse_material(name, mats->table(name)));
+      materials.insert(name);
+    }
+  }
+  return materials;
+}
+
+/// An object's `shape` and the keys that place it.
+void parse_shape(const TomlTable& o, ObjectDescription& obj) {
+  const std::string shape = o.get_string("shape");
+  if (shape == "sphere") {
+    obj.shape = ObjectDescription::Shape::sphere;
+    obj.center = o.get_vec3("center");
+    obj.radius = o.get_double("radius");
+  } else if (shape == "box") {
+    obj.shape = ObjectDescription::Shape::box;
+    obj.box_min = o.get_vec3("min");
+    obj.box_max = o.get_vec3("max");
+  } else if (shape == "plane") {
+    obj.shape = ObjectDescription::Shape::plane;
+    obj.point = o.get_vec3("point");
+    obj.normal = unit_vec3(o, "normal");
+  } else if (shape == "mesh") {
+    obj.shape = ObjectDescription::Shape::mesh;
+    const std::string file = o.get_string("file");
+    if (file.empty()) o.fail("file", "must name an OBJ file");
+    obj.mesh_file = file;
+    obj.scale = o.get_double("scale", 1.0);
+    obj.translate = o.get_vec3("translate", {0.0, 0.0, 0.0});
+    obj.smooth_normals = o.get_bool("smooth_normals", false);
+  } else {
+    o.fail("shape", "unknown shape '" + shape + "' (expected mesh, sphere, box or plane)");
+  }
+  if (const auto problem = object_problem(obj)) o.fail(problem->key, problem->problem);
+}
+
+/// An object is opaque (`material`) or a dielectric interface (`inside`, `outside`).
+void parse_surface(const TomlTable& o, const std::set<std::string>& materials,
+                   const std::set<std::string>& media, ObjectDescription& obj) {
+  const bool has_material = o.has("material");
+  const bool has_media = o.has("inside") || o.has("outside");
+  if (has_material && has_media)
+    o.fail("material",
+           "an object is either opaque (material) or a dielectric interface (inside, outside), "
+           "not both");
+  if (has_material) {
+    obj.material = o.get_string("material");
+    if (!materials.count(obj.material))
+      o.fail("material", "unknown material '" + obj.material + "'");
+  } else if (has_media) {
+    obj.inside = o.get_string("inside");
+    obj.outside = o.get_string("outside");
+    if (!media.count(obj.inside)) o.fail("inside", "unknown medium '" + obj.inside + "'");
+    if (!media.count(obj.outside)) o.fail("outside", "unknown medium '" + obj.outside + "'");
+    if (obj.inside == obj.outside) o.fail("outside", "inside and outside must be different media");
+    if (obj.shape == ObjectDescription::Shape::plane)
+      o.fail("inside",
+             "a plane is not closed and cannot be a dielectric interface; give it a material");
+  } else {
+    o.fail("shape", "object needs either material = \"...\" or inside/outside media");
+  }
+}
+
+ObjectDescription parse_object(const TomlTable& o, const std::set<std::string>& materials,
+                               const std::set<std::string>& media) {
+  ObjectDescription obj;
+  obj.label = o.has("name") ? o.get_string("name") : o.path();
+  parse_shape(o, obj);
+  parse_surface(o, materials, media, obj);
+  return obj;
+}
+
+}  // namespace
+
+SceneDescription parse_scene_string(const std::string& text, const std::string& source_name,
+                                    const std::filesystem::path& base_dir) {
+  const TomlTable root = TomlTable::parse_string(text, source_name);
+  SceneDescription s = parse_scene_table(root, base_dir);
+  root.check_no_unknown_keys();
+  return s;
+}
+
+SceneDescription parse_scene_table(const TomlTable& root, const std::filesystem::path& base_dir,
+                                   bool camera_optional) {
+  SceneDescription s;
+  s.source_name = root.source_name();
+  s.base_dir = base_dir;
+  if (auto img = root.optional_table("image")) s.image = parse_image(*img, s.image);
+  if (auto c = root.optional_table("caustics")) s.caustics = parse_caustics(*c);
+  if (auto env = root.optional_table("environment")) parse_environment(*env, s);
+  if (auto cam = root.optional_table("camera"))
+    s.camera = parse_camera(*cam);
+  else if (!camera_optional)
+    root.fail("camera", "required table [camera] is missing");
+  if (auto amb = root.optional_table("ambient")) {
+    s.ambient.color = color3(*amb, "color", s.ambient.color);
+    s.ambient.intensity = amb->require_non_negative("intensity", amb->get_double("intensity", 0.0));
+  }
+  for (const TomlTable& l : root.array_of_tables("lights")) s.lights.push_back(parse_light(l));
+  const std::set<std::string> media = parse_media(root, s);
+  const std::set<std::string> materials = parse_materials(root, s);
+  if (!s.camera.medium.empty() && !media.count(s.camera.medium))
+    root.table("camera").fail("medium", "unknown medium '" + s.camera.medium + "'");
+  for (const TomlTable& o : root.array_of_tables("objects"))
+    s.objects.push_back(parse_object(o, materials, media));
+  return s;
+}
+
+SceneDescription parse_scene_file(const std::filesystem::path& path) {
+  return parse_scene_string(read_text_file(path, "a TOML file", kMaxTomlFileBytes), path.string(),
+                            path.parent_path());
+}
+
+}  // namespace thaw::render

@@ -1,0 +1,146 @@
+#include "sim/format/simulation_output.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "base/atomic_file.h"
+#include "base/check.h"
+#include "sim/format/grid_field_file.h"
+#include "sim/format/interface_history.h"
+#include "sim/format/scenario_file.h"
+
+namespace thaw::sim {
+
+namespace {
+
+/// The largest energy balance error over the run's output steps (summary.json "solver").
+double max_energy_balance_error(const SimulationResult& r) {
+  double max_error = 0;
+  for (const Snapshot& snap : r.snapshots)
+    max_error = std::max(max_error, snap.energy_balance_error);
+  return max_error;
+}
+
+/// summary.json "final": the last output step's radii and volumes.
+nlohmann::json final_state_json(const SimulationResult& r) {
+  const Snapshot& last = r.snapshots.back();
+  return {{"inner_radius_m", last.inner_radius_m},
+          {"outer_radius_m", last.outer_radius_m},
+          {"liquid_volume_m3", last.liquid_volume_m3},
+          {"ice_volume_m3", last.ice_volume_m3}};
+}
+
+void write_grid_outputs(const std::filesystem::path& dir, const SimulationResult& r) {
+  write_interfaces_csv(dir / "interfaces.csv", r.interface_records());
+  const auto fields = dir / "fields";
+  ensure_directory(fields);
+  char buf[64];
+  for (std::size_t i = 0; i < r.fields.size(); ++i) {
+    std::snprintf(buf, sizeof buf, "step_%06zu.grid", i);
+    write_grid_field(fields / buf, r.fields[i]);
+  }
+  nlohmann::json j;
+  j["parameters"] = scenario_to_json(r.scenario);
+  j["events"] = nlohmann::json::array();
+  for (std::size_t i = 0; i < r.grid_events.size(); ++i) {
+    const GridEvent& e = r.grid_events[i];
+    j["events"].push_back({{"kind", e.kind},
+                           {"time_s", e.time_s},
+                           {"radius_m", r.events[i].radius_m},
+                           {"position_m", e.position_m}});
+  }
+  j["wall_time_s"] = r.wall_time_s;
+  const GridStatistics& s = r.grid_statistics;
+  const GridField& f = r.fields.front();
+  j["solver"] = {
+      {"method", "fixed-grid enthalpy (Voller & Prakash), backward Euler, semismooth Newton + CG"},
+      {"grid",
+       {{"geometry", to_string(f.geometry)},
+        {"cells", f.cells},
+        {"origin_m", f.origin_m},
+        {"spacing_m", f.spacing_m}}},
+      {"steps", s.steps},
+      {"rejected_steps", s.rejected_steps},
+      {"newton_iterations", s.newton_iterations},
+      {"cg_iterations", s.cg_iterations},
+      {"cell_updates", s.cell_updates},
+      {"loose_steps", s.loose_steps},
+      {"stagnant_steps", s.stagnant_steps},
+      {"unconverged_steps", s.unconverged_steps},
+      {"removed_ice_m3", s.removed_ice_m3},
+      {"min_step_s", s.min_step_s},
+      {"max_step_s", s.max_step_s},
+      {"max_step_energy_error", s.max_step_energy_error},
+      {"max_energy_balance_error", max_energy_balance_error(r)},
+      {"reference_energy_j", r.reference_energy_j}};
+  j["output"] = {
+      {"rows", r.snapshots.size()},
+      {"ended_early", r.ended_early},
+      {"final_time_s", r.snapshots.back().time_s},
+      {"radii", "volume-equivalent: inner from the liquid volume, outer from ice + liquid"}};
+  j["final"] = final_state_json(r);
+  write_file_atomic(dir / "summary.json", j.dump(2) + "\n");
+}
+
+}  // namespace
+
+void write_simulation_outputs(const std::filesystem::path& dir, const SimulationResult& r) {
+  THAW_CHECK(!r.snapshots.empty(), "a simulation result has at least one snapshot");
+  if (r.scenario.grid != GridGeometry::none) return write_grid_outputs(dir, r);
+  write_interfaces_csv(dir / "interfaces.csv", r.interface_records());
+  const auto profiles = dir / "profiles";
+  ensure_directory(profiles);
+  char buf[128];
+  for (std::size_t i = 0; i < r.snapshots.size(); ++i) {
+    std::string text = "r_m,temperature_c,phase\n";
+    for (const ProfilePoint& p : r.snapshots[i].profile) {
+      std::snprintf(buf, sizeof buf, "%.17g,%.17g,%s\n", p.r_m, p.temperature_c, p.phase);
+      text += buf;
+    }
+    std::snprintf(buf, sizeof buf, "step_%06zu.csv", i);
+    write_file_atomic(profiles / buf, text);
+  }
+  nlohmann::json j;
+  j["parameters"] = scenario_to_json(r.scenario);
+  j["events"] = nlohmann::json::array();
+  for (const Event& e : r.events)
+    j["events"].push_back({{"kind", e.kind}, {"time_s", e.time_s}, {"radius_m", e.radius_m}});
+  j["wall_time_s"] = r.wall_time_s;
+  const SolverStatistics& s = r.statistics;
+  j["solver"] = {
+      {"method", "front-fixing finite volumes (Landau transform, ALE), TR-BDF2, step doubling"},
+      {"steps", s.steps},
+      {"rejected_steps", s.rejected_steps},
+      {"newton_iterations", s.newton_iterations},
+      {"linear_solves", s.linear_solves},
+      {"min_step_s", s.min_step_s},
+      {"max_step_s", s.max_step_s},
+      {"max_step_energy_error", s.max_step_energy_error},
+      {"max_energy_balance_error", max_energy_balance_error(r)},
+      {"reference_energy_j", r.reference_energy_j},
+      {"removed_remnant_energy_j", s.removed_energy_j},
+      {"small_time_start_s", s.start_time_s},
+      {"small_time_start_energy_j", s.start_energy_j}};
+  j["output"] = {{"rows", r.snapshots.size()},
+                 {"ended_early", r.ended_early},
+                 {"final_time_s", r.snapshots.back().time_s}};
+  j["final"] = final_state_json(r);
+  write_file_atomic(dir / "summary.json", j.dump(2) + "\n");
+}
+
+std::optional<std::string> foreign_entry(const std::filesystem::path& dir) {
+  static const char* const kOwn[] = {"interfaces.csv", "summary.json", "profiles",
+                                     "fields",         "mesh",         "mesh.partial"};
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) return std::nullopt;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    bool own = name.find(".tmp-") != std::string::npos;
+    for (const char* n : kOwn) own = own || name == n;
+    if (!own) return name;
+  }
+  return std::nullopt;
+}
+
+}  // namespace thaw::sim

@@ -1,0 +1,40 @@
+#pragma once
+// One output time of an axisymmetric or 3D run: cell-centred fields on a uniform grid of cubic
+// cells, as the grid solver produces them. sim/format/grid_field_file.h reads and writes it
+// (DIR/fields/step_NNNNNN.grid). Knows nothing of files.
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace thaw::sim {
+
+/// One output time of an axisymmetric or 3D run, cell-centred on a uniform grid of cubic cells.
+struct GridField {
+  enum class Geometry { axisymmetric, cartesian3d };
+  Geometry geometry = Geometry::cartesian3d;
+  /// cells per axis: cartesian3d {nx, ny, nz} (y vertical); axisymmetric {nr, ny, 1} (r = radius
+  /// from the vertical y axis)
+  std::array<int, 3> cells{0, 0, 0};
+  /// position of the lower corner of cell (0,0,0) [m] (axisymmetric: {0 (axis), y0, 0})
+  std::array<double, 3> origin_m{0, 0, 0};
+  /// cell edge [m]
+  double spacing_m = 0;
+  double time_s = 0;
+  /// per cell, index i + cells[0]*(j + cells[1]*k): temperature [C], ice volume fraction [0,1],
+  /// liquid water volume fraction [0,1] (the rest is air / outside)
+  std::vector<float> temperature_c, ice_fraction, water_fraction;
+
+  /// cells[0] * cells[1] * cells[2].
+  std::size_t cell_count() const;
+  /// Flat index of cell (i, j, k).
+  std::size_t index(int i, int j, int k) const {
+    return static_cast<std::size_t>(i) +
+           static_cast<std::size_t>(cells[0]) *
+               (static_cast<std::size_t>(j) + static_cast<std::size_t>(cells[1]) * k);
+  }
+};
+
+/// "axisymmetric" | "cartesian3d".
+const char* to_string(GridField::Geometry geometry);
+
+}  // namespace thaw::sim
