@@ -31,7 +31,7 @@ struct TriangleMesh {
   bool has_normals() const { return !normal_indices.empty(); }
 };
 
-/// The renderer's mesh from a mesh file's (src/meshio): positions and normals rounded to float,
+/// The renderer's mesh from a mesh file's (base/obj_reader.h): positions and normals rounded to float,
 /// normals made unit, 32-bit indices. Throws thaw::UserError naming `source` beyond 2^32 - 1
 /// vertices or normals, on a zero-length normal, or a coordinate finite in double but not in
 /// float (validate_mesh).

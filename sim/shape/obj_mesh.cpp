@@ -87,7 +87,7 @@ ObjMesh read_obj_mesh(const std::filesystem::path& file, double scale, const V3&
   auto fail = [&](const std::string& problem) {
     throw UserError(scenario, key, "OBJ file '" + name + "': " + problem);
   };
-  // The one strict OBJ reader (src/meshio): its problems, named by line, under the scenario's key.
+  // The one strict OBJ reader (base/obj_reader.h): its problems, named by line, under the scenario's key.
   meshio::TriangleMesh obj;
   try {
     obj = meshio::read_obj(file);

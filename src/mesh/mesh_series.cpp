@@ -136,7 +136,7 @@ void validate_geometry(const sim::ShellGeometry& g, const fs::path& summary) {
 // meshing run that is interrupted (SIGINT, SIGTERM, a kill) keeps its finished surfaces and the
 // next run meshes only the others. The file's first line is the full description of what was
 // meshed (form and options, thaw version); a file is used only if that line matches exactly.
-// Vertices are written with 17 digits and read back bit for bit (src/meshio), so a resumed run
+// Vertices are written with 17 digits and read back bit for bit (base/obj_reader.h), so a resumed run
 // writes exactly the bytes a fresh one does. The folder is removed once SIMDIR/mesh is complete.
 std::string form_description(const SimilarSurface& f, const MeshOptions& unit_options,
                              int geodesic) {

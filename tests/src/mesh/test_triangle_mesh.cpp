@@ -1,5 +1,5 @@
 // Tests src/mesh/triangle_mesh.h: the one conversion between the mesher's mesh and the mesh
-// files' type (src/meshio), and the enclosed volume and area of a known solid.
+// files' type (base/obj_reader.h), and the enclosed volume and area of a known solid.
 #include "src/mesh/triangle_mesh.h"
 
 #include <gtest/gtest.h>
