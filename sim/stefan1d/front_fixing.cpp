@@ -11,19 +11,25 @@
 #include "base/error.h"
 #include "sim/reference/neumann.h"
 #include "sim/scenario/scenario_rules.h"
+#include "sim/stefan1d/phase_operator.h"
+#include "sim/stefan1d/tr_bdf2.h"
 
 namespace thaw::sim {
 
 namespace {
 
-// TR-BDF2 (Bank et al. 1985, IEEE Trans. Electron Devices 32; Hosea & Shampine 1996, Appl. Numer.
-// Math. 20): a trapezoidal stage to t + gamma dt, then BDF2 through t, t + gamma dt, t + dt:
-//   y1 = a y_gamma + b y0 + c dt f(y1).  gamma = 2 - sqrt(2) makes both stages share one
-// Jacobian scaling and the method L-stable.
-constexpr double kGamma = 0.58578643762690485;  // 2 - sqrt(2)
-constexpr double kBdfA = 1.0 / (kGamma * (2.0 - kGamma));
-constexpr double kBdfB = -(1.0 - kGamma) * (1.0 - kGamma) / (kGamma * (2.0 - kGamma));
-constexpr double kBdfC = (1.0 - kGamma) / (2.0 - kGamma);
+using stefan1d::apply_operator;
+using stefan1d::Bc;
+using stefan1d::BcKind;
+using stefan1d::boundary_form;
+using stefan1d::boundary_value;
+using stefan1d::BoundaryForm;
+using stefan1d::face_r;
+using stefan1d::OperatorValue;
+using stefan1d::Phase;
+using stefan1d::Radial;
+using stefan1d::solve_tridiagonal;
+using stefan1d::TrBdf2;
 
 /// A phase that gets thinner than this fraction of the initial outer radius is removed (its
 /// remaining enthalpy is booked as "removed"); zero-thickness phases start at this thickness.
@@ -48,122 +54,6 @@ std::string seconds_text(double t) {
   return buf;
 }
 
-/// Radial geometry r^m: planar m = 0, cylinder m = 1, sphere m = 2. Per unit solid angle (and
-/// per unit length / area): face area A(r) = r^m, volume below r W(r) = r^(m+1)/(m+1).
-struct Radial {
-  int m = 2;
-  double omega = 4 * std::numbers::pi;  ///< 1 (planar, per m^2), 2 pi (cylinder, per m), 4 pi
-  double area(double r) const { return m == 0 ? 1.0 : (m == 1 ? r : r * r); }
-  double w(double r) const { return m == 0 ? r : (m == 1 ? 0.5 * r * r : r * r * r / 3.0); }
-};
-
-enum class BcKind { zero_flux, dirichlet, robin, flux };
-struct Bc {
-  BcKind kind = BcKind::zero_flux;
-  double value = 0;  ///< dirichlet: u; robin: u_air; flux: heat flux into the region [W/m^2]
-  double h = 0;      ///< robin: heat transfer coefficient [W/(m^2 K)]
-};
-
-/// Heat rate into a region through one boundary face as an affine form of its two nearest cell
-/// values: Q = q0 + p1 * u(nearest) + p2 * u(next) [W per unit solid angle].
-struct BoundaryForm {
-  double q0 = 0, p1 = 0, p2 = 0;
-  double eval(double u1, double u2) const { return q0 + p1 * u1 + p2 * u2; }
-};
-
-/// One phase between its two ends a < e, n equal cells (Landau transform: faces at a + f h).
-struct Phase {
-  double k = 0, heat_capacity = 0;
-  int n = 0;
-};
-
-double face_r(double a, double e, int n, int f) {
-  return a + (e - a) * f / n;
-}
-
-// One-sided second-order gradient at a Dirichlet face from the face value and the two nearest
-// cell centres (distances h/2 and 3h/2): du/dn = (-8 u_b + 9 u_1 - u_2) / (3 h) (inward normal).
-// Robin: k du/dn_out = h (u_air - u_b) with the same stencil, solved for u_b.
-BoundaryForm boundary_form(const Bc& bc, double k, double area, double h) {
-  BoundaryForm f;
-  const double kappa = k / (3.0 * h);
-  switch (bc.kind) {
-    case BcKind::zero_flux:
-      break;
-    case BcKind::dirichlet:
-      f.q0 = area * 8.0 * kappa * bc.value;
-      f.p1 = -area * 9.0 * kappa;
-      f.p2 = area * kappa;
-      break;
-    case BcKind::robin: {
-      const double d = bc.h + 8.0 * kappa;
-      f.q0 = area * bc.h * bc.value * (8.0 * kappa / d);
-      f.p1 = -area * bc.h * 9.0 * kappa / d;
-      f.p2 = area * bc.h * kappa / d;
-      break;
-    }
-    case BcKind::flux:
-      f.q0 = area * bc.value;
-      break;
-  }
-  return f;
-}
-
-/// Face value of u at a boundary face (for profiles): Dirichlet value, Robin/flux extrapolation.
-double boundary_value(const Bc& bc, double k, double h, double u1, double u2) {
-  const double kappa = k / (3.0 * h);
-  switch (bc.kind) {
-    case BcKind::dirichlet:
-      return bc.value;
-    case BcKind::robin:
-      return (bc.h * bc.value + kappa * (9.0 * u1 - u2)) / (bc.h + 8.0 * kappa);
-    case BcKind::flux:
-      return (bc.value / kappa + 9.0 * u1 - u2) / 8.0;
-    case BcKind::zero_flux:
-      return (9.0 * u1 - u2) / 8.0;
-  }
-  return 0;
-}
-
-/// Conducted heat into each cell and through both ends of a phase at one state.
-struct OperatorValue {
-  std::vector<double> d;           ///< net conducted heat rate into cell j
-  double q_left = 0, q_right = 0;  ///< heat rate into the phase through its ends
-};
-
-OperatorValue apply_operator(const Radial& g, const Phase& p, double a, double e, const Bc& left,
-                             const Bc& right, const std::vector<double>& u) {
-  const int n = p.n;
-  const double h = (e - a) / n;
-  OperatorValue out;
-  out.d.assign(n, 0.0);
-  for (int f = 1; f < n; ++f) {
-    const double flux = p.k * g.area(face_r(a, e, n, f)) * (u[f] - u[f - 1]) / h;
-    out.d[f - 1] += flux;
-    out.d[f] -= flux;
-  }
-  out.q_left = boundary_form(left, p.k, g.area(a), h).eval(u[0], u[1]);
-  out.q_right = boundary_form(right, p.k, g.area(e), h).eval(u[n - 1], u[n - 2]);
-  out.d[0] += out.q_left;
-  out.d[n - 1] += out.q_right;
-  return out;
-}
-
-/// Solves the tridiagonal system (Thomas algorithm; diagonally dominant here).
-void solve_tridiagonal(std::vector<double>& lower, std::vector<double>& diag,
-                       std::vector<double>& upper, std::vector<double>& rhs,
-                       std::vector<double>& x) {
-  const std::size_t n = diag.size();
-  for (std::size_t i = 1; i < n; ++i) {
-    const double w = lower[i] / diag[i - 1];
-    diag[i] -= w * upper[i - 1];
-    rhs[i] -= w * rhs[i - 1];
-  }
-  x.resize(n);
-  x[n - 1] = rhs[n - 1] / diag[n - 1];
-  for (std::size_t i = n - 1; i-- > 0;) x[i] = (rhs[i] - upper[i] * x[i + 1]) / diag[i];
-}
-
 /// The complete discrete state.
 struct State {
   double t = 0;
@@ -183,6 +73,7 @@ struct Heat {
 }  // namespace
 
 struct FrontFixingSolver::Impl {
+  using State = sim::State;  // the problem type of tr_bdf2_step
   Scenario sc;
   Radial geo;
   Phase water, ice;
@@ -197,7 +88,7 @@ struct FrontFixingSolver::Impl {
   double ablation_heat_flux = 0;  ///< heat flux arriving at a surface held at T_m [W/m^2]
 
   State st;
-  double dt = 0;
+  double next_dt = 0;  ///< the step to try next [s]
   bool done = false;
   std::vector<Event> events;
   SolverStatistics stats;
@@ -254,8 +145,8 @@ struct FrontFixingSolver::Impl {
   }
 
   double surface_temperature(const State& x) const {
-    const double h = (x.b - ice_left(x)) / ice.n;
-    return boundary_value(ice_right_bc(x), ice.k, h, x.ui[ice.n - 1], x.ui[ice.n - 2]);
+    const double dx = (x.b - ice_left(x)) / ice.n;
+    return boundary_value(ice_right_bc(x), ice.k, dx, x.ui[ice.n - 1], x.ui[ice.n - 2]);
   }
 
   // --- one implicit stage -------------------------------------------------------------------
@@ -275,7 +166,7 @@ struct FrontFixingSolver::Impl {
                    const StageRef& ref, bool is_water, std::vector<double>& u_out, double& q_left,
                    double& q_right) {
     const int n = p.n;
-    const double h = (e - a) / n;
+    const double dx = (e - a) / n;
     const double cap = p.heat_capacity;
     thread_local std::vector<double> lower, diag, upper, rhs, wref, wnew;
     lower.assign(n, 0.0);
@@ -318,16 +209,18 @@ struct FrontFixingSolver::Impl {
       ends_of(xg, ag, eg);
       const std::vector<double>& ug = is_water ? xg.ul : xg.ui;
       for (int f = 0; f <= n; ++f)
-        wref[f] = kBdfA * geo.w(face_r(ag, eg, n, f)) + kBdfB * geo.w(face_r(a0, e0_, n, f));
+        wref[f] =
+            TrBdf2::a * geo.w(face_r(ag, eg, n, f)) + TrBdf2::b * geo.w(face_r(a0, e0_, n, f));
       for (int j = 0; j < n; ++j)
-        rhs[j] =
-            kBdfA * cap * ug[j] * (geo.w(face_r(ag, eg, n, j + 1)) - geo.w(face_r(ag, eg, n, j))) +
-            kBdfB * cap * u0[j] * (geo.w(face_r(a0, e0_, n, j + 1)) - geo.w(face_r(a0, e0_, n, j)));
+        rhs[j] = TrBdf2::a * cap * ug[j] *
+                     (geo.w(face_r(ag, eg, n, j + 1)) - geo.w(face_r(ag, eg, n, j))) +
+                 TrBdf2::b * cap * u0[j] *
+                     (geo.w(face_r(a0, e0_, n, j + 1)) - geo.w(face_r(a0, e0_, n, j)));
       w_new_adv = 1.0;
     }
     for (int j = 0; j < n; ++j) diag[j] = cap * (wnew[j + 1] - wnew[j]);
     for (int f = 1; f < n; ++f) {
-      const double c = ref.beta * p.k * geo.area(face_r(a, e, n, f)) / h;
+      const double c = ref.beta * p.k * geo.area(face_r(a, e, n, f)) / dx;
       diag[f - 1] += c;
       upper[f - 1] -= c;
       diag[f] += c;
@@ -338,8 +231,8 @@ struct FrontFixingSolver::Impl {
       lower[f] += adv;
       diag[f] += adv;
     }
-    const BoundaryForm fl = boundary_form(left, p.k, geo.area(a), h);
-    const BoundaryForm fr = boundary_form(right, p.k, geo.area(e), h);
+    const BoundaryForm fl = boundary_form(left, p.k, geo.area(a), dx);
+    const BoundaryForm fr = boundary_form(right, p.k, geo.area(e), dx);
     diag[0] -= ref.beta * fl.p1;
     upper[0] -= ref.beta * fl.p2;
     rhs[0] += ref.beta * fl.q0;
@@ -364,7 +257,7 @@ struct FrontFixingSolver::Impl {
                 qr_i);
     auto wref = [&](double State::*member) {
       if (ref.trapezoid) return geo.w(x0.*member);
-      return kBdfA * geo.w(ref.sg->*member) + kBdfB * geo.w(x0.*member);
+      return TrBdf2::a * geo.w(ref.sg->*member) + TrBdf2::b * geo.w(x0.*member);
     };
     const double q_ext = geo.area(x.b) * ablation_heat_flux;
     double q_inner = x.liquid ? ql_w : ql_i;
@@ -412,8 +305,8 @@ struct FrontFixingSolver::Impl {
           const double delta = (idx[c] == 0 ? 1e-7 : -1e-7) * thick;
           set(y, idx[c], get(x, idx[c]) + delta);
           double r2[2];
-          Heat h2;
-          if (!residual(ref, y, r2, h2)) return false;
+          Heat heat2;
+          if (!residual(ref, y, r2, heat2)) return false;
           for (int rr = 0; rr < nz; ++rr) jac[rr][c] = (r2[idx[rr]] - res[idx[rr]]) / delta;
         }
         have_jac = true;
@@ -444,36 +337,42 @@ struct FrontFixingSolver::Impl {
     return false;
   }
 
-  /// One TR-BDF2 step of size h from x0 (same regime throughout).
-  bool trbdf2(const State& x0, double h, State& x1, Heat& heat) {
-    const Rates r0 = rates(x0);
-    // predictor: front velocities from the rates at t_n
-    auto predict = [&](State& y, double tau) {
-      if (y.liquid) y.s = x0.s + tau * r0.front / (latent * geo.area(x0.s));
-      if (y.ablating) y.b = x0.b - tau * r0.ablation / (latent * geo.area(x0.b));
-      // keep the predictor admissible
-      if (y.liquid) y.s = std::clamp(y.s, 0.5 * x0.s, x0.s + 0.5 * (x0.b - x0.s));
-      if (y.ablating) y.b = std::max(y.b, ice_left(y) + 0.5 * (x0.b - ice_left(x0)));
-    };
-    State xg = x0;
-    xg.t = x0.t + kGamma * h;
-    predict(xg, kGamma * h);
-    StageRef tr{true, 0.5 * kGamma * h, &x0, &r0, nullptr};
-    Heat h_tr;
-    if (!solve_stage(tr, xg, h_tr)) return false;
-    x1 = xg;
-    x1.t = x0.t + h;
-    if (x1.liquid) x1.s = x0.s + (xg.s - x0.s) / kGamma;
-    if (x1.ablating) x1.b = x0.b + (xg.b - x0.b) / kGamma;
+  // --- the TR-BDF2 problem (sim/stefan1d/tr_bdf2.h): the stages of one step -------------------
+  using Record = Heat;
+
+  /// Guess at t0 + tau: front velocities from the rates at t0, kept admissible.
+  State predict(const State& x0, const Rates& r0, double tau) const {
+    State y = x0;
+    y.t = x0.t + tau;
+    if (y.liquid) y.s = x0.s + tau * r0.front / (latent * geo.area(x0.s));
+    if (y.ablating) y.b = x0.b - tau * r0.ablation / (latent * geo.area(x0.b));
+    if (y.liquid) y.s = std::clamp(y.s, 0.5 * x0.s, x0.s + 0.5 * (x0.b - x0.s));
+    if (y.ablating) y.b = std::max(y.b, ice_left(y) + 0.5 * (x0.b - ice_left(x0)));
+    return y;
+  }
+  bool solve_trapezoid_stage(const State& x0, const Rates& r0, double beta, State& xg, Heat& heat) {
+    return solve_stage(StageRef{true, beta, &x0, &r0, nullptr}, xg, heat);
+  }
+  /// Guess at t0 + dt: the fronts extrapolated linearly through the trapezoid stage.
+  State extrapolate(const State& x0, const State& xg, double dt) const {
+    State x1 = xg;
+    x1.t = x0.t + dt;
+    if (x1.liquid) x1.s = x0.s + (xg.s - x0.s) / TrBdf2::gamma;
+    if (x1.ablating) x1.b = x0.b + (xg.b - x0.b) / TrBdf2::gamma;
     if (x1.liquid && !(x1.s > 0 && x1.s < x1.b)) x1.s = xg.s;
     if (x1.ablating && !(x1.b > ice_left(x1))) x1.b = xg.b;
-    StageRef bdf{false, kBdfC * h, &x0, nullptr, &xg};
-    Heat h_bdf;
-    if (!solve_stage(bdf, x1, h_bdf)) return false;
-    // E1 - E0 = a (Eg - E0) + (E1 - a Eg - b E0), a + b = 1
-    heat.in = kBdfA * h_tr.in + h_bdf.in;
-    heat.drained = kBdfA * h_tr.drained + h_bdf.drained;
-    return true;
+    return x1;
+  }
+  bool solve_bdf2_stage(const State& x0, const State& xg, double beta, State& x1, Heat& heat) {
+    return solve_stage(StageRef{false, beta, &x0, nullptr, &xg}, x1, heat);
+  }
+  /// The step's heat: E1 - E0 = a (Eg - E0) + (E1 - a Eg - b E0), a + b = 1.
+  static Heat combine(const Heat& trapezoid, const Heat& bdf2) {
+    return Heat{TrBdf2::a * trapezoid.in + bdf2.in, TrBdf2::a * trapezoid.drained + bdf2.drained};
+  }
+  /// One TR-BDF2 step of size dt from x0 (same regime throughout).
+  bool trbdf2(const State& x0, double dt, State& x1, Heat& heat) {
+    return stefan1d::tr_bdf2_step(*this, x0, dt, x1, heat);
   }
 
   // --- construction ---------------------------------------------------------------------------
@@ -525,8 +424,8 @@ struct FrontFixingSolver::Impl {
       fill_from_profile(st, [&](double r) { return opt.initial_temperature_c(r) - t_m; });
       e0 = energy(st);
     }
-    dt = std::min(sc.output_interval_s, sc.duration_s) * 1e-4;
-    if (stats.start_time_s > 0) dt = std::min(dt, 0.25 * stats.start_time_s);
+    next_dt = std::min(sc.output_interval_s, sc.duration_s) * 1e-4;
+    if (stats.start_time_s > 0) next_dt = std::min(next_dt, 0.25 * stats.start_time_s);
   }
 
   void initialise(double u_water, double u_ice, double u_inner) {
@@ -570,11 +469,11 @@ struct FrontFixingSolver::Impl {
         THAW_CHECK(q_out > 0 && u_water == 0, "validated zero-ice start");
         double u_surface;
         if (outer_bc.kind == BcKind::robin)
-          u_surface = outer_bc.h * outer_bc.value / (outer_bc.h + ice.k / delta);
+          u_surface = outer_bc.htc * outer_bc.value / (outer_bc.htc + ice.k / delta);
         else
           u_surface = outer_bc.value * delta / ice.k;
         const double q =
-            outer_bc.kind == BcKind::robin ? outer_bc.h * (u_surface - outer_bc.value) : q_out;
+            outer_bc.kind == BcKind::robin ? outer_bc.htc * (u_surface - outer_bc.value) : q_out;
         st.s = b0 - delta;
         fill_from_profile(
             st, [&](double r) { return r <= st.s ? 0.0 : u_surface * (r - st.s) / delta; });
@@ -592,16 +491,16 @@ struct FrontFixingSolver::Impl {
   /// When to start a phase of zero initial thickness from the similarity solution n. At the
   /// start the far phase's thermal layer (~2 sqrt(alpha t)) must span about one of its cells:
   /// a layer far thinner than the cells is not resolved, and the heat it should have taken
-  /// leaves an h^2 log(1/h) error (measured orders 1.6-1.8 when starting at 1e-6 b0 thick).
+  /// leaves an dx^2 log(1/dx) error (measured orders 1.6-1.8 when starting at 1e-6 b0 thick).
   /// Starting later is exact in the planar semi-infinite setting; otherwise it neglects
-  /// curvature (O(delta/b0) relative, delta ~ one cell: an O(h^2) front error) and anything the
-  /// other boundary does during [0, t0] (t0 ~ h^2 / alpha, again O(h^2)). Capped at 5 % of the
+  /// curvature (O(delta/b0) relative, delta ~ one cell: an O(dx^2) front error) and anything the
+  /// other boundary does during [0, t0] (t0 ~ dx^2 / alpha, again O(dx^2)). Capped at 5 % of the
   /// output interval and of b0 so coarse grids never start late.
   double similarity_start_time(const NeumannSolution& n, double delta_min, const Phase& far,
                                double b0) const {
-    const double h_far = b0 / far.n;
+    const double dx_far = b0 / far.n;
     const double alpha_far = far.k / far.heat_capacity;
-    double t0 = std::max(n.time_of_front(delta_min), h_far * h_far / (4 * alpha_far));
+    double t0 = std::max(n.time_of_front(delta_min), dx_far * dx_far / (4 * alpha_far));
     t0 = std::min({t0, 0.05 * sc.output_interval_s, n.time_of_front(0.05 * b0)});
     return std::max(t0, n.time_of_front(delta_min));
   }
@@ -681,16 +580,16 @@ struct FrontFixingSolver::Impl {
     double err = 0;
   };
 
-  bool trial(const State& x0, double h, Trial& out) {
+  bool trial(const State& x0, double dt, Trial& out) {
     State full, half, two;
-    Heat hf, h1, h2;
+    Heat heat_full, heat_half1, heat_half2;
     if (opt.fixed_step_s > 0) {
       out.err = 0;
-      return trbdf2(x0, h, out.x, out.heat);
+      return trbdf2(x0, dt, out.x, out.heat);
     }
-    if (!trbdf2(x0, h, full, hf)) return false;
-    if (!trbdf2(x0, 0.5 * h, half, h1)) return false;
-    if (!trbdf2(half, 0.5 * h, two, h2)) return false;
+    if (!trbdf2(x0, dt, full, heat_full)) return false;
+    if (!trbdf2(x0, 0.5 * dt, half, heat_half1)) return false;
+    if (!trbdf2(half, 0.5 * dt, two, heat_half2)) return false;
     // Step doubling: for a second-order method the half-step result's error is about
     // (full - two) / (2^2 - 1).
     double err = 0;
@@ -703,12 +602,12 @@ struct FrontFixingSolver::Impl {
         err = std::max(err, std::abs(full.ul[j] - two.ul[j]) / temperature_scale);
     out.x = two;
     out.err = err / 3.0;
-    out.heat.in = h1.in + h2.in;
-    out.heat.drained = h1.drained + h2.drained;
+    out.heat.in = heat_half1.in + heat_half2.in;
+    out.heat.drained = heat_half1.drained + heat_half2.drained;
     return true;
   }
 
-  void accept(const Trial& tr, double h, bool land_on, double t_target) {
+  void accept(const Trial& tr, double dt, bool land_on, double t_target) {
     const double e_before = energy(st);
     st = tr.x;
     if (land_on) st.t = t_target;
@@ -718,8 +617,8 @@ struct FrontFixingSolver::Impl {
                               (latent * geo.w(length_scale));
     stats.max_step_energy_error = std::max(stats.max_step_energy_error, step_error);
     ++stats.steps;
-    stats.min_step_s = stats.steps == 1 ? h : std::min(stats.min_step_s, h);
-    stats.max_step_s = std::max(stats.max_step_s, h);
+    stats.min_step_s = stats.steps == 1 ? dt : std::min(stats.min_step_s, dt);
+    stats.max_step_s = std::max(stats.max_step_s, dt);
   }
 
   enum class Crossing { none, onset, stop, liquid, ice };
@@ -763,24 +662,24 @@ struct FrontFixingSolver::Impl {
     int event_retries = 0;
     while (!done && st.t < t_target) {
       guard_runaway();
-      double h = opt.fixed_step_s > 0 ? opt.fixed_step_s : dt;
+      double dt = opt.fixed_step_s > 0 ? opt.fixed_step_s : next_dt;
       bool land = false;
-      if (st.t + h >= t_target || t_target - (st.t + h) < 1e-3 * h) {
-        h = t_target - st.t;
+      if (st.t + dt >= t_target || t_target - (st.t + dt) < 1e-3 * dt) {
+        dt = t_target - st.t;
         land = true;
       }
       Trial tr;
-      if (!trial(st, h, tr)) {
+      if (!trial(st, dt, tr)) {
         ++stats.rejected_steps;
-        dt = 0.25 * h;
-        if (dt < t_floor)
+        next_dt = 0.25 * dt;
+        if (next_dt < t_floor)
           throw Breakdown{"Newton's method did not converge at t = " + seconds_text(st.t) +
-                          " even with the step at its floor (" + seconds_text(h) + ")"};
+                          " even with the step at its floor (" + seconds_text(dt) + ")"};
         continue;
       }
       // Error per step (relative to b0 and the temperature scale). Error per unit step would
       // make the step collapse at the sqrt(t) start of a front from discontinuous data, where
-      // the local error shrinks only like sqrt(h). Local error ~ h^3 for smooth solutions.
+      // the local error shrinks only like sqrt(dt). Local error ~ dt^3 for smooth solutions.
       // Floored at the round-off of the moving grid: swept volumes and cell energies are
       // differences of absolute positions (~b) resolved to eps * b, i.e. eps * b / w relative
       // for a cell of width w. A phase started at a tiny thickness would otherwise demand
@@ -790,9 +689,9 @@ struct FrontFixingSolver::Impl {
       const double allowed =
           std::max(tol, 8 * std::numeric_limits<double>::epsilon() * st.b / w_min);
       const double factor = tr.err > 0 ? 0.9 * std::cbrt(allowed / tr.err) : 3.0;
-      if (tr.err > allowed && h > 64 * t_floor) {
+      if (tr.err > allowed && dt > 64 * t_floor) {
         ++stats.rejected_steps;
-        dt = h * std::clamp(factor, 0.1, 0.9);
+        next_dt = dt * std::clamp(factor, 0.1, 0.9);
         continue;
       }
       // Event location: the earliest crossing inside the step (linear estimate) shortens it;
@@ -827,27 +726,27 @@ struct FrontFixingSolver::Impl {
       if (th1 < 0.5 * remnant && th0 > remnant)
         consider((th0 - 0.75 * remnant) / (th0 - th1), Crossing::ice);
       if (which != Crossing::none) {
-        if (h * shrink > t_floor && event_retries < 60) {
+        if (dt * shrink > t_floor && event_retries < 60) {
           ++stats.rejected_steps;
           ++event_retries;
-          dt = h * shrink;
+          next_dt = dt * shrink;
           continue;
         }
         // The crossing is at the current time to within the floor: switch now, step again.
         if (which == Crossing::onset || which == Crossing::stop) {
           fire(which);
           event_retries = 0;
-          dt = std::max(h * 1e-3, 64 * t_floor);
+          next_dt = std::max(dt * 1e-3, 64 * t_floor);
           continue;
         }
       }
       event_retries = 0;
-      accept(tr, h, land, t_target);
+      accept(tr, dt, land, t_target);
       fire(fire_after);
       if (st.liquid && st.s < remnant) remove_liquid();
       if (!done && st.b - ice_left(st) < remnant) remove_ice();
-      const double next = std::max(h * std::clamp(factor, 0.2, 3.0), 64 * t_floor);
-      dt = (land && h < dt) ? std::max(next, std::min(dt, 3.0 * h)) : next;
+      const double next = std::max(dt * std::clamp(factor, 0.2, 3.0), 64 * t_floor);
+      next_dt = (land && dt < next_dt) ? std::max(next, std::min(next_dt, 3.0 * dt)) : next;
     }
     return st.t;
   }
@@ -868,21 +767,21 @@ struct FrontFixingSolver::Impl {
     out.ablating = st.ablating;
     if (!with_profile) return out;
     if (st.liquid) {
-      const double h = st.s / water.n;
+      const double dx = st.s / water.n;
       if (inner_bc.kind == BcKind::dirichlet)
         out.profile.push_back({0.0, inner_bc.value + t_m, "water"});
       for (int j = 0; j < water.n; ++j)
-        out.profile.push_back({(j + 0.5) * h, st.ul[j] + t_m, "water"});
+        out.profile.push_back({(j + 0.5) * dx, st.ul[j] + t_m, "water"});
       out.profile.push_back({st.s, t_m, "water"});
     }
     if (!done) {
-      const double a = ice_left(st), h = (st.b - a) / ice.n;
+      const double a = ice_left(st), dx = (st.b - a) / ice.n;
       if (st.liquid)
         out.profile.push_back({st.s, t_m, "ice"});
       else if (inner_bc.kind == BcKind::dirichlet)
         out.profile.push_back({0.0, inner_bc.value + t_m, "ice"});
       for (int j = 0; j < ice.n; ++j)
-        out.profile.push_back({a + (j + 0.5) * h, st.ui[j] + t_m, "ice"});
+        out.profile.push_back({a + (j + 0.5) * dx, st.ui[j] + t_m, "ice"});
       out.profile.push_back({st.b, surface_temperature(st) + t_m, "ice"});
     }
     return out;
