@@ -66,6 +66,32 @@ bool TomlTable::has(const std::string& key) const {
   return find(key) != nullptr;
 }
 
+template <>
+bool TomlTable::is<bool>(const std::string& key) const {
+  const toml::node* n = find(key);
+  return n && n->is_boolean();
+}
+template <>
+bool TomlTable::is<std::string>(const std::string& key) const {
+  const toml::node* n = find(key);
+  return n && n->is_string();
+}
+template <>
+bool TomlTable::is<double>(const std::string& key) const {
+  const toml::node* n = find(key);
+  return n && n->is_number();
+}
+template <>
+bool TomlTable::is<std::int64_t>(const std::string& key) const {
+  const toml::node* n = find(key);
+  return n && n->is_integer();
+}
+template <>
+bool TomlTable::is<TomlTable>(const std::string& key) const {
+  const toml::node* n = find(key);
+  return n && n->is_table();
+}
+
 std::vector<std::string> TomlTable::keys() const {
   std::vector<std::string> out;
   for (const auto& [k, v] : *m_table) out.emplace_back(k.str());

@@ -34,6 +34,11 @@ class TomlTable {
   const std::string& path() const { return m_prefix; }
 
   bool has(const std::string& key) const;
+  /// True when the key is present and holds a T: bool, std::string, double (any number),
+  /// std::int64_t (an integer), or TomlTable (a table). Does not mark the key as read, so a
+  /// parser can ask before it picks the reading of a key that accepts several types.
+  template <typename T>
+  bool is(const std::string& key) const;
   /// Keys present in this table, in document order of insertion (not marked as read).
   std::vector<std::string> keys() const;
 

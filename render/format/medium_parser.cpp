@@ -9,16 +9,12 @@
 namespace thaw::render::media {
 namespace {
 
-/// absorption_per_m: a number or a { wavelength_nm, per_m } table. TomlTable has no type query,
-/// so try the table reading first and fall back to the number (both mark the key as read).
+/// absorption_per_m: a number or a { wavelength_nm, per_m } table.
 Absorption parse_absorption(const TomlTable& t) {
-  std::optional<TomlTable> table;
-  try {
-    table = t.optional_table("absorption_per_m");
-  } catch (const UserError&) {
+  if (!t.is<TomlTable>("absorption_per_m"))
     return Absorption::constant(t.get_double("absorption_per_m"));
-  }
-  return Absorption::table(table->get_doubles("wavelength_nm"), table->get_doubles("per_m"));
+  const TomlTable table = t.table("absorption_per_m");
+  return Absorption::table(table.get_doubles("wavelength_nm"), table.get_doubles("per_m"));
 }
 
 }  // namespace

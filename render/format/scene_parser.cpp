@@ -52,17 +52,10 @@ int int_key(const TomlTable& t, const std::string& key, int fallback, Rule rule)
 
 /// [image] spectral = "auto" | true | false.
 ImageSettings::Spectral parse_spectral(const TomlTable& img) {
-  // TomlTable has no type query: try the two accepted types in turn.
-  try {
+  if (!img.has("spectral") || img.is<bool>("spectral"))
     return img.get_bool("spectral", false) ? ImageSettings::Spectral::on
                                            : ImageSettings::Spectral::off;
-  } catch (const UserError&) {
-  }
-  std::string text;
-  try {
-    text = img.get_string("spectral");
-  } catch (const UserError&) {
-  }
+  const std::string text = img.is<std::string>("spectral") ? img.get_string("spectral") : "";
   if (text != "auto") img.fail("spectral", "must be \"auto\", true or false");
   return ImageSettings::Spectral::automatic;
 }

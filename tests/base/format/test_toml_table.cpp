@@ -92,3 +92,23 @@ TEST(TomlTable, CanonicalTextIgnoresLayoutButNotValues) {
 }
 }  // namespace
 }  // namespace thaw
+
+namespace thaw {
+namespace {
+TEST(TomlTable, IsAnswersTheTypeWithoutMarkingTheKeyRead) {
+  auto t = TomlTable::parse_string("b = true\ns = \"x\"\ni = 3\nf = 2.5\n[t]\nk = 1\n", "q.toml");
+  EXPECT_TRUE(t.is<bool>("b"));
+  EXPECT_FALSE(t.is<bool>("s"));
+  EXPECT_TRUE(t.is<std::string>("s"));
+  EXPECT_TRUE(t.is<double>("i"));  // any number reads as a double
+  EXPECT_TRUE(t.is<double>("f"));
+  EXPECT_TRUE(t.is<std::int64_t>("i"));
+  EXPECT_FALSE(t.is<std::int64_t>("f"));
+  EXPECT_TRUE(t.is<TomlTable>("t"));
+  EXPECT_FALSE(t.is<TomlTable>("missing"));
+  EXPECT_FALSE(t.is<bool>("missing"));
+  // Nothing was read: every key is still unknown to check_no_unknown_keys.
+  EXPECT_THROW(t.check_no_unknown_keys(), UserError);
+}
+}  // namespace
+}  // namespace thaw
