@@ -1,28 +1,29 @@
 #pragma once
 // The axisymmetric / 3D two-phase Stefan solver: a fixed-grid enthalpy method (Voller & Prakash
-// 1987; Voller 1985) on uniform cubic cells.
-//
-//  * Unknown: enthalpy h per unit volume of material in each cell; T(h) is piecewise linear
-//    (ice, melting plateau at T_m, water), so the front is where the liquid fraction h / L
-//    crosses one half, reconstructed below the cell size from the liquid fraction: between a
-//    melting cell and a neighbour in a pure phase the front (at T_m) is placed inside the
-//    melting cell by its fraction of that phase, which sets the face's conductance (observed
-//    order of the front 1.6 instead of the plain method's 1.0).
-//  * Backward Euler in time with a semismooth Newton on the enthalpy-temperature relation: in
-//    each iteration the cells in a pure phase solve one symmetric positive definite system for
-//    their temperature change (conjugate gradients, Jacobi preconditioner, matrix-free 7-point
-//    stencil), the melting cells then get their enthalpy change from their own balance; an
-//    update that would cross a kink of T(h) stops at the kink (Newton cannot cycle).
-//  * After Newton, each cell's enthalpy is set from its conservative balance at the final
-//    temperatures, so the discrete total enthalpy changes by exactly the boundary heat (to
-//    round-off) whatever the Newton tolerance.
-//  * Melt drains: cells open to the outside air (connected through cells less than half ice to
-//    the grid's air border), and their neighbours, lose their liquid each step (its enthalpy is
+// 1987; Voller 1985) on uniform cubic cells. This class is the face; the parts, each in a file
+// of its own (MFEM ex16's shape: operator, solvers and stepper as separate objects):
+//  * grid_mesh.h, phase_relation.h, cell_state.h: the cells, T(H) and the per-cell state.
+//    Unknown: enthalpy H per unit volume of material in each cell (H means nothing else in
+//    sim/grid); T(H) is piecewise linear (ice, melting plateau at T_m, water), so the front is
+//    where the liquid fraction H / L crosses one half.
+//  * conduction_operator.h: the face conductances, with the front reconstructed below the cell
+//    size from the liquid fraction (between a melting cell and a neighbour in a pure phase the
+//    front, at T_m, is placed inside the melting cell by its fraction of that phase; observed
+//    order of the front 1.6 instead of the plain method's 1.0), and the boundary terms.
+//  * newton_solver.h: backward Euler in time with a semismooth Newton on the enthalpy-
+//    temperature relation; the pure cells' temperature change by conjugate gradients (Jacobi,
+//    matrix-free 7-point stencil), the melting cells' enthalpy from their own balance; an
+//    update that would cross a kink of T(H) stops at the kink (Newton cannot cycle).
+//  * grid_time_stepper.h: step sizes and rejection; after Newton, each cell's enthalpy is set
+//    from its conservative balance at the final temperatures, so the discrete total enthalpy
+//    changes by exactly the boundary heat (to round-off) whatever the Newton tolerance.
+//  * cavity_drain.h: melt drains from cells open to the outside air (connected through cells
+//    less than half ice to the grid's air border), and their neighbours (its enthalpy is
 //    booked as drained); a shrinking ice fraction is ablation. An enclosed cavity joining the
 //    outside is a break-through; an enclosed liquid freezing away is core_frozen.
-//  * The material | air surface area in each cell comes from the gradient of the material
-//    fraction (|grad m| V, the mean of Youngs' and the plain central differences), so the heated
-//    area of a round body is not the stair-step area of its cells.
+//  * surface_area.h: the material | air surface area in each cell from the gradient of the
+//    material fraction (|grad m| V, the mean of Youngs' and the plain central differences), so
+//    the heated area of a round body is not the stair-step area of its cells.
 // The steps run in one OpenMP parallel region: a leader runs the control flow and posts each
 // phase, the other threads help with its blocks (block_team.h). Deterministic for any thread
 // count: every loop writes its own cells, and every sum goes over fixed blocks in a fixed order.

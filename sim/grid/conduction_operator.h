@@ -1,0 +1,79 @@
+#pragma once
+// The discrete conduction operator of the grid enthalpy solver: each material cell's face
+// conductances to its +x, +y, +z neighbours [W/K] (with the sub-cell front reconstruction) and
+// its boundary terms (held walls, the material | air surface: convective, held, flux or
+// insulated), frozen over one step at the step's initial state; the net heat rate into a cell
+// at given temperatures. The 7-point stencil is matrix-free: neighbour_sum_of applies it.
+// Reads the cell state (m, H, T) and the surface areas; writes only its own coefficients.
+// Knows nothing of time stepping, Newton or draining.
+#include <vector>
+
+#include "sim/grid/cell_state.h"
+#include "sim/grid/grid_mesh.h"
+#include "sim/grid/grid_problem.h"
+#include "sim/grid/phase_relation.h"
+
+namespace thaw::sim {
+
+class ConductionOperator {
+ public:
+  ConductionOperator(const GridMesh& mesh, const PhaseRelation& phase, const GridProblem& problem,
+                     const CellState& cells, const std::vector<double>& surface_area);
+
+  /// Cell c's (at i, j, k) conductances and boundary terms at the current m, H and surface
+  /// areas. Reads the neighbours' H.
+  void assemble(long c, int i, int j, int k);
+
+  /// Net heat rate into cell c (at i, j, k) at the temperatures T of the cell state [W].
+  double heat_rate(long c, int i, int j, int k) const {
+    const std::vector<double>& T = m_cells.T;
+    const double tc = T[c];
+    return neighbour_sum_of(
+        c, i, j, k, [&](long nb) { return T[nb] - tc; }, bq0[c] - bq1[c] * tc);
+  }
+  /// Boundary heat into cell c at temperature tc [W].
+  double boundary_heat(long c, double tc) const { return bq0[c] - bq1[c] * tc; }
+  /// Sum of cell c's conductances, to its neighbours and its boundaries [W/K].
+  double conductance_sum(long c, int i, int j, int k) const {
+    const long nxy = m_mesh.nxy();
+    const int nx = m_mesh.nx, ny = m_mesh.ny, nz = m_mesh.nz;
+    double g = bq1[c];
+    if (i + 1 < nx) g += kx[c];
+    if (i > 0) g += kx[c - 1];
+    if (j + 1 < ny) g += ky[c];
+    if (j > 0) g += ky[c - nx];
+    if (k + 1 < nz) g += kz[c];
+    if (k > 0) g += kz[c - nxy];
+    return g;
+  }
+  /// q0 + the sum over neighbours of K * v(nb), v a function of the neighbour's index; cell c
+  /// is at (i, j, k). The terms are added in a fixed order (+x, -x, +y, -y, +z, -z): the same
+  /// bits wherever it is called.
+  template <class V>
+  double neighbour_sum_of(long c, int i, int j, int k, V&& v, double q0 = 0) const {
+    const long nxy = m_mesh.nxy();
+    const int nx = m_mesh.nx, ny = m_mesh.ny, nz = m_mesh.nz;
+    double q = q0;
+    if (i + 1 < nx) q += kx[c] * v(c + 1);
+    if (i > 0) q += kx[c - 1] * v(c - 1);
+    if (j + 1 < ny) q += ky[c] * v(c + nx);
+    if (j > 0) q += ky[c - nx] * v(c - nx);
+    if (k + 1 < nz) q += kz[c] * v(c + nxy);
+    if (k > 0) q += kz[c - nxy] * v(c - nxy);
+    return q;
+  }
+
+ private:
+  /// Conductance per unit face area [W/(m^2 K)] between neighbouring material cells a and b.
+  double face_conductance_per_area(long a, long b) const;
+
+  const GridMesh& m_mesh;
+  const PhaseRelation& m_phase;
+  const GridProblem& m_problem;
+  const CellState& m_cells;
+  const std::vector<double>& m_surface_area;
+  std::vector<double> kx, ky, kz;  ///< face conductances to the +x, +y, +z neighbour [W/K]
+  std::vector<double> bq0, bq1;    ///< boundary heat into the cell: bq0 - bq1 T [W]
+};
+
+}  // namespace thaw::sim
