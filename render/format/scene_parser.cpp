@@ -11,6 +11,7 @@
 #include "render/format/medium_library.h"
 #include "render/format/medium_parser.h"
 #include "render/light/latlong_map.h"
+#include "render/scene/image_keys.h"
 
 namespace thaw::render {
 
@@ -50,64 +51,54 @@ int int_key(const TomlTable& t, const std::string& key, int fallback, Rule rule)
   return static_cast<int>(checked<long long>(t, key, t.get_int(key, fallback), rule));
 }
 
-/// [image] spectral = "auto" | true | false.
-ImageSettings::Spectral parse_spectral(const TomlTable& img) {
-  if (!img.has("spectral") || img.is<bool>("spectral"))
-    return img.get_bool("spectral", false) ? ImageSettings::Spectral::on
-                                           : ImageSettings::Spectral::off;
-  const std::string text = img.is<std::string>("spectral") ? img.get_string("spectral") : "";
-  if (text != "auto") img.fail("spectral", "must be \"auto\", true or false");
-  return ImageSettings::Spectral::automatic;
+/// "a", "b" or "c": the names of a choice key, for its message.
+std::string names_text(std::span<const std::string_view> names) {
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (i > 0) out += i + 1 == names.size() ? " or " : ", ";
+    out += '"';
+    out.append(names[i]);
+    out += '"';
+  }
+  return out;
 }
 
-/// [image]; every limit is a rule of render/scene/scene_rules.h.
+/// One [image] key by its row (render/scene/image_keys.h): absent keys keep the value they have
+/// (or take the row's `absent` value), present ones are read, checked by the row's rule and set.
+void parse_image_key(const TomlTable& img, const ImageKey& row, ImageSettings& image) {
+  const std::string key(row.name);
+  if (const auto* k = std::get_if<IntegerKey>(&row.value)) {
+    image.*(k->field) = int_key(img, key, image.*(k->field), k->rule);
+  } else if (const auto* k = std::get_if<NumberKey>(&row.value)) {
+    const double fallback = k->absent ? k->absent(image) : image.*(k->field);
+    image.*(k->field) = checked(img, key, img.get_double(key, fallback), k->rule);
+  } else if (const auto* k = std::get_if<FlagKey>(&row.value)) {
+    image.*(k->field) = img.get_bool(key, image.*(k->field));
+  } else if (const auto* k = std::get_if<ColourKey>(&row.value)) {
+    image.*(k->field) = color3(img, key, image.*(k->field));
+  } else if (const auto* k = std::get_if<ChoiceKey>(&row.value)) {
+    const std::string name = img.get_string(key, std::string(k->get(image)));
+    if (!k->set(image, name)) {
+      std::string problem = "must be ";
+      problem.append(names_text(k->names)).append(" (got \"").append(name).append("\")");
+      img.fail(key, problem);
+    }
+  } else if (const auto* k = std::get_if<AutoFlagKey>(&row.value)) {
+    if (!img.has(key)) return;
+    if (img.is<bool>(key))
+      k->set(image, img.get_bool(key, false));
+    else if (img.is<std::string>(key) && img.get_string(key) == "auto")
+      k->set(image, std::nullopt);
+    else
+      img.fail(key, "must be \"auto\", true or false");
+  }
+}
+
+/// [image]: every key by its row; every limit is a rule of render/scene/scene_rules.h.
 ImageSettings parse_image(const TomlTable& img, ImageSettings image) {
-  image.width = int_key(img, "width", image.width, image_side_problem);
-  image.height = int_key(img, "height", image.height, image_side_problem);
+  for (const ImageKey& row : image_keys()) parse_image_key(img, row, image);
   if (const auto problem = image_pixels_problem(image.width, image.height))
     img.fail("height", *problem);
-  image.samples_per_pixel =
-      int_key(img, "samples_per_pixel", image.samples_per_pixel, samples_per_pixel_problem);
-  image.adaptive = img.get_bool("adaptive", image.adaptive);
-  image.min_samples = int_key(img, "min_samples", image.min_samples, min_samples_problem);
-  image.adaptive_threshold = checked(img, "adaptive_threshold",
-                                     img.get_double("adaptive_threshold", image.adaptive_threshold),
-                                     adaptive_threshold_problem);
-  const std::string filter = img.get_string("filter", filter_name(image.filter));
-  if (const auto kind = filter_kind_from_name(filter))
-    image.filter = *kind;
-  else
-    img.fail("filter",
-             "unknown filter \"" + filter + "\" (expected \"box\", \"gaussian\" or \"mitchell\")");
-  image.filter_radius = checked(
-      img, "filter_radius", img.get_double("filter_radius", default_filter_radius(image.filter)),
-      filter_radius_problem);
-  image.texture_filter = img.get_bool("texture_filter", image.texture_filter);
-  image.max_depth = int_key(img, "max_depth", image.max_depth, max_depth_problem);
-  image.background = color3(img, "background", image.background);
-  image.min_weight = checked(img, "min_weight", img.get_double("min_weight", image.min_weight),
-                             min_weight_problem);
-  image.exposure =
-      checked(img, "exposure", img.get_double("exposure", image.exposure), exposure_problem);
-  if (img.has("spectral")) image.spectral = parse_spectral(img);
-  image.dispersion = *dispersion_from_name(checked(
-      img, "dispersion", img.get_string("dispersion", "adaptive"), dispersion_name_problem));
-  image.dispersion_resolution_nm =
-      checked(img, "dispersion_resolution_nm",
-              img.get_double("dispersion_resolution_nm", image.dispersion_resolution_nm),
-              dispersion_resolution_problem);
-  image.dispersion_wavelengths = int_key(
-      img, "dispersion_wavelengths", image.dispersion_wavelengths, dispersion_wavelengths_problem);
-  image.wavelength_pattern = *wavelength_pattern_from_name(
-      checked(img, "wavelength_pattern", img.get_string("wavelength_pattern", "shared"),
-              wavelength_pattern_name_problem));
-  const std::string film = img.get_string("spectral_film", "ratio");
-  if (film == "ratio")
-    image.spectral_film = ImageSettings::SpectralFilm::ratio;
-  else if (film == "unbiased")
-    image.spectral_film = ImageSettings::SpectralFilm::unbiased;
-  else
-    img.fail("spectral_film", "must be \"ratio\" or \"unbiased\" (got \"" + film + "\")");
   return image;
 }
 

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "render/scene/image_keys.h"
+
 namespace thaw::render {
 namespace {
 
@@ -37,22 +39,13 @@ double max_abs(const Vec3d& v) {
   return std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
 }
 
+/// Every [image] row's rule (render/scene/image_keys.h), then the image's pixel count.
 std::optional<SceneProblem> image_problem(const ImageSettings& img) {
-  const std::pair<const char*, std::optional<std::string>> rules[] = {
-      {"width", image_side_problem(img.width)},
-      {"height", image_side_problem(img.height)},
-      {"height", image_pixels_problem(img.width, img.height)},
-      {"samples_per_pixel", samples_per_pixel_problem(img.samples_per_pixel)},
-      {"min_samples", min_samples_problem(img.min_samples)},
-      {"adaptive_threshold", adaptive_threshold_problem(img.adaptive_threshold)},
-      {"filter_radius", filter_radius_problem(img.filter_radius)},
-      {"max_depth", max_depth_problem(img.max_depth)},
-      {"min_weight", min_weight_problem(img.min_weight)},
-      {"dispersion_wavelengths", dispersion_wavelengths_problem(img.dispersion_wavelengths)},
-      {"dispersion_resolution_nm", dispersion_resolution_problem(img.dispersion_resolution_nm)},
-      {"exposure", exposure_problem(img.exposure)}};
-  for (const auto& [key, problem] : rules)
-    if (problem) return SceneProblem{std::string("image.") + key, *problem};
+  for (const ImageKey& key : image_keys())
+    if (auto problem = image_key_problem(key, img))
+      return SceneProblem{"image." + std::string(key.name), *problem};
+  if (auto problem = image_pixels_problem(img.width, img.height))
+    return SceneProblem{"image.height", *problem};
   return std::nullopt;
 }
 

@@ -19,7 +19,9 @@
 #include <cmath>
 #include <map>
 
+#include "base/check.h"
 #include "base/error.h"
+#include "render/scene/image_keys.h"
 #include "src/gui/key_form.h"
 #include "src/gui/radius_plot.h"
 #include "src/gui/scene_panel.h"
@@ -44,6 +46,44 @@ TomlValue d(double v) {
 }
 TomlValue i(long long v) {
   return TomlValue{v};
+}
+
+/// A field for the [render.image] key `name`, built from its row (render/scene/image_keys.h):
+/// label, unit, kind and the value the parsed scenario holds.
+void add_image_key(KeyForm* form, std::string_view name) {
+  const render::ImageKey* row = render::find_image_key(name);
+  THAW_CHECK(row != nullptr, "the Render tab names an [image] key of the table");
+  QString label = QString::fromUtf8(row->label.data(), static_cast<int>(row->label.size()));
+  if (!row->unit.empty())
+    label += " [" + QString::fromUtf8(row->unit.data(), static_cast<int>(row->unit.size())) + "]";
+  const std::string key = "render.image." + std::string(row->name);
+  if (const auto* k = std::get_if<render::IntegerKey>(&row->value)) {
+    const auto field = k->field;
+    form->add_integer(label, key,
+                      [field](const RunScenario& s) { return i(s.scene.image.*field); });
+  } else if (const auto* k = std::get_if<render::NumberKey>(&row->value)) {
+    const auto field = k->field;
+    form->add_number(label, key, [field](const RunScenario& s) { return d(s.scene.image.*field); });
+  } else if (const auto* k = std::get_if<render::FlagKey>(&row->value)) {
+    const auto field = k->field;
+    form->add_flag(label, key,
+                   [field](const RunScenario& s) { return TomlValue{s.scene.image.*field}; });
+  } else if (const auto* k = std::get_if<render::ChoiceKey>(&row->value)) {
+    QStringList names;
+    for (std::string_view n : k->names)
+      names << QString::fromUtf8(n.data(), static_cast<int>(n.size()));
+    const auto get = k->get;
+    form->add_choice(label, key, names, [get](const RunScenario& s) {
+      return TomlValue{std::string(get(s.scene.image))};
+    });
+  } else if (const auto* k = std::get_if<render::ColourKey>(&row->value)) {
+    const auto field = k->field;
+    form->add_vector(
+        label, key, [field](const RunScenario& s) { return TomlValue{s.scene.image.*field}; },
+        true);
+  } else {
+    THAW_CHECK(false, "the Render tab has a field for every kind of [image] key");
+  }
 }
 
 }  // namespace
@@ -167,14 +207,8 @@ QWidget* MainWindow::make_render_tab() {
 void MainWindow::add_quality_rows(QVBoxLayout* v) {
   auto* form = new KeyForm;
   form->add_section("Quality of the film's frames ([render.image])");
-  form->add_integer("Width [px]", "render.image.width",
-                    [](const RunScenario& s) { return i(s.scene.image.width); });
-  form->add_integer("Height [px]", "render.image.height",
-                    [](const RunScenario& s) { return i(s.scene.image.height); });
-  form->add_integer("Samples per pixel", "render.image.samples_per_pixel",
-                    [](const RunScenario& s) { return i(s.scene.image.samples_per_pixel); });
-  form->add_number("Exposure [stops]", "render.image.exposure",
-                   [](const RunScenario& s) { return d(s.scene.image.exposure); });
+  for (std::string_view key : {"width", "height", "samples_per_pixel", "exposure"})
+    add_image_key(form, key);
   m_forms.push_back(form);
   v->addWidget(form);
   auto* row = new QHBoxLayout;

@@ -50,7 +50,7 @@ expect_bad empty_obj "no faces" "$(scene empty_obj 's#meshes/floor_200.obj#meshe
 expect_bad zero_light_radius "lights\[0\].radius" "$(scene zero_radius 's/^kind = "point"/kind = "sphere"\nradius = 0.0/')"
 expect_bad negative_light_radius "positive radius" "$(scene neg_radius 's/^kind = "point"/kind = "sphere"\nradius = -0.5/')"
 expect_bad light_in_opaque_object "inside opaque object 'lamp_shade'" "$(scene light_inside 's/^kind = "point"/kind = "sphere"\nradius = 0.2/; $a [[objects]]\nname = "lamp_shade"\nshape = "sphere"\ncenter = [-4.0, 6.0, 4.0]\nradius = 1.0\nmaterial = "floor"')"
-expect_bad unknown_filter "unknown filter" "$(scene unknown_filter 's/^max_depth = 10/max_depth = 10\nfilter = "lanczos"/')"
+expect_bad unknown_filter '(got "lanczos")' "$(scene unknown_filter 's/^max_depth = 10/max_depth = 10\nfilter = "lanczos"/')"
 expect_bad bad_filter_radius "filter_radius" "$(scene bad_filter_radius 's/^max_depth = 10/max_depth = 10\nfilter_radius = 9.0/')"
 expect_bad bad_min_samples "min_samples" "$(scene bad_min_samples 's/^max_depth = 10/max_depth = 10\nmin_samples = 0/')"
 # [caustics] (issue 10): absurd photon counts and a negative radius (s1 has caustics.enabled = false).

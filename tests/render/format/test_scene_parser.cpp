@@ -250,7 +250,7 @@ TEST(SceneParser, BadSphereLightsAndFiltersAreErrors) {
   expect_error("kind = \"point\"", "kind = \"sphere\"\nradius = 1.0\nsamples = 0",
                "lights[0].samples", "between 1 and");
   expect_error("max_depth = 10", "max_depth = 10\nfilter = \"lanczos\"", "image.filter",
-               "unknown filter");
+               "must be \"box\", \"gaussian\" or \"mitchell\" (got \"lanczos\")");
   expect_error("max_depth = 10", "max_depth = 10\nfilter_radius = 0.1", "image.filter_radius",
                "between 0.5 and 4");
   expect_error("max_depth = 10", "max_depth = 10\nmin_samples = 1", "image.min_samples",
