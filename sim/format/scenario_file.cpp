@@ -44,7 +44,9 @@ void check_schema(const TomlTable& root, const std::set<std::string>& foreign_se
       {"water", {"initial_temperature_c"}},
       {"ice", {"initial_temperature_c"}},
       {"inner_boundary", {"kind", "temperature_c"}},
-      {"outer_boundary", {"kind", "temperature_c", "heat_transfer_coefficient_w_m2k", "flux_w_m2"}},
+      {"outer_boundary",
+       {"kind", "temperature_c", "heat_transfer_coefficient_w_m2k", "flux_w_m2",
+        "relative_humidity", "speed_m_s", "surroundings_temperature_c", "emissivity"}},
       {"materials",
        {"ice_conductivity_w_mk", "ice_density_kg_m3", "ice_specific_heat_j_kgk",
         "water_conductivity_w_mk", "water_density_kg_m3", "water_specific_heat_j_kgk",
@@ -130,7 +132,8 @@ Materials parse_materials(const TomlTable& t, Materials m) {
 }
 
 bool uses_outer_temperature(OuterBoundary kind) {
-  return kind == OuterBoundary::temperature || kind == OuterBoundary::convective;
+  return kind == OuterBoundary::temperature || kind == OuterBoundary::convective ||
+         kind == OuterBoundary::air;
 }
 
 /// [simulation]: the geometry, the times and the keys of the solver the geometry selects.
@@ -219,9 +222,11 @@ void parse_outer_boundary(const TomlTable& outer, Scenario& s) {
     s.outer_kind = OuterBoundary::flux;
   else if (kind == "insulated")
     s.outer_kind = OuterBoundary::insulated;
+  else if (kind == "air")
+    s.outer_kind = OuterBoundary::air;
   else
     outer.fail("kind", "unknown outer boundary '" + kind +
-                           "' (expected temperature, convective, flux or insulated)");
+                           "' (expected temperature, convective, flux, insulated or air)");
   const bool uses_t = uses_outer_temperature(s.outer_kind);
   reject_unless(outer, "temperature_c", uses_t, "not used with kind = \"" + kind + "\"");
   reject_unless(outer, "heat_transfer_coefficient_w_m2k", s.outer_kind == OuterBoundary::convective,
@@ -233,6 +238,16 @@ void parse_outer_boundary(const TomlTable& outer, Scenario& s) {
                                           ? outer.get_double("heat_transfer_coefficient_w_m2k")
                                           : 0.0;
   s.flux_w_m2 = s.outer_kind == OuterBoundary::flux ? outer.get_double("flux_w_m2") : 0.0;
+  const bool air = s.outer_kind == OuterBoundary::air;
+  for (const char* key :
+       {"relative_humidity", "speed_m_s", "surroundings_temperature_c", "emissivity"})
+    reject_unless(outer, key, air, "only used with kind = \"air\"");
+  if (!air) return;
+  s.relative_humidity = outer.get_double("relative_humidity");
+  s.air_speed_m_s = outer.get_double("speed_m_s", 0.0);
+  if (outer.has("surroundings_temperature_c"))
+    s.surroundings_temperature_c = outer.get_double("surroundings_temperature_c");
+  s.emissivity = outer.get_double("emissivity", s.emissivity);
 }
 
 }  // namespace
@@ -352,8 +367,16 @@ nlohmann::json scenario_to_json(const Scenario& s) {
   if (s.inner_kind == InnerBoundary::temperature)
     j["inner_boundary"]["temperature_c"] = s.inner_temperature_c;
   nlohmann::json outer = {{"kind", to_string(s.outer_kind)}};
-  if (s.outer_kind == OuterBoundary::temperature || s.outer_kind == OuterBoundary::convective)
+  if (s.outer_kind == OuterBoundary::temperature || s.outer_kind == OuterBoundary::convective ||
+      s.outer_kind == OuterBoundary::air)
     outer["temperature_c"] = s.outer_temperature_c;
+  if (s.outer_kind == OuterBoundary::air) {
+    outer["relative_humidity"] = s.relative_humidity;
+    outer["speed_m_s"] = s.air_speed_m_s;
+    outer["surroundings_temperature_c"] =
+        s.surroundings_temperature_c.value_or(s.outer_temperature_c);
+    outer["emissivity"] = s.emissivity;
+  }
   if (s.outer_kind == OuterBoundary::convective)
     outer["heat_transfer_coefficient_w_m2k"] = s.heat_transfer_coefficient_w_m2k;
   if (s.outer_kind == OuterBoundary::flux) outer["flux_w_m2"] = s.flux_w_m2;

@@ -92,6 +92,7 @@ void ConductionOperator::assemble(long c, int i, int j, int k) {
         bq0[c] += a * p.flux_w_m2;
         break;
       case OuterBoundary::insulated:
+      case OuterBoundary::air:  // rejected by the rules until the grid solver takes it
         break;
     }
   }

@@ -2,6 +2,7 @@
 // The plain description of one simulation (parsed from a scenario TOML file, or built in code by
 // tests and the pipeline): geometry, initial state, boundary conditions, materials and the
 // accuracy knobs. Knows nothing of TOML or of how the solver works.
+#include <optional>
 #include <string>
 
 #include "sim/scenario/geometry.h"
@@ -28,7 +29,7 @@ struct Materials {
 };
 
 enum class InnerBoundary { symmetry, temperature };
-enum class OuterBoundary { temperature, convective, flux, insulated };
+enum class OuterBoundary { temperature, convective, flux, insulated, air };
 
 const char* to_string(InnerBoundary kind);
 const char* to_string(OuterBoundary kind);
@@ -78,6 +79,12 @@ struct Scenario {
   double outer_temperature_c = 20.0;  ///< held surface temperature or air temperature [C]
   double heat_transfer_coefficient_w_m2k = 10.0;  ///< h [W/(m^2 K)] (convective)
   double flux_w_m2 = 0.0;                         ///< heat flux into the ice [W/m^2] (flux)
+  // kind = air (sim/boundary/air_model.h): outer_temperature_c is the air's temperature.
+  double relative_humidity = 0.5;  ///< of the air, 0..1
+  double air_speed_m_s = 0.0;      ///< free-stream speed [m/s]; 0 = still air
+  /// Temperature of the walls the surface radiates to [C]; unset: the air's.
+  std::optional<double> surroundings_temperature_c;
+  double emissivity = 0.97;  ///< of the ice surface, (0, 1]
 
   Materials materials;
 

@@ -7,6 +7,7 @@
 
 #include "base/error.h"
 #include "base/number_text.h"
+#include "sim/boundary/scenario_air.h"
 #include "sim/grid/grid_rules.h"
 
 // GCC 12 reports a false -Wrestrict inside std::string's operator+(const char*, string&&) once
@@ -31,6 +32,8 @@ const char* to_string(OuterBoundary kind) {
       return "flux";
     case OuterBoundary::insulated:
       return "insulated";
+    case OuterBoundary::air:
+      return "air";
   }
   return "?";
 }
@@ -74,7 +77,8 @@ bool held_inner(const Scenario& s) {
   return s.inner_kind == InnerBoundary::temperature;
 }
 bool uses_outer_temperature(const Scenario& s) {
-  return s.outer_kind == OuterBoundary::temperature || s.outer_kind == OuterBoundary::convective;
+  return s.outer_kind == OuterBoundary::temperature || s.outer_kind == OuterBoundary::convective ||
+         s.outer_kind == OuterBoundary::air;
 }
 bool cylinder(const Scenario& s) {
   return s.grid == GridGeometry::none && s.geometry == Geometry::cylinder;
@@ -298,17 +302,38 @@ std::optional<ScenarioProblem> empty_shell_problem(const Scenario& s) {
   const double tm = s.materials.melting_point_c;
   if (s.inner_radius_m != s.outer_radius_m) return std::nullopt;
   const bool water_at_melting = s.water_initial_temperature_c == tm;
-  const bool freezes = (s.outer_kind == OuterBoundary::temperature && s.outer_temperature_c < tm) ||
-                       (s.outer_kind == OuterBoundary::convective && s.outer_temperature_c < tm &&
-                        water_at_melting) ||
-                       (s.outer_kind == OuterBoundary::flux && s.flux_w_m2 < 0 && water_at_melting);
+  const bool freezes =
+      (s.outer_kind == OuterBoundary::temperature && s.outer_temperature_c < tm) ||
+      (s.outer_kind == OuterBoundary::convective && s.outer_temperature_c < tm &&
+       water_at_melting) ||
+      (s.outer_kind == OuterBoundary::flux && s.flux_w_m2 < 0 && water_at_melting) ||
+      (s.outer_kind == OuterBoundary::air && water_at_melting &&
+       air_heat_flux(scenario_air(s), radial_air_body(s, s.outer_radius_m), tm).total_w_m2() < 0);
   if (!freezes)
     return ScenarioProblem{
         "shell.outer_radius_m",
         "equals inner_radius_m (no ice at t = 0), so the outer boundary must freeze "
         "the water at once: "
-        "a held temperature below melting, or convective/flux cooling of water at the "
+        "a held temperature below melting, or convective/flux/air cooling of water at the "
         "melting point"};
+  return std::nullopt;
+}
+
+/// kind = "air": every input inside the ranges of the correlations the body uses, over the
+/// surface temperatures the run can see (the initial ice, or water, up to the melting point).
+std::optional<ScenarioProblem> air_problem(const Scenario& s) {
+  if (s.outer_kind != OuterBoundary::air) return std::nullopt;
+  if (s.grid != GridGeometry::none)
+    return ScenarioProblem{"outer_boundary.kind",
+                           "kind = \"air\" is not yet available for geometry = \"" +
+                               std::string(to_string(s.grid)) +
+                               "\" (the 1D geometries have it); use kind = \"convective\""};
+  const double tm = s.materials.melting_point_c;
+  const double start = s.outer_radius_m > s.inner_radius_m ? s.ice_initial_temperature_c
+                                                           : s.water_initial_temperature_c;
+  const double coldest = std::min({start, tm, s.outer_temperature_c});
+  if (auto p = find_air_problem(scenario_air(s), radial_air_body(s, s.outer_radius_m), coldest, tm))
+    return ScenarioProblem{air_input_key(p->input), p->message};
   return std::nullopt;
 }
 
@@ -322,7 +347,7 @@ std::optional<std::string> cells_per_phase_problem(std::int64_t cells) {
 
 std::optional<ScenarioProblem> find_scenario_problem(const Scenario& s) {
   for (auto rule : {number_problem, simulation_problem, shell_problem, temperature_problem,
-                    outside_range, empty_shell_problem})
+                    outside_range, air_problem, empty_shell_problem})
     if (auto p = rule(s)) return p;
   // Grid runs ([shape]); the [shell] rules above pass on its unused defaults.
   if (auto p = find_grid_problem(s)) return ScenarioProblem{p->key, p->message};

@@ -9,6 +9,7 @@
 
 #include "base/check.h"
 #include "base/error.h"
+#include "sim/boundary/scenario_air.h"
 #include "sim/reference/neumann.h"
 #include "sim/scenario/scenario_rules.h"
 #include "sim/stefan1d/phase_operator.h"
@@ -54,6 +55,42 @@ std::string seconds_text(double t) {
   return buf;
 }
 
+/// The root of a function f that falls through zero once, from a guess: Newton steps
+/// (central-difference slope) kept inside a bracket that is widened until it holds the root,
+/// bisection when a step leaves it. Converged when the step or the bracket is below `tol`.
+template <class F>
+double decreasing_root(F&& f, double guess, double tol) {
+  double lo = guess, hi = guess, flo = f(lo), fhi = flo;
+  double width = std::max(1.0, std::abs(guess));
+  while (flo < 0) {  // the root lies below
+    hi = lo, fhi = flo;
+    lo -= width, width *= 2, flo = f(lo);
+    if (width > 1e9) return lo;
+  }
+  width = std::max(1.0, std::abs(guess));
+  while (fhi > 0) {  // the root lies above
+    lo = hi, flo = fhi;
+    hi += width, width *= 2, fhi = f(hi);
+    if (width > 1e9) return hi;
+  }
+  double x = std::clamp(guess, lo, hi);
+  for (int it = 0; it < 100; ++it) {
+    const double fx = f(x);
+    if (fx == 0) return x;
+    (fx > 0 ? lo : hi) = x;
+    // a slope over 1e-4 K: accurate to ~1e-8 relative for the smooth fluxes here, and far above
+    // the round-off of the differences (a tiny d would let a noisy slope fake convergence)
+    const double d = 1e-4;
+    const double slope = (f(x + d) - f(x - d)) / (2 * d);
+    double next = slope < 0 ? x - fx / slope : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    const double step = std::abs(next - x);
+    x = next;
+    if (step < tol || hi - lo < tol) return x;
+  }
+  return x;
+}
+
 /// The complete discrete state.
 struct State {
   double t = 0;
@@ -86,6 +123,47 @@ struct FrontFixingSolver::Impl {
   Bc inner_bc;                    ///< at r = 0
   Bc outer_bc;                    ///< at r = b when not ablating
   double ablation_heat_flux = 0;  ///< heat flux arriving at a surface held at T_m [W/m^2]
+  Air air;                        ///< outer_kind == air: the room (sim/boundary/air_model.h)
+
+  // --- the air boundary (kind = air): q(u_b, b) depends on the surface value and the size ---
+  /// Heat flux from the air into the ice surface at u = T - T_m, radius b [W/m^2].
+  double air_flux(double u, double b) const {
+    return air_heat_flux(air, radial_air_body(sc, b), u + t_m).total_w_m2();
+  }
+  /// Heat flux arriving at the ice surface at radius b when it is held at T_m [W/m^2].
+  double arriving_flux(double b) const {
+    return outer_bc.kind == BcKind::air ? air_flux(0.0, b) : ablation_heat_flux;
+  }
+  /// Heat arrives at a surface held at T_m and can melt it away (drained).
+  bool can_ablate() const {
+    return (outer_bc.kind == BcKind::robin || outer_bc.kind == BcKind::flux ||
+            outer_bc.kind == BcKind::air) &&
+           arriving_flux(st.b) > 0;
+  }
+  /// The air's tangent at surface value u as a Robin condition: q = htc (u_eff - u_b), exact in
+  /// value and slope at u_b = u where htc = -dq/du, Newton's linearisation of the boundary (the
+  /// iteration converges quadratically). The slope is at least the convective h: within ~1 K of
+  /// the air's temperature, evaporation (h_m ~ |dT|^(1/4)) can make q rise with the surface's
+  /// temperature, and a chord then converges where a tangent of the wrong sign would not.
+  Bc air_tangent(double u, double b) const {
+    const double du = 1e-4;
+    const AirFlux f = air_heat_flux(air, radial_air_body(sc, b), u + t_m);
+    const double q = f.total_w_m2();
+    const double htc = std::max(-(air_flux(u + du, b) - air_flux(u - du, b)) / (2 * du),
+                                f.heat_transfer_coefficient_w_m2k);
+    return Bc{BcKind::robin, u + q / htc, htc};
+  }
+  /// The ice's outer condition when not ablating, with the air replaced by its tangent at the
+  /// surface value the cells u1, u2 (nearest first, width dx) give: the root of
+  /// q(u_b) = k (8 u_b - 9 u1 + u2) / (3 dx) (the second-order one-sided stencil).
+  Bc outer_bc_at(double u1, double u2, double dx, double b) const {
+    if (outer_bc.kind != BcKind::air) return outer_bc;
+    const double kappa = ice.k / (3.0 * dx);
+    const double ub = decreasing_root(
+        [&](double u) { return air_flux(u, b) - kappa * (8.0 * u - 9.0 * u1 + u2); }, u1,
+        1e-13 * temperature_scale);
+    return air_tangent(ub, b);
+  }
 
   State st;
   double next_dt = 0;  ///< the step to try next [s]
@@ -101,7 +179,9 @@ struct FrontFixingSolver::Impl {
     return x.liquid ? Bc{BcKind::dirichlet, 0.0, 0.0} : inner_bc;
   }
   Bc ice_right_bc(const State& x) const {
-    return x.ablating ? Bc{BcKind::dirichlet, 0.0, 0.0} : outer_bc;
+    if (x.ablating) return Bc{BcKind::dirichlet, 0.0, 0.0};
+    const double dx = (x.b - ice_left(x)) / ice.n;
+    return outer_bc_at(x.ui[ice.n - 1], x.ui[ice.n - 2], dx, x.b);
   }
   static Bc front_bc() { return Bc{BcKind::dirichlet, 0.0, 0.0}; }
 
@@ -138,7 +218,7 @@ struct FrontFixingSolver::Impl {
       q_inner = r.ic.q_left;
     }
     if (inner_bc.kind != BcKind::dirichlet) q_inner = 0;
-    const double q_ext = geo.area(x.b) * ablation_heat_flux;
+    const double q_ext = geo.area(x.b) * arriving_flux(x.b);
     if (x.ablating) r.ablation = q_ext - r.ic.q_right;
     r.boundary = q_inner + (x.ablating ? q_ext : r.ic.q_right);
     return r;
@@ -161,10 +241,35 @@ struct FrontFixingSolver::Impl {
     const State* sg = nullptr;  ///< state at t_n + gamma dt (BDF2 stage)
   };
 
-  /// Solves one phase's cells for given end positions; returns heat through its two ends.
-  void solve_phase(const Phase& p, double a, double e, const Bc& left, const Bc& right,
+  /// Solves one phase's cells for given end positions; returns heat through its two ends. An
+  /// air condition on the right is solved with the cells, by Newton on its surface value: the
+  /// tangent Robin form at the last value, one tridiagonal solve, the new face value (u_out holds
+  /// the previous iterate's cells on entry, the first guess). False if that does not converge.
+  bool solve_phase(const Phase& p, double a, double e, const Bc& left, const Bc& right,
                    const StageRef& ref, bool is_water, std::vector<double>& u_out, double& q_left,
                    double& q_right) {
+    if (right.kind != BcKind::air) {
+      solve_phase_linear(p, a, e, left, right, ref, is_water, u_out, q_left, q_right);
+      return true;
+    }
+    const int n = p.n;
+    const double dx = (e - a) / n;
+    Bc tangent = outer_bc_at(u_out[n - 1], u_out[n - 2], dx, e);
+    double ub = boundary_value(tangent, p.k, dx, u_out[n - 1], u_out[n - 2]);
+    for (int it = 0; it < 40; ++it) {
+      solve_phase_linear(p, a, e, left, tangent, ref, is_water, u_out, q_left, q_right);
+      const double ub_new = boundary_value(tangent, p.k, dx, u_out[n - 1], u_out[n - 2]);
+      const double change = std::abs(ub_new - ub);
+      ub = ub_new;
+      if (change <= 1e-12 * temperature_scale) return true;
+      tangent = air_tangent(ub, e);
+    }
+    return false;
+  }
+
+  void solve_phase_linear(const Phase& p, double a, double e, const Bc& left, const Bc& right,
+                          const StageRef& ref, bool is_water, std::vector<double>& u_out,
+                          double& q_left, double& q_right) {
     const int n = p.n;
     const double dx = (e - a) / n;
     const double cap = p.heat_capacity;
@@ -253,13 +358,14 @@ struct FrontFixingSolver::Impl {
     if (!(x.b > ice_left(x))) return false;
     double ql_w = 0, qr_w = 0, ql_i = 0, qr_i = 0;
     if (x.liquid) solve_phase(water, 0.0, x.s, inner_bc, front_bc(), ref, true, x.ul, ql_w, qr_w);
-    solve_phase(ice, ice_left(x), x.b, ice_left_bc(x), ice_right_bc(x), ref, false, x.ui, ql_i,
-                qr_i);
+    const Bc right = x.ablating ? Bc{BcKind::dirichlet, 0.0, 0.0} : outer_bc;
+    if (!solve_phase(ice, ice_left(x), x.b, ice_left_bc(x), right, ref, false, x.ui, ql_i, qr_i))
+      return false;
     auto wref = [&](double State::*member) {
       if (ref.trapezoid) return geo.w(x0.*member);
       return TrBdf2::a * geo.w(ref.sg->*member) + TrBdf2::b * geo.w(x0.*member);
     };
-    const double q_ext = geo.area(x.b) * ablation_heat_flux;
+    const double q_ext = geo.area(x.b) * arriving_flux(x.b);
     double q_inner = x.liquid ? ql_w : ql_i;
     if (inner_bc.kind != BcKind::dirichlet) q_inner = 0;
     const double q_boundary = q_inner + (x.ablating ? q_ext : qr_i);
@@ -417,6 +523,11 @@ struct FrontFixingSolver::Impl {
       case OuterBoundary::insulated:
         outer_bc = Bc{BcKind::flux, 0.0, 0};
         break;
+      case OuterBoundary::air:
+        outer_bc = Bc{BcKind::air, 0.0, 0};
+        air = scenario_air(sc);
+        temperature_scale = std::max(temperature_scale, std::abs(u_out));
+        break;
     }
     initialise(u_water, u_ice, u_inner);
     if (opt.initial_temperature_c) {
@@ -465,15 +576,21 @@ struct FrontFixingSolver::Impl {
         fill_from_profile(st, [&](double r) { return n.temperature(b0 - r, t0) - t_m; });
         start_at(t0);
       } else {
-        const double q_out = -ablation_heat_flux;  // heat leaving at T_m [W/m^2], > 0
+        const double q_out = -arriving_flux(b0);  // heat leaving at T_m [W/m^2], > 0
         THAW_CHECK(q_out > 0 && u_water == 0, "validated zero-ice start");
         double u_surface;
-        if (outer_bc.kind == BcKind::robin)
+        double q = q_out;
+        if (outer_bc.kind == BcKind::robin) {
           u_surface = outer_bc.htc * outer_bc.value / (outer_bc.htc + ice.k / delta);
-        else
+          q = outer_bc.htc * (u_surface - outer_bc.value);
+        } else if (outer_bc.kind == BcKind::air) {
+          // the film of ice conducts what the air takes: q_air(u_s) = k u_s / delta
+          u_surface = decreasing_root([&](double u) { return air_flux(u, b0) - ice.k * u / delta; },
+                                      0.0, 1e-13 * temperature_scale);
+          q = -air_flux(u_surface, b0);
+        } else {
           u_surface = outer_bc.value * delta / ice.k;
-        const double q =
-            outer_bc.kind == BcKind::robin ? outer_bc.htc * (u_surface - outer_bc.value) : q_out;
+        }
         st.s = b0 - delta;
         fill_from_profile(
             st, [&](double r) { return r <= st.s ? 0.0 : u_surface * (r - st.s) / delta; });
@@ -481,8 +598,7 @@ struct FrontFixingSolver::Impl {
       }
     }
     // Ice already at T_m under arriving heat: the surface ablates from the start.
-    if (!done && (outer_bc.kind == BcKind::robin || outer_bc.kind == BcKind::flux) &&
-        ablation_heat_flux > 0 && surface_temperature(st) >= 0) {
+    if (!done && can_ablate() && surface_temperature(st) >= 0) {
       st.ablating = true;
       events.push_back({"melt_onset", st.t, st.b});
     }
@@ -657,8 +773,6 @@ struct FrontFixingSolver::Impl {
     THAW_CHECK(t_target >= st.t, "advance_to goes forward");
     const double t_floor = 1e-13 * std::max(sc.duration_s, t_target);
     const double tol_u = 1e-9 * temperature_scale;
-    const bool can_ablate =
-        ablation_heat_flux > 0 && (outer_bc.kind == BcKind::robin || outer_bc.kind == BcKind::flux);
     int event_retries = 0;
     while (!done && st.t < t_target) {
       guard_runaway();
@@ -705,7 +819,7 @@ struct FrontFixingSolver::Impl {
           which = c;
         }
       };
-      if (!st.ablating && can_ablate) {
+      if (!st.ablating && can_ablate()) {
         const double u0 = surface_temperature(st), u1 = surface_temperature(x1);
         if (u1 > tol_u)
           consider(u0 >= 0 ? 0.0 : -u0 / (u1 - u0), Crossing::onset);
@@ -714,7 +828,7 @@ struct FrontFixingSolver::Impl {
       }
       if (st.ablating) {
         const double g0 = rates(st).ablation, g1 = rates(x1).ablation;
-        const double tol_g = 1e-9 * geo.area(st.b) * std::abs(ablation_heat_flux);
+        const double tol_g = 1e-9 * geo.area(st.b) * std::abs(arriving_flux(st.b));
         if (g1 < -tol_g)
           consider(g0 <= 0 ? 0.0 : g0 / (g0 - g1), Crossing::stop);
         else if (g1 <= tol_g && g0 > tol_g)

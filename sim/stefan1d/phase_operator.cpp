@@ -1,5 +1,7 @@
 #include "sim/stefan1d/phase_operator.h"
 
+#include "base/check.h"
+
 namespace thaw::sim::stefan1d {
 
 // One-sided second-order gradient at a Dirichlet face from the face value and the two nearest
@@ -26,6 +28,8 @@ BoundaryForm boundary_form(const Bc& bc, double k, double area, double dx) {
     case BcKind::flux:
       f.q0 = area * bc.value;
       break;
+    case BcKind::air:
+      THAW_CHECK(false, "the air boundary is linearised before its stencil is formed");
   }
   return f;
 }
@@ -41,6 +45,8 @@ double boundary_value(const Bc& bc, double k, double dx, double u1, double u2) {
       return (bc.value / kappa + 9.0 * u1 - u2) / 8.0;
     case BcKind::zero_flux:
       return (9.0 * u1 - u2) / 8.0;
+    case BcKind::air:
+      THAW_CHECK(false, "the air boundary is linearised before its face value is taken");
   }
   return 0;
 }

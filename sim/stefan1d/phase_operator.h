@@ -19,7 +19,9 @@ struct Radial {
   double w(double r) const { return m == 0 ? r : (m == 1 ? 0.5 * r * r : r * r * r / 3.0); }
 };
 
-enum class BcKind { zero_flux, dirichlet, robin, flux };
+/// air: the nonlinear flux of sim/boundary/air_model.h, q(u_b, b); the solver replaces it by its
+/// tangent Robin form at the current surface value before any stencil sees it.
+enum class BcKind { zero_flux, dirichlet, robin, flux, air };
 /// A boundary condition on u = T - T_m.
 struct Bc {
   BcKind kind = BcKind::zero_flux;

@@ -81,6 +81,16 @@ check_bad long_interval "simulation.output_interval_s" "longer than the run" "${
 hot=${base/kind = \"convective\"/kind = \"temperature\"}
 hot=${hot/heat_transfer_coefficient_w_m2k = 50.0/}
 check_bad hot_surface "outer_boundary.temperature_c" "ill-posed" "$hot"
+# [outer_boundary] kind = "air" (issue 25): a good run, and every range it names.
+air=${base/kind = \"convective\"/kind = \"air\"}
+air=${air/heat_transfer_coefficient_w_m2k = 50.0/relative_humidity = 0.5}
+check_good air "$(printf '%s\n' "$air" > "$work/air.toml"; echo "$work/air.toml")"
+check_bad air_humidity "outer_boundary.relative_humidity" "outside [0, 1]" "${air/relative_humidity = 0.5/relative_humidity = 1.5}"
+check_bad air_emissivity "outer_boundary.emissivity" "outside (0, 1]" "${air/relative_humidity = 0.5/relative_humidity = 0.5
+emissivity = 0.0}"
+check_bad air_speed "outer_boundary.speed_m_s" "[3.5, 7.6e4]" "${air/relative_humidity = 0.5/relative_humidity = 0.5
+speed_m_s = 60.0}"
+check_bad air_temperature "outer_boundary.temperature_c" "[-40, 50] C" "${air/temperature_c = 25.0/temperature_c = 80.0}"
 # Grid runs ([shape]): a shipped scenario shortened to one minute writes fields/*.grid.
 for name in bored_cylinder hollow_cube; do
   sed -e 's/^duration_s = 3600.0/duration_s = 60.0/' -e 's/^output_interval_s = 60.0/output_interval_s = 30.0/' \

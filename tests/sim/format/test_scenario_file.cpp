@@ -171,6 +171,57 @@ TEST(ScenarioFile, RejectsBadInputNamingKeyAndProblem) {
   }
 }
 
+TEST(ScenarioFile, AirBoundaryParsesWithDefaultsAndNamesEveryBadInput) {
+  const std::string air_kind = "kind = \"air\"\ntemperature_c = 20.0\nrelative_humidity = 0.5\n";
+  const std::string convective =
+      "kind = \"convective\"\ntemperature_c = 20.0\nheat_transfer_coefficient_w_m2k = 15.0\n";
+  const std::string text = with(kMinimal, convective, air_kind);
+  const Scenario s = parse_scenario_string(text, "air.toml");
+  EXPECT_EQ(s.outer_kind, OuterBoundary::air);
+  EXPECT_EQ(s.outer_temperature_c, 20.0);
+  EXPECT_EQ(s.relative_humidity, 0.5);
+  EXPECT_EQ(s.air_speed_m_s, 0.0);             // still air unless said
+  EXPECT_FALSE(s.surroundings_temperature_c);  // the air's
+  EXPECT_EQ(s.emissivity, 0.97);               // ice
+  const nlohmann::json echo = scenario_to_json(s)["outer_boundary"];
+  EXPECT_EQ(echo["kind"], "air");
+  EXPECT_EQ(echo["surroundings_temperature_c"], 20.0);
+  EXPECT_EQ(echo["emissivity"], 0.97);
+  const std::vector<BadCase> cases = {
+      {"relative_humidity = 0.5", "relative_humidity = 1.5",
+       "outer_boundary.relative_humidity': (1.5) is outside [0, 1]"},
+      {"relative_humidity = 0.5", "relative_humidity = -0.2", "outside [0, 1]"},
+      {"relative_humidity = 0.5", "temperature_x = 1.0", "unknown key"},
+      {"relative_humidity = 0.5", "speed_m_s = 1.0", "outer_boundary.relative_humidity"},
+      {"relative_humidity = 0.5", "relative_humidity = 0.5\nemissivity = 0.0",
+       "outer_boundary.emissivity': (0) is outside (0, 1]"},
+      {"relative_humidity = 0.5", "relative_humidity = 0.5\nemissivity = 1.01", "(0, 1]"},
+      {"relative_humidity = 0.5", "relative_humidity = 0.5\nspeed_m_s = 0.0001",
+       "outer_boundary.speed_m_s': (0.0001 m/s) gives Re_D"},
+      {"relative_humidity = 0.5", "relative_humidity = 0.5\nspeed_m_s = 100.0", "[3.5, 7.6e4]"},
+      {"temperature_c = 20.0", "temperature_c = 70.0",
+       "outer_boundary.temperature_c': (70 C) is outside [-40, 50] C"},
+      {"temperature_c = 20.0\nrelative", "temperature_c = -10.0\nspeed_m_s = 2.0\nrelative",
+       "[1, 3.2]"},
+      {"relative_humidity = 0.5", "relative_humidity = 0.5\nsurroundings_temperature_c = -300.0",
+       "outer_boundary.surroundings_temperature_c"},
+  };
+  for (const BadCase& c : cases) {
+    const std::string msg =
+        error_of([&] { parse_scenario_string(with(text, c.from, c.to), "bad.toml"); });
+    EXPECT_NE(msg.find(c.must_contain), std::string::npos) << c.to << " -> " << msg;
+    EXPECT_EQ(msg.rfind("bad.toml", 0), 0u) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+  // the air's keys belong to kind = "air" only
+  EXPECT_NE(error_of([&] {
+              parse_scenario_string(with(kMinimal, "heat_transfer_coefficient_w_m2k = 15.0",
+                                         "heat_transfer_coefficient_w_m2k = 15.0\nspeed_m_s = 1.0"),
+                                    "bad.toml");
+            }).find("only used with kind = \"air\""),
+            std::string::npos);
+}
+
 TEST(ScenarioFile, OtherStagesTablesAreLeftUnreadForTheirOwners) {
   const std::string text =
       kMinimal + std::string("[film]\nfps = 12.0\n[render.image]\nwidth = 640\n[mesh]\nx = 1\n");

@@ -1,0 +1,45 @@
+#include "sim/boundary/scenario_air.h"
+
+namespace thaw::sim {
+
+Air scenario_air(const Scenario& s) {
+  Air air;
+  air.temperature_c = s.outer_temperature_c;
+  air.relative_humidity = s.relative_humidity;
+  air.speed_m_s = s.air_speed_m_s;
+  air.surroundings_temperature_c = s.surroundings_temperature_c.value_or(s.outer_temperature_c);
+  air.emissivity = s.emissivity;
+  return air;
+}
+
+AirBodySize radial_air_body(const Scenario& s, double outer_radius_m) {
+  switch (s.geometry) {
+    case Geometry::sphere:
+      return {AirBody::sphere, 2.0 * outer_radius_m};
+    case Geometry::cylinder:
+      return {AirBody::horizontal_cylinder, 2.0 * outer_radius_m};
+    case Geometry::planar:
+      return {AirBody::vertical_surface, s.lateral_size_m};
+  }
+  return {};
+}
+
+const char* air_input_key(AirInput input) {
+  switch (input) {
+    case AirInput::temperature:
+      return "outer_boundary.temperature_c";
+    case AirInput::relative_humidity:
+      return "outer_boundary.relative_humidity";
+    case AirInput::speed:
+      return "outer_boundary.speed_m_s";
+    case AirInput::surroundings_temperature:
+      return "outer_boundary.surroundings_temperature_c";
+    case AirInput::emissivity:
+      return "outer_boundary.emissivity";
+    case AirInput::surface_temperature:
+      return "ice.initial_temperature_c";
+  }
+  return "outer_boundary.kind";
+}
+
+}  // namespace thaw::sim
