@@ -136,11 +136,9 @@ GridField read_grid_field(const std::filesystem::path& file) {
   for (double& o : f.origin_m) o = r.get<double>("header");
   f.spacing_m = r.get<double>("header");
   f.time_s = r.get<double>("header");
-  for (double v : {f.origin_m[0], f.origin_m[1], f.origin_m[2], f.time_s})
-    if (!std::isfinite(v)) fail("non-finite origin or time in the header");
-  if (!(f.spacing_m > 0) || !std::isfinite(f.spacing_m))
-    fail("cell spacing must be positive and finite");
-  if (!(f.time_s >= 0)) fail("negative time in the header");
+  // Before any cell is read: a header the mesher cannot place in space (a spacing of 1e300 m,
+  // an origin of 1e308 m) is refused here, naming the header field, however valid the checksum.
+  if (const auto p = find_header_problem(f)) throw UserError(name, p->field, p->problem);
   r.floats(f.temperature_c, n, "temperatures");
   r.floats(f.ice_fraction, n, "ice fractions");
   r.floats(f.water_fraction, n, "water fractions");

@@ -4,6 +4,8 @@
 // (DIR/fields/step_NNNNNN.grid). Knows nothing of files.
 #include <array>
 #include <cstddef>
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace thaw::sim {
@@ -33,6 +35,28 @@ struct GridField {
                (static_cast<std::size_t>(j) + static_cast<std::size_t>(cells[1]) * k);
   }
 };
+
+/// The bounds of a field's header that thaw can have written, and that its readers and meshers
+/// rely on: a cell edge from 1 nm (a continuum temperature field has no meaning on molecular
+/// cells) to 100 m (the largest body the scenario rules accept, sim/scenario/scenario_rules.cpp),
+/// and the whole grid within 1 km of the coordinates' origin (ten of the largest bodies). Outside
+/// them the cell corners overflow or collapse onto each other in double precision (a spacing of
+/// 1e300 m or an origin of 1e308 m made the mesher divide by zero, read out of bounds or allocate
+/// without end).
+constexpr double kMinFieldSpacingM = 1e-9;
+constexpr double kMaxFieldSpacingM = 100.0;
+constexpr double kMaxFieldCoordinateM = 1000.0;
+
+/// What is wrong with a field's header: the header field ("cells", "origin_m", "spacing_m",
+/// "time_s") and the problem, with the offending value.
+struct GridFieldProblem {
+  std::string field;
+  std::string problem;
+};
+
+/// The first problem of `f`'s geometry (cells, origin, spacing, time) against the bounds above;
+/// nullopt when a reader or mesher can use it. Does not look at the cell values.
+std::optional<GridFieldProblem> find_header_problem(const GridField& f);
 
 /// "axisymmetric" | "cartesian3d".
 const char* to_string(GridField::Geometry geometry);

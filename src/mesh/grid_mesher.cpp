@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <numbers>
+#include <string>
 #include <vector>
 
+#include "base/check.h"
 #include "src/mesh/grid_surface.h"
 #include "src/mesh/node_lattice.h"
 #include "src/mesh/surface_mesher.h"
@@ -191,6 +193,11 @@ sim::GridField coarsened_twice(const sim::GridField& f) {
 }
 
 GridMeshResult mesh_grid_field(const sim::GridField& fine, const GridMeshOptions& o) {
+  // Fields come from the solver or through read_grid_field, which refuses such headers as the
+  // user's error; here they would overflow or collapse the lattice (SIGFPE, SIGSEGV, OOM).
+  const auto header = sim::find_header_problem(fine);
+  const std::string why = header ? header->field + ": " + header->problem : std::string();
+  THAW_CHECK(!header, why.c_str());
   const double edge = o.edge_length_m > 0 ? o.edge_length_m : fine.spacing_m;
   // Edges of two cells or more cannot show the finest cells' detail: extracting on the
   // block-averaged field (an exact volume-fraction field at 2 h) gives a quarter of the

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "base/error.h"
+#include "base/fnv_hash.h"
 
 namespace thaw::sim {
 namespace {
@@ -29,7 +30,10 @@ GridField sample_field(GridField::Geometry geometry) {
   f.geometry = geometry;
   f.cells = geometry == GridField::Geometry::axisymmetric ? std::array<int, 3>{5, 7, 1}
                                                           : std::array<int, 3>{3, 4, 5};
-  f.origin_m = {geometry == GridField::Geometry::axisymmetric ? 0.0 : -0.0125, -0.02, 0.003};
+  // an axisymmetric field starts on the axis (x = z = 0)
+  f.origin_m = geometry == GridField::Geometry::axisymmetric
+                   ? std::array<double, 3>{0.0, -0.02, 0.0}
+                   : std::array<double, 3>{-0.0125, -0.02, 0.003};
   f.spacing_m = 0.0025;
   f.time_s = 123.456789012345;
   const std::size_t n = f.cell_count();
@@ -148,6 +152,66 @@ TEST(GridField, DamagedFilesAreRefusedNamingTheFile) {
     FAIL() << "read a missing file";
   } catch (const UserError& e) {
     EXPECT_NE(std::string(e.what()).find("missing.grid"), std::string::npos);
+  }
+}
+
+/// `bytes` (a version-1 file) with the double at `offset` set to `v` and the checksum recomputed
+/// (FNV-1a from the format's starting state, grid_field_file.cpp): a header that is absurd but
+/// not damaged.
+std::string with_header_double(std::string bytes, std::size_t offset, double v) {
+  std::memcpy(bytes.data() + offset, &v, sizeof v);
+  const std::uint64_t sum =
+      fnv1a_64(std::string_view(bytes).substr(0, bytes.size() - 8), 1469598103934665603ULL);
+  std::memcpy(bytes.data() + bytes.size() - 8, &sum, sizeof sum);
+  return bytes;
+}
+
+// The bad-input campaign of issue 27: spacings of 1e308 ... 5e-324 m and origins of +-1e308 m
+// with valid checksums made `thaw mesh` die by SIGSEGV / SIGFPE or allocate until the OOM killer.
+// Offsets: magic 8, version 4, geometry 4, cells 3 x 4 -> origin at 28, spacing at 52.
+TEST(GridField, AbsurdButFiniteSpacingOrOriginIsRefusedNamingTheHeaderField) {
+  const fs::path dir = fresh_dir("absurd_header");
+  for (auto geometry : {GridField::Geometry::axisymmetric, GridField::Geometry::cartesian3d}) {
+    const fs::path good = dir / "good.grid";
+    write_grid_field(good, sample_field(geometry));
+    const std::string bytes = read_bytes(good);
+    const fs::path bad = dir / "bad.grid";
+    for (double h : {1e308, 1e300, 1e100, 101.0, 9.99e-10, 1e-20, 5e-324, 0.0, -1.0}) {
+      SCOPED_TRACE(h);
+      write_bytes(bad, with_header_double(bytes, 52, h));
+      try {
+        read_grid_field(bad);
+        FAIL() << "accepted a spacing of " << h;
+      } catch (const UserError& e) {
+        EXPECT_EQ(e.file(), bad.string());
+        EXPECT_EQ(e.where(), "spacing_m");
+      }
+    }
+    for (double o : {1e308, -1e308, 1e4, -1001.0}) {
+      SCOPED_TRACE(o);
+      write_bytes(bad, with_header_double(bytes, 36, o));  // origin y (the axis of both kinds)
+      try {
+        read_grid_field(bad);
+        FAIL() << "accepted an origin of " << o;
+      } catch (const UserError& e) {
+        EXPECT_EQ(e.where(), "origin_m");
+        EXPECT_NE(e.problem().find("axis y"), std::string::npos) << e.what();
+      }
+    }
+    if (geometry == GridField::Geometry::axisymmetric) {
+      write_bytes(bad, with_header_double(bytes, 28, -1e308));  // origin x: the axis is at 0
+      EXPECT_THROW(read_grid_field(bad), UserError);
+    }
+    // The bounds themselves are fields thaw can write: a 1 nm and a 100 m cell, a grid ending
+    // (1 um short of) 1 km from the origin.
+    for (double h : {kMinFieldSpacingM, kMaxFieldSpacingM}) {
+      write_bytes(bad, with_header_double(bytes, 52, h));
+      EXPECT_EQ(read_grid_field(bad).spacing_m, h);
+    }
+    const GridField f = sample_field(geometry);
+    const double top = kMaxFieldCoordinateM - f.cells[1] * f.spacing_m - 1e-6;
+    write_bytes(bad, with_header_double(bytes, 36, top));
+    EXPECT_EQ(read_grid_field(bad).origin_m[1], top);
   }
 }
 

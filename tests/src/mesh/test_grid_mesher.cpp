@@ -252,5 +252,17 @@ TEST(GridMesher, NoIceGivesNoSurface) {
   EXPECT_TRUE(m.inner.faces.empty());
 }
 
+// The mesher's own guard (issue 27): a field outside sim::find_header_problem's bounds is an
+// internal error naming the header field, never a SIGFPE, SIGSEGV or an endless allocation.
+// read_grid_field refuses such files as the user's error before they get here.
+TEST(GridMesherDeathTest, FieldOutsideTheBoundsIsAnInternalCheck) {
+  auto f = sample_cartesian([](double, double, double) { return 1.0; }, nullptr, 0.004, 0.0005);
+  f.spacing_m = 1e300;
+  EXPECT_DEATH(mesh_grid_field(f, {}), "spacing_m");
+  f.spacing_m = 0.0005;
+  f.origin_m[1] = 1e308;
+  EXPECT_DEATH(mesh_grid_field(f, {}), "origin_m");
+}
+
 }  // namespace
 }  // namespace thaw::mesh

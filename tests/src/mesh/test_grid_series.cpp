@@ -128,6 +128,35 @@ TEST(GridSeries, MissingOrDamagedFieldIsAUserErrorAndWritesNothing) {
   EXPECT_FALSE(fs::exists(damaged / "mesh"));
 }
 
+// Issue 27: a field whose header holds an absurd but finite spacing or origin, with a valid
+// checksum, made `thaw mesh` die by SIGSEGV / SIGFPE or allocate until the OOM killer. Now it is
+// the user's error naming the file and the header field, and nothing is written.
+TEST(GridSeries, AbsurdFieldHeaderIsAUserErrorNamingFileAndField) {
+  struct Case {
+    double spacing_m, origin_y_m;
+    const char* field;
+  };
+  for (const Case c :
+       {Case{1e308, 0, "spacing_m"}, Case{1e300, 0, "spacing_m"}, Case{1e100, 0, "spacing_m"},
+        Case{1e-20, 0, "spacing_m"}, Case{5e-324, 0, "spacing_m"}, Case{0, 1e308, "origin_m"},
+        Case{0, -1e308, "origin_m"}}) {
+    SCOPED_TRACE(c.field + std::string(" ") + std::to_string(c.spacing_m + c.origin_y_m));
+    const fs::path dir = grid_run("absurd_header");
+    sim::GridField f = sim::read_grid_field(grid_field_file(dir, 1));
+    if (c.spacing_m > 0) f.spacing_m = c.spacing_m;
+    if (c.origin_y_m != 0) f.origin_m[1] = c.origin_y_m;
+    sim::write_grid_field(grid_field_file(dir, 1), f);  // a valid checksum
+    try {
+      mesh_simulation_folder(dir, MeshOptions{});
+      FAIL() << "meshed an absurd header";
+    } catch (const UserError& e) {
+      EXPECT_EQ(e.file(), grid_field_file(dir, 1).string());
+      EXPECT_EQ(e.where(), c.field);
+    }
+    EXPECT_FALSE(fs::exists(dir / "mesh"));
+  }
+}
+
 // Issue 12: an interrupted grid meshing run keeps every step it finished (SIMDIR/mesh.partial/),
 // leaves no SIMDIR/mesh, and the next run meshes only the other steps and writes exactly the
 // bytes of an uninterrupted run, manifest included. A kept step is not used for another field
