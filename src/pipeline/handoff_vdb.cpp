@@ -3,14 +3,21 @@
 #include <openvdb/openvdb.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iterator>
 #include <mutex>
+#include <string>
 #include <vector>
 
 #include "base/atomic_file.h"
 #include "base/check.h"
 #include "base/error.h"
+#include "base/fnv_hash.h"
 #include "sim/format/grid_field_file.h"
 
 namespace thaw::pipeline {
@@ -36,6 +43,53 @@ openvdb::FloatGrid::Ptr float_grid(const sim::GridField& f, const std::vector<fl
         if (dense || v != background) access.setValue(openvdb::Coord(i, j, k), v);
       }
   return grid;
+}
+
+/// Where OpenVDB's archive header (io/Archive.cc, writeHeader; file format 224 of OpenVDB 10)
+/// holds the stream's identifier: after the magic number (int64), the file format version and the
+/// library's major and minor version (uint32 each) and the has-grid-offsets flag (char), as 36
+/// characters of text, 8-4-4-4-12 hex digits.
+constexpr std::size_t kUuidOffset = 8 + 4 + 4 + 4 + 1;
+constexpr std::size_t kUuidLength = 36;
+constexpr std::int64_t kVdbMagic = 0x56444220;
+
+bool is_uuid_text(std::string_view t) {
+  if (t.size() != kUuidLength) return false;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const bool dash = i == 8 || i == 13 || i == 18 || i == 23;
+    if (dash ? t[i] != '-' : !std::isxdigit(static_cast<unsigned char>(t[i]))) return false;
+  }
+  return true;
+}
+
+/// Replaces the random identifier OpenVDB writes into every file (a new one per write, so two runs
+/// and any resume differed) by one derived from the rest of the file's bytes: the same content
+/// gives the same identifier, different content a different one, as OpenVDB's
+/// Archive::isIdentical expects. 128 bits of two FNV-1a hashes from different starting states,
+/// marked as an RFC 9562 version 8 (custom) UUID.
+void make_uuid_reproducible(std::string& bytes) {
+  std::int64_t magic = 0;
+  THAW_CHECK(bytes.size() > kUuidOffset + kUuidLength, "an OpenVDB file shorter than its header");
+  std::memcpy(&magic, bytes.data(), sizeof magic);
+  THAW_CHECK(magic == kVdbMagic, "not an OpenVDB file header");
+  THAW_CHECK(is_uuid_text(std::string_view(bytes).substr(kUuidOffset, kUuidLength)),
+             "OpenVDB's header holds no 36-character UUID where format 224 puts it");
+  std::string rest = bytes;
+  rest.replace(kUuidOffset, kUuidLength, kUuidLength, '0');
+  const std::uint64_t hi = fnv1a_64(rest), lo = fnv1a_64(rest, fnv1a_64("thaw vdb uuid"));
+  unsigned char b[16];
+  for (int i = 0; i < 8; ++i) {
+    b[i] = static_cast<unsigned char>(hi >> (56 - 8 * i));
+    b[8 + i] = static_cast<unsigned char>(lo >> (56 - 8 * i));
+  }
+  b[6] = static_cast<unsigned char>((b[6] & 0x0f) | 0x80);  // version 8
+  b[8] = static_cast<unsigned char>((b[8] & 0x3f) | 0x80);  // variant 10
+  char text[kUuidLength + 1];
+  std::snprintf(text, sizeof text,
+                "%02x%02x%02x%02x-%02x%02x-%02x%02x-%02x%02x-%02x%02x%02x%02x%02x%02x", b[0], b[1],
+                b[2], b[3], b[4], b[5], b[6], b[7], b[8], b[9], b[10], b[11], b[12], b[13], b[14],
+                b[15]);
+  bytes.replace(kUuidOffset, kUuidLength, text, kUuidLength);
 }
 
 }  // namespace
@@ -92,22 +146,30 @@ void write_field_vdb(const fs::path& path, const sim::GridField& field,
   openvdb::MetaMap meta;
   meta.insertMeta("time_s", openvdb::DoubleMetadata(f.time_s));
   meta.insertMeta("creator", openvdb::StringMetadata("thaw run (inspect stage)"));
+  // OpenVDB writes to a file name only (with the grid offsets a reader seeks by); the bytes are
+  // then read back, given a reproducible identifier and written atomically under the final name.
   const fs::path temp = temporary_sibling(path);
+  std::string bytes;
   try {
     openvdb::io::File file(temp.string());
     file.write(grids, meta);
     file.close();
+    std::ifstream in(temp, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (in.bad()) throw UserError(path.string(), "", "cannot read back the OpenVDB file");
   } catch (const openvdb::Exception& e) {
     std::error_code ec;
     fs::remove(temp, ec);
     throw UserError(path.string(), "", std::string("cannot write OpenVDB file: ") + e.what());
+  } catch (...) {
+    std::error_code ec;
+    fs::remove(temp, ec);
+    throw;
   }
   std::error_code ec;
-  fs::rename(temp, path, ec);
-  if (ec) {
-    fs::remove(temp, ec);
-    throw UserError(path.string(), "", "cannot rename into place: " + ec.message());
-  }
+  fs::remove(temp, ec);
+  make_uuid_reproducible(bytes);
+  write_file_atomic(path, bytes);
 }
 
 long write_vdb_sequence(const fs::path& simdir, const fs::path& out_dir,

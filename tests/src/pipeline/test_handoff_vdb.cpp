@@ -9,6 +9,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
 
 #include "base/error.h"
 #include "sim/format/grid_field_file.h"
@@ -168,6 +171,39 @@ TEST(RevolvedField, EveryCellTakesTheRingItsCentreLiesIn) {
   EXPECT_EQ(f.temperature_c[f.index(0, 2, 0)], 32.0f);
   // A cartesian field passes through unchanged.
   EXPECT_EQ(revolved_field(f).temperature_c, f.temperature_c);
+}
+
+std::string file_bytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Issue 27: OpenVDB puts a new random UUID into every file's header, so two runs and any resume
+// differed in handoff/vdb/. Now the same field gives the same bytes, written at another time and
+// under another name, still a UUID that OpenVDB reads; another field gives another UUID.
+TEST_F(HandoffVdb, SameFieldGivesTheSameBytesAndAnotherFieldAnotherUuid) {
+  const sim::GridField f = analytic_field();
+  write_field_vdb(m_dir / "a.vdb", f, {0, 0, 0});
+  write_field_vdb(m_dir / "b.vdb", f, {0, 0, 0});
+  const std::string a = file_bytes(m_dir / "a.vdb"), b = file_bytes(m_dir / "b.vdb");
+  ASSERT_GT(a.size(), 57u);
+  EXPECT_EQ(a, b);
+  sim::GridField g = f;
+  g.time_s += 1;
+  write_field_vdb(m_dir / "c.vdb", g, {0, 0, 0});
+  const std::string c = file_bytes(m_dir / "c.vdb");
+  // The UUID: 36 characters after the 21-byte start of the header (io/Archive.cc).
+  EXPECT_NE(a.substr(21, 36), c.substr(21, 36));
+  openvdb::io::File file((m_dir / "c.vdb").string());
+  file.open();
+  const std::string uuid = file.getUniqueTag();
+  EXPECT_EQ(uuid, c.substr(21, 36));
+  EXPECT_EQ(uuid[14], '8');  // RFC 9562 version 8 (custom)
+  EXPECT_EQ(file.getMetadata()->metaValue<double>("time_s"), g.time_s);
+  EXPECT_TRUE(file.hasGrid("ice_fraction"));
+  file.close();
+  for (const auto& e : fs::directory_iterator(m_dir))
+    EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
 }
 
 TEST_F(HandoffVdb, UnwritableFolderIsAUserError) {
