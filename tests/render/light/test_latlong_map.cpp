@@ -5,14 +5,21 @@
 // by one byte or by half, which stb_image alone would read with black texels).
 #include "render/light/latlong_map.h"
 
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfRgbaFile.h>
 #include <gtest/gtest.h>
+
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <numbers>
 
 #include "tests/render/test_util.h"
@@ -204,6 +211,62 @@ TEST(LatLongMap, ReadsOpenExrFilesAndNamesBadOnes) {
       << problem;
   EXPECT_FALSE(load_latlong_map((dir / "none.exr").string(), problem));
   EXPECT_EQ(problem, "no such file");
+  std::filesystem::remove_all(dir);
+}
+
+/// Writes a w x h OpenEXR image of 32-bit float channels `names` (each texel's channel c is
+/// f(i, j)[c]).
+template <class F>
+void write_float_exr(const std::string& path, int w, int h, const std::vector<std::string>& names,
+                     F f) {
+  const std::size_t n = static_cast<std::size_t>(w) * h, nc = names.size();
+  std::vector<float> px(n * nc);
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i)
+      for (std::size_t c = 0; c < nc; ++c)
+        px[(static_cast<std::size_t>(j) * w + i) * nc + c] = f(i, j)[c];
+  Imf::Header header(w, h);
+  Imf::FrameBuffer frame;
+  for (std::size_t c = 0; c < nc; ++c) {
+    header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
+    frame.insert(names[c],
+                 Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(px.data() + c), nc * sizeof(float),
+                            nc * sizeof(float) * static_cast<std::size_t>(w)));
+  }
+  Imf::OutputFile out(path.c_str(), header);
+  out.setFrameBuffer(frame);
+  out.writePixels(h);
+}
+
+// Issue 27: a 32-bit float environment with a texel above half precision's largest value (65504)
+// was refused as "negative or non-finite" (read through half floats). Float channels are now read
+// as floats, exactly; a lone luminance channel Y as grey; infinity is still refused.
+TEST(LatLongMap, FloatExrKeepsTexelsAboveTheHalfRange) {
+  const auto dir = temp_dir();
+  const std::string sun = (dir / "sun.exr").string();
+  write_float_exr(sun, 8, 4, {"R", "G", "B"}, [](int i, int j) {
+    return std::array<float, 3>{i == 5 && j == 1 ? 70000.0f : 0.3f, 1e30f, 1.0f / 3.0f};
+  });
+  std::string problem;
+  const auto map = load_latlong_map(sun, problem);
+  ASSERT_TRUE(map) << problem;
+  EXPECT_EQ(map->texel(5, 1).r, 70000.0f);
+  EXPECT_EQ(map->texel(4, 1).r, 0.3f);  // not rounded to half (0.2998...)
+  EXPECT_EQ(map->texel(0, 3).g, 1e30f);
+  EXPECT_EQ(map->texel(7, 0).b, 1.0f / 3.0f);
+  const std::string grey = (dir / "grey.exr").string();
+  write_float_exr(grey, 4, 2, {"Y"},
+                  [](int i, int) { return std::array<float, 1>{100000.0f + i}; });
+  const auto y = load_latlong_map(grey, problem);
+  ASSERT_TRUE(y) << problem;
+  EXPECT_EQ(y->texel(2, 1).r, 100002.0f);
+  EXPECT_EQ(y->texel(2, 1).b, 100002.0f);
+  const std::string inf = (dir / "inf.exr").string();
+  write_float_exr(inf, 4, 2, {"R", "G", "B"}, [](int i, int) {
+    return std::array<float, 3>{1, i == 1 ? std::numeric_limits<float>::infinity() : 1.0f, 1};
+  });
+  EXPECT_FALSE(load_latlong_map(inf, problem));
+  EXPECT_NE(problem.find("non-finite texel (column 1, row 0)"), std::string::npos) << problem;
   std::filesystem::remove_all(dir);
 }
 
