@@ -1,5 +1,8 @@
 #include "sim/boundary/scenario_air.h"
 
+#include <cmath>
+#include <numbers>
+
 namespace thaw::sim {
 
 Air scenario_air(const Scenario& s) {
@@ -22,6 +25,23 @@ AirBodySize radial_air_body(const Scenario& s, double outer_radius_m) {
       return {AirBody::vertical_surface, s.lateral_size_m};
   }
   return {};
+}
+
+std::optional<AirBodySize> scenario_air_body(const Scenario& s) {
+  if (s.grid == GridGeometry::none) return radial_air_body(s, s.outer_radius_m);
+  const ShapeSpec& o = s.shape.outer;
+  switch (o.kind) {
+    case ShapeKind::sphere:
+      return AirBodySize{AirBody::sphere, 2 * o.radius_m};
+    case ShapeKind::cylinder:  // pi r^2 h = pi D^3 / 6
+      return AirBodySize{AirBody::sphere, std::cbrt(6 * o.radius_m * o.radius_m * o.height_m)};
+    case ShapeKind::box:
+      return AirBodySize{AirBody::sphere,
+                         std::cbrt(6 * o.size_m[0] * o.size_m[1] * o.size_m[2] / std::numbers::pi)};
+    case ShapeKind::obj:
+      return std::nullopt;
+  }
+  return std::nullopt;
 }
 
 const char* air_input_key(AirInput input) {

@@ -1,5 +1,7 @@
 #include "sim/grid/conduction_operator.h"
 
+#include <algorithm>
+
 namespace thaw::sim {
 
 ConductionOperator::ConductionOperator(const GridMesh& mesh, const PhaseRelation& phase,
@@ -9,7 +11,8 @@ ConductionOperator::ConductionOperator(const GridMesh& mesh, const PhaseRelation
       m_phase(phase),
       m_problem(problem),
       m_cells(cells),
-      m_surface_area(surface_area) {
+      m_surface_area(surface_area),
+      m_air_diameter_m(problem.air_diameter_m) {
   for (auto* v : {&kx, &ky, &kz, &bq0, &bq1}) v->assign(static_cast<std::size_t>(mesh.n), 0.0);
 }
 
@@ -92,8 +95,28 @@ void ConductionOperator::assemble(long c, int i, int j, int k) {
         bq0[c] += a * p.flux_w_m2;
         break;
       case OuterBoundary::insulated:
-      case OuterBoundary::air:  // rejected by the rules until the grid solver takes it
         break;
+      case OuterBoundary::air: {
+        // The air's flux q(T_s) (sim/boundary/air_model.h; a sphere of the body's volume), frozen
+        // over the step as its tangent at the step's surface temperature: a film
+        // htc = -dq/dT_s (at least the convective h) towards T_eff = T_s + q / htc, then as the
+        // convective kind. The surface is at T_m on a cell holding the front, else taken at the
+        // cell's temperature (the film's linearisation point only; the half cell stays in series).
+        const bool at_front = m_phase.melting(H[c]);
+        const double ts = at_front ? p.materials.melting_point_c : m_cells.T[c];
+        const AirBodySize body{AirBody::sphere, m_air_diameter_m};
+        const AirFlux f = air_heat_flux(p.air, body, ts);
+        const double dt = 1e-4;
+        const double slope = (air_heat_flux(p.air, body, ts + dt).total_w_m2() -
+                              air_heat_flux(p.air, body, ts - dt).total_w_m2()) /
+                             (2 * dt);
+        const double film = std::max(-slope, f.heat_transfer_coefficient_w_m2k);
+        const double t_eff = ts + f.total_w_m2() / film;
+        const double g = at_front ? a * film : a / (1 / film + 0.5 * dx / kc);
+        bq0[c] += g * t_eff;
+        bq1[c] += g;
+        break;
+      }
     }
   }
 }

@@ -31,6 +31,9 @@ class ConductionOperator {
     return neighbour_sum_of(
         c, i, j, k, [&](long nb) { return T[nb] - tc; }, bq0[c] - bq1[c] * tc);
   }
+  /// The diameter the air's correlations see (kind = air) from the next assembly on [m].
+  void set_air_diameter(double diameter_m) { m_air_diameter_m = diameter_m; }
+
   /// Boundary heat into cell c at temperature tc [W].
   double boundary_heat(long c, double tc) const { return bq0[c] - bq1[c] * tc; }
   /// Sum of cell c's conductances, to its neighbours and its boundaries [W/K].
@@ -74,6 +77,7 @@ class ConductionOperator {
   const std::vector<double>& m_surface_area;
   std::vector<double> kx, ky, kz;  ///< face conductances to the +x, +y, +z neighbour [W/K]
   std::vector<double> bq0, bq1;    ///< boundary heat into the cell: bq0 - bq1 T [W]
+  double m_air_diameter_m = 0;     ///< kind = air: the body's volume-equivalent diameter [m]
 };
 
 }  // namespace thaw::sim

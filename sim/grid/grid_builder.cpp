@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <optional>
 
 #include "base/check.h"
+#include "sim/boundary/scenario_air.h"
 #include "sim/grid/grid_rules.h"
 
 namespace thaw::sim {
@@ -38,6 +40,24 @@ double inside_fraction(const SignedDistance& d, bool exact, bool axisymmetric,
         if (d({x, y, z}) < 0) inside += w;
       }
   return inside / total;
+}
+
+/// Diameter of the sphere holding the problem's material volume (ice and water) [m].
+double volume_equivalent_diameter_m(const GridProblem& g) {
+  const double dx = g.spacing_m;
+  const bool axisymmetric = g.geometry == GridField::Geometry::axisymmetric;
+  double volume = 0;
+  for (int k = 0; k < g.cells[2]; ++k)
+    for (int j = 0; j < g.cells[1]; ++j)
+      for (int i = 0; i < g.cells[0]; ++i) {
+        const std::size_t c = (static_cast<std::size_t>(k) * g.cells[1] + j) * g.cells[0] +
+                              static_cast<std::size_t>(i);
+        const double cell = axisymmetric
+                                ? 2 * std::numbers::pi * (g.origin_m[0] + (i + 0.5) * dx) * dx * dx
+                                : dx * dx * dx;
+        volume += g.material_fraction[c] * cell;
+      }
+  return std::cbrt(6 * volume / std::numbers::pi);
 }
 
 }  // namespace
@@ -144,6 +164,10 @@ GridProblem build_grid_problem(const Scenario& sc) {
   g.surface_temperature_c = sc.outer_temperature_c;
   g.heat_transfer_coefficient_w_m2k = sc.heat_transfer_coefficient_w_m2k;
   g.flux_w_m2 = sc.flux_w_m2;
+  if (sc.outer_kind == OuterBoundary::air) {
+    g.air = scenario_air(sc);
+    g.air_diameter_m = volume_equivalent_diameter_m(g);
+  }
   g.drain = true;
   g.max_step_s = sc.max_step_s;
   return g;

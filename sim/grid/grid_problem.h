@@ -6,6 +6,7 @@
 #include <array>
 #include <vector>
 
+#include "sim/boundary/air_model.h"
 #include "sim/grid/grid_field.h"
 #include "sim/scenario/scenario.h"
 
@@ -33,6 +34,10 @@ struct GridProblem {
   double surface_temperature_c = 20;            ///< held surface or air temperature [C]
   double heat_transfer_coefficient_w_m2k = 10;  ///< convective h [W/(m^2 K)]
   double flux_w_m2 = 0;                         ///< flux kind: heat into the body [W/m^2]
+  /// air kind: the room, and the diameter of the sphere of the body's volume (ice and enclosed
+  /// water) at t = 0 [m]; the solver follows the volume as it melts.
+  Air air;
+  double air_diameter_m = 0;
   /// Grid walls, order x-, x+, y-, y+, z-, z+ (axisymmetric: x- is the axis, z unused).
   std::array<GridWall, 6> walls{};
   /// Melt drains away where it touches air that is connected to the grid's border.

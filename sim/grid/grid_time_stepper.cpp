@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <omp.h>
 
@@ -186,6 +187,9 @@ bool GridTimeStepper::step(BlockTeam& team) {
 void GridTimeStepper::end_of_step(double step_dt, double saved) {
   const double enclosed = sum_blocks([](const BlockSums& b) { return b.enclosed.enclosed; });
   const double ice = sum_blocks([](const BlockSums& b) { return b.ice; });
+  // the body the air sees follows its volume (ice and enclosed water)
+  if (p.surface_kind == OuterBoundary::air && ice + enclosed > 0)
+    m_op.set_air_diameter(std::cbrt(6 * (ice + enclosed) / std::numbers::pi));
   if (had_enclosed_liquid && !m_cavity.broke_through() && !core_frozen && enclosed == 0) {
     core_frozen = true;
     m_events.push_back({"core_frozen", m_time, m_mesh.centre(last_liquid_cell)});

@@ -323,16 +323,17 @@ std::optional<ScenarioProblem> empty_shell_problem(const Scenario& s) {
 /// surface temperatures the run can see (the initial ice, or water, up to the melting point).
 std::optional<ScenarioProblem> air_problem(const Scenario& s) {
   if (s.outer_kind != OuterBoundary::air) return std::nullopt;
-  if (s.grid != GridGeometry::none)
-    return ScenarioProblem{"outer_boundary.kind",
-                           "kind = \"air\" is not yet available for geometry = \"" +
-                               std::string(to_string(s.grid)) +
-                               "\" (the 1D geometries have it); use kind = \"convective\""};
   const double tm = s.materials.melting_point_c;
   const double start = s.outer_radius_m > s.inner_radius_m ? s.ice_initial_temperature_c
                                                            : s.water_initial_temperature_c;
   const double coldest = std::min({start, tm, s.outer_temperature_c});
-  if (auto p = find_air_problem(scenario_air(s), radial_air_body(s, s.outer_radius_m), coldest, tm))
+  // An OBJ body's size is known only once meshed: its size-free ranges are checked (still air
+  // on a millimetre sphere passes every size-dependent one).
+  const std::optional<AirBodySize> body = scenario_air_body(s);
+  Air air = scenario_air(s);
+  if (!body && air.speed_m_s > 0) air.speed_m_s = 0;
+  if (auto p =
+          find_air_problem(air, body.value_or(AirBodySize{AirBody::sphere, 1e-3}), coldest, tm))
     return ScenarioProblem{air_input_key(p->input), p->message};
   return std::nullopt;
 }
