@@ -133,6 +133,7 @@ MaterialDescription parse_material(const std::string& name, const TomlTable& m) 
   } else if (kind == "metal") {
     mat.kind = MaterialDescription::Kind::metal;
     mat.texture = parse_texture(m);
+    mat.roughness = checked(m, "roughness", m.get_double("roughness", 0.0), roughness_problem);
   } else if (kind == "phong") {
     mat.kind = MaterialDescription::Kind::phong;
     mat.texture = parse_texture(m);
@@ -143,6 +144,7 @@ MaterialDescription parse_material(const std::string& name, const TomlTable& m) 
     mat.reflectance = m.require_non_negative("reflectance", m.get_double("reflectance", 0.0));
     mat.transmittance = m.require_non_negative("transmittance", m.get_double("transmittance", 0.0));
     mat.ior = m.require_positive("ior", m.get_double("ior", 1.0));
+    mat.roughness = checked(m, "roughness", m.get_double("roughness", 0.0), roughness_problem);
   } else if (kind == "emissive") {
     mat.kind = MaterialDescription::Kind::emissive;
     mat.emission = color3(m, "color", {1.0, 1.0, 1.0});
@@ -335,6 +337,7 @@ void parse_surface(const TomlTable& o, const std::set<std::string>& materials,
     if (!media.count(obj.inside)) o.fail("inside", "unknown medium '" + obj.inside + "'");
     if (!media.count(obj.outside)) o.fail("outside", "unknown medium '" + obj.outside + "'");
     if (obj.inside == obj.outside) o.fail("outside", "inside and outside must be different media");
+    obj.roughness = checked(o, "roughness", o.get_double("roughness", 0.0), roughness_problem);
     if (obj.shape == ObjectDescription::Shape::plane)
       o.fail("inside",
              "a plane is not closed and cannot be a dielectric interface; give it a material");

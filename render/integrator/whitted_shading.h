@@ -29,6 +29,7 @@
 #include "render/light/environment_lighting.h"
 #include "render/light/light_sampling.h"
 #include "render/material/fresnel.h"
+#include "render/material/microfacet.h"
 #include "render/photon/caustic_map.h"
 #include "render/photon/photon_tracer.h"
 #include "render/scene/scene.h"
@@ -65,6 +66,10 @@ inline bool refraction_direction(const Vec3& d, const Vec3& ns, const Vec3& ng, 
   if (refract(d, ns, eta, dir) && dot(dir, ng) < 0.0f) return true;
   return refract(d, ng, eta, dir);
 }
+
+/// First dimension pair of the microfacet normals of rough surfaces (one pair per tree level),
+/// apart from the film's and the lights' pairs (render/light/light_sampling.h).
+inline constexpr std::uint32_t kMicrofacetDimension = 0x20000u;
 
 /// How a point light meets a surface point: behind it (no shadow ray cast), shadowed, or seen.
 enum class LightVisibility { facing_away, shadowed, seen };
@@ -236,6 +241,7 @@ class WhittedShading {
     const float cos_i = -dot(d, fi.ns);
     Radiance result{};
     if (depth >= m_max_depth) return result;
+    if (obj.alpha > 0.0f) return rough_dielectric(ray, si, obj, fi, depth, beta, path);
     const auto f = self().fresnel(fi.from, fi.to, cos_i, path);
     // Reflected branch: with its own Fresnel reflectance per carried wavelength.
     const Throughput br = beta * f.r;
@@ -284,6 +290,18 @@ class WhittedShading {
     if (depth >= m_max_depth || w < m_min_weight || w == 0.0f) return Radiance{};
     const Vec3 ng = face_forward(si.ng, -ray.direction);
     const Vec3 ns = face_forward(si.ns, ng);
+    if (mat.alpha > 0.0f) {
+      // Rough metal: one GGX reflection, its weight G2 / G1 times Turquin's tinted compensation
+      // 1 + tint (1 - E) / E (render/material/microfacet.h).
+      Vec3 dir;
+      float g;
+      if (!rough_reflection(ray.direction, si, ng, ns, mat.alpha, depth, dir, g)) return Radiance{};
+      const float e = mat.albedo->albedo(dot(-ray.direction, ns));
+      const Radiance weight = (tint + tint * tint * ((1.0f - e) / e)) * g;
+      const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
+      return Radiance(weight *
+                      trace(next, depth + 1, self().attenuate(beta, weight, path), medium, path));
+    }
     const Vec3 dir = reflection_direction(ray.direction, ns, ng);
     const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
     const ConeBend bend(*this, [&] {
@@ -321,7 +339,20 @@ class WhittedShading {
         result += albedo * self().illuminant(e, path) * (mat.kd * std::numbers::inv_pi_v<float>);
     }
     if (mat.kind != Material::Kind::phong || depth >= m_max_depth) return result;
-    if (mat.reflectance > 0.0f && self().weight(beta, path) * mat.reflectance >= m_min_weight) {
+    if (mat.reflectance > 0.0f && mat.alpha > 0.0f &&
+        self().weight(beta, path) * mat.reflectance >= m_min_weight) {
+      // Glossy: the mirror term through a GGX lobe, compensated as a conductor of reflectance
+      // F0 = reflectance (Turquin 2019).
+      Vec3 dir;
+      float g;
+      if (rough_reflection(d, si, ng, ns, mat.alpha, depth, dir, g)) {
+        const float k =
+            mat.reflectance * g * mat.albedo->conductor_compensation(dot(-d, ns), mat.reflectance);
+        const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
+        result += trace(next, depth + 1, beta * k, medium, path) * k;
+      }
+    } else if (mat.reflectance > 0.0f &&
+               self().weight(beta, path) * mat.reflectance >= m_min_weight) {
       const Vec3 dir = reflection_direction(d, ns, ng);
       const Ray next{offset_ray_origin(si.p, si.p_error, ng, dir), dir};
       result += trace(next, depth + 1, beta * mat.reflectance, medium, path) * mat.reflectance;
@@ -336,6 +367,93 @@ class WhittedShading {
         result +=
             trace(next, depth + 1, beta * mat.transmittance, medium, path) * mat.transmittance;
       }
+    }
+    return result;
+  }
+
+  /// The camera sample's point for the microfacet normal of a rough event at tree level
+  /// `depth`: its own dimension pair per level, so that each pixel's samples stratify the normals
+  /// of its first rough hits (every event at one level shares the pair: each is unbiased).
+  sampling::Point2 microfacet_point(int depth) const {
+    const sampling::PixelSampler fallback(0, 0);
+    const sampling::PixelSampler& sampler =
+        m_camera_sample.sampler ? *m_camera_sample.sampler : fallback;
+    return sampler.get_2d(m_camera_sample.sample_index,
+                          kMicrofacetDimension + static_cast<std::uint32_t>(depth));
+  }
+
+  /// A GGX reflection about a visible normal (render/material/microfacet.h) of the surface with
+  /// normals ng, ns facing the viewer: its direction and weight G2 / G1. False when the
+  /// reflection leaves below the surface (the light lost to the compensation's table).
+  bool rough_reflection(const Vec3& d, const SurfaceInteraction&, const Vec3& ng, const Vec3& ns,
+                        float alpha, int depth, Vec3& dir, float& weight) const {
+    const microfacet::Frame frame(ns);
+    const Vec3 wo = frame.to_local(-d);
+    const sampling::Point2 u = microfacet_point(depth);
+    Vec3 wi;
+    if (!microfacet::conductor_sample(wo, alpha, u.x, u.y, wi, weight)) return false;
+    dir = normalize(frame.to_world(wi));
+    return dot(dir, ng) > 0.0f;
+  }
+
+  /// A rough dielectric interface (Walter et al. 2007): one visible normal m per camera sample
+  /// and level, both branches followed as at a smooth interface, each weighed by its Fresnel
+  /// factor at m times G2 / G1 and by the compensation 1 / E(mu_o) of the side the ray comes from
+  /// (render/material/microfacet.h). Dispersive transmissions are handed to the spectral tracer
+  /// with m as the normal (their G2 from the hero wavelength's direction).
+  template <class Throughput, class Path>
+  auto rough_dielectric(const Ray& ray, const SurfaceInteraction& si, const SceneObject& obj,
+                        const FacingInterface& fi, int depth, const Throughput& beta,
+                        const Path& path) {
+    using Radiance = typename Derived::Radiance;
+    using Reflectance = typename Derived::Reflectance;
+    const Vec3& d = ray.direction;
+    Radiance result{};
+    const microfacet::Frame frame(fi.ns);
+    const Vec3 wo = frame.to_local(-d);
+    const sampling::Point2 u = microfacet_point(depth);
+    const Vec3 m_local = microfacet::sample_visible_normal(wo, obj.alpha, u.x, u.y);
+    const float cos_m = dot(wo, m_local);
+    if (!(cos_m > 0.0f)) return result;
+    const Vec3 m = normalize(frame.to_world(m_local));
+    const bool entering = fi.from == obj.outside;
+    const float compensation =
+        (entering ? obj.albedo_entering : obj.albedo_leaving)->dielectric_compensation(wo.z);
+    const float g1 = microfacet::ggx_g1(wo, obj.alpha);
+    const auto f = self().fresnel(fi.from, fi.to, cos_m, path);
+    // Reflected branch.
+    {
+      const Vec3 wr = m_local * (2.0f * cos_m) - wo;
+      const Vec3 dir = normalize(frame.to_world(wr));
+      if (wr.z > 0.0f && dot(dir, fi.ng) > 0.0f && !is_black(f.r)) {
+        const float g = microfacet::ggx_g2(wo, wr, obj.alpha) / g1 * compensation;
+        const Reflectance r = f.r * g;
+        const Throughput br = beta * r;
+        if (self().weight(br, path) >= m_min_weight) {
+          const Ray next{offset_ray_origin(si.p, si.p_error, fi.ng, dir), dir};
+          result += trace(next, depth + 1, br, fi.from, path) * r;
+        }
+      }
+    }
+    // Transmitted branch.
+    Vec3 wt;
+    if (!microfacet::refract_about(wo, m_local, f.eta, wt) || !(wt.z < 0.0f)) return result;
+    const Vec3 dir = normalize(frame.to_world(wt));
+    if (dot(dir, fi.ng) >= 0.0f) return result;
+    const float g = microfacet::ggx_g2(wo, wt, obj.alpha) / g1 * compensation;
+    const Reflectance t = Reflectance(1.0f) - f.r;
+    if constexpr (Derived::kDispersion) {
+      if (f.dispersive) {
+        self().dispersive_transmission(result, d, si, FacingInterface{fi.from, fi.to, fi.ng, m},
+                                       cos_m, depth, beta * g, t * g, path);
+        return result;
+      }
+    }
+    const Reflectance tg = t * g;
+    const Throughput bt = beta * tg;
+    if (!is_black(t) && self().weight(bt, path) >= m_min_weight) {
+      const Ray next{offset_ray_origin(si.p, si.p_error, fi.ng, dir), dir};
+      result += trace(next, depth + 1, bt, fi.to, path) * tg;
     }
     return result;
   }

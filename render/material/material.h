@@ -5,6 +5,9 @@
 //   metal    tinted perfect mirror: colour * reflected radiance
 //   phong    the classic model (ka, kd, ks, shininess, reflectance, transmittance, ior)
 //   emissive a visible light surface: emission, no shading
+#include <memory>
+
+#include "render/material/microfacet.h"
 #include "render/material/texture.h"
 
 namespace thaw::render {
@@ -21,6 +24,10 @@ struct Material {
   float ior = 1.0f;
   /// emitted radiance (emissive), linear RGB
   Rgb emission{0, 0, 0};
+  /// metal and phong mirror terms: GGX alpha (0 = perfect mirror) and the directional albedo of
+  /// the F = 1 lobe for the multiple-scattering compensation (render/material/microfacet.h)
+  float alpha = 0.0f;
+  std::shared_ptr<const microfacet::AlbedoTable> albedo;
 };
 
 }  // namespace thaw::render

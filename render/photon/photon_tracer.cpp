@@ -3,8 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <utility>
 
 #include "render/material/fresnel.h"
+#include "render/material/microfacet.h"
 #include "render/photon/low_discrepancy.h"
 
 namespace thaw::render::photon {
@@ -18,6 +21,27 @@ float lookup(const std::vector<float>& table, double lambda_nm) {
   const auto i = std::min(static_cast<std::size_t>(x), table.size() - 2);
   const double t = x - double(i);
   return static_cast<float>(table[i] * (1.0 - t) + table[i + 1] * t);
+}
+
+/// Two uniform numbers in [0, 1) from where and how a photon meets a surface (splitmix64 over the
+/// bits of its point, direction and level): a rough interface's microfacet normal that depends on
+/// the photon alone, never on the thread or the order photons are traced in.
+std::pair<float, float> hash_uniforms(const Vec3& p, const Vec3& d, int depth) {
+  auto bits = [](float f) {
+    std::uint32_t u;
+    std::memcpy(&u, &f, sizeof u);
+    return std::uint64_t(u);
+  };
+  std::uint64_t h = bits(p.x) ^ (bits(p.y) << 21) ^ (bits(p.z) << 42) ^ std::uint64_t(depth) << 60;
+  h ^= bits(d.x) * 0x9e3779b97f4a7c15ULL ^ bits(d.y) * 0xc2b2ae3d27d4eb4fULL ^
+       bits(d.z) * 0x165667b19e3779f9ULL;
+  auto mix = [](std::uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  };
+  const std::uint64_t a = mix(h + 0x9e3779b97f4a7c15ULL), b = mix(a);
+  return {float(a >> 40) * 0x1p-24f, float(b >> 40) * 0x1p-24f};
 }
 
 struct Branch {
@@ -226,8 +250,41 @@ std::uint32_t PhotonTracer::trace(const Ray& start, std::uint32_t medium, double
     const float eta = ior(to, lambda_nm) / ior(from, lambda_nm);
     Vec3 ns = entering ? si.ns : -si.ns;
     if (dot(ns, d) >= 0.0f) ns = ng;
+    // A rough interface (render/material/microfacet.h): the photon meets one visible normal m,
+    // which stands in for the normal below, and each branch is weighed by G2 / G1 and the
+    // compensation of the side it comes from, as camera rays are (whitted_shading.h).
+    float g_r = 1.0f, g_t = 1.0f;
+    if (obj.alpha > 0.0f) {
+      const microfacet::Frame frame(ns);
+      const Vec3 wo = frame.to_local(-d);
+      const auto [u1, u2] = hash_uniforms(si.p, d, b.depth);
+      const Vec3 m = microfacet::sample_visible_normal(wo, obj.alpha, u1, u2);
+      const float c = dot(wo, m);
+      if (!(c > 0.0f) || wo.z <= 0.0f) {
+        end(PathEnd::cut, si.p, d, b.weight);
+        continue;
+      }
+      const float k =
+          (entering ? obj.albedo_entering : obj.albedo_leaving)->dielectric_compensation(wo.z) /
+          microfacet::ggx_g1(wo, obj.alpha);
+      const Vec3 wr = m * (2.0f * c) - wo;
+      g_r = wr.z > 0.0f && dot(frame.to_world(wr), ng) > 0.0f
+                ? microfacet::ggx_g2(wo, wr, obj.alpha) * k
+                : 0.0f;
+      Vec3 wt;
+      g_t = microfacet::refract_about(wo, m, eta, wt) && wt.z < 0.0f &&
+                    dot(frame.to_world(wt), ng) < 0.0f
+                ? microfacet::ggx_g2(wo, wt, obj.alpha) * k
+                : 0.0f;
+      ns = normalize(frame.to_world(m));
+    }
     const float r = fresnel_dielectric(-dot(d, ns), eta);
-    float wr = b.weight * r, wt = b.weight - wr;
+    float wr = b.weight * r * g_r, wt = b.weight * (1.0f - r) * g_t;
+    if (obj.alpha > 0.0f) {
+      // What the compensation does not restore (a branch below the surface) ends here.
+      const float lost = b.weight - wr - wt;
+      if (lost > 0.0f) end(PathEnd::cut, si.p, d, lost);
+    }
     if (wr > 0.0f && keep(wr, si.p, d)) {
       Vec3 w = reflect(d, ns);
       if (dot(w, ng) <= 0.0f) w = reflect(d, ng);

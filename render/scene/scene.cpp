@@ -46,6 +46,11 @@ Texture build_texture(const TextureDescription& t) {
 Material build_material(const MaterialDescription& d) {
   Material m;
   m.texture = build_texture(d.texture);
+  if (d.roughness > 0.0 &&
+      (d.kind == MaterialDescription::Kind::metal || d.kind == MaterialDescription::Kind::phong)) {
+    m.alpha = microfacet::alpha_from_roughness(static_cast<float>(d.roughness));
+    m.albedo = std::make_shared<const microfacet::AlbedoTable>(m.alpha, 0.0f);
+  }
   switch (d.kind) {
     case MaterialDescription::Kind::matte:
       m.kind = Material::Kind::matte;
@@ -400,6 +405,16 @@ class SceneBuilder {
     obj.index_matched = index_matched(m_s.m_media[obj.inside].optics,
                                       m_s.m_media[obj.outside].optics, m_s.m_spectral);
     m_s.m_any_index_matched = m_s.m_any_index_matched || obj.index_matched;
+    if (od.roughness > 0.0) {
+      // The compensation's tables at the d line's indices (the lobe's albedo changes little
+      // across the visible dispersion of ice or water).
+      obj.alpha = microfacet::alpha_from_roughness(static_cast<float>(od.roughness));
+      const auto eta =
+          static_cast<float>(m_s.m_media[obj.inside].optics.n_at(media::kFraunhoferD_nm) /
+                             m_s.m_media[obj.outside].optics.n_at(media::kFraunhoferD_nm));
+      obj.albedo_entering = std::make_shared<const microfacet::AlbedoTable>(obj.alpha, eta);
+      obj.albedo_leaving = std::make_shared<const microfacet::AlbedoTable>(obj.alpha, 1.0f / eta);
+    }
     m_inside_media.insert(obj.inside);
     m_outside_media.insert(obj.outside);
     return obj;

@@ -5,6 +5,7 @@
 // which loads and checks meshes (a dielectric mesh must be closed and outward oriented);
 // immutable and shared by all render threads afterwards. Knows nothing about TOML or images.
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,11 @@ struct SceneObject {
   /// only in RGB scenes) and do not absorb (spectral scenes): invisible, so shadow rays pass
   /// through it (occluded()) and photons crossing only such interfaces are direct light
   bool index_matched = false;
+  /// rough dielectric interfaces: GGX alpha (0 = smooth) and the directional albedo of the lobe
+  /// seen from outside (eta = n_inside / n_outside at the d line) and from inside, for the
+  /// multiple-scattering compensation (render/material/microfacet.h)
+  float alpha = 0.0f;
+  std::shared_ptr<const microfacet::AlbedoTable> albedo_entering, albedo_leaving;
   /// meshes with shading normals: index into the scene's normal sets, else -1
   int normal_set = -1;
   // plane

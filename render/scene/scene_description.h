@@ -200,6 +200,9 @@ struct MaterialDescription {
   double reflectance = 0.0, transmittance = 0.0, ior = 1.0;
   RgbD emission{1.0, 1.0, 1.0};
   double emission_intensity = 1.0;
+  /// metal, phong: perceptual roughness in [0, 1] of the mirror term (GGX alpha = roughness^2,
+  /// render/material/microfacet.h); 0 = a perfect mirror
+  double roughness = 0.0;
 };
 
 struct ObjectDescription {
@@ -227,6 +230,9 @@ struct ObjectDescription {
   /// outside name the media (the surface must be closed and outward oriented).
   std::string material;
   std::string inside, outside;
+  /// dielectric interface: perceptual roughness in [0, 1] (GGX alpha = roughness^2,
+  /// render/material/microfacet.h); 0 = optically smooth, the exact Whitted split
+  double roughness = 0.0;
 
   bool is_dielectric() const { return material.empty(); }
 };

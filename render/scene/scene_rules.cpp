@@ -143,6 +143,10 @@ std::optional<std::string> ior_problem(double ior) {
   return "must be in [" + num(kMinIor) + ", " + num(kMaxIor) + ") (got " + num(ior) + ")";
 }
 
+std::optional<std::string> roughness_problem(double roughness) {
+  return real_between(roughness, 0.0, 1.0, "");
+}
+
 std::optional<std::string> caustic_photons_problem(long long photons) {
   if (photons >= kMinCausticPhotons && photons <= kMaxCausticPhotons) return std::nullopt;
   return "must be between " + std::to_string(kMinCausticPhotons) + " and 1e7 (got " +
@@ -228,6 +232,7 @@ std::optional<SceneProblem> light_problem(const LightDescription& l) {
 }
 
 std::optional<SceneProblem> object_problem(const ObjectDescription& o) {
+  if (auto p = roughness_problem(o.roughness)) return SceneProblem{"roughness", *p};
   switch (o.shape) {
     case ObjectDescription::Shape::sphere:
       if (!finite3(o.center)) return SceneProblem{"center", "must be finite"};
@@ -313,6 +318,9 @@ std::optional<SceneProblem> find_scene_problem(const SceneDescription& s) {
     const double n = spec_constant ? m.spec->ior->n_at(media::kFraunhoferD_nm) : m.ior;
     if (auto p = ior_problem(n)) return SceneProblem{"media." + m.name + ".ior", *p};
   }
+  for (const MaterialDescription& m : s.materials)
+    if (auto p = roughness_problem(m.roughness))
+      return SceneProblem{"materials." + m.name + ".roughness", *p};
   for (std::size_t i = 0; i < s.objects.size(); ++i) {
     const ObjectDescription& o = s.objects[i];
     if (auto p = object_problem(o)) {

@@ -75,6 +75,8 @@ std::optional<std::string> vertical_fov_problem(double degrees);
 std::optional<std::string> light_radius_problem(double radius);
 std::optional<std::string> light_samples_problem(long long samples);
 std::optional<std::string> ior_problem(double ior);
+/// roughness of a dielectric object, a metal or a phong material: [0, 1]
+std::optional<std::string> roughness_problem(double roughness);
 std::optional<std::string> caustic_photons_problem(long long photons);
 std::optional<std::string> caustic_radius_problem(double radius);
 // [environment]

@@ -74,6 +74,11 @@ expect_bad env_truncated "environment.file.*cut.hdr' is truncated" "$(env env_tr
 "$thaw" render "$good" --width 64 --height 32 -o "$work/map.exr" --quiet >/dev/null 2>&1
 head -c 2000 "$work/map.exr" >"$work/cut.exr"
 expect_bad env_truncated_exr "environment.file.*cut.exr' is not a readable OpenEXR image" "$(env env_truncated_exr "file = \"$work/cut.exr\"")"
+# Rough surfaces (issue 26): roughness outside [0, 1] on a dielectric object or a material; a
+# roughness on a matte material is an unknown key.
+expect_bad rough_object "roughness.*must be between 0 and 1" "$(scene rough_object 's/^inside = "water"/inside = "water"\nroughness = 1.5/')"
+expect_bad rough_negative "roughness.*must be between 0 and 1" "$(scene rough_negative 's/^inside = "water"/inside = "water"\nroughness = -0.1/')"
+expect_bad rough_matte "unknown key" "$(scene rough_matte 's/^kind = "matte"/kind = "matte"\nroughness = 0.3/')"
 OUT="$work/out.jpg" expect_bad bad_extension "unsupported output format" "$good"
 OUT="$work/no/such/dir/out.png" expect_bad missing_out_dir "does not exist" "$good"
 

@@ -153,6 +153,37 @@ TEST(SceneParser, BadValuesAreErrors) {
                "image.wavelength_pattern", "per_pixel");
 }
 
+// Rough surfaces (issue 26): `roughness` on a dielectric object and on metal and phong materials,
+// in [0, 1]; elsewhere it is an unknown key.
+TEST(SceneParser, RoughnessKeys) {
+  std::string text = kExample;
+  text.replace(text.find("outside = \"ice\""), 15, "outside = \"ice\"\nroughness = 0.3");
+  text.replace(text.find("reflectance = 0.2"), 17, "reflectance = 0.2\nroughness = 0.25");
+  text += "[materials.steel]\nkind = \"metal\"\nroughness = 0.6\n";
+  const SceneDescription d = parse_scene_string(text, "r.toml");
+  EXPECT_DOUBLE_EQ(d.objects[1].roughness, 0.3);
+  EXPECT_DOUBLE_EQ(d.objects[0].roughness, 0.0);
+  double shiny = -1, steel = -1;
+  for (const MaterialDescription& m : d.materials) {
+    shiny = m.name == "shiny" ? m.roughness : shiny;
+    steel = m.name == "steel" ? m.roughness : steel;
+  }
+  EXPECT_DOUBLE_EQ(shiny, 0.25);
+  EXPECT_DOUBLE_EQ(steel, 0.6);
+}
+
+TEST(SceneParser, BadRoughnessIsAnError) {
+  expect_error("outside = \"ice\"", "outside = \"ice\"\nroughness = 1.5", "roughness",
+               "between 0 and 1 (got 1.5)");
+  expect_error("outside = \"ice\"", "outside = \"ice\"\nroughness = -0.2", "roughness",
+               "between 0 and 1");
+  expect_error("reflectance = 0.2", "reflectance = 0.2\nroughness = 2", "materials.shiny.roughness",
+               "between 0 and 1");
+  expect_error("kind = \"matte\"", "kind = \"matte\"\nroughness = 0.5", "roughness", "unknown key");
+  expect_error("material = \"floor\"", "material = \"floor\"\nroughness = 0.5", "roughness",
+               "unknown key");
+}
+
 // [caustics]: absurd photon counts and a non-positive radius name the file, line and key.
 TEST(SceneParser, BadCausticSettingsAreErrors) {
   const std::string at = "[camera]";
