@@ -84,6 +84,8 @@ check_bad hot_surface "outer_boundary.temperature_c" "ill-posed" "$hot"
 # [outer_boundary] kind = "air" (issue 25): a good run, and every range it names.
 air=${base/kind = \"convective\"/kind = \"air\"}
 air=${air/heat_transfer_coefficient_w_m2k = 50.0/relative_humidity = 0.5}
+check_good room_air "$src/data/scenarios/ice_sphere_room_air.toml"
+grep -q '"kind": "fully_melted"' "$work/room_air/summary.json" || note "room_air: no fully_melted event"
 check_good air "$(printf '%s\n' "$air" > "$work/air.toml"; echo "$work/air.toml")"
 check_bad air_humidity "outer_boundary.relative_humidity" "outside [0, 1]" "${air/relative_humidity = 0.5/relative_humidity = 1.5}"
 check_bad air_emissivity "outer_boundary.emissivity" "outside (0, 1]" "${air/relative_humidity = 0.5/relative_humidity = 0.5
