@@ -356,7 +356,8 @@ QWidget* MainWindow::make_scenario_tab() {
                    [](const RunScenario& s) { return d(s.simulation.ice_initial_temperature_c); });
   form->add_section("Outer boundary");
   form->add_choice("Kind", "outer_boundary.kind",
-                   {"temperature", "convective", "flux", "insulated"}, [](const RunScenario& s) {
+                   {"temperature", "convective", "flux", "insulated", "air"},
+                   [](const RunScenario& s) {
                      return TomlValue{std::string(sim::to_string(s.simulation.outer_kind))};
                    });
   form->add_number("Temperature [C]", "outer_boundary.temperature_c",
@@ -366,6 +367,17 @@ QWidget* MainWindow::make_scenario_tab() {
       [](const RunScenario& s) { return d(s.simulation.heat_transfer_coefficient_w_m2k); });
   form->add_number("Flux [W/m2]", "outer_boundary.flux_w_m2",
                    [](const RunScenario& s) { return d(s.simulation.flux_w_m2); });
+  form->add_number("Air: relative humidity", "outer_boundary.relative_humidity",
+                   [](const RunScenario& s) { return d(s.simulation.relative_humidity); });
+  form->add_number("Air: speed [m/s]", "outer_boundary.speed_m_s",
+                   [](const RunScenario& s) { return d(s.simulation.air_speed_m_s); });
+  form->add_number("Air: surroundings [C]", "outer_boundary.surroundings_temperature_c",
+                   [](const RunScenario& s) {
+                     return d(s.simulation.surroundings_temperature_c.value_or(
+                         s.simulation.outer_temperature_c));
+                   });
+  form->add_number("Air: emissivity", "outer_boundary.emissivity",
+                   [](const RunScenario& s) { return d(s.simulation.emissivity); });
   form->add_section("Materials");
   const auto& M = [](const RunScenario& s) -> const sim::Materials& {
     return s.simulation.materials;
@@ -622,6 +634,7 @@ void MainWindow::fit_keys_to_kind(const std::string& kind_key) {
       {"temperature_c", TomlValue{20.0}},
       {"heat_transfer_coefficient_w_m2k", TomlValue{10.0}},
       {"flux_w_m2", TomlValue{1000.0}},
+      {"relative_humidity", TomlValue{0.5}},
       {"radius", TomlValue{0.1}},
       {"emission", TomlValue{std::array<double, 3>{1.0, 1.0, 1.0}}}};
   const std::string kind = m_document.string_or(kind_key, "");
@@ -653,9 +666,13 @@ void MainWindow::grey_out_unused(const RunScenario& sc) {
       {"shell.length_m", s.geometry == sim::Geometry::cylinder},
       {"shell.lateral_size_m", s.geometry == sim::Geometry::planar},
       {"outer_boundary.temperature_c",
-       s.outer_kind == B::temperature || s.outer_kind == B::convective},
+       s.outer_kind == B::temperature || s.outer_kind == B::convective || s.outer_kind == B::air},
       {"outer_boundary.heat_transfer_coefficient_w_m2k", s.outer_kind == B::convective},
       {"outer_boundary.flux_w_m2", s.outer_kind == B::flux},
+      {"outer_boundary.relative_humidity", s.outer_kind == B::air},
+      {"outer_boundary.speed_m_s", s.outer_kind == B::air},
+      {"outer_boundary.surroundings_temperature_c", s.outer_kind == B::air},
+      {"outer_boundary.emissivity", s.outer_kind == B::air},
   };
   for (const auto& [key, on] : used)
     for (KeyForm* form : m_forms)

@@ -173,6 +173,18 @@ class TestMainWindow : public QObject {
     QVERIFY2(w.apply_edit("outer_boundary.kind", std::string("temperature")),
              w.check().message.c_str());
     QCOMPARE(w.check().scenario->simulation.outer_temperature_c, -10.0);
+    // Room air (issue 25): its humidity comes with a typical 50 %, its fields light up, the
+    // air temperature is kept; back to convective they go again.
+    QVERIFY2(w.apply_edit("outer_boundary.kind", std::string("air")), w.check().message.c_str());
+    QCOMPARE(w.check().scenario->simulation.relative_humidity, 0.5);
+    QVERIFY(enabled("outer_boundary.relative_humidity"));
+    QVERIFY(enabled("outer_boundary.speed_m_s"));
+    QVERIFY(enabled("outer_boundary.temperature_c"));
+    QVERIFY(!enabled("outer_boundary.heat_transfer_coefficient_w_m2k"));
+    QVERIFY2(w.apply_edit("outer_boundary.kind", std::string("convective")),
+             w.check().message.c_str());
+    QVERIFY(!w.document().has("outer_boundary.relative_humidity"));
+    QVERIFY(!enabled("outer_boundary.relative_humidity"));
     // The same for any kind: a sphere light turned point loses its radius, and back gets one.
     QVERIFY2(w.apply_edit("render.lights[0].kind", std::string("point")),
              w.check().message.c_str());
