@@ -7,6 +7,7 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfIntAttribute.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStandardAttributes.h>
 #include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfStringVectorAttribute.h>
@@ -76,6 +77,15 @@ void add_metadata(Imf::Header& header, const ExrMetadata& m, const AovImage* aov
     header.insert("thaw.objectIds", Imf::StringVectorAttribute(aovs->object_names));
     header.insert("thaw.mediumIds", Imf::StringVectorAttribute(aovs->medium_names));
   }
+  // Imath's matrices act on row vectors: M44f[i][j] = M[j][i].
+  const auto imath = [](const ExrMetadata::Matrix4& m) {
+    Imath::M44f t;
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j) t[i][j] = static_cast<float>(m[4 * j + i]);
+    return t;
+  };
+  if (m.world_to_camera) Imf::addWorldToCamera(header, imath(*m.world_to_camera));
+  if (m.world_to_ndc) Imf::addWorldToNDC(header, imath(*m.world_to_ndc));
 }
 
 }  // namespace

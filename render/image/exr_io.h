@@ -7,8 +7,11 @@
 // Names follow the OpenEXR layer convention ("layer.channel"; "Z" is the standard depth
 // channel). Metadata as header attributes: thaw.sceneFile, thaw.simulatedTime_s (film frames),
 // thaw.samplesPerPixel, thaw.exposure_stops (not applied: the pixels are linear radiance),
-// thaw.objectIds / thaw.mediumIds (the names of ids 1, 2, ...), software ("thaw VERSION").
+// thaw.objectIds / thaw.mediumIds (the names of ids 1, 2, ...), software ("thaw VERSION"), and
+// when given the camera as OpenEXR's standard worldToCamera / worldToNDC (Imath M44f, row
+// vectors: p' = [p, 1] M; the conventions are the caller's, src/pipeline/handoff_camera.h).
 // ZIP compression (lossless, 16 scanlines a block). Written atomically like every image.
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -25,6 +28,9 @@ struct ExrMetadata {
   std::optional<double> time_s;
   int samples_per_pixel = 0;
   double exposure_stops = 0.0;
+  /// the camera's matrices, row-major for column vectors (p' = M [p, 1]); written transposed
+  using Matrix4 = std::array<double, 16>;
+  std::optional<Matrix4> world_to_camera, world_to_ndc;
 };
 
 /// EXR file bytes: `image` as half RGBA, plus the AOV layers if `aovs` is not null (then it must

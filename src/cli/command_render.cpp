@@ -96,8 +96,9 @@ void run_render(const RenderArgs& a) {
   if (render::is_exr_path(a.output)) {
     // The compositing layers come from their own primary-ray pass (render/integrator/aov_pass.h).
     const render::AovImage aovs = render::render_aovs(scene, options.threads);
-    const render::ExrMetadata meta{a.scene, std::nullopt, desc.image.samples_per_pixel,
-                                   desc.image.exposure};
+    const render::ExrMetadata meta{
+        a.scene,      std::nullopt, desc.image.samples_per_pixel, desc.image.exposure,
+        std::nullopt, std::nullopt};
     render::write_exr(a.output, result.image, &aovs, meta);
   } else {
     render::write_image(a.output, result.image, desc.image.exposure, a.png_bits);

@@ -61,4 +61,13 @@ render::CameraDescription framing_camera(const Box3& box, double aspect,
   return cam;
 }
 
+render::CameraDescription run_camera(const RunScenario& sc,
+                                     const std::vector<sim::InterfaceRecord>& rows,
+                                     const sim::ShellGeometry& geometry) {
+  if (sc.camera_set) return sc.scene.camera;
+  return framing_camera(
+      shell_extent(rows, geometry, sc.shell.center, sc.shell.rest_on_floor, sc.shell.floor_y),
+      static_cast<double>(sc.scene.image.width) / sc.scene.image.height);
+}
+
 }  // namespace thaw::pipeline

@@ -9,6 +9,7 @@
 
 #include "render/scene/scene_description.h"
 #include "sim/format/interface_history.h"
+#include "src/pipeline/run_scenario.h"
 
 namespace thaw::pipeline {
 
@@ -37,5 +38,11 @@ Box3 shell_extent(const std::vector<sim::InterfaceRecord>& rows, const sim::Shel
 /// which every corner of the box projects within `fill` of the frame (width / height = aspect).
 render::CameraDescription framing_camera(const Box3& box, double aspect,
                                          const AutoCameraSettings& settings = {});
+
+/// The camera of every frame of a run: the scenario's [render.camera] if it sets one, otherwise
+/// framing_camera() of the shell's extent over `rows` at the image's aspect ratio.
+render::CameraDescription run_camera(const RunScenario& sc,
+                                     const std::vector<sim::InterfaceRecord>& rows,
+                                     const sim::ShellGeometry& geometry);
 
 }  // namespace thaw::pipeline

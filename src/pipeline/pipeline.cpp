@@ -36,6 +36,8 @@
 #include "src/pipeline/frame_label.h"
 #include "src/pipeline/frame_puddle.h"
 #include "src/pipeline/frame_scene.h"
+#include "src/pipeline/handoff_blender.h"
+#include "src/pipeline/handoff_camera.h"
 #include "src/pipeline/handoff_export.h"
 #include "src/pipeline/handoff_vdb.h"
 #include "src/pipeline/ranks_mesh_farm.h"
@@ -263,7 +265,7 @@ void fingerprint_stages(Run& r) {
       .add(sc.render_text)
       .add(sc.film.caption ? "caption" : "");
   r.exr_frames = sc.film.frames_format == FilmSettings::FramesFormat::exr;
-  if (r.exr_frames) render_hash.add("frames_format=exr");
+  if (r.exr_frames) render_hash.add("frames_format=exr/2");  // /2: the camera in the header
   // The caption's font: DejaVu Sans, or the bitmap font if it cannot be loaded (said once).
   if (sc.film.caption) {
     std::string problem;
@@ -486,9 +488,11 @@ void render_frame(const Run& r, const RunScenario& framed, const mesh::MeshManif
   throw_if_interrupted();  // the render skipped its remaining tiles: write nothing
   if (r.exr_frames) {      // for compositing: no caption, linear, with the AOV layers
     const render::AovImage aovs = render::render_aovs(scene, r.o.jobs);
-    render::write_exr(
-        frames_dir / (frame_name(k) + ".exr"), result.image, &aovs,
-        {sc.source_name, step.time_s, sc.scene.image.samples_per_pixel, sc.scene.image.exposure});
+    const CameraMatrices cam =
+        camera_matrices(framed.scene.camera, sc.scene.image.width, sc.scene.image.height);
+    render::write_exr(frames_dir / (frame_name(k) + ".exr"), result.image, &aovs,
+                      {sc.source_name, step.time_s, sc.scene.image.samples_per_pixel,
+                       sc.scene.image.exposure, cam.world_to_camera, cam.world_to_ndc});
   }
   if (sc.film.caption) stamp_frame_caption(result.image, step.time_s, r.font.get());
   render::write_png(frames_dir / (frame_name(k) + ".png"), result.image, sc.scene.image.exposure);
@@ -512,11 +516,7 @@ bool render_stage(Run& r, const mesh::MeshManifest& meshes,
   const long frame_count = static_cast<long>(meshes.steps.size());
   // The built-in camera frames the shell's largest extent over the run: one camera for all frames.
   RunScenario framed = sc;
-  if (!sc.camera_set)
-    framed.scene.camera =
-        framing_camera(shell_extent(rows, meshes.geometry, sc.shell.center, sc.shell.rest_on_floor,
-                                    sc.shell.floor_y),
-                       static_cast<double>(sc.scene.image.width) / sc.scene.image.height);
+  framed.scene.camera = run_camera(sc, rows, meshes.geometry);
   const std::vector<WaterBudget> water =
       water_budget(rows, meshes.geometry, sc.simulation.materials.ice_density_kg_m3,
                    sc.simulation.materials.water_density_kg_m3);
@@ -631,7 +631,8 @@ void film_stage(Run& r, long frame_count) {
 /// out like the mesh stage's items (each rank writes its steps' .vtp into the leader's staged
 /// folder and its world-space OBJs), the last rank draws the plot meanwhile, and the leader
 /// commits the series and writes the grid runs' field exports.
-void inspect_stage(Run& r, const mesh::MeshManifest& meshes) {
+void inspect_stage(Run& r, const mesh::MeshManifest& meshes,
+                   const std::vector<sim::InterfaceRecord>& rows) {
   const RunScenario& sc = r.sc;
   const RunOptions& o = r.o;
   RunRanks& ranks = r.ranks;
@@ -650,6 +651,8 @@ void inspect_stage(Run& r, const mesh::MeshManifest& meshes) {
   inspect_hash.add("inspect/5").add(mesh_hash.hex()).add(sc.shell.rest_on_floor ? "floor" : "");
   for (double v : sc.shell.center) inspect_hash.add(v);
   inspect_hash.add(sc.shell.floor_y);
+  // The scene hand-off (handoff_blender.h) sees the scene and the film's rate.
+  inspect_hash.add("handoff/1").add(sc.render_text).add(sc.film.film_fps());
 #if THAW_OPENVDB
   // A build with OpenVDB adds the volumes to an older run's (/2: axisymmetric runs' too).
   inspect_hash.add("openvdb/2");
@@ -658,7 +661,8 @@ void inspect_stage(Run& r, const mesh::MeshManifest& meshes) {
   bool up_to_date = false;
   on_leader(ranks, [&] {
     up_to_date = manifest.begin_stage("inspect", inspect_hash.hex()) && fs::exists(report.plot) &&
-                 fs::exists(report.pvd) && fs::exists(report.handoff_obj);
+                 fs::exists(report.pvd) && fs::exists(report.handoff_obj) &&
+                 fs::exists(out / "handoff" / "blender_scene.py");
   });
   if (ranks.broadcast(up_to_date ? "up to date" : "") == "up to date") {
     clock.timing().skipped = true;
@@ -711,6 +715,7 @@ void inspect_stage(Run& r, const mesh::MeshManifest& meshes) {
                            [&](long step) { return offset_of_step.at(step); }) > 0)
       report.handoff_vdb = out / "handoff" / "vdb";
 #endif
+    write_run_handoff(out, sc, rows, r.mesh_dir, meshes, "inspect");
     progress.finish();
     manifest.mark_stage_complete("inspect");
     clock.timing().items_done = 1;
@@ -744,7 +749,7 @@ RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
                    ": waits for every step's meshes; run thaw run again without --frames");
     return finish_report(r.report, start);
   }
-  inspect_stage(r, meshes);
+  inspect_stage(r, meshes, rows);
   return finish_report(r.report, start);
 }
 

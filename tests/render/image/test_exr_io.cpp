@@ -88,8 +88,8 @@ Image test_image(int w, int h) {
 TEST(ExrIo, BeautyHalfRgbaMatchesFloatAndPfmWithinHalfPrecision) {
   const int w = 23, h = 17;
   const Image img = test_image(w, h);
-  const ReadBack r =
-      read_exr(encode_exr(img, nullptr, ExrMetadata{"scene.toml", std::nullopt, 4, 0.5}));
+  const ReadBack r = read_exr(encode_exr(
+      img, nullptr, ExrMetadata{"scene.toml", std::nullopt, 4, 0.5, std::nullopt, std::nullopt}));
   ASSERT_EQ(r.width, w);
   ASSERT_EQ(r.height, h);
   ASSERT_EQ(r.types.size(), 4u);
@@ -130,8 +130,8 @@ TEST(ExrIo, AovLayersAndMetadata) {
     aov.medium_id[i] = static_cast<std::uint32_t>(i % 4);
     aov.alpha[i] = 0.25f * (i % 5);
   }
-  const ReadBack r =
-      read_exr(encode_exr(img, &aov, ExrMetadata{"data/scenes/x.toml", 754.5, 16, -1.0}));
+  const ReadBack r = read_exr(encode_exr(
+      img, &aov, ExrMetadata{"data/scenes/x.toml", 754.5, 16, -1.0, std::nullopt, std::nullopt}));
   const std::map<std::string, Imf::PixelType> expected = {
       {"R", Imf::HALF},          {"G", Imf::HALF},         {"B", Imf::HALF},   {"A", Imf::HALF},
       {"Z", Imf::FLOAT},         {"N.X", Imf::HALF},       {"N.Y", Imf::HALF}, {"N.Z", Imf::HALF},

@@ -1,0 +1,16 @@
+#pragma once
+// DIR/handoff/paraview_state.py: a ParaView Python state that opens the run's meshes.pvd (the
+// inspect stage's series, placed where the film shows the shell) and looks at it through the
+// camera the frames were rendered with (VTK's view angle is the vertical field of view, as
+// thaw's), at the frames' size. `pvpython paraview_state.py [--screenshot PATH]`, or File > Load
+// State in ParaView. Knows nothing about VTK: it writes text.
+#include <filesystem>
+
+#include "render/scene/scene_description.h"
+
+namespace thaw::pipeline {
+
+void write_paraview_state(const std::filesystem::path& path, const std::filesystem::path& run_dir,
+                          const render::CameraDescription& camera, int width, int height);
+
+}  // namespace thaw::pipeline
