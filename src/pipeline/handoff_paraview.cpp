@@ -59,6 +59,27 @@ void write_paraview_state(const std::filesystem::path& path, const std::filesyst
       "                   ImageResolution=" +
       size + ")\n";
   write_file_atomic(path, text);
+  // ParaView's camera configuration (pqCameraDialog's Save / Load).
+  const auto property = [](const char* name, const double* values, int n) {
+    std::string p = std::string("    <Property name=\"") + name + "\" id=\"1." + name +
+                    "\" number_of_elements=\"" + std::to_string(n) + "\">\n";
+    for (int i = 0; i < n; ++i) {
+      char e[96];
+      std::snprintf(e, sizeof e, "      <Element index=\"%d\" value=\"%.17g\"/>\n", i, values[i]);
+      p += e;
+    }
+    return p + "    </Property>\n";
+  };
+  const std::string pvcc =
+      "<?xml version=\"1.0\"?>\n"
+      "<PVCameraConfiguration description=\"ParaView camera configuration\" version=\"1.0\">\n"
+      "  <Proxy group=\"views\" type=\"RenderView\" id=\"1\" servers=\"21\">\n" +
+      property("CameraPosition", c.position.data(), 3) +
+      property("CameraFocalPoint", c.look_at.data(), 3) + property("CameraViewUp", c.up.data(), 3) +
+      property("CenterOfRotation", c.look_at.data(), 3) +
+      property("CameraViewAngle", &c.vertical_fov_deg, 1) +
+      "  </Proxy>\n</PVCameraConfiguration>\n";
+  write_file_atomic(path.parent_path() / "paraview_camera.pvcc", pvcc);
 }
 
 }  // namespace thaw::pipeline

@@ -3,13 +3,17 @@
 // inspect stage's series, placed where the film shows the shell) and looks at it through the
 // camera the frames were rendered with (VTK's view angle is the vertical field of view, as
 // thaw's), at the frames' size. `pvpython paraview_state.py [--screenshot PATH]`, or File > Load
-// State in ParaView. Knows nothing about VTK: it writes text.
+// State in ParaView (both need ParaView's Python: Debian 12's python3-paraview, which cannot be
+// installed beside libvtk9-dev). Beside it DIR/handoff/paraview_camera.pvcc, the same camera as
+// ParaView's camera configuration (the camera dialog's Load, no Python needed). Knows nothing
+// about VTK: it writes text.
 #include <filesystem>
 
 #include "render/scene/scene_description.h"
 
 namespace thaw::pipeline {
 
+/// Writes paraview_state.py at `path` and paraview_camera.pvcc beside it.
 void write_paraview_state(const std::filesystem::path& path, const std::filesystem::path& run_dir,
                           const render::CameraDescription& camera, int width, int height);
 

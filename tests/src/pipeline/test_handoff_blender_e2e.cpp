@@ -76,8 +76,7 @@ ExrFrame read_exr(const fs::path& path) {
   slice("N.X", f.nx), slice("N.Y", f.ny), slice("N.Z", f.nz), slice("id.object", f.object_id);
   in.setFrameBuffer(fb);
   in.readPixels(dw.min.y, dw.max.y);
-  f.object_names =
-      in.header().typedAttribute<Imf::StringVectorAttribute>("thaw.objectIds").value();
+  f.object_names = in.header().typedAttribute<Imf::StringVectorAttribute>("thaw.objectIds").value();
   f.world_to_ndc = in.header().typedAttribute<Imf::M44fAttribute>("worldToNDC").value();
   f.world_to_camera = in.header().typedAttribute<Imf::M44fAttribute>("worldToCamera").value();
   return f;
@@ -143,10 +142,10 @@ TEST_F(BlenderHandoff, CyclesRendersTheFrameWithThawsSilhouetteAndCamera) {
   ASSERT_EQ(s_run_exit, 0) << s_run_output;
   const fs::path dir = s_dir / "blender";
   fs::create_directories(dir);
-  const ProcessResult r = blender({"--frame", std::to_string(kFrame), "--render",
-                                   (dir / "cycles.png").string(), "--samples", "16", "--mask",
-                                   (dir / "mask.png").string(), "--camera-check",
-                                   (dir / "camera.json").string()});
+  const ProcessResult r =
+      blender({"--frame", std::to_string(kFrame), "--render", (dir / "cycles.png").string(),
+               "--samples", "16", "--mask", (dir / "mask.png").string(), "--camera-check",
+               (dir / "camera.json").string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
 
   // The silhouette: thaw's first surface at each pixel centre (the EXR's object ids) against
@@ -198,6 +197,13 @@ TEST_F(BlenderHandoff, CyclesRendersTheFrameWithThawsSilhouetteAndCamera) {
     EXPECT_LT(in_camera.z, 0.0f);
   }
 
+  // ParaView's camera configuration holds the same view angle.
+  char fov[64];
+  std::snprintf(fov, sizeof fov, "value=\"%.17g\"", cam["vertical_fov_deg"].get<double>());
+  const std::string pvcc = read_file(s_out / "handoff" / "paraview_camera.pvcc");
+  EXPECT_NE(pvcc.find("<Property name=\"CameraViewAngle\""), std::string::npos) << pvcc;
+  EXPECT_NE(pvcc.find(fov), std::string::npos) << pvcc;
+
   // The pictures of docs/handoff.md.
   fs::create_directories(kShots);
   fs::copy_file(dir / "cycles.png", kShots / "blender_cycles.png",
@@ -207,10 +213,14 @@ TEST_F(BlenderHandoff, CyclesRendersTheFrameWithThawsSilhouetteAndCamera) {
   // Silhouettes: white both, red thaw only, blue Blender only, dark grey neither.
   write_display_png(kShots / "silhouettes.png", kWidth, kHeight, [&](int x, int y) {
     switch (kind[std::size_t(y) * kWidth + x]) {
-      case 3: return std::array<float, 3>{1, 1, 1};
-      case 1: return std::array<float, 3>{1, 0, 0};
-      case 2: return std::array<float, 3>{0, 0.3f, 1};
-      default: return std::array<float, 3>{0.15f, 0.15f, 0.15f};
+      case 3:
+        return std::array<float, 3>{1, 1, 1};
+      case 1:
+        return std::array<float, 3>{1, 0, 0};
+      case 2:
+        return std::array<float, 3>{0, 0.3f, 1};
+      default:
+        return std::array<float, 3>{0.15f, 0.15f, 0.15f};
     }
   });
   // The EXR's layers side by side: beauty (linear, clipped), N (0.5 + 0.5 n), id.object (one
@@ -225,7 +235,8 @@ TEST_F(BlenderHandoff, CyclesRendersTheFrameWithThawsSilhouetteAndCamera) {
       return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
     };
     switch (x / kWidth) {
-      case 0: return std::array<float, 3>{srgb(thaw.r[i]), srgb(thaw.g[i]), srgb(thaw.b[i])};
+      case 0:
+        return std::array<float, 3>{srgb(thaw.r[i]), srgb(thaw.g[i]), srgb(thaw.b[i])};
       case 1:
         return std::array<float, 3>{0.5f + 0.5f * thaw.nx[i], 0.5f + 0.5f * thaw.ny[i],
                                     0.5f + 0.5f * thaw.nz[i]};
