@@ -96,19 +96,19 @@ def parse_args():
 
 
 def find_run_dir():
-    """The run folder: this script's folder's parent, or where thaw wrote it."""
+    """The run folder: this script's folder's parent (the run folder holds no absolute path, so
+    it can be moved or copied)."""
     candidates = []
     if "__file__" in globals():
         candidates.append(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     for text in bpy.data.texts:
         if text.filepath and os.path.basename(text.filepath) == "blender_scene.py":
             candidates.append(os.path.dirname(os.path.dirname(bpy.path.abspath(text.filepath))))
-    candidates.append(THAW["run_dir"])
     for c in candidates:
         if os.path.isfile(os.path.join(c, "handoff", "camera.json")):
             return c
-    fail("cannot find the run folder (looked in %s): keep this script in DIR/handoff/"
-         % ", ".join(candidates))
+    fail("cannot find the run folder (looked in %s): keep this script in DIR/handoff/ and run "
+         "it from there" % (", ".join(candidates) or "nowhere: no file name"))
 
 
 def check_run(run_dir):
@@ -170,7 +170,7 @@ def surface_mesh(run_dir, surface, frame):
 def thaw_show_frame(scene, *args):
     """frame_change_pre: every surface takes its mesh and placement of the current frame."""
     data = THAW
-    run_dir = scene.get("thaw_run_dir", data["run_dir"])
+    run_dir = scene.get("thaw_run_dir", "")
     frame = min(max(scene.frame_current, 0), len(data["frames"]) - 1)
     for surface in data["surfaces"]:
         obj = bpy.data.objects.get("thaw_" + surface["object"])

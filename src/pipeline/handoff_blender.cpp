@@ -177,7 +177,6 @@ void write_scene_handoff(const SceneHandoffInput& in) {
   json data;
   data["thaw_version"] = THAW_VERSION_STRING;
   data["scenario"] = sc.source_name;
-  data["run_dir"] = fs::absolute(in.run_dir).lexically_normal().string();
   data["image"] = {{"width", sc.scene.image.width},
                    {"height", sc.scene.image.height},
                    {"max_depth", sc.scene.image.max_depth},
@@ -275,7 +274,7 @@ void write_scene_handoff(const SceneHandoffInput& in) {
                     camera_json(cam, sc.scene.image.width, sc.scene.image.height));
   required.push_back({"handoff/camera.json", in.stage});
   data["required"] = required;
-  write_paraview_state(handoff / "paraview_state.py", in.run_dir, cam, sc.scene.image.width,
+  write_paraview_state(handoff / "paraview_state.py", cam, sc.scene.image.width,
                        sc.scene.image.height);
 
   // The description goes into the script as a raw Python string; ' occurs in JSON only inside

@@ -7,8 +7,8 @@
 
 namespace thaw::pipeline {
 
-void write_paraview_state(const std::filesystem::path& path, const std::filesystem::path& run_dir,
-                          const render::CameraDescription& c, int width, int height) {
+void write_paraview_state(const std::filesystem::path& path, const render::CameraDescription& c,
+                          int width, int height) {
   const auto v = [](const std::array<double, 3>& a) {
     char buf[96];
     std::snprintf(buf, sizeof buf, "[%.17g, %.17g, %.17g]", a[0], a[1], a[2]);
@@ -17,21 +17,17 @@ void write_paraview_state(const std::filesystem::path& path, const std::filesyst
   char size[64], fov[48];
   std::snprintf(size, sizeof size, "[%d, %d]", width, height);
   std::snprintf(fov, sizeof fov, "%.17g", c.vertical_fov_deg);
-  std::string run = std::filesystem::absolute(run_dir).lexically_normal().string();
-  for (std::size_t p = 0; (p = run.find('\'', p)) != std::string::npos; p += 2)
-    run.replace(p, 1, "\\'");
   const std::string text =
+      std::string() +
       "# thaw run's meshes in ParaView through the film's camera (written by thaw run;\n"
       "# docs/handoff.md). pvpython paraview_state.py [--screenshot PATH], or File > Load State.\n"
       "import os\n"
       "import sys\n"
       "from paraview.simple import *\n"
       "\n"
-      "RUN_DIR = '" +
-      run +
-      "'\n"
-      "if '__file__' in globals() and os.path.isfile(os.path.join(\n"
-      "        os.path.dirname(os.path.dirname(os.path.abspath(__file__))), 'meshes.pvd')):\n"
+      "# The run folder: this file's folder's parent, else the current folder.\n"
+      "RUN_DIR = os.getcwd()\n"
+      "if '__file__' in globals():\n"
       "    RUN_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))\n"
       "reader = PVDReader(registrationName='meshes.pvd',\n"
       "                   FileName=os.path.join(RUN_DIR, 'meshes.pvd'))\n"

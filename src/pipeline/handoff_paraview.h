@@ -14,7 +14,7 @@
 namespace thaw::pipeline {
 
 /// Writes paraview_state.py at `path` and paraview_camera.pvcc beside it.
-void write_paraview_state(const std::filesystem::path& path, const std::filesystem::path& run_dir,
+void write_paraview_state(const std::filesystem::path& path,
                           const render::CameraDescription& camera, int width, int height);
 
 }  // namespace thaw::pipeline
