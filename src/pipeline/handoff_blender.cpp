@@ -270,6 +270,21 @@ void write_scene_handoff(const SceneHandoffInput& in) {
   }
   data["interfaces"] = media_pairs;
 
+  // The surfaces of every frame for any tool: each frame's file (relative to the run folder) and
+  // where the renderer placed it (world = scale * file + translate, metres, y up).
+  json listing;
+  listing["format"] = "thaw-surfaces/1";
+  listing["placement"] = "world_m = scale * file_m + translate_m, metres, y up";
+  listing["fps"] = data["fps"];
+  listing["frames"] = frames;
+  listing["surfaces"] = json::array();
+  for (const json& s : surfaces)
+    listing["surfaces"].push_back({{"object", s["object"]},
+                                   {"label", s["label"]},
+                                   {"inside", s["inside"]},
+                                   {"outside", s["outside"]},
+                                   {"frames", s["frames"]}});
+  write_file_atomic(handoff / "surfaces.json", listing.dump(1) + "\n");
   write_file_atomic(handoff / "camera.json",
                     camera_json(cam, sc.scene.image.width, sc.scene.image.height));
   required.push_back({"handoff/camera.json", in.stage});

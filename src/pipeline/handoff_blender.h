@@ -7,6 +7,7 @@
 //                                 materials, the camera, the lights, the environment, the frame
 //                                 range and rate (docs/handoff.md)
 //   DIR/handoff/camera.json       the camera and its matrices (handoff_camera.h)
+//   DIR/handoff/surfaces.json     every frame's surfaces: their files and placements (any tool)
 //   DIR/handoff/environment.hdr   the sky or map baked in Blender's lat-long layout
 //                                 (handoff_environment.h); none for a constant background
 //   DIR/handoff/meshes/           the surfaces no other file of the run holds (the puddle:
