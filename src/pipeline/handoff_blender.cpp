@@ -45,9 +45,22 @@ std::string slug(const std::string& label) {
   return s;
 }
 
-std::string interface_name(const std::string& inside, const std::string& outside) {
-  return "thaw " + inside + " | " + outside;
+/// The material of a surface between two media: "thaw ice | vacuum", or with its roughness
+/// "thaw ice | vacuum, roughness 0.3".
+std::string interface_name(const render::ObjectDescription& o) {
+  std::string name = "thaw " + o.inside + " | " + o.outside;
+  if (o.roughness > 0) {
+    char r[48];
+    std::snprintf(r, sizeof r, ", roughness %.6g", o.roughness);
+    name += r;
+  }
+  return name;
 }
+
+struct Interface {
+  std::string inside, outside;
+  double roughness = 0;
+};
 
 const render::media::Medium* find_medium(const render::Scene& scene, const std::string& name) {
   for (const auto& m : scene.media())
@@ -83,9 +96,12 @@ json material_json(const render::MaterialDescription& m) {
               : m.kind == K::phong ? "phong"
                                    : "emissive";
   j["texture"] = texture_json(m.texture);
-  // Phong exponent n to a microfacet roughness: Beckmann alpha = sqrt(2 / (n + 2)) (Walter et
-  // al. 2007, eq. 33), Blender's roughness r = sqrt(alpha). A mirror metal is roughness 0.
-  j["roughness"] = m.kind == K::phong ? std::sqrt(std::sqrt(2.0 / (m.shininess + 2.0))) : 0.0;
+  // thaw's roughness is Blender's (GGX alpha = roughness^2 in both). A smooth phong material's
+  // highlight: Phong exponent n to Beckmann alpha = sqrt(2 / (n + 2)) (Walter et al. 2007,
+  // eq. 33), roughness = sqrt(alpha). A smooth metal is a mirror.
+  j["roughness"] = m.roughness > 0      ? m.roughness
+                   : m.kind == K::phong ? std::sqrt(std::sqrt(2.0 / (m.shininess + 2.0)))
+                                        : 0.0;
   const double e = m.emission_intensity;
   j["emission"] = {m.emission[0] * e, m.emission[1] * e, m.emission[2] * e};
   return j;
@@ -114,7 +130,7 @@ void write_scene_handoff(const SceneHandoffInput& in) {
   // Surfaces in order of first appearance: label -> index into `surfaces`.
   std::map<std::string, std::size_t> surface_of;
   json surfaces = json::array();
-  std::map<std::string, std::pair<std::string, std::string>> interfaces;  // name -> media
+  std::map<std::string, Interface> interfaces;  // by material name
   const std::size_t static_objects = sc.scene.objects.size();
   const std::size_t frame_count = meshes.steps.size();
   std::optional<render::Scene> first;  // frame 0, built: media, environment
@@ -145,10 +161,10 @@ void write_scene_handoff(const SceneHandoffInput& in) {
         s["label"] = o.label;
         s["inside"] = o.inside;
         s["outside"] = o.outside;
-        s["material"] = interface_name(o.inside, o.outside);
+        s["material"] = interface_name(o);
         s["frames"] = json::array();
         surfaces.push_back(s);
-        interfaces[interface_name(o.inside, o.outside)] = {o.inside, o.outside};
+        interfaces[interface_name(o)] = {o.inside, o.outside, o.roughness};
       }
       json& s = surfaces[it->second];
       while (s["frames"].size() < k) s["frames"].push_back(nullptr);
@@ -240,8 +256,8 @@ void write_scene_handoff(const SceneHandoffInput& in) {
     j["scale"] = o.scale;
     j["translate_m"] = v3(o.translate);
     if (o.is_dielectric()) {
-      j["material"] = interface_name(o.inside, o.outside);
-      interfaces[interface_name(o.inside, o.outside)] = {o.inside, o.outside};
+      j["material"] = interface_name(o);
+      interfaces[interface_name(o)] = {o.inside, o.outside, o.roughness};
     } else {
       j["material"] = o.material;
     }
@@ -249,22 +265,22 @@ void write_scene_handoff(const SceneHandoffInput& in) {
   }
   data["objects"] = objects;
   json media_pairs = json::array();
-  for (const auto& [name, pair] : interfaces) {
-    const auto* inside = find_medium(*first, pair.first);
-    const auto* outside = find_medium(*first, pair.second);
+  for (const auto& [name, face] : interfaces) {
+    const auto* inside = find_medium(*first, face.inside);
+    const auto* outside = find_medium(*first, face.outside);
     THAW_CHECK(inside && outside, "a rendered interface names known media");
     // The renderer's RGB index (n at the d line) and per-channel absorption of the inside.
     const double n_in = inside->n_at(render::media::kFraunhoferD_nm);
     const double n_out = outside->n_at(render::media::kFraunhoferD_nm);
     const auto a = inside->absorption().srgb_per_m();
     media_pairs.push_back({{"name", name},
-                           {"inside", pair.first},
-                           {"outside", pair.second},
+                           {"inside", face.inside},
+                           {"outside", face.outside},
                            {"n_inside", n_in},
                            {"n_outside", n_out},
                            {"ior", n_in / n_out},
                            {"absorption_per_m", {a.r, a.g, a.b}},
-                           {"roughness", 0.0},
+                           {"roughness", face.roughness},
                            {"scattering_per_m", 0.0},
                            {"scattering_g", 0.0}});
   }
