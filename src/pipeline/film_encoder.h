@@ -1,7 +1,9 @@
 #pragma once
 // Turns numbered PNG frames into a film with the real ffmpeg: H.264 in MP4, yuv420p (plays
 // everywhere), even dimensions enforced by padding (libx264 rejects odd sizes), optional GIF.
-// Checks ffmpeg's exit status and that the output is non-empty; writes atomically.
+// Checks ffmpeg's exit status, that the container is complete (the MP4's moov atom, the GIF's
+// trailer: ffmpeg exits 0 on a full disk without them) and holds every frame; writes to a
+// temporary name and renames only a checked film, so a failure keeps the previous film.
 #include <filesystem>
 #include <string>
 
@@ -16,7 +18,8 @@ struct FilmRequest {
 };
 
 /// Encodes an MP4 to `out_mp4`. Throws thaw::UserError (naming ffmpeg and its last output
-/// lines) if ffmpeg is missing, fails, or produces an empty file.
+/// lines) if ffmpeg is missing, fails, or produces an empty, incomplete or short file; `out_mp4`
+/// is then untouched.
 void encode_mp4(const FilmRequest& request, const std::filesystem::path& out_mp4);
 /// Encodes an animated GIF (palette generated from the frames) to `out_gif`.
 void encode_gif(const FilmRequest& request, const std::filesystem::path& out_gif);
