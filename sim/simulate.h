@@ -3,7 +3,9 @@
 // scenario, sampling the state at exactly the requested output times. Part of the sim core (no
 // TOML, no JSON): the result folder is written by sim/format/simulation_output.h. Knows nothing of
 // the command line; progress goes through a callback.
+#include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <vector>
 
 #include "base/progress.h"
@@ -24,14 +26,26 @@ struct SimulationResult {
   double reference_energy_j = 0;  ///< scale of energy_balance_error [J]
   double wall_time_s = 0;
   bool ended_early = false;  ///< no ice left before the last output time
-  /// Grid runs (scenario.grid != none): one field per snapshot, the events with positions
-  /// (`events` holds them too, radius_m = distance from the outer body's centre).
+  /// Grid runs (scenario.grid != none): one field per snapshot (empty when they were handed to
+  /// a FieldSink instead), the events with positions (`events` holds them too, radius_m =
+  /// distance from the outer body's centre).
   std::vector<GridField> fields;
+  /// Grid runs: the grid itself (geometry, cells, origin, spacing; no cell values).
+  GridField grid;
   std::vector<GridEvent> grid_events;
   GridStatistics grid_statistics;
   /// interfaces.csv rows, step = index into snapshots.
   std::vector<InterfaceRecord> interface_records() const;
 };
+
+/// Receives each output step's field of a grid run as it is reached (step = index into the
+/// output times), so that the run keeps none of them in memory: the result folder's writer
+/// streams them to disk (sim/format/simulation_output.h).
+using FieldSink = std::function<void(std::size_t step, const GridField& field)>;
+
+/// Bytes of the fields a grid run keeps for `outputs` output times on `grid`: three floats per
+/// cell per output (temperature, ice and water fractions).
+double field_bytes(const GridField& grid, std::size_t outputs);
 
 /// The output times of a scenario: 0, interval, 2 interval, ... and duration_s (exactly
 /// k * interval, computed as a product, never by accumulation).
@@ -41,9 +55,12 @@ std::vector<double> output_times(const Scenario& scenario);
 /// each of `times` (increasing, >= 0); t = 0 is the scenario's initial state even when a phase
 /// of zero thickness is started analytically a moment later. If the ice is gone before the last
 /// time, the run stops there and the last snapshot is that instant (ended_early). progress(done,
-/// total) is called after each output time.
+/// total) is called after each output time. A grid run hands each field to `sink` when given;
+/// without one it keeps them all in `fields`, and refuses up front (a UserError on
+/// simulation.output_interval_s naming the outputs and bytes) when they would take more than half
+/// of the machine's memory.
 SimulationResult simulate(const Scenario& scenario, const std::vector<double>& times,
-                          const ProgressCallback& progress = {});
+                          const ProgressCallback& progress = {}, const FieldSink& sink = {});
 /// simulate(scenario, output_times(scenario), progress).
 SimulationResult simulate(const Scenario& scenario, const ProgressCallback& progress = {});
 

@@ -3,14 +3,17 @@
 #include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "base/atomic_file.h"
 #include "base/check.h"
+#include "base/error.h"
 #include "sim/format/grid_field_file.h"
 #include "sim/format/interface_history.h"
 #include "sim/format/scenario_file.h"
 
 namespace thaw::sim {
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -31,15 +34,18 @@ nlohmann::json final_state_json(const SimulationResult& r) {
           {"ice_volume_m3", last.ice_volume_m3}};
 }
 
+std::filesystem::path field_file(const std::filesystem::path& dir, std::size_t step) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "step_%06zu.grid", step);
+  return dir / "fields" / buf;
+}
+
 void write_grid_outputs(const std::filesystem::path& dir, const SimulationResult& r) {
   write_interfaces_csv(dir / "interfaces.csv", r.interface_records());
-  const auto fields = dir / "fields";
-  ensure_directory(fields);
-  char buf[64];
-  for (std::size_t i = 0; i < r.fields.size(); ++i) {
-    std::snprintf(buf, sizeof buf, "step_%06zu.grid", i);
-    write_grid_field(fields / buf, r.fields[i]);
-  }
+  ensure_directory(dir / "fields");
+  // Fields kept in memory are written here; streamed ones (field_stream) are there already.
+  for (std::size_t i = 0; i < r.fields.size(); ++i)
+    write_grid_field(field_file(dir, i), r.fields[i]);
   nlohmann::json j;
   j["parameters"] = scenario_to_json(r.scenario);
   j["events"] = nlohmann::json::array();
@@ -52,7 +58,7 @@ void write_grid_outputs(const std::filesystem::path& dir, const SimulationResult
   }
   j["wall_time_s"] = r.wall_time_s;
   const GridStatistics& s = r.grid_statistics;
-  const GridField& f = r.fields.front();
+  const GridField& f = r.grid;
   j["solver"] = {
       {"method", "fixed-grid enthalpy (Voller & Prakash), backward Euler, semismooth Newton + CG"},
       {"grid",
@@ -84,6 +90,35 @@ void write_grid_outputs(const std::filesystem::path& dir, const SimulationResult
 }
 
 }  // namespace
+
+FieldSink field_stream(const std::filesystem::path& dir, const Scenario& scenario,
+                       std::size_t outputs) {
+  return [dir, scenario, outputs](std::size_t step, const GridField& field) {
+    if (step == 0) {
+      // Before the first step is solved: every output's file, against the free space.
+      ensure_directory(dir / "fields");
+      const double need = static_cast<double>(outputs) * (96.0 + field_bytes(field, 1));
+      std::error_code ec;
+      const auto space = std::filesystem::space(dir, ec);
+      if (!ec && need > static_cast<double>(space.available)) {
+        const auto gb = [](double bytes) {
+          char buf[32];
+          std::snprintf(buf, sizeof buf, "%.3g GB", bytes / 1e9);
+          return std::string(buf);
+        };
+        char head[96];
+        std::snprintf(head, sizeof head, "(%.6g s) asks for %zu field files of %.3g MB, ",
+                      scenario.output_interval_s, outputs, (96.0 + field_bytes(field, 1)) / 1e6);
+        const fs::path where = dir.has_parent_path() ? dir.parent_path() : fs::path(".");
+        throw UserError("", "simulation.output_interval_s",
+                        head + gb(need) + " in all, more than the " +
+                            gb(static_cast<double>(space.available)) + " free on the disk of " +
+                            where.string() + "; use a larger output_interval_s");
+      }
+    }
+    write_grid_field(field_file(dir, step), field);
+  };
+}
 
 void write_simulation_outputs(const std::filesystem::path& dir, const SimulationResult& r) {
   THAW_CHECK(!r.snapshots.empty(), "a simulation result has at least one snapshot");

@@ -15,6 +15,14 @@ namespace thaw::sim {
 /// exist; use a thaw::StagingDirectory for an all-or-nothing result folder).
 void write_simulation_outputs(const std::filesystem::path& dir, const SimulationResult& result);
 
+/// A FieldSink (sim/simulate.h) that writes each field of a grid run to
+/// DIR/fields/step_NNNNNN.grid as the solver reaches it, so no field stays in memory;
+/// write_simulation_outputs then writes the rest. Before the first field is written it refuses
+/// (UserError on simulation.output_interval_s) when `outputs` files would not fit in the free
+/// space of DIR's file system.
+FieldSink field_stream(const std::filesystem::path& dir, const Scenario& scenario,
+                       std::size_t outputs);
+
 /// The first entry of the existing folder `dir` that no thaw command writes into a result folder
 /// (interfaces.csv, summary.json, profiles/, fields/, and thaw mesh's mesh/, mesh.partial/ and
 /// its temporaries *.tmp-*), or nullopt (also for a missing or empty folder). A result folder is

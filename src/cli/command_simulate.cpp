@@ -47,7 +47,17 @@ void run_simulate(const SimulateArgs& a) {
   {
     ProgressReporter progress(
         "simulate", static_cast<std::int64_t>(sim::output_times(scenario).size()), a.quiet);
-    result = sim::simulate(scenario, interruptible(progress.callback()));
+    // A grid run's fields go to the staging folder as they are reached (none kept in memory).
+    const auto times = sim::output_times(scenario);
+    try {
+      result = sim::simulate(scenario, times, interruptible(progress.callback()),
+                             sim::field_stream(staging.path(), scenario, times.size()));
+    } catch (const UserError& e) {
+      // The solver's own refusals name a key of the scenario: name its file too.
+      if (e.file().empty() && !a.scenario.empty() && !e.where().empty())
+        throw UserError(a.scenario, e.where(), e.problem());
+      throw;
+    }
     progress.finish();
   }
   sim::write_simulation_outputs(staging.path(), result);
@@ -57,7 +67,7 @@ void run_simulate(const SimulateArgs& a) {
               a.scenario.empty() ? "built-in default scenario" : a.scenario.c_str(),
               (out / "").string().c_str());
   const auto& last = result.snapshots.back();
-  const bool grid = !result.fields.empty();
+  const bool grid = scenario.grid != sim::GridGeometry::none;
   if (grid)
     std::printf(
         "  %zu rows to t = %.6g s; liquid %.6g m^3, ice %.6g m^3 (volume-equivalent radii %.6g / "

@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "base/error.h"
 #include "sim/format/interface_history.h"
@@ -125,6 +127,89 @@ TEST(Simulate, WrittenFolderReadsBackThroughTheSharedContract) {
     EXPECT_LT(j.at("solver").at("max_energy_balance_error").get<double>(), 1e-8);
     EXPECT_TRUE(j.contains("wall_time_s"));
   }
+}
+
+/// A grid scenario of the bad-input campaign (issue 27): a hollow sphere or cube, 3600 s in
+/// outputs of 0.0036 s (1e6 + 1, the rules' limit).
+Scenario many_outputs_scenario(GridGeometry grid) {
+  Scenario sc = parse_scenario_string(
+      std::string("[simulation]\ngeometry = \"") +
+          (grid == GridGeometry::axisymmetric ? "axisymmetric" : "3d") +
+          "\"\nduration_s = 3600.0\noutput_interval_s = 0.0036\n"
+          "[shape]\nouter = { kind = \"sphere\", radius_m = 0.02 }\n"
+          "cavity = { kind = \"sphere\", radius_m = 0.012 }\n"
+          "[water]\ninitial_temperature_c = 10.0\n[ice]\ninitial_temperature_c = -5.0\n"
+          "[outer_boundary]\nkind = \"convective\"\ntemperature_c = 25.0\n"
+          "heat_transfer_coefficient_w_m2k = 50.0\n",
+      "many.toml");
+  return sc;
+}
+
+std::string bytes_of(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Issue 27: such a run kept every field in memory, grew ~68 MB/s and ended "out of memory",
+// exit 3. Now it is refused before the first step, naming the key, the outputs and the bytes.
+TEST(Simulate, GridFieldsThatCannotFitInMemoryAreRefusedUpFront) {
+  const Scenario sc = many_outputs_scenario(GridGeometry::axisymmetric);
+  const auto times = output_times(sc);
+  ASSERT_EQ(times.size(), 1000001u);
+  bool stepped = false;
+  try {
+    simulate(sc, times, [&](std::int64_t, std::int64_t) { stepped = true; });
+    FAIL() << "kept 1e6 fields in memory";
+  } catch (const UserError& e) {
+    EXPECT_EQ(e.where(), "simulation.output_interval_s");
+    EXPECT_NE(e.problem().find("1000001 outputs"), std::string::npos) << e.what();
+    EXPECT_NE(e.problem().find("of memory"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(stepped);
+}
+
+// Streamed to disk, the same run is refused before the first field file when the files cannot
+// fit on the disk (3D: ~1e5 cells, 1.2 MB per output, 1.2 TB in all).
+TEST(Simulate, StreamedFieldsThatCannotFitOnTheDiskAreRefusedUpFront) {
+  const Scenario sc = many_outputs_scenario(GridGeometry::cartesian3d);
+  const auto times = output_times(sc);
+  const fs::path dir = fresh_dir("many_outputs");
+  bool stepped = false;
+  try {
+    simulate(
+        sc, times, [&](std::int64_t, std::int64_t) { stepped = true; },
+        field_stream(dir, sc, times.size()));
+    FAIL() << "wrote 1e6 fields";
+  } catch (const UserError& e) {
+    EXPECT_EQ(e.where(), "simulation.output_interval_s");
+    EXPECT_NE(e.problem().find("1000001 field files"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(stepped);
+  EXPECT_FALSE(fs::exists(dir / "fields" / "step_000000.grid"));
+}
+
+// Streamed fields are the very bytes of fields kept in memory and written at the end.
+TEST(Simulate, StreamedFieldsEqualFieldsKeptInMemory) {
+  Scenario sc = many_outputs_scenario(GridGeometry::axisymmetric);
+  sc.duration_s = 60;
+  sc.output_interval_s = 20;
+  sc.cell_size_m = 0.0025;
+  const fs::path kept = fresh_dir("fields_kept"), streamed = fresh_dir("fields_streamed");
+  const SimulationResult a = simulate(sc);
+  write_simulation_outputs(kept, a);
+  const SimulationResult b =
+      simulate(sc, output_times(sc), {}, field_stream(streamed, sc, output_times(sc).size()));
+  EXPECT_TRUE(b.fields.empty());
+  write_simulation_outputs(streamed, b);
+  ASSERT_EQ(a.fields.size(), 4u);
+  for (const char* f : {"interfaces.csv", "fields/step_000000.grid", "fields/step_000003.grid"})
+    EXPECT_EQ(bytes_of(kept / f), bytes_of(streamed / f)) << f;
+  EXPECT_FALSE(fs::exists(streamed / "fields" / "step_000004.grid"));
+  const auto grid_of = [](const fs::path& dir) {
+    std::ifstream js(dir / "summary.json");
+    return nlohmann::json::parse(js).at("solver").at("grid");
+  };
+  EXPECT_EQ(grid_of(kept), grid_of(streamed));
 }
 
 }  // namespace
