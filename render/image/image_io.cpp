@@ -89,8 +89,17 @@ bool valid_png_bits(int bits) {
   return bits == 8 || bits == 16;
 }
 
-std::string encode_png(const Image& image, double exposure, int bits) {
+std::string encode_png(const Image& image, double exposure, int bits, ViewTransform view) {
   THAW_CHECK(valid_png_bits(bits), "PNG bit depth must be 8 or 16");
+  if (view == ViewTransform::agx) {
+    // The view transform first (exposure inside it), then the same sRGB encoders as clip.
+    const float s = static_cast<float>(std::exp2(exposure));
+    Image display(image.width(), image.height(), Image::ForOverwrite{});
+#pragma omp parallel for schedule(static)
+    for (int y = 0; y < image.height(); ++y)
+      for (int x = 0; x < image.width(); ++x) display.at(x, y) = agx_view(image.at(x, y) * s);
+    return encode_png(display, 0.0, bits, ViewTransform::clip);
+  }
   const float scale = static_cast<float>(std::exp2(exposure));
   const auto n = static_cast<std::int64_t>(image.pixels().size());
   const PngLayout layout{image.width(), image.height(), 3, bits};
@@ -135,8 +144,9 @@ std::string encode_pfm(const Image& image) {
   return out;
 }
 
-void write_png(const std::filesystem::path& path, const Image& image, double exposure, int bits) {
-  write_file_atomic(path, encode_png(image, exposure, bits));
+void write_png(const std::filesystem::path& path, const Image& image, double exposure, int bits,
+               ViewTransform view) {
+  write_file_atomic(path, encode_png(image, exposure, bits, view));
 }
 
 void write_pfm(const std::filesystem::path& path, const Image& image) {
@@ -157,14 +167,14 @@ void check_output_path(const std::filesystem::path& path) {
 }
 
 void write_image(const std::filesystem::path& path, const Image& image, double exposure,
-                 int png_bits) {
+                 int png_bits, ViewTransform view) {
   check_output_path(path);
   if (lower_extension(path) == ".pfm")
     write_pfm(path, image);
   else if (is_exr_path(path))
     write_exr(path, image, nullptr, ExrMetadata{});
   else
-    write_png(path, image, exposure, png_bits);
+    write_png(path, image, exposure, png_bits, view);
 }
 
 }  // namespace thaw::render

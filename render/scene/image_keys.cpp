@@ -14,6 +14,7 @@ constexpr std::array<std::string_view, 3> kFilterNames{"box", "gaussian", "mitch
 constexpr std::array<std::string_view, 3> kDispersionNames{"adaptive", "split", "hero"};
 constexpr std::array<std::string_view, 2> kPatternNames{"shared", "per_pixel"};
 constexpr std::array<std::string_view, 2> kFilmNames{"ratio", "unbiased"};
+constexpr std::array<std::string_view, 2> kToneNames{"clip", "agx"};
 
 double filter_radius_of_filter(const S& s) {
   return default_filter_radius(s.filter);
@@ -70,6 +71,20 @@ const ImageKey kImageKeys[] = {
      NumberKey{&S::min_weight, min_weight_problem}},
     {"exposure", "Exposure", "stops", "0", "PNG scale `2^exposure` [stops], -64..64",
      NumberKey{&S::exposure, exposure_problem}},
+    {"tone", "Tone", "", "\"agx\"",
+     "view transform of PNG outputs (render/film/view_transform.h): \"agx\" (a filmic roll-off "
+     "after Sobotka's AgX: highlights are not clipped, bright colours desaturate towards white) or "
+     "\"clip\" (exposed and clamped to [0, 1], as POV-Ray; the comparison scenes set it); PFM and "
+     "EXR stay linear",
+     ChoiceKey{kToneNames, [](const S& s) { return kToneNames[static_cast<std::size_t>(s.view)]; },
+               [](S& s, std::string_view name) {
+                 for (std::size_t i = 0; i < kToneNames.size(); ++i)
+                   if (name == kToneNames[i]) {
+                     s.view = static_cast<ViewTransform>(i);
+                     return true;
+                   }
+                 return false;
+               }}},
     {"spectral", "Spectral", "", "\"auto\"",
      "spectral transport (docs/dispersion.md): \"auto\" = on iff a medium is dispersive or "
      "absorbs; false = RGB (n_d, absorption per channel: docs/dispersion.md \"Absorption in RGB "

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "render/film/filter.h"
+#include "render/film/view_transform.h"
 #include "render/geometry/triangle_mesh.h"
 #include "render/media/medium.h"
 
@@ -46,6 +47,10 @@ struct ImageSettings {
   double min_weight = 1.0 / 255.0;
   /// 2^exposure scales radiance before PNG encoding [stops]
   double exposure = 0.0;
+  /// [image] tone: the view transform of PNG outputs (render/film/view_transform.h): agx (the
+  /// default: a filmic roll-off, no clipped highlights) or clip (exposed and clamped to [0, 1], as
+  /// POV-Ray; the comparison scenes set it). PFM and EXR stay linear either way.
+  ViewTransform view = ViewTransform::agx;
   /// spectral transport (render/integrator/spectral_whitted.h): automatic = on iff some medium
   /// is dispersive or absorbs (build_scene decides); off renders RGB with each medium's n_d
   /// and per-channel absorption (media::Absorption::srgb_per_m)

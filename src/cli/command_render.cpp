@@ -101,7 +101,7 @@ void run_render(const RenderArgs& a) {
         std::nullopt, std::nullopt};
     render::write_exr(a.output, result.image, &aovs, meta);
   } else {
-    render::write_image(a.output, result.image, desc.image.exposure, a.png_bits);
+    render::write_image(a.output, result.image, desc.image.exposure, a.png_bits, desc.image.view);
   }
   const double total =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

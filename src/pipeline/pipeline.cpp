@@ -495,7 +495,8 @@ void render_frame(const Run& r, const RunScenario& framed, const mesh::MeshManif
                        sc.scene.image.exposure, cam.world_to_camera, cam.world_to_ndc});
   }
   if (sc.film.caption) stamp_frame_caption(result.image, step.time_s, r.font.get());
-  render::write_png(frames_dir / (frame_name(k) + ".png"), result.image, sc.scene.image.exposure);
+  render::write_png(frames_dir / (frame_name(k) + ".png"), result.image, sc.scene.image.exposure, 8,
+                    sc.scene.image.view);
 }
 
 /// 3. Render one frame per step, handed out over the ranks. Returns whether every frame of the run
