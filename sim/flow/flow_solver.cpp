@@ -1,0 +1,448 @@
+// The Boussinesq MAC solver (flow_solver.h).
+#include "sim/flow/flow_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+#include "base/check.h"
+#include "sim/flow/multigrid_pressure.h"
+#include "sim/flow/ordered_sum.h"
+
+namespace thaw::sim::flow {
+namespace {
+
+struct Idx {
+  int v[3];
+  int& operator[](int d) { return v[d]; }
+  int operator[](int d) const { return v[d]; }
+};
+
+Idx shifted(Idx a, int d, int by) {
+  a[d] += by;
+  return a;
+}
+
+/// Koren's limited kappa = 1/3 face value: upwind value t_u, far-upwind t_uu, downwind t_d.
+double koren_face(double t_uu, double t_u, double t_d) {
+  const double up = t_u - t_uu, dn = t_d - t_u;
+  if (up * dn <= 0) return t_u;
+  const double s = up > 0 ? 1.0 : -1.0;
+  const double a = std::abs(up), b = std::abs(dn);
+  return t_u + 0.5 * s * std::min({2.0 * b, (a + 2.0 * b) / 3.0, 2.0 * a});
+}
+
+}  // namespace
+
+FlowSolver::FlowSolver(FlowProblem problem, std::unique_ptr<PressureSolver> pressure)
+    : problem_(std::move(problem)), pressure_(std::move(pressure)) {
+  const MacGrid& g = problem_.grid;
+  THAW_CHECK(g.h_m > 0 && g.n[0] >= 2 && g.n[1] >= 2, "flow grid: at least 2 x 2 cells");
+  THAW_CHECK(g.dims() == 3 ? g.n[2] >= 2 : g.n[2] == 1, "flow grid: nz is 1 unless 3D");
+  if (g.axisymmetric())
+    THAW_CHECK(problem_.walls[x_min].kind == WallCondition::Kind::adiabatic,
+               "flow: the axis (axisymmetric x_min) carries no heat");
+  if (!pressure_) pressure_ = std::make_unique<MultigridPressureSolver>();
+  for (int d = 0; d < 3; ++d)
+    if (d < g.dims()) velocity_[d].assign(g.face_count(d), 0.0);
+  temperature_.assign(g.cell_count(), 0.0);
+  parallel_ = g.cell_count() >= 8192;
+  operator_drag_dt_ = -1;  // forces the first build
+  set_pressure_operator(0);
+  for (auto& p : psi_) p.assign(g.cell_count(), 0.0);
+}
+
+FlowSolver::~FlowSolver() = default;
+
+void FlowSolver::set_drag_per_s(std::vector<double> drag) {
+  THAW_CHECK(drag.empty() || drag.size() == problem_.grid.cell_count(),
+             "flow drag: one value per cell");
+  drag_ = std::move(drag);
+  drag_changed_ = true;
+}
+
+void FlowSolver::update_cell_properties(const std::vector<double>& t) {
+  const std::size_t cells = t.size();
+  nu_.resize(cells);
+  buoyancy_.resize(cells);
+#pragma omp parallel for schedule(static) if (parallel_)
+  for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t>(cells); ++c) {
+    nu_[c] = problem_.fluid.kinematic_viscosity_m2_s(t[c]);
+    buoyancy_[c] = problem_.fluid.buoyancy_m_s2(t[c]);
+  }
+}
+
+double FlowSolver::cell_velocity_m_s(int d, int i, int j, int k) const {
+  const MacGrid& g = problem_.grid;
+  if (d >= g.dims()) return 0;
+  Idx a{{i, j, k}};
+  Idx b = shifted(a, d, 1);
+  return 0.5 *
+         (velocity_[d][g.face(d, a[0], a[1], a[2])] + velocity_[d][g.face(d, b[0], b[1], b[2])]);
+}
+
+double FlowSolver::stable_time_step_s() const {
+  const MacGrid& g = problem_.grid;
+  double rate = 0;  // largest sum over axes of |u| / h at a cell
+  for (int k = 0; k < g.n[2]; ++k)
+    for (int j = 0; j < g.n[1]; ++j)
+      for (int i = 0; i < g.n[0]; ++i) {
+        double s = 0;
+        for (int d = 0; d < g.dims(); ++d) {
+          Idx a{{i, j, k}};
+          Idx b = shifted(a, d, 1);
+          s += std::max(std::abs(velocity_[d][g.face(d, a[0], a[1], a[2])]),
+                        std::abs(velocity_[d][g.face(d, b[0], b[1], b[2])]));
+        }
+        rate = std::max(rate, s / g.h_m);
+      }
+  double kappa = problem_.thermal_diffusivity_m2_s;
+  for (double t : temperature_) kappa = std::max(kappa, problem_.fluid.kinematic_viscosity_m2_s(t));
+  // Explicit diffusion: the stress operator's largest eigenvalue is at most
+  // (4 dims + 4) nu / h^2 (normal stress 2 nu, the axisymmetric hoop term 2 nu / r^2 at r >= h);
+  // the two-stage scheme is stable for dt lambda <= 2; 0.9 of that.
+  const double dt_diffusion = 0.9 * 2.0 * g.h_m * g.h_m / ((4.0 * g.dims() + 4.0) * kappa);
+  const double dt_advection =
+      rate > 0 ? problem_.courant / rate : std::numeric_limits<double>::infinity();
+  return std::min(dt_diffusion, dt_advection);
+}
+
+void FlowSolver::momentum_rhs(const Field& u, const std::vector<double>& t, Field& out) const {
+  (void)t;
+  const MacGrid& g = problem_.grid;
+  const int dims = g.dims();
+  const double h = g.h_m;
+  const auto& n = g.n;
+  // u_d at (possibly ghost) face a: tangential indices outside the box mirror with a sign flip
+  // (no-slip: the wall value is 0).
+  auto U = [&](int d, Idx a) {
+    double sign = 1;
+    for (int e = 0; e < dims; ++e) {
+      if (e == d) continue;
+      if (a[e] < 0) {
+        a[e] = 0;
+        sign = -sign;
+      } else if (a[e] >= n[e]) {
+        a[e] = n[e] - 1;
+        sign = -sign;
+      }
+    }
+    return sign * u[d][g.face(d, a[0], a[1], a[2])];
+  };
+  auto nu_at = [&](const Idx& c) { return nu_[g.cell(c[0], c[1], c[2])]; };
+  for (int d = 0; d < dims; ++d) {
+    const auto fd = g.face_dims(d);
+    std::vector<double>& o = out[d];
+    o.assign(g.face_count(d), 0.0);
+#pragma omp parallel for collapse(2) schedule(static) if (parallel_)
+    for (int k = 0; k < fd[2]; ++k)
+      for (int j = 0; j < fd[1]; ++j)
+        for (int i = 0; i < fd[0]; ++i) {
+          const Idx f{{i, j, k}};
+          if (f[d] == 0 || f[d] == n[d]) continue;  // wall faces stay at rest
+          const double w = d == 0 ? g.radius_at_plane(i) : g.radius_at_centre(i);
+          double sum = 0;
+          // Along d: fluxes at the two cell centres either side of the face.
+          for (int side = 0; side < 2; ++side) {
+            const Idx c = shifted(f, d, side - 1);  // cell below (side 0) or above (side 1)
+            const double lo = U(d, c), hi = U(d, shifted(c, d, 1));
+            const double ubar = 0.5 * (lo + hi);
+            const double flux = -ubar * ubar + 2.0 * nu_at(c) * (hi - lo) / h;
+            const double area = d == 0 ? g.radius_at_centre(c[0]) : w;
+            sum += (side == 0 ? -1.0 : 1.0) * area * flux;
+          }
+          // Across e != d: fluxes at the edges (d plane f[d], e plane m), m = f[e], f[e] + 1.
+          for (int e = 0; e < dims; ++e) {
+            if (e == d) continue;
+            for (int side = 0; side < 2; ++side) {
+              const int m = f[e] + side;
+              Idx below = f, above = f;
+              below[e] = m - 1;
+              above[e] = m;
+              const double ud_lo = U(d, below), ud_hi = U(d, above);
+              Idx ce = f;  // the e face at plane m, cells f[d]-1 and f[d] along d
+              ce[e] = m;
+              const double ue_lo = U(e, shifted(ce, d, -1)), ue_hi = U(e, ce);
+              // nu at the edge: mean over the (up to 4) cells around it inside the box
+              double nu_sum = 0;
+              int nu_count = 0;
+              for (int a = -1; a <= 0; ++a)
+                for (int b = -1; b <= 0; ++b) {
+                  Idx c = f;
+                  c[d] += a;
+                  c[e] = m + b;
+                  if (c[e] < 0 || c[e] >= n[e]) continue;
+                  nu_sum += nu_at(c);
+                  ++nu_count;
+                }
+              const double nu_edge = nu_sum / nu_count;
+              const double flux = -0.25 * (ud_lo + ud_hi) * (ue_lo + ue_hi) +
+                                  nu_edge * ((ud_hi - ud_lo) / h + (ue_hi - ue_lo) / h);
+              const double area = e == 0 ? g.radius_at_plane(m) : w;
+              sum += (side == 0 ? -1.0 : 1.0) * area * flux;
+            }
+          }
+          double r = sum / (w * h);
+          const Idx c0 = shifted(f, d, -1);
+          if (d == 0 && g.axisymmetric()) {  // hoop stress: -tau_theta_theta / r = -2 nu u / r^2
+            const double nu_f = 0.5 * (nu_at(c0) + nu_at(f));
+            r -= 2.0 * nu_f * u[0][g.face(0, i, j, k)] / (w * w);
+          }
+          if (d == 1)
+            r += 0.5 * (buoyancy_[g.cell(c0[0], c0[1], c0[2])] + buoyancy_[g.cell(i, j, k)]);
+          o[g.face(d, i, j, k)] = r;
+        }
+  }
+}
+
+void FlowSolver::temperature_rhs(const Field& u, const std::vector<double>& t,
+                                 std::vector<double>& out) const {
+  const MacGrid& g = problem_.grid;
+  const int dims = g.dims();
+  const double h = g.h_m, alpha = problem_.thermal_diffusivity_m2_s;
+  const auto& n = g.n;
+  const auto& walls = problem_.walls;
+  // Temperature of cell a, or of the ghost cell mirrored through the wall it lies beyond
+  // (held wall: 2 T_w - T_inside; adiabatic or axis: T_inside), for the far-upwind value.
+  auto T = [&](Idx a) {
+    for (int e = 0; e < dims; ++e) {
+      if (a[e] < 0 || a[e] >= n[e]) {
+        const int wall = 2 * e + (a[e] < 0 ? 0 : 1);
+        a[e] = a[e] < 0 ? 0 : n[e] - 1;
+        const double inside = t[g.cell(a[0], a[1], a[2])];
+        return walls[wall].kind == WallCondition::Kind::temperature
+                   ? 2.0 * walls[wall].temperature_c - inside
+                   : inside;
+      }
+    }
+    return t[g.cell(a[0], a[1], a[2])];
+  };
+  out.assign(g.cell_count(), 0.0);
+#pragma omp parallel for collapse(2) schedule(static) if (parallel_)
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i) {
+        const Idx c{{i, j, k}};
+        const double tc = t[g.cell(i, j, k)];
+        double sum = 0;
+        for (int d = 0; d < dims; ++d)
+          for (int side = 0; side < 2; ++side) {
+            const Idx f = shifted(c, d, side);  // the face: lower (side 0) or upper
+            const double area = d == 0 ? g.radius_at_plane(f[0]) : g.radius_at_centre(i);
+            const double sgn = side == 0 ? -1.0 : 1.0;  // outward normal along d
+            if (f[d] == 0 || f[d] == n[d]) {
+              const WallCondition& w = walls[2 * d + side];
+              if (w.kind == WallCondition::Kind::temperature)
+                sum += area * alpha * (w.temperature_c - tc) / (0.5 * h);
+              continue;
+            }
+            const Idx nb = shifted(c, d, side == 0 ? -1 : 1);
+            const double tn = t[g.cell(nb[0], nb[1], nb[2])];
+            const double un = u[d][g.face(d, f[0], f[1], f[2])];
+            // lower cell of the face and upper cell
+            const Idx lo = side == 0 ? nb : c, hi = side == 0 ? c : nb;
+            const double t_lo = side == 0 ? tn : tc, t_hi = side == 0 ? tc : tn;
+            const double tf = un >= 0 ? koren_face(T(shifted(lo, d, -1)), t_lo, t_hi)
+                                      : koren_face(T(shifted(hi, d, 1)), t_hi, t_lo);
+            sum += area * (-sgn * un * tf + alpha * (tn - tc) / h);
+          }
+        out[g.cell(i, j, k)] = sum / (g.radius_at_centre(i) * h);
+      }
+}
+
+std::array<double, 6> FlowSolver::wall_heat_flows(const std::vector<double>& t) const {
+  const MacGrid& g = problem_.grid;
+  const double alpha = problem_.thermal_diffusivity_m2_s;
+  std::array<double, 6> q{};
+  for (int wall = 0; wall < 2 * g.dims(); ++wall) {
+    const WallCondition& w = problem_.walls[wall];
+    if (w.kind != WallCondition::Kind::temperature) continue;
+    const int d = wall / 2;
+    const bool upper = wall % 2 == 1;
+    double s = 0;
+    for (int k = 0; k < g.n[2]; ++k)
+      for (int j = 0; j < g.n[1]; ++j)
+        for (int i = 0; i < g.n[0]; ++i) {
+          const Idx c{{i, j, k}};
+          if (c[d] != (upper ? g.n[d] - 1 : 0)) continue;
+          const int fx = d == 0 ? (upper ? i + 1 : i) : i;
+          s += g.face_area(d, fx) * alpha * (w.temperature_c - t[g.cell(i, j, k)]) / (0.5 * g.h_m);
+        }
+    q[wall] = s;
+  }
+  return q;
+}
+
+double FlowSolver::wall_heat_flow_k_m3_s(int wall) const {
+  return wall_heat_flows(temperature_)[wall];
+}
+
+int FlowSolver::project(Field& u, std::vector<double>& psi) {
+  const MacGrid& g = problem_.grid;
+  const int dims = g.dims();
+  const double h = g.h_m;
+  std::vector<double> b(g.cell_count());
+  double flow_scale = 0;
+  for (int d = 0; d < dims; ++d) {
+    const auto fd = g.face_dims(d);
+    for (int k = 0; k < fd[2]; ++k)
+      for (int j = 0; j < fd[1]; ++j)
+        for (int i = 0; i < fd[0]; ++i)
+          flow_scale = std::max(flow_scale, std::abs(g.face_area(d, i) * u[d][g.face(d, i, j, k)]));
+  }
+  // The implicit drag: u* <- a u*, and the correction below is a grad psi.
+  if (!face_factor_[0].empty())
+    for (int d = 0; d < dims; ++d)
+      for (std::size_t f = 0; f < u[d].size(); ++f) u[d][f] *= face_factor_[d][f];
+        // b = -(net volume flow out of each cell)
+#pragma omp parallel for collapse(2) schedule(static) if (parallel_)
+  for (int k = 0; k < g.n[2]; ++k)
+    for (int j = 0; j < g.n[1]; ++j)
+      for (int i = 0; i < g.n[0]; ++i) {
+        double out = 0;
+        for (int d = 0; d < dims; ++d) {
+          Idx lo{{i, j, k}};
+          Idx hi = shifted(lo, d, 1);
+          out += g.face_area(d, hi[0]) * u[d][g.face(d, hi[0], hi[1], hi[2])] -
+                 g.face_area(d, lo[0]) * u[d][g.face(d, lo[0], lo[1], lo[2])];
+        }
+        b[g.cell(i, j, k)] = -out;
+      }
+  if (flow_scale == 0) return 0;
+  const PressureSolveReport report =
+      pressure_->solve(b, psi, problem_.pressure_tolerance * flow_scale);
+  THAW_CHECK(report.converged, "flow: the pressure solve did not converge");
+  // u_f -= a_f (psi_upper - psi_lower) / h on faces between two cells.
+  for (int d = 0; d < dims; ++d) {
+    const auto fd = g.face_dims(d);
+#pragma omp parallel for collapse(2) schedule(static) if (parallel_)
+    for (int k = 0; k < fd[2]; ++k)
+      for (int j = 0; j < fd[1]; ++j)
+        for (int i = 0; i < fd[0]; ++i) {
+          const Idx f{{i, j, k}};
+          if (f[d] == 0 || f[d] == g.n[d]) continue;
+          const Idx lo = shifted(f, d, -1);
+          const std::size_t fi = g.face(d, i, j, k);
+          const double a = face_factor_[0].empty() ? 1.0 : face_factor_[d][fi];
+          u[d][fi] -= a * (psi[g.cell(i, j, k)] - psi[g.cell(lo[0], lo[1], lo[2])]) / h;
+        }
+  }
+  return report.iterations;
+}
+
+void FlowSolver::set_pressure_operator(double drag_dt) {
+  const MacGrid& g = problem_.grid;
+  if (drag_.empty()) {
+    for (auto& f : face_factor_) f.clear();
+    if (operator_drag_dt_ == 0) return;
+  } else if (drag_dt == operator_drag_dt_ && !drag_changed_) {
+    return;
+  }
+  // g_f = a_f A_f / h on faces between two cells, 0 on walls; a_f = 1 / (1 + dt D_f) with D_f the
+  // mean drag of the face's two cells: the implicit drag's share of the pressure gradient.
+  std::array<std::vector<double>, 3> cond;
+  for (int d = 0; d < 3; ++d) {
+    cond[d].assign(g.face_count(d), 0.0);
+    if (d >= g.dims()) continue;
+    if (!drag_.empty()) face_factor_[d].assign(g.face_count(d), 1.0);
+    const auto f = g.face_dims(d);
+    for (int k = 0; k < f[2]; ++k)
+      for (int j = 0; j < f[1]; ++j)
+        for (int i = 0; i < f[0]; ++i) {
+          const Idx a{{i, j, k}};
+          if (a[d] == 0 || a[d] == g.n[d]) continue;
+          double factor = 1;
+          if (!drag_.empty()) {
+            const Idx lo = shifted(a, d, -1);
+            factor =
+                1.0 / (1.0 + drag_dt * 0.5 *
+                                 (drag_[g.cell(i, j, k)] + drag_[g.cell(lo[0], lo[1], lo[2])]));
+            face_factor_[d][g.face(d, i, j, k)] = factor;
+          }
+          cond[d][g.face(d, i, j, k)] = factor * g.face_area(d, i) / g.h_m;
+        }
+  }
+  pressure_->set_operator(g.n, cond);
+  operator_drag_dt_ = drag_.empty() ? 0 : drag_dt;
+  drag_changed_ = false;
+}
+
+FlowStepReport FlowSolver::step(double dt) {
+  const MacGrid& g = problem_.grid;
+  const int dims = g.dims();
+  FlowStepReport report;
+  report.dt_s = dt;
+  Field rhs, u1;
+  std::vector<double> t_rhs, t1(temperature_.size());
+  // Stage 1: forward Euler; the drag implicit, (1 + dt D) u1 = u + dt R(u) - grad psi.
+  update_cell_properties(temperature_);
+  momentum_rhs(velocity_, temperature_, rhs);
+  temperature_rhs(velocity_, temperature_, t_rhs);
+  const std::array<double, 6> q0 = wall_heat_flows(temperature_);
+  for (int d = 0; d < dims; ++d) {
+    u1[d].resize(velocity_[d].size());
+    for (std::size_t f = 0; f < u1[d].size(); ++f) u1[d][f] = velocity_[d][f] + dt * rhs[d][f];
+  }
+  for (std::size_t c = 0; c < t1.size(); ++c) t1[c] = temperature_[c] + dt * t_rhs[c];
+  set_pressure_operator(dt);
+  report.pressure_iterations += project(u1, psi_[0]);
+  // Stage 2: the mean of the start and a second Euler step from stage 1, the drag implicit on
+  // the result: (1 + dt D / 2) u2 = u / 2 + (u1 + dt R(u1)) / 2 - grad psi.
+  update_cell_properties(t1);
+  momentum_rhs(u1, t1, rhs);
+  temperature_rhs(u1, t1, t_rhs);
+  const std::array<double, 6> q1 = wall_heat_flows(t1);
+  for (int d = 0; d < dims; ++d)
+    for (std::size_t f = 0; f < u1[d].size(); ++f)
+      velocity_[d][f] = 0.5 * velocity_[d][f] + 0.5 * (u1[d][f] + dt * rhs[d][f]);
+  for (std::size_t c = 0; c < t1.size(); ++c)
+    temperature_[c] = 0.5 * temperature_[c] + 0.5 * (t1[c] + dt * t_rhs[c]);
+  set_pressure_operator(0.5 * dt);
+  report.pressure_iterations += project(velocity_, psi_[1]);
+  for (int w = 0; w < 6; ++w) report.wall_heat_k_m3 += 0.5 * dt * (q0[w] + q1[w]);
+  time_s_ += dt;
+  return report;
+}
+
+double FlowSolver::thermal_content_k_m3() const {
+  const MacGrid& g = problem_.grid;
+  return ordered_row_sum(g.n[1], g.n[2], [&](int j, int k) {
+    double s = 0;
+    for (int i = 0; i < g.n[0]; ++i) s += g.cell_volume(i) * temperature_[g.cell(i, j, k)];
+    return s;
+  });
+}
+
+double FlowSolver::max_divergence_per_s() const {
+  const MacGrid& g = problem_.grid;
+  double m = 0;
+  for (int k = 0; k < g.n[2]; ++k)
+    for (int j = 0; j < g.n[1]; ++j)
+      for (int i = 0; i < g.n[0]; ++i) {
+        double out = 0;
+        for (int d = 0; d < g.dims(); ++d) {
+          Idx lo{{i, j, k}};
+          Idx hi = shifted(lo, d, 1);
+          out += g.face_area(d, hi[0]) * velocity_[d][g.face(d, hi[0], hi[1], hi[2])] -
+                 g.face_area(d, lo[0]) * velocity_[d][g.face(d, lo[0], lo[1], lo[2])];
+        }
+        m = std::max(m, std::abs(out) / g.cell_volume(i));
+      }
+  return m;
+}
+
+double FlowSolver::max_speed_m_s() const {
+  const MacGrid& g = problem_.grid;
+  double m = 0;
+  for (int k = 0; k < g.n[2]; ++k)
+    for (int j = 0; j < g.n[1]; ++j)
+      for (int i = 0; i < g.n[0]; ++i) {
+        double s = 0;
+        for (int d = 0; d < g.dims(); ++d) s += std::pow(cell_velocity_m_s(d, i, j, k), 2);
+        m = std::max(m, std::sqrt(s));
+      }
+  return m;
+}
+
+}  // namespace thaw::sim::flow

@@ -1,0 +1,116 @@
+#pragma once
+// Incompressible Boussinesq flow with heat on a MAC grid (mac_grid.h): planar 2D, axisymmetric
+// (r, y) or 3D, gravity along -y. Finite volumes throughout: momentum in conservative form with
+// central fluxes and the full viscous stress div(nu (grad u + grad u^T)) (nu varies with T; the
+// axisymmetric hoop stress included), heat advected with Koren's limited kappa = 1/3 upwind
+// face values (bounded) and diffused with central fluxes. Time: the two-stage strong-stability-
+// preserving Runge-Kutta scheme (Heun), every stage projected onto divergence-free fields (Chorin
+// 1968) by a pressure solve behind PressureSolver (default: multigrid-preconditioned CG). A
+// per-cell drag [1/s] (Carman-Kozeny in melting cells: Voller & Prakash 1987) is applied
+// implicitly, so a cell of infinite drag holds still: the ice of enthalpy-porosity.
+// Walls are no-slip, each held at a temperature or adiabatic; the axisymmetric x_min is the axis.
+// Results do not depend on the thread count (disjoint writes, sums in fixed order).
+// Knows nothing of scenarios, files or the enthalpy solver.
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "sim/flow/fluid_model.h"
+#include "sim/flow/mac_grid.h"
+#include "sim/flow/pressure_solver.h"
+
+namespace thaw::sim::flow {
+
+struct WallCondition {
+  enum class Kind { adiabatic, temperature };
+  Kind kind = Kind::adiabatic;
+  double temperature_c = 0;
+};
+
+/// Walls in the order x_min, x_max, y_min, y_max, z_min, z_max.
+enum Wall { x_min = 0, x_max, y_min, y_max, z_min, z_max };
+
+struct FlowProblem {
+  MacGrid grid;
+  FluidModel fluid;
+  /// thermal diffusivity of the liquid [m^2/s]
+  double thermal_diffusivity_m2_s = 0;
+  std::array<WallCondition, 6> walls{};
+  /// advective Courant number of a step (sum over axes of |u| dt / h)
+  double courant = 0.5;
+  /// pressure solve: largest net volume flow out of a cell after projection, relative to the
+  /// largest face volume flow
+  double pressure_tolerance = 1e-10;
+};
+
+struct FlowStepReport {
+  double dt_s = 0;
+  /// pressure-solver iterations, both stages
+  int pressure_iterations = 0;
+  /// integral over the step of the heat entering through the walls, as
+  /// alpha * integral dT/dn dA dt [K m^3 (planar: per m depth; axisymmetric: per radian)]
+  double wall_heat_k_m3 = 0;
+};
+
+class FlowSolver {
+ public:
+  /// pressure: the back end (nullptr: MultigridPressureSolver). Starts at rest at 0 C.
+  explicit FlowSolver(FlowProblem problem, std::unique_ptr<PressureSolver> pressure = nullptr);
+  ~FlowSolver();
+
+  const MacGrid& grid() const { return problem_.grid; }
+  const FlowProblem& problem() const { return problem_; }
+  /// cell temperatures [C], MacGrid::cell order
+  std::vector<double>& temperature_c() { return temperature_; }
+  const std::vector<double>& temperature_c() const { return temperature_; }
+  /// face velocities of component d [m/s], MacGrid::face(d, ...) order (wall faces are 0)
+  const std::vector<double>& velocity_m_s(int d) const { return velocity_[d]; }
+  /// per-cell drag coefficient [1/s] (empty: none)
+  void set_drag_per_s(std::vector<double> drag);
+
+  /// The largest stable step [s]: Courant number on the current velocity, and the explicit
+  /// viscous and conductive limit of the two-stage scheme.
+  double stable_time_step_s() const;
+  FlowStepReport step(double dt_s);
+  double time_s() const { return time_s_; }
+
+  /// integral of T over the fluid [K m^3, per m depth | per radian | -]
+  double thermal_content_k_m3() const;
+  /// alpha * integral of dT/dn over wall w (heat flow in, over rho c) [K m^3/s, same units]
+  double wall_heat_flow_k_m3_s(int wall) const;
+  /// largest |div u| over the cells [1/s]
+  double max_divergence_per_s() const;
+  /// largest speed at a cell centre [m/s]
+  double max_speed_m_s() const;
+  /// velocity component d interpolated to the centre of cell (i, j, k) [m/s]
+  double cell_velocity_m_s(int d, int i, int j, int k) const;
+
+ private:
+  using Field = std::array<std::vector<double>, 3>;
+  void momentum_rhs(const Field& u, const std::vector<double>& t, Field& out) const;
+  void temperature_rhs(const Field& u, const std::vector<double>& t,
+                       std::vector<double>& out) const;
+  std::array<double, 6> wall_heat_flows(const std::vector<double>& t) const;
+  int project(Field& u, std::vector<double>& psi);
+  void update_cell_properties(const std::vector<double>& t);
+  /// (Re)builds the pressure operator for the implicit drag over drag_dt (0: no drag).
+  void set_pressure_operator(double drag_dt);
+
+  FlowProblem problem_;
+  std::unique_ptr<PressureSolver> pressure_;
+  Field velocity_;
+  std::vector<double> temperature_;
+  std::vector<double> drag_;
+  // per cell, refreshed from the temperature of each stage: nu [m^2/s], buoyancy [m/s^2]
+  std::vector<double> nu_, buoyancy_;
+  std::array<std::vector<double>, 2> psi_;  // warm starts of the two stages' pressure solves
+  // per face: 1 / (1 + dt D) of the current stage (empty without drag)
+  std::array<std::vector<double>, 3> face_factor_;
+  double operator_drag_dt_ = 0;
+  bool drag_changed_ = false;
+  // loops run in parallel only on grids large enough to pay for a barrier
+  bool parallel_ = false;
+  double time_s_ = 0;
+};
+
+}  // namespace thaw::sim::flow
