@@ -251,6 +251,51 @@ void FlowSolver::temperature_rhs(const Field& u, const std::vector<double>& t,
       }
 }
 
+void FlowSolver::advective_transport(const std::vector<double>& q, const std::vector<char>& carries,
+                                     std::vector<double>& out) const {
+  const MacGrid& g = problem_.grid;
+  const int dims = g.dims();
+  const auto& n = g.n;
+  THAW_CHECK(q.size() == g.cell_count() && carries.size() == g.cell_count(),
+             "advective transport: one value per cell");
+  auto carrying = [&](const Idx& a) {
+    for (int e = 0; e < dims; ++e)
+      if (a[e] < 0 || a[e] >= n[e]) return false;
+    return carries[g.cell(a[0], a[1], a[2])] != 0;
+  };
+  out.assign(g.cell_count(), 0.0);
+#pragma omp parallel for collapse(2) schedule(static) if (parallel_)
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i) {
+        const Idx c{{i, j, k}};
+        if (!carries[g.cell(i, j, k)]) continue;
+        double sum = 0;
+        for (int d = 0; d < dims; ++d)
+          for (int side = 0; side < 2; ++side) {
+            const Idx nb = shifted(c, d, side == 0 ? -1 : 1);
+            if (!carrying(nb)) continue;
+            const Idx f = shifted(c, d, side);
+            const double un = velocity_[d][g.face(d, f[0], f[1], f[2])];
+            const Idx lo = side == 0 ? nb : c, hi = side == 0 ? c : nb;
+            const double q_lo = q[g.cell(lo[0], lo[1], lo[2])],
+                         q_hi = q[g.cell(hi[0], hi[1], hi[2])];
+            // far-upwind value: the next carrying cell, else the upwind one (first order there)
+            double qf;
+            if (un >= 0) {
+              const Idx uu = shifted(lo, d, -1);
+              qf = koren_face(carrying(uu) ? q[g.cell(uu[0], uu[1], uu[2])] : q_lo, q_lo, q_hi);
+            } else {
+              const Idx uu = shifted(hi, d, 1);
+              qf = koren_face(carrying(uu) ? q[g.cell(uu[0], uu[1], uu[2])] : q_hi, q_hi, q_lo);
+            }
+            const double area = d == 0 ? g.radius_at_plane(f[0]) : g.radius_at_centre(i);
+            sum -= (side == 0 ? -1.0 : 1.0) * area * g.unit_area() * un * qf;
+          }
+        out[g.cell(i, j, k)] = sum;
+      }
+}
+
 std::array<double, 6> FlowSolver::wall_heat_flows(const std::vector<double>& t) const {
   const MacGrid& g = problem_.grid;
   const double alpha = problem_.thermal_diffusivity_m2_s;
@@ -378,7 +423,10 @@ FlowStepReport FlowSolver::step(double dt) {
   // Stage 1: forward Euler; the drag implicit, (1 + dt D) u1 = u + dt R(u) - grad psi.
   update_cell_properties(temperature_);
   momentum_rhs(velocity_, temperature_, rhs);
-  temperature_rhs(velocity_, temperature_, t_rhs);
+  if (hold_temperature_)
+    t_rhs.assign(temperature_.size(), 0.0);
+  else
+    temperature_rhs(velocity_, temperature_, t_rhs);
   const std::array<double, 6> q0 = wall_heat_flows(temperature_);
   for (int d = 0; d < dims; ++d) {
     u1[d].resize(velocity_[d].size());
@@ -391,7 +439,7 @@ FlowStepReport FlowSolver::step(double dt) {
   // the result: (1 + dt D / 2) u2 = u / 2 + (u1 + dt R(u1)) / 2 - grad psi.
   update_cell_properties(t1);
   momentum_rhs(u1, t1, rhs);
-  temperature_rhs(u1, t1, t_rhs);
+  if (!hold_temperature_) temperature_rhs(u1, t1, t_rhs);
   const std::array<double, 6> q1 = wall_heat_flows(t1);
   for (int d = 0; d < dims; ++d)
     for (std::size_t f = 0; f < u1[d].size(); ++f)
@@ -400,7 +448,8 @@ FlowStepReport FlowSolver::step(double dt) {
     temperature_[c] = 0.5 * temperature_[c] + 0.5 * (t1[c] + dt * t_rhs[c]);
   set_pressure_operator(0.5 * dt);
   report.pressure_iterations += project(velocity_, psi_[1]);
-  for (int w = 0; w < 6; ++w) report.wall_heat_k_m3 += 0.5 * dt * (q0[w] + q1[w]);
+  if (!hold_temperature_)
+    for (int w = 0; w < 6; ++w) report.wall_heat_k_m3 += 0.5 * dt * (q0[w] + q1[w]);
   time_s_ += dt;
   return report;
 }

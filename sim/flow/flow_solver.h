@@ -67,6 +67,15 @@ class FlowSolver {
   const std::vector<double>& velocity_m_s(int d) const { return velocity_[d]; }
   /// per-cell drag coefficient [1/s] (empty: none)
   void set_drag_per_s(std::vector<double> drag);
+  /// true: step() advances the velocity only, the temperature held as set (a coupled solver
+  /// carries the heat itself, with advective_transport below).
+  void hold_temperature(bool hold) { hold_temperature_ = hold; }
+  /// Net advective inflow of a cell quantity q into each cell by the current face velocities:
+  /// out[c] = -sum over c's faces of A_f u_f q_f (outward), q_f Koren's limited upwind value;
+  /// only faces between two cells with carries[c] != 0 carry anything, so the sum over the
+  /// carrying cells is exactly zero [q m^3/s, per m depth | per radian | -].
+  void advective_transport(const std::vector<double>& q, const std::vector<char>& carries,
+                           std::vector<double>& out) const;
 
   /// The largest stable step [s]: Courant number on the current velocity, and the explicit
   /// viscous and conductive limit of the two-stage scheme.
@@ -108,6 +117,7 @@ class FlowSolver {
   std::array<std::vector<double>, 3> face_factor_;
   double operator_drag_dt_ = 0;
   bool drag_changed_ = false;
+  bool hold_temperature_ = false;
   // loops run in parallel only on grids large enough to pay for a barrier
   bool parallel_ = false;
   double time_s_ = 0;

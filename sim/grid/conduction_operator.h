@@ -28,12 +28,17 @@ class ConductionOperator {
   double heat_rate(long c, int i, int j, int k) const {
     const std::vector<double>& T = m_cells.T;
     const double tc = T[c];
+    double q0 = bq0[c] - bq1[c] * tc;
+    if (m_advected) q0 += (*m_advected)[c];
     return neighbour_sum_of(
-        c, i, j, k, [&](long nb) { return T[nb] - tc; }, bq0[c] - bq1[c] * tc);
+        c, i, j, k, [&](long nb) { return T[nb] - tc; }, q0);
   }
   /// The diameter the air's correlations see (kind = air) from the next assembly on [m].
   void set_air_diameter(double diameter_m) { m_air_diameter_m = diameter_m; }
 
+  /// Adds a fixed heat rate per cell [W] to heat_rate (the water's advected heat,
+  /// grid_flow.h); nullptr: none. The vector must outlive the operator's use.
+  void set_advection(const std::vector<double>* advected_w) { m_advected = advected_w; }
   /// Boundary heat into cell c at temperature tc [W].
   double boundary_heat(long c, double tc) const { return bq0[c] - bq1[c] * tc; }
   /// Sum of cell c's conductances, to its neighbours and its boundaries [W/K].
@@ -78,6 +83,7 @@ class ConductionOperator {
   std::vector<double> kx, ky, kz;  ///< face conductances to the +x, +y, +z neighbour [W/K]
   std::vector<double> bq0, bq1;    ///< boundary heat into the cell: bq0 - bq1 T [W]
   double m_air_diameter_m = 0;     ///< kind = air: the body's volume-equivalent diameter [m]
+  const std::vector<double>* m_advected = nullptr;
 };
 
 }  // namespace thaw::sim

@@ -52,6 +52,7 @@ struct EnthalpySolver::Impl {
   SurfaceArea surface;
   ConductionOperator op;
   NewtonSolver newton;
+  std::unique_ptr<GridFlow> flow;  ///< natural convection (p.flow), else null
   GridTimeStepper stepper;
 
   explicit Impl(GridProblem problem)
@@ -63,7 +64,10 @@ struct EnthalpySolver::Impl {
         surface(mesh, cells.m, cavity.exposed()),
         op(mesh, phase, p, cells, surface.area()),
         newton(mesh, phase, op, cells),
-        stepper(p, mesh, phase, cells, cavity, surface, op, newton) {}
+        flow(p.flow ? std::make_unique<GridFlow>(mesh, phase, p, cells) : nullptr),
+        stepper(p, mesh, phase, cells, cavity, surface, op, newton, flow.get()) {
+    if (flow) op.set_advection(&flow->advected_w());
+  }
 
   double liquid_volume() const {
     return sum_cells(mesh.n,

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "sim/boundary/air_model.h"
+#include "sim/flow/fluid_model.h"
 #include "sim/grid/grid_field.h"
 #include "sim/scenario/scenario.h"
 
@@ -42,6 +43,10 @@ struct GridProblem {
   std::array<GridWall, 6> walls{};
   /// Melt drains away where it touches air that is connected to the grid's border.
   bool drain = true;
+  /// Natural convection in the water (sim/grid/grid_flow.h); false: conduction only.
+  bool flow = false;
+  /// The water's buoyancy and viscosity when flow is on.
+  flow::FluidModel fluid;
   /// Time stepping: > 0 constant steps (validation), else adaptive up to max_step_s.
   double fixed_step_s = 0;
   double max_step_s = 10;

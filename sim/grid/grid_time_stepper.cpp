@@ -23,7 +23,8 @@ constexpr double kGoneFraction = 1e-5;
 
 GridTimeStepper::GridTimeStepper(const GridProblem& problem, const GridMesh& mesh,
                                  const PhaseRelation& phase, CellState& cells, CavityDrain& cavity,
-                                 SurfaceArea& surface, ConductionOperator& op, NewtonSolver& newton)
+                                 SurfaceArea& surface, ConductionOperator& op, NewtonSolver& newton,
+                                 GridFlow* flow)
     : p(problem),
       m_mesh(mesh),
       m_phase(phase),
@@ -31,7 +32,8 @@ GridTimeStepper::GridTimeStepper(const GridProblem& problem, const GridMesh& mes
       m_cavity(cavity),
       m_surface(surface),
       m_op(op),
-      m_newton(newton) {
+      m_newton(newton),
+      m_flow(flow) {
   m_block_sums.assign(static_cast<std::size_t>(mesh.block_count()), BlockSums{});
   const std::vector<double>& m = cells.m;
   initial_material = sum_cells(mesh.n, [&](long c) { return m[c] * mesh.vol[c]; });
@@ -74,6 +76,8 @@ bool GridTimeStepper::step(BlockTeam& team) {
   const std::vector<double>& vol = m_mesh.vol;
   const PhaseRelation& ph = m_phase;
   m_surface.prepare_step(team, dt);
+  // The water's flow over the step and its advected heat (explicit in the step).
+  if (m_flow) team.serial([&] { m_flow->advance(dt); });
   // assemble reads the neighbours' H, which nothing writes in this phase
   team.for_blocks([&](long bl) {
     double e = 0;
@@ -212,6 +216,7 @@ void GridTimeStepper::end_of_step(double step_dt, double saved) {
     dt_next = p.fixed_step_s;
     return;
   }
+  const double flow_limit = m_flow ? m_flow->max_step_s() : p.max_step_s;
   const double dtemp_max = max_blocks([](const BlockSums& b) { return b.dtemp; });
   const double dmelt_max = max_blocks([](const BlockSums& b) { return b.dmelt; });
   double factor = 2.0;
@@ -222,6 +227,7 @@ void GridTimeStepper::end_of_step(double step_dt, double saved) {
   dt_next = step_dt < saved ? std::min(saved, step_dt * factor)
                             : std::min(p.max_step_s, step_dt * factor);
   if (step_dt < saved && factor >= 1) dt_next = saved;
+  dt_next = std::min(dt_next, flow_limit);
 }
 
 /// The steps to target in one OpenMP parallel region: the leader runs them, the other

@@ -15,6 +15,7 @@
 #include "sim/grid/cell_state.h"
 #include "sim/grid/conduction_operator.h"
 #include "sim/grid/enthalpy_solver.h"
+#include "sim/grid/grid_flow.h"
 #include "sim/grid/grid_mesh.h"
 #include "sim/grid/grid_problem.h"
 #include "sim/grid/newton_solver.h"
@@ -28,7 +29,7 @@ class GridTimeStepper {
   /// Classifies the initial openness and surface areas and books the initial energy.
   GridTimeStepper(const GridProblem& problem, const GridMesh& mesh, const PhaseRelation& phase,
                   CellState& cells, CavityDrain& cavity, SurfaceArea& surface,
-                  ConductionOperator& op, NewtonSolver& newton);
+                  ConductionOperator& op, NewtonSolver& newton, GridFlow* flow = nullptr);
 
   /// Advances to exactly target (> time()) or until no ice is left; returns the time reached.
   double advance_to(double target);
@@ -79,6 +80,7 @@ class GridTimeStepper {
   SurfaceArea& m_surface;
   ConductionOperator& m_op;
   NewtonSolver& m_newton;
+  GridFlow* m_flow;  ///< natural convection, or nullptr
 
   std::vector<BlockSums> m_block_sums;
   double m_time = 0;

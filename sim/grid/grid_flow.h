@@ -1,0 +1,56 @@
+#pragma once
+// Natural convection in the grid solver's water (issue 24): a Boussinesq flow solver
+// (sim/flow/flow_solver.h) on the grid solver's own cells, coupled by operator splitting. At
+// the start of each enthalpy step the flow advances over the step (as many stable sub-steps as
+// it needs) with the buoyancy of the step's start temperatures, the ice and the air held still
+// by enthalpy-porosity: a Carman-Kozeny drag C (1 - phi)^2 / (phi^3 + e) on the cell's liquid
+// volume fraction phi (Voller & Prakash 1987; Brent, Voller & Reid 1988: C = 1.6e6 kg/(m^3 s)
+// over rho_0, e = 1e-3). The flow's velocities then carry the water's sensible heat
+// c_w (T - T_m) between material cells (Koren-limited upwind, at the step's start
+// temperatures): a heat rate per cell that the conduction operator adds to its balance, so the
+// step stays implicit in conduction and explicit in advection, and the advective rates sum to
+// zero (the energy books are unchanged). The step is limited by the flow's Courant number.
+// Reads the cell state; writes only the advected heat rates. Knows nothing of files.
+#include <memory>
+#include <vector>
+
+#include "sim/flow/flow_solver.h"
+#include "sim/grid/cell_state.h"
+#include "sim/grid/grid_mesh.h"
+#include "sim/grid/grid_problem.h"
+#include "sim/grid/phase_relation.h"
+
+namespace thaw::sim {
+
+class GridFlow {
+ public:
+  GridFlow(const GridMesh& mesh, const PhaseRelation& phase, const GridProblem& problem,
+           const CellState& cells);
+  ~GridFlow();
+
+  /// Advances the flow over dt from the current state (H, m) and sets advected_w().
+  void advance(double dt);
+  /// Advected heat rate into each cell [W]; sums to zero over the cells.
+  const std::vector<double>& advected_w() const { return m_advected_w; }
+  /// Largest step the explicit advection allows at the current velocities [s] (infinite at rest).
+  double max_step_s() const;
+  /// Largest speed [m/s] at a cell centre.
+  double max_speed_m_s() const { return m_flow->max_speed_m_s(); }
+  /// Velocity component d [m/s] at the centre of cell (i, j, k).
+  double cell_velocity_m_s(int d, int i, int j, int k) const {
+    return m_flow->cell_velocity_m_s(d, i, j, k);
+  }
+  long flow_steps() const { return m_flow_steps; }
+
+ private:
+  const GridMesh& m_mesh;
+  const PhaseRelation& m_phase;
+  const GridProblem& m_problem;
+  const CellState& m_cells;
+  std::unique_ptr<flow::FlowSolver> m_flow;
+  std::vector<double> m_advected_w, m_drag, m_sensible;
+  std::vector<char> m_carries;
+  long m_flow_steps = 0;
+};
+
+}  // namespace thaw::sim
