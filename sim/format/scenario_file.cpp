@@ -38,7 +38,7 @@ void check_schema(const TomlTable& root, const std::set<std::string>& foreign_se
   static const std::vector<std::pair<std::string, std::vector<std::string>>> schema = {
       {"simulation",
        {"geometry", "duration_s", "output_interval_s", "cells_per_phase", "time_tolerance",
-        "cell_size_m", "max_step_s"}},
+        "cell_size_m", "max_step_s", "flow"}},
       {"shape", {"outer", "cavity"}},
       {"shell", {"inner_radius_m", "outer_radius_m", "length_m", "lateral_size_m"}},
       {"water", {"initial_temperature_c"}},
@@ -50,7 +50,8 @@ void check_schema(const TomlTable& root, const std::set<std::string>& foreign_se
       {"materials",
        {"ice_conductivity_w_mk", "ice_density_kg_m3", "ice_specific_heat_j_kgk",
         "water_conductivity_w_mk", "water_density_kg_m3", "water_specific_heat_j_kgk",
-        "latent_heat_j_kg", "melting_point_c"}}};
+        "latent_heat_j_kg", "melting_point_c", "water_density_model", "water_expansion_per_k",
+        "water_viscosity_pa_s"}}};
   for (const std::string& name : root.keys()) {
     if (foreign_sections.count(name)) continue;
     const auto it =
@@ -128,6 +129,28 @@ Materials parse_materials(const TomlTable& t, Materials m) {
       t.get_double("water_specific_heat_j_kgk", m.water_specific_heat_j_kgk);
   m.latent_heat_j_kg = t.get_double("latent_heat_j_kg", m.latent_heat_j_kg);
   m.melting_point_c = t.get_double("melting_point_c", m.melting_point_c);
+  if (t.has("water_density_model")) {
+    const std::string model = t.get_string("water_density_model");
+    if (model == "water")
+      m.water_density_model = Materials::DensityModel::water;
+    else if (model == "linear")
+      m.water_density_model = Materials::DensityModel::linear;
+    else
+      t.fail("water_density_model", "unknown model '" + model + "' (expected water or linear)");
+  }
+  const bool linear = m.water_density_model == Materials::DensityModel::linear;
+  reject_unless(t, "water_expansion_per_k", linear,
+                "only used with water_density_model = \"linear\"");
+  if (linear) {
+    if (!t.has("water_expansion_per_k") && !(m.water_expansion_per_k > 0))
+      t.fail("water_density_model",
+             "a linear fluid needs water_expansion_per_k (its expansion coefficient, 1/K)");
+    m.water_expansion_per_k = t.require_positive(
+        "water_expansion_per_k", t.get_double("water_expansion_per_k", m.water_expansion_per_k));
+  }
+  if (t.has("water_viscosity_pa_s"))
+    m.water_viscosity_pa_s =
+        t.require_positive("water_viscosity_pa_s", t.get_double("water_viscosity_pa_s"));
   return m;
 }
 
@@ -155,6 +178,8 @@ void parse_simulation(const TomlTable& sim, Scenario& s) {
                 "only used by the 1D geometries (grid runs: max_step_s)");
   reject_unless(sim, "cell_size_m", grid, "only used with geometry = \"axisymmetric\" or \"3d\"");
   reject_unless(sim, "max_step_s", grid, "only used with geometry = \"axisymmetric\" or \"3d\"");
+  reject_unless(sim, "flow", grid,
+                "the 1D geometries conduct only; flow needs geometry = \"axisymmetric\" or \"3d\"");
   const std::int64_t cells = sim.get_int("cells_per_phase", s.cells_per_phase);
   if (auto problem = cells_per_phase_problem(cells)) sim.fail("cells_per_phase", *problem);
   s.cells_per_phase = static_cast<int>(cells);
@@ -163,6 +188,10 @@ void parse_simulation(const TomlTable& sim, Scenario& s) {
     if (sim.has("cell_size_m"))
       s.cell_size_m = sim.require_positive("cell_size_m", sim.get_double("cell_size_m"));
     s.max_step_s = sim.require_positive("max_step_s", sim.get_double("max_step_s", s.max_step_s));
+    const std::string flow = sim.get_string("flow", "none");
+    if (flow != "none" && flow != "natural_convection")
+      sim.fail("flow", "unknown flow '" + flow + "' (expected natural_convection or none)");
+    s.natural_convection = flow == "natural_convection";
   }
 }
 
@@ -339,6 +368,7 @@ nlohmann::json scenario_to_json(const Scenario& s) {
                        {"output_interval_s", s.output_interval_s},
                        {"cell_size_m", effective_cell_size_m(s)},
                        {"max_step_s", s.max_step_s}};
+    if (s.natural_convection) j["simulation"]["flow"] = "natural_convection";
     j.erase("shell");
     auto shape_json = [](const ShapeSpec& sp) {
       nlohmann::json o = {{"kind", to_string(sp.kind)}, {"center_m", sp.center_m}};
@@ -390,6 +420,12 @@ nlohmann::json scenario_to_json(const Scenario& s) {
                     {"water_specific_heat_j_kgk", m.water_specific_heat_j_kgk},
                     {"latent_heat_j_kg", m.latent_heat_j_kg},
                     {"melting_point_c", m.melting_point_c}};
+  if (s.natural_convection) {
+    const bool linear = m.water_density_model == Materials::DensityModel::linear;
+    j["materials"]["water_density_model"] = linear ? "linear" : "water";
+    if (linear) j["materials"]["water_expansion_per_k"] = m.water_expansion_per_k;
+    if (m.water_viscosity_pa_s > 0) j["materials"]["water_viscosity_pa_s"] = m.water_viscosity_pa_s;
+  }
   return j;
 }
 

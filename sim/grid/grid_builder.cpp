@@ -169,6 +169,15 @@ GridProblem build_grid_problem(const Scenario& sc) {
     g.air_diameter_m = volume_equivalent_diameter_m(g);
   }
   g.drain = true;
+  g.flow = sc.natural_convection;
+  g.fluid.density = m.water_density_model == Materials::DensityModel::linear
+                        ? flow::FluidModel::Density::linear
+                        : flow::FluidModel::Density::water;
+  if (g.fluid.density == flow::FluidModel::Density::linear)
+    g.fluid.reference_density_kg_m3 = m.water_density_kg_m3;
+  g.fluid.expansion_per_k = m.water_expansion_per_k;
+  g.fluid.reference_temperature_c = m.melting_point_c;
+  g.fluid.viscosity_pa_s = m.water_viscosity_pa_s;
   g.max_step_s = sc.max_step_s;
   return g;
 }

@@ -21,6 +21,12 @@ struct Materials {
   double water_specific_heat_j_kgk = 4186.0;  ///< c_water [J/(kg K)]
   double latent_heat_j_kg = 333400.0;         ///< L [J/kg]
   double melting_point_c = 0.0;               ///< T_m [C]
+  /// Buoyancy of the water when it flows ([simulation] flow): water's density curve with its
+  /// maximum at 4.03 C, or a linear Boussinesq fluid rho = rho_water (1 - beta (T - T_m)).
+  enum class DensityModel { water, linear };
+  DensityModel water_density_model = DensityModel::water;
+  double water_expansion_per_k = 0;  ///< linear: beta [1/K]
+  double water_viscosity_pa_s = 0;   ///< > 0: constant viscosity [Pa s]; 0: water's table
 
   /// Volumetric heat capacities [J/(m^3 K)] and latent heat per unit volume of ice [J/m^3].
   double ice_heat_capacity() const { return ice_density_kg_m3 * ice_specific_heat_j_kgk; }
@@ -56,6 +62,8 @@ struct Scenario {
   double cell_size_m = 0;
   /// Grid runs: largest time step [s] (steps adapt below it to the temperature and melt change).
   double max_step_s = 10.0;
+  /// Grid runs: natural convection in the water (sim/grid/grid_flow.h), or conduction only.
+  bool natural_convection = false;
 
   // [shape] (grid runs only)
   Shape shape;

@@ -313,3 +313,69 @@ TEST(ScenarioFile, ValidateScenarioChecksCodeBuiltScenarios) {
 
 }  // namespace
 }  // namespace thaw::sim
+
+namespace thaw::sim {
+namespace {
+
+// Issue 24: [simulation] flow and the water's flow keys in [materials].
+const std::string kFlowGrid = R"(
+[simulation]
+geometry = "axisymmetric"
+duration_s = 60.0
+output_interval_s = 60.0
+flow = "natural_convection"
+[shape]
+outer = { kind = "sphere", radius_m = 0.01 }
+cavity = { kind = "sphere", radius_m = 0.006 }
+[water]
+initial_temperature_c = 10.0
+[ice]
+initial_temperature_c = -5.0
+[outer_boundary]
+kind = "insulated"
+)";
+
+TEST(ScenarioFile, FlowKeysParseAndEcho) {
+  const Scenario water = parse_scenario_string(kFlowGrid, "flow.toml");
+  EXPECT_TRUE(water.natural_convection);
+  EXPECT_EQ(water.materials.water_density_model, Materials::DensityModel::water);
+  const Scenario linear = parse_scenario_string(
+      kFlowGrid +
+          "[materials]\nwater_density_model = \"linear\"\nwater_expansion_per_k = 2e-4\n"
+          "water_viscosity_pa_s = 1e-3\n",
+      "flow.toml");
+  EXPECT_EQ(linear.materials.water_density_model, Materials::DensityModel::linear);
+  EXPECT_DOUBLE_EQ(linear.materials.water_expansion_per_k, 2e-4);
+  EXPECT_DOUBLE_EQ(linear.materials.water_viscosity_pa_s, 1e-3);
+  const nlohmann::json j = scenario_to_json(linear);
+  EXPECT_EQ(j["simulation"]["flow"], "natural_convection");
+  EXPECT_EQ(j["materials"]["water_density_model"], "linear");
+  // "none" (the default) echoes nothing new: conduction runs' summary.json is unchanged.
+  std::string none = kFlowGrid;
+  none.replace(none.find("natural_convection"), 18, "none");
+  const Scenario off = parse_scenario_string(none, "flow.toml");
+  EXPECT_FALSE(off.natural_convection);
+  EXPECT_FALSE(scenario_to_json(off)["simulation"].contains("flow"));
+}
+
+TEST(ScenarioFile, FlowKeysBadInput) {
+  auto err = [](const std::string& text) {
+    return error_of([&] { parse_scenario_string(text, "flow.toml"); });
+  };
+  EXPECT_NE(err(kFlowGrid + "[materials]\nwater_density_model = \"linear\"\n")
+                .find("materials.water_density_model"),
+            std::string::npos);
+  EXPECT_NE(err(kFlowGrid + "[materials]\nwater_density_model = \"linear\"\n"
+                            "water_expansion_per_k = 2e-4\nwater_viscosity_pa_s = -1e-3\n")
+                .find("materials.water_viscosity_pa_s"),
+            std::string::npos);
+  EXPECT_NE(err(kFlowGrid + "[materials]\nwater_expansion_per_k = 2e-4\n")
+                .find("only used with water_density_model = \"linear\""),
+            std::string::npos);
+  std::string bad = kFlowGrid;
+  bad.replace(bad.find("natural_convection"), 18, "stirred");
+  EXPECT_NE(err(bad).find("simulation.flow"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace thaw::sim
