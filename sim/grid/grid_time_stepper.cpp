@@ -77,7 +77,11 @@ bool GridTimeStepper::step(BlockTeam& team) {
   const PhaseRelation& ph = m_phase;
   m_surface.prepare_step(team, dt);
   // The water's flow over the step and its advected heat (explicit in the step).
-  if (m_flow) team.serial([&] { m_flow->advance(dt); });
+  if (m_flow)
+    team.serial([&] {
+      m_flow->advance(dt);
+      m_stats.flow_steps = m_flow->flow_steps();
+    });
   // assemble reads the neighbours' H, which nothing writes in this phase
   team.for_blocks([&](long bl) {
     double e = 0;
