@@ -10,6 +10,7 @@
 #include <set>
 
 #include "base/error.h"
+#include "render/accel/ray_record.h"
 #include "render/geometry/box.h"
 #include "render/geometry/obj_loader.h"
 #include "render/geometry/plane.h"
@@ -660,6 +661,7 @@ Scene build_scene(const SceneDescription& desc) {
 }
 
 bool Scene::intersect(const Ray& ray, Hit& hit) const {
+  record_ray(RayQuery::closest, ray);
   float t_max = ray.t_max;
   bool found = false;
   // Planes first: their hit bounds the tree's traversal (the floor culls every node beneath it,
@@ -778,6 +780,7 @@ bool Scene::light_unoccluded(const Vec3& origin, std::size_t light) const {
 }
 
 bool Scene::occluded(const Ray& ray) const {
+  record_ray(RayQuery::any, ray);
   for (std::uint32_t k = 0; k < m_planes.size(); ++k) {
     const SceneObject& o = m_objects[m_planes[k]];
     float t;
