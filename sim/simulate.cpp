@@ -113,7 +113,10 @@ SimulationResult simulate_grid(const Scenario& scenario, const std::vector<doubl
   const auto total = static_cast<std::int64_t>(times.size());
   for (std::size_t i = 0; i < times.size(); ++i) {
     if (times[i] > solver.time()) solver.advance_to(times[i]);
-    result.snapshots.push_back(grid_snapshot(solver.snapshot()));
+    const GridSnapshot g = solver.snapshot();
+    result.snapshots.push_back(grid_snapshot(g));
+    if (scenario.natural_convection)
+      result.flow_records.push_back({g.time_s, g.max_speed_m_s, g.rayleigh});
     if (sink)
       sink(i, solver.field());
     else

@@ -3,6 +3,7 @@
 // scenario, sampling the state at exactly the requested output times. Part of the sim core (no
 // TOML, no JSON): the result folder is written by sim/format/simulation_output.h. Knows nothing of
 // the command line; progress goes through a callback.
+#include <array>
 #include <cstddef>
 #include <filesystem>
 #include <functional>
@@ -34,6 +35,9 @@ struct SimulationResult {
   GridField grid;
   std::vector<GridEvent> grid_events;
   GridStatistics grid_statistics;
+  /// Grid runs with natural convection: per output time, {time [s], largest speed [m/s],
+  /// Rayleigh number of the liquid}.
+  std::vector<std::array<double, 3>> flow_records;
   /// interfaces.csv rows, step = index into snapshots.
   std::vector<InterfaceRecord> interface_records() const;
 };

@@ -57,6 +57,12 @@ void write_grid_outputs(const std::filesystem::path& dir, const SimulationResult
                            {"position_m", e.position_m}});
   }
   j["wall_time_s"] = r.wall_time_s;
+  if (!r.flow_records.empty()) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (const auto& f : r.flow_records)
+      rows.push_back({{"time_s", f[0]}, {"max_speed_m_s", f[1]}, {"rayleigh", f[2]}});
+    j["flow"] = rows;
+  }
   const GridStatistics& s = r.grid_statistics;
   const GridField& f = r.grid;
   j["solver"] = {

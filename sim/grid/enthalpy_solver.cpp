@@ -89,6 +89,10 @@ struct EnthalpySolver::Impl {
     out.energy_balance_error = std::abs(out.enthalpy_j - stepper.initial_energy() -
                                         stepper.heat_in() + stepper.drained()) /
                                stepper.reference_energy();
+    if (flow) {
+      out.max_speed_m_s = flow->max_speed_m_s();
+      out.rayleigh = flow->rayleigh();
+    }
     return out;
   }
 

@@ -66,6 +66,9 @@ struct GridSnapshot {
   double enclosed_liquid_volume_m3 = 0;  ///< liquid not open to the outside
   double enthalpy_j = 0, heat_in_j = 0, drained_j = 0;
   double energy_balance_error = 0;  ///< |E - E0 - heat_in + drained| / reference energy
+  /// With natural convection ([simulation] flow): the largest speed [m/s] at a cell centre and
+  /// the liquid's Rayleigh number (GridFlow::rayleigh); 0 without.
+  double max_speed_m_s = 0, rayleigh = 0;
 };
 
 class EnthalpySolver {

@@ -54,6 +54,36 @@ double GridFlow::max_step_s() const {
                   : std::numeric_limits<double>::infinity();
 }
 
+double GridFlow::rayleigh() const {
+  const std::vector<double>& m = m_cells.m;
+  const std::vector<double>& H = m_cells.H;
+  const flow::FluidModel& fluid = m_problem.fluid;
+  double volume = 0, t_sum = 0, t_max = m_phase.tm;
+  for (long c = 0; c < m_mesh.n; ++c) {
+    if (m[c] <= 0) continue;
+    const double t = m_phase.temperature(H[c]), f = m_phase.liquid(H[c]);
+    volume += m[c] * f * m_mesh.vol[c];
+    t_sum += m[c] * f * m_mesh.vol[c] * t;
+    if (f >= 0.5) t_max = std::max(t_max, t);
+  }
+  if (volume <= 0) return 0;
+  // The buoyancy's spread over [T_m, warmest liquid] (the ice holds T_m): sampled, with the
+  // density maximum itself when it lies inside.
+  double b_lo = fluid.buoyancy_m_s2(m_phase.tm), b_hi = b_lo;
+  auto take = [&](double t) {
+    const double b = fluid.buoyancy_m_s2(t);
+    b_lo = std::min(b_lo, b);
+    b_hi = std::max(b_hi, b);
+  };
+  for (int s = 1; s <= 64; ++s) take(m_phase.tm + (t_max - m_phase.tm) * s / 64.0);
+  if (flow::kWaterDensityMaxTemperatureC > m_phase.tm && flow::kWaterDensityMaxTemperatureC < t_max)
+    take(flow::kWaterDensityMaxTemperatureC);
+  const double diameter = std::cbrt(6 * volume / std::numbers::pi);
+  const double nu = fluid.kinematic_viscosity_m2_s(t_sum / volume);
+  const double alpha = m_problem.materials.water_conductivity_w_mk / m_phase.cw;
+  return (b_hi - b_lo) * diameter * diameter * diameter / (nu * alpha);
+}
+
 void GridFlow::advance(double dt) {
   const std::vector<double>& m = m_cells.m;
   const std::vector<double>& H = m_cells.H;

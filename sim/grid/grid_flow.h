@@ -41,6 +41,11 @@ class GridFlow {
     return m_flow->cell_velocity_m_s(d, i, j, k);
   }
   long flow_steps() const { return m_flow_steps; }
+  /// Rayleigh number of the liquid now: g (rho_max - rho_min) / rho_0 D^3 / (nu alpha), the
+  /// density spread over [T_m, the warmest mostly liquid cell] (the ice holds T_m), D the
+  /// diameter of the sphere of the liquid's volume, nu at the liquid's mean temperature,
+  /// alpha = k_w / (rho c)_w.
+  double rayleigh() const;
 
  private:
   const GridMesh& m_mesh;

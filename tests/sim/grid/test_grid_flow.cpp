@@ -77,3 +77,51 @@ TEST(GridFlow, WarmWaterMeltsTheRoofFirstColdWaterTheFloor) {
 
 }  // namespace
 }  // namespace thaw::sim
+
+#include <numbers>
+
+#include "sim/flow/fluid_model.h"
+#include "sim/simulate.h"
+
+namespace thaw::sim {
+namespace {
+
+TEST(GridFlow, LargestSpeedAndRayleighPerOutput) {
+  const Scenario sc = parse_scenario_string(
+      "[simulation]\ngeometry = \"axisymmetric\"\nduration_s = 10.0\noutput_interval_s = 5.0\n"
+      "cell_size_m = 5e-4\nflow = \"natural_convection\"\n[shape]\nouter = { kind = \"sphere\", "
+      "radius_m = 0.008 }\ncavity = { kind = \"sphere\", radius_m = 0.006 }\n[water]\n"
+      "initial_temperature_c = 10.0\n[ice]\ninitial_temperature_c = 0.0\n[outer_boundary]\n"
+      "kind = \"insulated\"\n",
+      "records.toml");
+  const SimulationResult r = simulate(sc);
+  ASSERT_EQ(r.flow_records.size(), 3u);
+  // t = 0: at rest; the Rayleigh number from its definition with the initial liquid: the
+  // density spread over [0, 10] C is rho(4.0293) - rho(10), D from the liquid volume, nu at the
+  // liquid's mean temperature (below 10 C: the cavity's cut cells hold ice at 0 C too), read
+  // from the output field (floats: 1e-6).
+  EXPECT_EQ(r.flow_records[0][1], 0.0);
+  const double volume = r.snapshots[0].liquid_volume_m3;
+  const GridField& f0 = r.fields[0];
+  double w = 0, wt = 0;
+  for (std::size_t c = 0; c < f0.temperature_c.size(); ++c) {
+    const int i = static_cast<int>(c % f0.cells[0]);
+    const double ring = (i + 0.5) * f0.spacing_m;  // the ring's volume is 2 pi r h^2
+    w += f0.water_fraction[c] * ring;
+    wt += f0.water_fraction[c] * ring * f0.temperature_c[c];
+  }
+  const double d = std::cbrt(6 * volume / std::numbers::pi);
+  const Materials& m = sc.materials;
+  const double expected = 9.81 * (flow::kWaterDensityMaxKgM3 - flow::water_density_kg_m3(10.0)) /
+                          flow::kWaterDensityMaxKgM3 * d * d * d /
+                          (flow::water_viscosity_pa_s(wt / w) / flow::kWaterDensityMaxKgM3 *
+                           (m.water_conductivity_w_mk / m.water_heat_capacity()));
+  std::printf("Rayleigh %.4g (expected %.4g), speeds %.3g %.3g mm/s\n", r.flow_records[0][2],
+              expected, 1e3 * r.flow_records[1][1], 1e3 * r.flow_records[2][1]);
+  EXPECT_NEAR(r.flow_records[0][2], expected, 1e-6 * expected);
+  EXPECT_GT(r.flow_records[1][1], 1e-5);  // moving by 5 s
+  EXPECT_GT(r.flow_records[2][1], 1e-5);
+}
+
+}  // namespace
+}  // namespace thaw::sim
