@@ -111,6 +111,19 @@ TEST(MeshReport, IcosphereVolumeConvergesAtSecondOrder) {
   }
 }
 
+// Issue 27: at coordinates of 1e308 vtkMassProperties printed a raw, coloured, time-stamped VTK
+// log line ("Unpredicted situation...!") to stderr. The report is made and nothing is printed.
+TEST(MeshReport, DegenerateMeshPrintsNoVtkLines) {
+  TriangleMesh m;
+  m.vertices = {{0, 0, 0}, {1e308, 0, 0}, {0, 1e308, 0}, {0, 0, 1e308}};
+  m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  ::testing::internal::CaptureStderr();
+  const MeshReport r = inspect_mesh(m, "far.obj");
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(err, "");
+  EXPECT_EQ(r.triangles, 4);
+}
+
 TEST(MeshReport, HoleIsReported) {
   const MeshReport r = inspect_obj(kData / "cube_hole.obj");
   EXPECT_EQ(r.boundary_edges, 3);
