@@ -5,6 +5,7 @@
 
 #include "base/error.h"
 #include "base/number_text.h"
+#include "sim/grid/grid_field.h"
 
 namespace thaw::sim {
 
@@ -84,6 +85,29 @@ std::optional<GridRuleProblem> axisymmetric_problem(const ShapeSpec& s, const st
   return std::nullopt;
 }
 
+/// A body larger than the largest the scenario rules accept (100 m,
+/// sim/scenario/scenario_rules.cpp) or reaching beyond the bounds of a field
+/// (sim/grid/grid_field.h): named by its OBJ file (whose coordinates are metres too) or by its
+/// table.
+std::optional<GridRuleProblem> body_extent_problem(const SignedDistance& d, const ShapeSpec& spec,
+                                                   const std::string& key) {
+  const auto lo = d.lower(), hi = d.upper();
+  for (int a = 0; a < 3; ++a) {
+    const double size = hi[a] - lo[a], reach = std::max(std::abs(lo[a]), std::abs(hi[a]));
+    if (size <= kMaxFieldSpacingM && reach <= kMaxFieldCoordinateM) continue;
+    std::string what;
+    if (spec.kind == ShapeKind::obj) what.append("(").append(spec.file).append(") ");
+    what.append("spans [").append(num(lo[a])).append(", ").append(num(hi[a]));
+    what.append("] m along ").push_back("xyz"[a]);
+    if (spec.kind == ShapeKind::obj) what.append(" after scale and translate_m");
+    what.append("; a body is at most ").append(num(kMaxFieldSpacingM));
+    what.append(" m across and within ").append(num(kMaxFieldCoordinateM));
+    what.append(" m of the origin (lengths are in metres)");
+    return GridRuleProblem{spec.kind == ShapeKind::obj ? key + ".file" : key, what};
+  }
+  return std::nullopt;
+}
+
 double largest_extent(const SignedDistance& d) {
   const auto lo = d.lower(), hi = d.upper();
   return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
@@ -148,6 +172,11 @@ std::optional<GridRuleProblem> find_grid_problem(const Scenario& s) {
   } catch (const UserError& e) {
     return GridRuleProblem{e.where(), e.problem()};
   }
+  // Before the cells: a body of 1e308 m (one OBJ vertex far out) asked for "inf cells" of
+  // simulation.cell_size_m, a key the file may not hold (issue 27); name the body instead.
+  if (auto p = body_extent_problem(*outer, s.shape.outer, "shape.outer")) return p;
+  if (cavity)
+    if (auto p = body_extent_problem(*cavity, *s.shape.cavity, "shape.cavity")) return p;
   const double wall = thinnest_wall_m(*outer, cavity ? &*cavity : nullptr);
   if (cavity && !(wall > 0))
     return GridRuleProblem{"shape.cavity",

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "base/error.h"
@@ -104,6 +106,27 @@ TEST(GridRules, TooCoarseForTheThinnestWallGivesTheNumbers) {
       scenario("3d", kCube + "cavity = { kind = \"box\", size_m = [0.024, 0.024, 0.024] }",
                "cell_size_m = 0.004"),
       "cell_size_m", "0.008 m = 2 cells, at least 3 are needed (use cell_size_m <= 0.00266");
+}
+
+// Issue 27: an OBJ shape with one vertex at 1e308 was blamed on simulation.cell_size_m ("needs inf
+// cells"), a key the file did not hold. Now the OBJ file is named, with the span and the unit;
+// so is a 1 km sphere.
+TEST(GridRules, FarOutBodyNamesItsFileNotTheCellSize) {
+  const std::filesystem::path obj =
+      std::filesystem::path(THAW_BINARY_DIR) / "test-tmp" / "grid_rules_far.obj";
+  std::filesystem::create_directories(obj.parent_path());
+  std::ofstream(obj) << "v -0.02 -0.02 -0.02\nv 0.02 -0.02 -0.02\nv 0 0.02 -0.02\nv 0 0 1e308\n"
+                        "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  const std::string text =
+      scenario("3d", "outer = { kind = \"obj\", file = \"" + obj.string() + "\" }");
+  expect_refused(text, "shape.outer.file", "grid_rules_far.obj) spans [-0.02, 1e+308] m along z");
+  try {
+    parse_scenario_string(text, "bad.toml");
+  } catch (const UserError& e) {
+    EXPECT_EQ(std::string(e.what()).find("cell_size_m"), std::string::npos) << e.what();
+  }
+  expect_refused(scenario("3d", "outer = { kind = \"sphere\", radius_m = 500.0 }"), "shape.outer",
+                 "at most 100 m across");
 }
 
 }  // namespace
