@@ -104,7 +104,7 @@ void run_alone_or_as_rank(const RunArgs& a, pipeline::RunRanks* ranks) {
                                     {"gif:   ", report.gif},
                                     {"plot:  ", report.plot},
                                     {"pvd:   ", report.pvd},
-                                    {"obj:   ", report.handoff_obj},
+                                    {"scene: ", report.handoff_scene},
                                     {"fields:", report.fields_pvd},
                                     {"vdb:   ", report.handoff_vdb}})
     if (!path.empty()) std::printf("%s%s\n", label, path.string().c_str());

@@ -627,11 +627,11 @@ void film_stage(Run& r, long frame_count) {
   }
 }
 
-/// 5. Inspect: the radius plot, the ParaView series, the Blender OBJ sequence and (grid runs) the
-/// OpenVDB volumes, the surfaces placed where the film shows them. Under MPI the steps are handed
-/// out like the mesh stage's items (each rank writes its steps' .vtp into the leader's staged
-/// folder and its world-space OBJs), the last rank draws the plot meanwhile, and the leader
-/// commits the series and writes the grid runs' field exports.
+/// 5. Inspect: the radius plot, the ParaView series, (grid runs) the OpenVDB volumes, the surfaces
+/// placed where the film shows them, and the scene hand-off (handoff_blender.h). Under MPI the
+/// steps are handed out like the mesh stage's items (each rank writes its steps' .vtp into the
+/// leader's staged folder), the last rank draws the plot meanwhile, and the leader commits the
+/// series and writes the grid runs' field exports and the hand-off.
 void inspect_stage(Run& r, const mesh::MeshManifest& meshes,
                    const std::vector<sim::InterfaceRecord>& rows) {
   const RunScenario& sc = r.sc;
@@ -646,14 +646,14 @@ void inspect_stage(Run& r, const mesh::MeshManifest& meshes,
   if (!r.wanted("inspect")) return;
   report.plot = out / "plot.png";
   report.pvd = out / "meshes.pvd";
-  report.handoff_obj = out / "handoff" / "obj";
+  report.handoff_scene = out / "handoff" / "blender_scene.py";
   ContentHash inspect_hash;
   // /5: .vtp/.vti arrays inline (Debian 12's ParaView cannot read appended data), fields placed.
   inspect_hash.add("inspect/5").add(mesh_hash.hex()).add(sc.shell.rest_on_floor ? "floor" : "");
   for (double v : sc.shell.center) inspect_hash.add(v);
   inspect_hash.add(sc.shell.floor_y);
   // The scene hand-off (handoff_blender.h) sees the scene and the film's rate.
-  inspect_hash.add("handoff/1").add(sc.render_text).add(sc.film.film_fps());
+  inspect_hash.add("handoff/2").add(sc.render_text).add(sc.film.film_fps());
 #if THAW_OPENVDB
   // A build with OpenVDB adds the volumes to an older run's (/2: axisymmetric runs' too).
   inspect_hash.add("openvdb/2");
@@ -662,8 +662,7 @@ void inspect_stage(Run& r, const mesh::MeshManifest& meshes,
   bool up_to_date = false;
   on_leader(ranks, [&] {
     up_to_date = manifest.begin_stage("inspect", inspect_hash.hex()) && fs::exists(report.plot) &&
-                 fs::exists(report.pvd) && fs::exists(report.handoff_obj) &&
-                 fs::exists(out / "handoff" / "blender_scene.py");
+                 fs::exists(report.pvd) && fs::exists(report.handoff_scene);
   });
   if (ranks.broadcast(up_to_date ? "up to date" : "") == "up to date") {
     clock.timing().skipped = true;
@@ -673,7 +672,9 @@ void inspect_stage(Run& r, const mesh::MeshManifest& meshes,
   on_every_rank(ranks, [&] {
     ProgressReporter progress(stage_title(5, "inspect"), static_cast<long>(meshes.steps.size()),
                               o.quiet);
-    if (leader) ensure_directory(report.handoff_obj);  // before the series' folder is shared
+    // The hand-off refers to the mesh stage's OBJs (handoff_blender.h): the world-space copies
+    // older runs kept in handoff/obj/ go.
+    if (leader) fs::remove_all(out / "handoff" / "obj");
     // The plot by the last rank (alone: this process) before it joins the steps, so that under
     // MPI it overlaps the others' steps. Its failure waits until the steps are done: the other
     // ranks wait for this one's share of them.
@@ -685,17 +686,12 @@ void inspect_stage(Run& r, const mesh::MeshManifest& meshes,
         plot_failure = std::current_exception();
       }
     // One pass over the surfaces, each OBJ read once: placed by its outer surface as the film
-    // shows it, written as .vtp and as the world-space OBJ, steps on each rank's threads.
+    // shows it and written as .vtp, steps on each rank's threads.
     RanksMeshFarm farm(ranks);
     inspect::PvdSeriesOptions series;
     series.progress = interruptible(progress.callback());
     series.placement = [&](const inspect::MeshedStep&, const meshio::TriangleMesh* outer) {
       return rendered_offset(sc, outer);
-    };
-    series.surface = [&](const inspect::MeshedStep& s, inspect::SurfacePart part,
-                         const meshio::TriangleMesh* placed) {
-      write_world_obj(report.handoff_obj, s.step, s.time_s, part == inspect::SurfacePart::inner,
-                      placed);
     };
     series.threads = o.jobs;
     if (ranks.size() > 1) series.farm = &farm;
@@ -711,7 +707,7 @@ void inspect_stage(Run& r, const mesh::MeshManifest& meshes,
       report.fields_pvd = out / "fields.pvd";
 #if THAW_OPENVDB
     // Grid runs: the fields as OpenVDB volumes (axisymmetric ones revolved), placed like the
-    // OBJ sequence.
+    // meshes.
     if (write_vdb_sequence(simdir, out / "handoff" / "vdb",
                            [&](long step) { return offset_of_step.at(step); }) > 0)
       report.handoff_vdb = out / "handoff" / "vdb";

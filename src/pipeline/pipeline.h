@@ -14,7 +14,9 @@
 // DIR/sim/mesh.partial/    kept meshes (and steps/: --frames parts' surfaces) until sim/mesh
 // DIR/frames/frame_NNNNNN.png
 // DIR/melt.mp4 (+ melt.gif), DIR/plot.png, DIR/meshes.pvd (+ meshes_vtp/, world space, normals)
-// DIR/handoff/obj/shell_outer_NNNNNN.obj, shell_inner_NNNNNN.obj (world space, for Blender)
+// DIR/handoff/blender_scene.py, camera.json, surfaces.json, environment.hdr, meshes/ (puddles),
+//   paraview_state.py, paraview_camera.pvcc: the run for Blender and other tools, referring to
+//   the mesh stage's OBJs (one copy of each mesh; handoff_blender.h, docs/handoff.md)
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -62,8 +64,8 @@ struct StageTiming {
 
 struct RunReport {
   std::filesystem::path film, gif, plot, pvd;  ///< empty if not made in this run
-  /// the OBJ sequence in world space for Blender (handoff_export.h)
-  std::filesystem::path handoff_obj;
+  /// DIR/handoff/blender_scene.py: the run in Blender in one step (handoff_blender.h)
+  std::filesystem::path handoff_scene;
   /// grid runs: the solver's fields as .vti series (src/inspect/field_export.h)
   std::filesystem::path fields_pvd;
   /// 3D runs in a build with OpenVDB: DIR/handoff/vdb (handoff_vdb.h).

@@ -17,12 +17,12 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
 
 #include "base/subprocess.h"
 #include "src/pipeline/film_encoder.h"
-#include "src/pipeline/handoff_export.h"
 #include "tests/src/pipeline/run_test_support.h"
 
 namespace thaw::pipeline {
@@ -417,34 +417,45 @@ std::vector<std::array<double, 3>> obj_vertices(const fs::path& p) {
 
 TEST_F(ThawRun, HandOffMeshesSitWhereTheFilmShowsThem) {
   const fs::path out = m_dir / "out";
+  // An older run's world-space copies (handoff/obj/) go: the hand-off keeps one copy of each mesh.
+  fs::create_directories(out / "handoff/obj");
+  std::ofstream(out / "handoff/obj/shell_outer_000000.obj") << "# an older run's copy\n";
   const auto r = thaw({"run", kTiny.string(), "--out", out.string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_TRUE(contains(r.output, (out / "handoff/obj").string())) << r.output;
+  EXPECT_TRUE(contains(r.output, (out / "handoff/blender_scene.py").string())) << r.output;
+  EXPECT_FALSE(fs::exists(out / "handoff/obj"));
+  // handoff/surfaces.json names the mesh stage's own OBJs with the renderer's placement.
+  const auto listing = nlohmann::json::parse(read_file(out / "handoff/surfaces.json"));
+  EXPECT_EQ(listing["format"], "thaw-surfaces/1");
+  const nlohmann::json* outer = nullptr;
+  for (const auto& s : listing["surfaces"])
+    if (s["label"] == "shell outer surface") outer = &s;
+  ASSERT_NE(outer, nullptr) << listing.dump(1);
   int placed = 0;
   for (long step = 0; step < 4; ++step) {
     char name[64];
     std::snprintf(name, sizeof name, "step_%06ld_outer.obj", step);
-    ASSERT_TRUE(fs::exists(out / "handoff/obj" / world_obj_name(step, false))) << step;
-    ASSERT_TRUE(fs::exists(out / "handoff/obj" / world_obj_name(step, true))) << step;
-    const auto world = obj_vertices(out / "handoff/obj" / world_obj_name(step, false));
-    if (!fs::exists(out / "sim/mesh" / name)) {  // vanished: a face-less OBJ keeps the sequence
-      EXPECT_TRUE(world.empty()) << step;
+    const auto& entry = (*outer)["frames"][static_cast<std::size_t>(step)];
+    if (!fs::exists(out / "sim/mesh" / name)) {  // vanished: no surface in that frame
+      EXPECT_TRUE(entry.is_null()) << step;
       continue;
     }
+    ASSERT_FALSE(entry.is_null()) << step;
+    EXPECT_EQ(entry["file"], std::string("sim/mesh/") + name);
+    EXPECT_EQ(entry["scale"], 1.0);
     const auto local = obj_vertices(out / "sim/mesh" / name);
-    ASSERT_EQ(world.size(), local.size()) << step;
-    ASSERT_FALSE(world.empty());
+    ASSERT_FALSE(local.empty());
     ++placed;
     // tiny.toml rests the shell on the floor y = 0 at x = z = 0: x and z unchanged, every point
     // moved up by the same amount, the lowest one onto the floor. The renderer places the mesh
     // from its float positions, so "on the floor" holds to float rounding: 2^-24 of |y|.
-    double lowest = world[0][1], largest = 0, shift = world[0][1] - local[0][1];
-    for (std::size_t i = 0; i < world.size(); ++i) {
-      EXPECT_EQ(world[i][0], local[i][0]);
-      EXPECT_EQ(world[i][2], local[i][2]);
-      EXPECT_NEAR(world[i][1] - local[i][1], shift, 1e-15);
-      lowest = std::min(lowest, world[i][1]);
-      largest = std::max(largest, std::abs(local[i][1]));
+    const auto t = entry["translate_m"].get<std::array<double, 3>>();
+    EXPECT_EQ(t[0], 0.0);
+    EXPECT_EQ(t[2], 0.0);
+    double lowest = local[0][1] + t[1], largest = 0;
+    for (const auto& v : local) {
+      lowest = std::min(lowest, v[1] + t[1]);
+      largest = std::max(largest, std::abs(v[1]));
     }
     EXPECT_NEAR(lowest, 0.0, largest * std::ldexp(1.0, -24)) << step;
   }
