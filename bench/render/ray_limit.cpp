@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <limits>
 #include <mutex>
@@ -174,12 +175,13 @@ int run(int argc, char** argv) {
 
   // 1. The frame, as thaw renders it (threads as given, recorder off): wall and CPU time.
   Timing frame;
+  Image unrecorded;
   for (int r = 0; r < std::max(1, repetitions / 2); ++r) {
     const std::clock_t c0 = std::clock();
     const auto w0 = std::chrono::steady_clock::now();
     RenderOptions opt;
     opt.threads = threads;
-    (void)render(scene, opt);
+    unrecorded = render(scene, opt).image;
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
     frame.wall_s = std::min(frame.wall_s, wall);
@@ -189,12 +191,17 @@ int run(int argc, char** argv) {
   // either).
   Recorder rec(scene.camera().position());
   set_ray_recorder(&rec);
-  {
-    RenderOptions opt;
-    opt.threads = 1;
-    (void)render(scene, opt);
-  }
+  RenderOptions one;
+  one.threads = 1;
+  const Image recorded = render(scene, one).image;
   set_ray_recorder(nullptr);
+  // The recorded frame is the frame: the hook changes no answer and the image does not depend on
+  // the thread count (render/integrator/whitted.h), so every pixel must be bit-identical.
+  const Image::Pixels &p0 = unrecorded.pixels(), &p1 = recorded.pixels();
+  if (p0.size() != p1.size() || std::memcmp(p0.data(), p1.data(), p0.size() * sizeof(Rgb)) != 0) {
+    std::fprintf(stderr, "ray_limit: the frame rendered while recording differs from the frame\n");
+    return 1;
+  }
 
   const EmbreeScene es(scene, threads);
   std::printf("ray_limit: %s, %zu triangles, %d x %d, %d spp, %d threads, best of %d\n",
