@@ -500,8 +500,13 @@ class SceneBuilder {
                 std::uint32_t id) {
     std::string mesh_name;
     TriangleMesh mesh = load_mesh(od, label, mesh_name);
+    // The OBJ file is to blame only for its own coordinates; a scale or translate that moves
+    // the mesh too far is the scene file's (issue 27).
     if (const auto problem = mesh_placement_problem(mesh, od.scale, od.translate))
-      throw UserError(mesh_name, label + "." + problem->key, problem->problem);
+      throw UserError(problem->key == "file" ? mesh_name : m_src, label + "." + problem->key,
+                      problem->key == "file" || mesh_name.empty()
+                          ? problem->problem
+                          : problem->problem + " (the mesh of " + mesh_name + ")");
     if (od.scale != 1.0 || od.translate != Vec3d{0.0, 0.0, 0.0})
       transform_mesh(mesh, od.scale, od.translate);
     if (od.smooth_normals) compute_smooth_normals(mesh);

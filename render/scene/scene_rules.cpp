@@ -264,7 +264,11 @@ std::optional<SceneProblem> object_problem(const ObjectDescription& o) {
     case ObjectDescription::Shape::mesh:
       if (!(o.scale > 0.0) || !std::isfinite(o.scale))
         return SceneProblem{"scale", "must be positive and finite (got " + num(o.scale) + ")"};
-      if (!finite3(o.translate)) return SceneProblem{"translate", "must be finite"};
+      // Beyond kMaxCoordinate no mesh can be placed (issue 27: a translate of 1e308 was reported
+      // against the OBJ file at build time); refused here, against the scene file's line.
+      if (!finite3(o.translate) || max_abs(o.translate) > kMaxCoordinate)
+        return SceneProblem{"translate",
+                            "must be finite and within " + num(kMaxCoordinate) + " of the origin"};
       return std::nullopt;  // placement: build_scene, once the mesh is loaded
   }
   return std::nullopt;

@@ -113,6 +113,14 @@ TEST(SceneParser, UnknownKeysAreErrors) {
   expect_error("[ambient]", "[ambiant]", "ambiant", "unknown key");
 }
 
+// Issue 27: a mesh's translate of 1e308 was reported against the OBJ file (at build time); it is
+// the scene file's line.
+TEST(SceneParser, FarTranslateIsTheSceneFilesLine) {
+  expect_error("file = \"meshes/shell_outer.obj\"",
+               "file = \"meshes/shell_outer.obj\"\ntranslate = [0.0, 1e308, 0.0]",
+               "objects[0].translate", "within 1e+15 of the origin");
+}
+
 TEST(SceneParser, UnknownNamesAreErrors) {
   expect_error("inside = \"water\"", "inside = \"wate\"", "objects[1].inside",
                "unknown medium 'wate'");
