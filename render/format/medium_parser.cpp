@@ -5,6 +5,7 @@
 
 #include "base/error.h"
 #include "base/format/toml_table.h"
+#include "render/media/scattering.h"
 
 namespace thaw::render::media {
 namespace {
@@ -15,6 +16,31 @@ Absorption parse_absorption(const TomlTable& t) {
     return Absorption::constant(t.get_double("absorption_per_m"));
   const TomlTable table = t.table("absorption_per_m");
   return Absorption::table(table.get_doubles("wavelength_nm"), table.get_doubles("per_m"));
+}
+
+/// scattering_per_m and asymmetry, or bubbles = { air_fraction, radius_m } (cloudy ice,
+/// render/media/scattering.h): each bad value is the file's error at its key.
+void parse_scattering(const TomlTable& t, MediumSpec& spec) {
+  if (t.has("bubbles") && t.has("scattering_per_m"))
+    t.fail("bubbles", "give either bubbles or scattering_per_m, not both");
+  if (t.has("scattering_per_m")) {
+    const double s = t.get_double("scattering_per_m");
+    if (auto p = scattering_problem(s)) t.fail("scattering_per_m", *p);
+    spec.scattering_per_m = s;
+  }
+  if (t.has("bubbles")) {
+    const TomlTable b = t.table("bubbles");
+    const double f = b.get_double("air_fraction"), r = b.get_double("radius_m");
+    if (auto p = air_fraction_problem(f)) b.fail("air_fraction", *p);
+    if (auto p = bubble_radius_problem(r)) b.fail("radius_m", *p);
+    spec.scattering_per_m = bubble_scattering_per_m(f, r);
+    spec.asymmetry = kBubbleAsymmetry;
+  }
+  if (t.has("asymmetry")) {
+    const double g = t.get_double("asymmetry");
+    if (auto p = asymmetry_problem(g)) t.fail("asymmetry", *p);
+    spec.asymmetry = g;
+  }
 }
 
 }  // namespace
@@ -68,6 +94,7 @@ MediumSpec parse_medium_spec(const TomlTable& t, const std::string& name, bool l
 
   if (t.has("absorption_per_m")) spec.absorption = parse_absorption(t);
   if (t.has("absorption_scale")) spec.absorption_scale = t.get_double("absorption_scale");
+  parse_scattering(t, spec);
   if (library_entry) {
     spec.description = t.get_string("description", "");
     spec.source = t.get_string("source");

@@ -22,10 +22,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <vector>
 
+#include "render/integrator/phase_function.h"
 #include "render/light/environment_lighting.h"
 #include "render/light/light_sampling.h"
 #include "render/material/fresnel.h"
@@ -71,6 +73,10 @@ inline bool refraction_direction(const Vec3& d, const Vec3& ns, const Vec3& ng, 
 /// apart from the film's and the lights' pairs (render/light/light_sampling.h).
 inline constexpr std::uint32_t kMicrofacetDimension = 0x20000u;
 
+/// First dimension pair (and 1D dimension) of volume scattering's free paths and directions (one
+/// per tree level).
+inline constexpr std::uint32_t kScatteringDimension = 0x30000u;
+
 /// How a point light meets a surface point: behind it (no shadow ray cast), shadowed, or seen.
 enum class LightVisibility { facing_away, shadowed, seen };
 
@@ -111,6 +117,11 @@ class WhittedShading {
       if (o.dielectric && o.index_matched) m_interfaces_stop_shadow_rays = false;
     for (const PointLight& l : scene.lights())
       m_point_light_medium.push_back(photon::medium_at(scene, l.position));
+    for (const Medium& m : scene.media()) {
+      m_scattering_per_m.push_back(static_cast<float>(m.optics.scattering_per_m()));
+      m_asymmetry.push_back(static_cast<float>(m.optics.asymmetry()));
+      m_any_scattering = m_any_scattering || m.optics.scatters();
+    }
     for (const SphereLight& l : scene.sphere_lights())
       m_sphere_light_medium.push_back(photon::medium_at(scene, l.center));
   }
@@ -146,7 +157,20 @@ class WhittedShading {
     using Radiance = typename Derived::Radiance;
     ++m_rays;
     Hit hit;
-    if (!m_scene.intersect(ray, hit)) {
+    const bool found = m_scene.intersect(ray, hit);
+    // A scattering medium: the free path to the next scattering event, exponential with mean
+    // 1 / sigma_s (analog sampling: lossless scattering keeps the throughput); an event before
+    // the surface continues from there (scatter(), after the miss below, whose return statement
+    // must come first: it fixes trace()'s deduced type, which scatter() needs).
+    float t_scatter = std::numeric_limits<float>::infinity();
+    if (m_any_scattering && m_scattering_per_m[medium] > 0.0f) {
+      const float u = 1.0f - camera_sampler().get_1d(m_camera_sample.sample_index,
+                                                     kScatteringDimension + std::uint32_t(depth));
+      t_scatter = -std::log(std::max(u, 1e-30f)) / m_scattering_per_m[medium];
+    }
+    const bool scattered =
+        found ? t_scatter < hit.t : t_scatter < std::numeric_limits<float>::infinity();
+    if (!found && !scattered) {
       Radiance bg = self().illuminant(background(ray.direction), path);
       if constexpr (Derived::kAbsorption) {
         // Escaping inside an absorbing medium: an infinite path keeps nothing where alpha > 0
@@ -155,6 +179,7 @@ class WhittedShading {
       }
       return bg;
     }
+    if (scattered) return scatter(ray, t_scatter, depth, beta, medium, path);
     Throughput b = beta;
     Radiance segment{};
     bool absorbs = false;
@@ -369,6 +394,43 @@ class WhittedShading {
       }
     }
     return result;
+  }
+
+  /// The camera sample's sampler (pixel (0, 0) outside a render).
+  const sampling::PixelSampler& camera_sampler() const {
+    static const sampling::PixelSampler fallback(0, 0);
+    return m_camera_sample.sampler ? *m_camera_sample.sampler : fallback;
+  }
+
+  /// A scattering event at distance t along `ray` in `medium` (volumetric path tracing, one path
+  /// per event: render/media/scattering.h, render/integrator/phase_function.h): a new direction
+  /// from the Henyey-Greenstein phase, drawn from the camera sample's pair for this level, the
+  /// segment's Beer-Lambert absorption, and the radiance arriving from there. Each event uses one
+  /// tree level. No next-event estimation: the light reaches the event along the traced path
+  /// (through the interfaces, refracted as everywhere else) or not at all.
+  template <class Throughput, class Path>
+  auto scatter(const Ray& ray, float t, int depth, const Throughput& beta, std::uint32_t medium,
+               const Path& path) {
+    using Radiance = typename Derived::Radiance;
+    if (depth >= m_max_depth) return Radiance{};
+    const sampling::Point2 u = camera_sampler().get_2d(m_camera_sample.sample_index,
+                                                       kScatteringDimension + std::uint32_t(depth));
+    const Vec3 dir = scatter_henyey_greenstein(ray.direction, m_asymmetry[medium], u.x, u.y);
+    Throughput b = beta;
+    Radiance segment{};
+    bool absorbs = false;
+    if constexpr (Derived::kAbsorption) {
+      absorbs = self().absorbs(medium);
+      if (absorbs) {
+        segment = self().transmittance(medium, t, path);
+        b = self().attenuate(b, segment, path);
+      }
+    }
+    Radiance l = trace(Ray{ray.origin + ray.direction * t, dir}, depth + 1, b, medium, path);
+    if constexpr (Derived::kAbsorption) {
+      if (absorbs) l *= segment;
+    }
+    return l;
   }
 
   /// The camera sample's point for the microfacet normal of a rough event at tree level
@@ -586,6 +648,9 @@ class WhittedShading {
   std::uint64_t m_rays = 0, m_mismatches = 0;
   /// no object is index-matched: every dielectric interface stops shadow rays
   bool m_interfaces_stop_shadow_rays = true;
+  /// per medium: scattering coefficient [1/m] and Henyey-Greenstein g (render/media/scattering.h)
+  std::vector<float> m_scattering_per_m, m_asymmetry;
+  bool m_any_scattering = false;
   /// the medium each point light and sphere light is in (photon::medium_at)
   std::vector<std::uint32_t> m_point_light_medium, m_sphere_light_medium;
   /// the camera sample being traced (set_camera_sample()); no sampler: pixel (0, 0), sample 0

@@ -25,7 +25,9 @@ Medium build_medium(const MediumSpec& spec) {
   ior->validate(spec.file, spec.key);
   Absorption a = absorption.value_or(Absorption()).scaled(spec.absorption_scale.value_or(1.0));
   a.validate(spec.file, spec.key);
-  return Medium(spec.name, *ior, std::move(a), spec.source);
+  Medium m(spec.name, *ior, std::move(a), spec.source);
+  m.set_scattering(spec.scattering_per_m.value_or(0.0), spec.asymmetry.value_or(0.0));
+  return m;
 }
 
 }  // namespace thaw::render::media

@@ -14,6 +14,8 @@
 //   iapws97 = { temperature_c = 0.0, density_kg_m3 = 999.84 }
 // plus optional absorption_per_m = 0.5 or { wavelength_nm = [...], per_m = [...] } [1/m]
 // (replaces a preset's) and absorption_scale = 10.0 (multiplies it; artistic tinting).
+// Scattering (cloudy ice; render/media/scattering.h): scattering_per_m = 30.0 [1/m] with
+// asymmetry = 0.86 (Henyey-Greenstein g), or bubbles = { air_fraction = 1e-3, radius_m = 5e-5 }.
 #include <optional>
 #include <string>
 
@@ -31,6 +33,9 @@ struct MediumSpec {
   std::optional<IorModel> ior;
   std::optional<Absorption> absorption;  ///< unscaled
   std::optional<double> absorption_scale;
+  /// scattering coefficient [1/m] and Henyey-Greenstein asymmetry, as given or from bubbles
+  /// (render/media/scattering.h); unset: a clear medium
+  std::optional<double> scattering_per_m, asymmetry;
   // Library documentation (empty in scenes).
   std::string description, source, absorption_source;
 };
@@ -51,6 +56,15 @@ class Medium {
   /// Absorption coefficient [1/m], absorption_scale included.
   double absorption_per_m_at(double lambda_nm) const { return m_absorption.per_m_at(lambda_nm); }
   bool absorbs() const { return !m_absorption.is_zero(); }
+  /// Scattering coefficient [1/m] (grey: bubbles far larger than the wavelength) and the
+  /// Henyey-Greenstein asymmetry g of its phase function; 0 = a clear medium.
+  double scattering_per_m() const { return m_scattering_per_m; }
+  double asymmetry() const { return m_asymmetry; }
+  bool scatters() const { return m_scattering_per_m > 0.0; }
+  void set_scattering(double per_m, double asymmetry) {
+    m_scattering_per_m = per_m;
+    m_asymmetry = asymmetry;
+  }
   /// Beer-Lambert transmittance of a segment of `distance_m` metres inside this medium.
   SampledSpectrum transmittance(double distance_m, const SampledWavelengths& w) const {
     return m_absorption.transmittance(distance_m, w);
@@ -61,6 +75,7 @@ class Medium {
   IorModel m_ior;
   Absorption m_absorption;
   std::string m_source;
+  double m_scattering_per_m = 0.0, m_asymmetry = 0.0;
 };
 
 /// Validates the index and absorption over 380-780 nm (errors name the medium and key) and builds

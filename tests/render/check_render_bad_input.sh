@@ -79,6 +79,10 @@ expect_bad env_truncated_exr "environment.file.*cut.exr' is not a readable OpenE
 expect_bad rough_object "roughness.*must be between 0 and 1" "$(scene rough_object 's/^inside = "water"/inside = "water"\nroughness = 1.5/')"
 expect_bad rough_negative "roughness.*must be between 0 and 1" "$(scene rough_negative 's/^inside = "water"/inside = "water"\nroughness = -0.1/')"
 expect_bad rough_matte "unknown key" "$(scene rough_matte 's/^kind = "matte"/kind = "matte"\nroughness = 0.3/')"
+# Scattering media (issue 26): a negative coefficient, |asymmetry| >= 1, a bubble fraction of 1.
+expect_bad negative_scattering "media.ice.scattering_per_m.*must be between 0" "$(scene neg_scatter 's/^\[media.ice\]/[media.ice]\nscattering_per_m = -3.0/')"
+expect_bad asymmetry_one "asymmetry.*(-1, 1)" "$(scene asym_one 's/^\[media.ice\]/[media.ice]\nscattering_per_m = 3.0\nasymmetry = 1.0/')"
+expect_bad bubble_fraction "air_fraction.*\[0, 1)" "$(scene bubbles 's/^\[media.ice\]/[media.ice]\nbubbles = { air_fraction = 1.0, radius_m = 5e-5 }/')"
 OUT="$work/out.jpg" expect_bad bad_extension "unsupported output format" "$good"
 OUT="$work/no/such/dir/out.png" expect_bad missing_out_dir "does not exist" "$good"
 
