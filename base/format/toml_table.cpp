@@ -1,8 +1,10 @@
 #include "base/format/toml_table.h"
 
 #include <toml++/toml.h>
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "base/error.h"
 #include "base/text_file.h"
@@ -44,8 +46,47 @@ std::string TomlTable::full_key(const std::string& key) const {
 }
 
 const toml::node* TomlTable::find(const std::string& key) const {
+  if (!key.empty()) m_shared->asked.insert(full_key(key));
   return m_table->get(key);
 }
+
+namespace {
+
+/// Levenshtein distance (insertions, deletions, substitutions of one character each) between a
+/// and b, by the two-row dynamic programme (Wagner & Fischer 1974).
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1), next(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    next[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j)
+      next[j] = std::min({row[j] + 1, next[j - 1] + 1, row[j - 1] + (a[i - 1] != b[j - 1])});
+    std::swap(row, next);
+  }
+  return row[b.size()];
+}
+
+/// The known key of the same table nearest to the unknown `key` (dotted path), if it is a likely
+/// typo: at most a third of the longer name's characters differ (at least 1).
+std::string nearest_known_key(const std::set<std::string>& known, const std::string& key) {
+  const std::size_t dot = key.rfind('.');
+  const std::string prefix = dot == std::string::npos ? "" : key.substr(0, dot + 1);
+  const std::string name = key.substr(prefix.size());
+  std::string best;
+  std::size_t best_distance = 0;
+  for (const std::string& k : known) {
+    if (k.size() <= prefix.size() || k.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string candidate = k.substr(prefix.size());
+    if (candidate.find_first_of(".[") != std::string::npos || candidate == name) continue;
+    const std::size_t d = edit_distance(name, candidate);
+    const std::size_t allowed =
+        std::max<std::size_t>(1, std::max(name.size(), candidate.size()) / 3);
+    if (d <= allowed && (best.empty() || d < best_distance)) best = candidate, best_distance = d;
+  }
+  return best;
+}
+
+}  // namespace
 
 std::string TomlTable::where(const std::string& key) const {
   std::string w;
@@ -257,10 +298,11 @@ void TomlTable::check_no_unknown_keys() const {
             prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
         if (!shared.used.count(key)) {
           const auto line = v.source().begin.line;
+          const std::string near = nearest_known_key(shared.asked, key);
           throw UserError(
               shared.source,
               (line > 0 ? "line " + std::to_string(line) + ", " : "") + "key '" + key + "'",
-              "unknown key");
+              near.empty() ? "unknown key" : "unknown key (did you mean '" + near + "'?)");
         }
         if (const toml::table* sub = v.as_table()) {
           walk(*sub, key);

@@ -82,6 +82,8 @@ class TomlTable {
     std::string source;
     std::shared_ptr<toml::table> root;
     std::set<std::string> used;
+    /// every key looked up, present or not: the known keys an unknown one is compared with
+    std::set<std::string> asked;
   };
   TomlTable(std::shared_ptr<Shared> shared, const toml::table* table, std::string prefix);
   const toml::node* find(const std::string& key) const;

@@ -40,6 +40,30 @@ TEST(TomlTable, UnknownKeyIsNamedWithItsLine) {
   EXPECT_NE(msg.find("unknown key"), std::string::npos) << msg;
 }
 
+// Issue 27: a typo gets the nearest key of its table that the reader asked for.
+TEST(TomlTable, UnknownKeySuggestsTheNearestKnownKey) {
+  auto t = TomlTable::parse_string(
+      "[camera]\nvertical_fov = 35.0\n[shell]\ninner_radus_m = 0.02\nzzz = 1\n", "sc.toml");
+  auto camera = t.table("camera");
+  camera.get_double("vertical_fov_deg", 40.0);  // asked for, absent: still a known key
+  camera.get_double("position", 0.0);
+  std::string msg = error_of([&] { t.check_no_unknown_keys(); });
+  EXPECT_NE(msg.find("camera.vertical_fov"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("did you mean 'vertical_fov_deg'?"), std::string::npos) << msg;
+  auto u = TomlTable::parse_string("[shell]\ninner_radus_m = 0.02\nzzz = 1\n", "sc.toml");
+  auto shell = u.table("shell");
+  shell.get_double("inner_radius_m", 0.02);
+  shell.get_double("outer_radius_m", 0.03);
+  msg = error_of([&] { u.check_no_unknown_keys(); });
+  EXPECT_NE(msg.find("did you mean 'inner_radius_m'?"), std::string::npos) << msg;
+  // Nothing near: no suggestion.
+  auto v = TomlTable::parse_string("[shell]\nzzz = 1\n", "sc.toml");
+  v.table("shell").get_double("inner_radius_m", 0.02);
+  msg = error_of([&] { v.check_no_unknown_keys(); });
+  EXPECT_NE(msg.find("unknown key"), std::string::npos) << msg;
+  EXPECT_EQ(msg.find("did you mean"), std::string::npos) << msg;
+}
+
 TEST(TomlTable, UnreadTableIsUnknown) {
   auto t = TomlTable::parse_string("[extra]\nx = 1\n", "sc.toml");
   EXPECT_NE(error_of([&] { t.check_no_unknown_keys(); }).find("'extra'"), std::string::npos);
