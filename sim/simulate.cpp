@@ -4,13 +4,16 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <thread>
 
 #include <unistd.h>
 
 #include "base/check.h"
 #include "base/error.h"
+#include "base/interrupt.h"
 #include "base/number_text.h"
 #include "sim/grid/grid_builder.h"
+#include "sim/grid/grid_rules.h"
 #include "sim/scenario/scenario_rules.h"
 
 namespace thaw::sim {
@@ -97,6 +100,42 @@ Snapshot grid_snapshot(const GridSnapshot& g) {
   return s;
 }
 
+/// The grid solver's runaway as the user's error, naming the key most likely behind it.
+[[noreturn]] void throw_runaway(const Scenario& scenario, const GridRunaway& e) {
+  std::string key = "simulation.max_step_s", hint;
+  if (e.at_max_step) {
+    hint =
+        "its value " + shortest_text(scenario.max_step_s) + " s caps every step; use a larger one";
+  } else {
+    const LikelyCause cause = likely_cause_of_solver_failure(scenario);
+    key = cause.key, hint = cause.hint;
+    if (key == "simulation.time_tolerance") {  // the 1D key; a grid's steps follow its cells
+      key = "simulation.cell_size_m";
+      hint = "every value is in its typical range; try larger cells (now " +
+             shortest_text(effective_cell_size_m(scenario)) + " m)";
+    }
+  }
+  throw UserError(scenario.source_name, "key '" + key + "'",
+                  std::string("the grid solver cannot continue: ") + e.what() + "; " + hint);
+}
+
+/// Advances the grid solver to t, stopping within a step's Newton or CG iteration when an
+/// interrupt arrives (SIGINT, SIGTERM or request_interrupt()). Then the caller's callback decides
+/// (interruptible() throws Interrupted; the GUI's throws its own cancel); a flag raised by
+/// someone else (the GUI's film cancel) is waited out, and the run goes on where it stopped.
+void advance_grid(EnthalpySolver& solver, double t, const ProgressCallback& progress,
+                  std::int64_t done, std::int64_t total) {
+  while (!solver.finished() && solver.time() < t) {
+    solver.advance_to(t, [] { return interrupt_requested(); });
+    if (solver.finished() || solver.time() >= t) return;
+    if (!progress) throw_if_interrupted();
+    while (interrupt_requested()) {
+      progress(done, total);  // the same count again: may throw
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+  }
+}
+
 SimulationResult simulate_grid(const Scenario& scenario, const std::vector<double>& times,
                                const ProgressCallback& progress, const FieldSink& sink) {
   const auto start = std::chrono::steady_clock::now();
@@ -112,7 +151,12 @@ SimulationResult simulate_grid(const Scenario& scenario, const std::vector<doubl
   result.reference_energy_j = solver.reference_energy();
   const auto total = static_cast<std::int64_t>(times.size());
   for (std::size_t i = 0; i < times.size(); ++i) {
-    if (times[i] > solver.time()) solver.advance_to(times[i]);
+    try {
+      if (times[i] > solver.time())
+        advance_grid(solver, times[i], progress, static_cast<std::int64_t>(i), total);
+    } catch (const GridRunaway& e) {
+      throw_runaway(scenario, e);
+    }
     const GridSnapshot g = solver.snapshot();
     result.snapshots.push_back(grid_snapshot(g));
     if (scenario.natural_convection)

@@ -123,8 +123,8 @@ struct EnthalpySolver::Impl {
 EnthalpySolver::EnthalpySolver(GridProblem problem)
     : m_impl(std::make_unique<Impl>(std::move(problem))) {}
 EnthalpySolver::~EnthalpySolver() = default;
-double EnthalpySolver::advance_to(double t_target) {
-  return m_impl->stepper.advance_to(t_target);
+double EnthalpySolver::advance_to(double t_target, const std::function<bool()>& stop) {
+  return m_impl->stepper.advance_to(t_target, stop);
 }
 double EnthalpySolver::time() const {
   return m_impl->stepper.time();

@@ -29,7 +29,9 @@
 // count: every loop writes its own cells, and every sum goes over fixed blocks in a fixed order.
 // Knows nothing of files, TOML or shapes.
 #include <array>
+#include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -71,6 +73,17 @@ struct GridSnapshot {
   double max_speed_m_s = 0, rayleigh = 0;
 };
 
+/// A run that would not end: at the pace of its last stretch of work (simulated time per cell
+/// step) the rest of the run would cost more than kGuardMaxCellSteps. Thrown by advance_to
+/// outside its parallel region; the caller names the scenario key (sim/simulate.cpp).
+class GridRunaway : public std::runtime_error {
+ public:
+  GridRunaway(const std::string& what, bool at_max_step)
+      : std::runtime_error(what), at_max_step(at_max_step) {}
+  /// The steps were as long as max_step_s allowed: the cap, not the physics, set the pace.
+  bool at_max_step;
+};
+
 class EnthalpySolver {
  public:
   /// `problem` must be consistent (sizes, fractions in [0, 1]); THAW_CHECK otherwise.
@@ -80,7 +93,12 @@ class EnthalpySolver {
   EnthalpySolver& operator=(const EnthalpySolver&) = delete;
 
   /// Advances to exactly t_target (> time()) or until no ice is left; returns the time reached.
-  double advance_to(double t_target);
+  /// `stop` (if set, e.g. thaw::interrupt_requested) is asked between steps and Newton/CG
+  /// iterations; once true, advance_to returns promptly, short of t_target, at the last
+  /// accepted step (without flow, advancing again continues as if never stopped; with flow, the
+  /// flow has already advanced over the discarded step, as on a rejected step). Throws GridRunaway
+  /// when the run would not end (a collapsed step).
+  double advance_to(double t_target, const std::function<bool()>& stop = {});
   double time() const;
   /// No ice left: nothing more to simulate.
   bool finished() const;

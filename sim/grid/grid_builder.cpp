@@ -179,6 +179,7 @@ GridProblem build_grid_problem(const Scenario& sc) {
   g.fluid.reference_temperature_c = m.melting_point_c;
   g.fluid.viscosity_pa_s = m.water_viscosity_pa_s;
   g.max_step_s = sc.max_step_s;
+  g.end_time_s = sc.duration_s;
   return g;
 }
 

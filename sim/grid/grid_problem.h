@@ -50,6 +50,8 @@ struct GridProblem {
   /// Time stepping: > 0 constant steps (validation), else adaptive up to max_step_s.
   double fixed_step_s = 0;
   double max_step_s = 10;
+  /// The run's end [s], the runaway guard's horizon (0: the target of each advance_to).
+  double end_time_s = 0;
   /// Adaptive step targets: largest temperature change [K] and liquid-fraction change per step.
   double step_temperature_change_k = 1.0;
   double step_melt_fraction = 0.25;

@@ -140,6 +140,12 @@ double default_cell(const Scenario& s, double extent, double wall) {
 }
 }  // namespace
 
+double smallest_max_step_s(const Materials& m, double cell_m) {
+  const double alpha = std::max(m.ice_conductivity_w_mk / m.ice_heat_capacity(),
+                                m.water_conductivity_w_mk / m.water_heat_capacity());
+  return cell_m * cell_m / alpha * (kStepTemperatureChangeK / kWidestTemperatureSpanK);
+}
+
 double effective_cell_size_m(const Scenario& s) {
   if (s.cell_size_m > 0) return s.cell_size_m;
   const SignedDistance outer = make_signed_distance(s.shape.outer, "shape.outer");
@@ -204,6 +210,14 @@ std::optional<GridRuleProblem> find_grid_problem(const Scenario& s) {
                                                          num(std::round(cells)) +
                                                          " cells, more than the limit of " +
                                                          num(kMaxGridCells) + "; use larger cells"};
+  if (const double floor_s = smallest_max_step_s(s.materials, cell); s.max_step_s < floor_s) {
+    std::string message = "(" + num(s.max_step_s) + " s) is below the smallest useful step for ";
+    message += num(cell) + " m cells, " + num(floor_s);
+    message += " s (the time heat takes to diffuse across one cell / ";
+    message += num(kWidestTemperatureSpanK);
+    message += "): shorter steps add nothing but their number";
+    return GridRuleProblem{"simulation.max_step_s", message};
+  }
   if (s.shape.cavity && s.water_initial_temperature_c < s.materials.melting_point_c)
     return GridRuleProblem{"water.initial_temperature_c",
                            "(" + num(s.water_initial_temperature_c) +

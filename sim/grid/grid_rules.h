@@ -20,6 +20,22 @@ constexpr double kDefaultWallCells = 5.0;
 /// Largest grid accepted [cells].
 constexpr double kMaxGridCells = 8.0e6;
 
+/// The widest temperature difference the scenario rules admit [K]: air from absolute zero to
+/// 1000 C (sim/scenario/scenario_rules.cpp).
+constexpr double kWidestTemperatureSpanK = 1273.15;
+/// The grid solver's adaptive control aims at this temperature change per step by default
+/// (GridProblem::step_temperature_change_k) [K].
+constexpr double kStepTemperatureChangeK = 1.0;
+
+/// Smallest accepted simulation.max_step_s for cells of edge cell_m [s]: the time heat takes to
+/// diffuse across one cell, tau = dx^2 / alpha (alpha the larger of ice's and water's
+/// diffusivity), times kStepTemperatureChangeK / kWidestTemperatureSpanK. A cell's temperature
+/// changes at most about dT / tau per unit time with dT the difference across it, so even the
+/// widest admitted difference changes it by no more than the adaptive control's target per step
+/// within this time: a cap below it never makes a step more accurate, it only multiplies the
+/// steps (a cap of 1e-9 s asks for 3.6e12 steps per hour and ran for ever).
+double smallest_max_step_s(const Materials& materials, double cell_m);
+
 struct GridRuleProblem {
   std::string key;  ///< dotted key, e.g. "shape.cavity"
   std::string message;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include <omp.h>
@@ -18,6 +19,23 @@ constexpr double kMinStep_s = 1e-3;
 /// The ice is gone (fully_melted, the run ends) below this fraction of the initial material
 /// volume: stray sub-cell remnants would otherwise linger for minutes at a few mm^3.
 constexpr double kGoneFraction = 1e-5;
+/// Runaway guard (as the 1D solver's): after every window of kGuardWindowCellSteps of work
+/// (attempted steps x cells; a cell step costs about 0.3 us on one core of the 2-core CI
+/// machine with its Newton and CG iterations: the hollow cube's 230 steps x 140000 cells took
+/// 10.5 s of CPU), the work still needed at the window's pace is projected; beyond
+/// kGuardMaxCellSteps (about 8 hours of CPU there, 12000 steps of the largest grid the rules
+/// accept, against the few hundred of a shipped scenario) the step has collapsed and the run
+/// would never end in practice. Work, not the clock: the same run stops at the same step.
+constexpr double kGuardWindowCellSteps = 1e7;
+constexpr double kGuardMaxCellSteps = 1e11;
+/// A window whose mean step is at least this fraction of max_step_s was paced by the cap.
+constexpr double kAtCapFraction = 0.5;
+
+std::string seconds_text(double t) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g s", t);
+  return buf;
+}
 
 }  // namespace
 
@@ -65,7 +83,8 @@ double GridTimeStepper::energy() const {
 /// fill needs), one serial part (flood fill, break-through), drain (with exposure, energies and
 /// the end events' sums), one serial part (books, melt onset, the re-flood), and only when
 /// something drained the exposure and surface-area phases; then the serial end of the step.
-bool GridTimeStepper::step(BlockTeam& team) {
+GridTimeStepper::StepResult GridTimeStepper::step(BlockTeam& team,
+                                                  const std::function<bool()>& stop) {
   std::vector<double>& m = m_cells.m;
   std::vector<double>& H = m_cells.H;
   std::vector<double>& H_start = m_cells.H_start;
@@ -95,12 +114,16 @@ bool GridTimeStepper::step(BlockTeam& team) {
     m_block_sums[static_cast<std::size_t>(bl)].energy_start = e;
   });
   const double e_before = sum_blocks([](const BlockSums& b) { return b.energy_start; });
-  const bool ok = m_newton.solve(team, dt, m_stats) != NewtonOutcome::unconverged;
-  if (!ok && dt > kMinStep_s) {
+  const GridStatistics stats_before = m_stats;
+  const NewtonOutcome outcome = m_newton.solve(team, dt, m_stats, stop);
+  const bool ok = outcome != NewtonOutcome::unconverged && outcome != NewtonOutcome::stopped;
+  if (outcome == NewtonOutcome::stopped || (!ok && dt > kMinStep_s)) {
     team.for_blocks([&](long bl) {
       for (long c = bl * kBlock; c < m_mesh.block_end(bl); ++c) H[c] = H_start[c];
     });
-    return false;
+    if (outcome != NewtonOutcome::stopped) return StepResult::rejected;
+    m_stats = stats_before;  // as if the step had never started
+    return StepResult::stopped;
   }
   if (!ok && team.leader()) ++m_stats.unconverged_steps;
   // Conservative final update: each cell's enthalpy from its balance at the final
@@ -187,7 +210,7 @@ bool GridTimeStepper::step(BlockTeam& team) {
       });
     });
   }
-  return true;
+  return StepResult::accepted;
 }
 
 /// The serial end of an accepted step: core_frozen (at the last enclosed liquid's cell),
@@ -237,25 +260,54 @@ void GridTimeStepper::end_of_step(double step_dt, double saved) {
 /// The steps to target in one OpenMP parallel region: the leader runs them, the other
 /// threads help with each phase's blocks and sleep while the leader does the serial
 /// bookkeeping (events, the flood fill), instead of spinning in OpenMP's barriers.
-double GridTimeStepper::advance_to(double target) {
+double GridTimeStepper::advance_to(double target, const std::function<bool()>& stop) {
   TeamShared shared;
+  m_runaway.clear();
 #pragma omp parallel if (m_mesh.n > kParallelCells)
   {
     BlockTeam team(shared, omp_get_thread_num(), m_mesh.block_count());
     if (team.leader()) {
-      advance_team(team, target);
+      advance_team(team, target, stop);
       team.finish();
     } else {
       team.serve();
     }
   }
+  if (!m_runaway.empty())
+    throw GridRunaway(m_runaway, m_last_window_step_s >= kAtCapFraction * p.max_step_s);
   return m_time;
+}
+
+std::string GridTimeStepper::runaway(double target) {
+  ++m_attempts;
+  if (p.fixed_step_s > 0) return {};
+  const double n = static_cast<double>(m_mesh.n);
+  const double cost = static_cast<double>(m_attempts) * n;
+  if (cost - m_guard_cost < kGuardWindowCellSteps) return {};
+  const double attempts = (cost - m_guard_cost) / n;
+  const double pace_s = (m_time - m_guard_time_s) / (cost - m_guard_cost);  // per cell step
+  m_last_window_step_s = (m_time - m_guard_time_s) / attempts;
+  const double remaining_s = std::max(p.end_time_s, target) - m_time;
+  m_guard_cost = cost;
+  m_guard_time_s = m_time;
+  if (pace_s * kGuardMaxCellSteps >= remaining_s) return {};
+  char needed[64] = "no progress in the last steps";
+  if (m_last_window_step_s > 0)
+    std::snprintf(needed, sizeof needed, "%.3g more steps of %ld cells would be needed",
+                  remaining_s / m_last_window_step_s, m_mesh.n);
+  return "its steps average " + seconds_text(m_last_window_step_s) +
+         " at t = " + seconds_text(m_time) + " (" + std::to_string(m_stats.steps) +
+         " steps so far); " + needed + ": the run would not end";
 }
 
 /// Run by the team's leader; the helpers only run the blocks of the phases it posts (posting
 /// a phase publishes everything the leader wrote before).
-void GridTimeStepper::advance_team(BlockTeam& team, double target) {
+void GridTimeStepper::advance_team(BlockTeam& team, double target,
+                                   const std::function<bool()>& stop) {
   while (!m_done && m_time < target) {
+    if (stop && stop()) return;
+    m_runaway = runaway(target);
+    if (!m_runaway.empty()) return;
     const double remaining = target - m_time;
     double step_dt = std::min(dt_next, remaining);
     // avoid a sliver step before the target
@@ -266,7 +318,12 @@ void GridTimeStepper::advance_team(BlockTeam& team, double target) {
       step_remaining = remaining;
       step_target = target;
     }
-    if (!step(team)) {
+    const StepResult result = step(team, stop);
+    if (result == StepResult::stopped) {
+      --m_attempts;  // as if never attempted: the guard's windows do not see the stop
+      return;
+    }
+    if (result == StepResult::rejected) {
       team.serial([&] {
         ++m_stats.rejected_steps;
         dt_next = std::max(0.5 * step_dt, 0.99 * kMinStep_s);

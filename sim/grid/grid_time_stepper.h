@@ -8,6 +8,8 @@
 // drives the parts and owns none of their physics: the operator (conduction_operator.h), the
 // implicit solve (newton_solver.h), the surface areas (surface_area.h), cavities and drainage
 // (cavity_drain.h). Knows nothing of files or TOML.
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "sim/grid/block_team.h"
@@ -32,7 +34,12 @@ class GridTimeStepper {
                   ConductionOperator& op, NewtonSolver& newton, GridFlow* flow = nullptr);
 
   /// Advances to exactly target (> time()) or until no ice is left; returns the time reached.
-  double advance_to(double target);
+  /// `stop` (if set) is asked between steps and between Newton and CG iterations (a few
+  /// milliseconds apart on any grid the rules accept); once it returns true, the step under way
+  /// is discarded and the time reached returned, short of target (the state and the statistics
+  /// are those of the last accepted step: without flow, advancing again continues as if never
+  /// stopped). Throws GridRunaway (after leaving the parallel region) when the run would not end.
+  double advance_to(double target, const std::function<bool()>& stop = {});
 
   double time() const { return m_time; }
   bool done() const { return m_done; }
@@ -68,9 +75,13 @@ class GridTimeStepper {
     for (const BlockSums& b : m_block_sums) most = std::max(most, g(b));
     return most;
   }
-  bool step(BlockTeam& team);
+  enum class StepResult { accepted, rejected, stopped };
+  StepResult step(BlockTeam& team, const std::function<bool()>& stop);
+  /// The runaway guard, before each attempted step (leader): a message if the run would not
+  /// end at the pace of the last window of work.
+  std::string runaway(double target);
   void end_of_step(double step_dt, double saved);
-  void advance_team(BlockTeam& team, double target);
+  void advance_team(BlockTeam& team, double target, const std::function<bool()>& stop);
 
   const GridProblem& p;
   const GridMesh& m_mesh;
@@ -93,6 +104,11 @@ class GridTimeStepper {
   double m_e0 = 0, m_heat_in = 0, m_drained = 0, m_reference = 0, initial_material = 0;
   std::vector<GridEvent> m_events;
   GridStatistics m_stats;
+  long m_attempts = 0;              ///< attempted steps (accepted and rejected)
+  double m_guard_cost = 0;          ///< work at the start of the guard's window [cell steps]
+  double m_guard_time_s = 0;        ///< simulated time at the start of the guard's window
+  double m_last_window_step_s = 0;  ///< mean step over the guard's last window [s]
+  std::string m_runaway;            ///< the guard's message (advance_to throws it)
 };
 
 }  // namespace thaw::sim

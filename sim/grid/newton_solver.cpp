@@ -74,6 +74,11 @@ void NewtonSolver::start_cg(long bl) {
 /// old p: the same operations, so the same bits). Every reduction goes over fixed blocks whose
 /// partials the leader adds in block order, so the result does not depend on the thread
 /// count.
+bool NewtonSolver::stop_requested() {
+  if (!m_stopped && m_stop && *m_stop) m_stopped = (*m_stop)();
+  return m_stopped;
+}
+
 int NewtonSolver::conjugate_gradients(BlockTeam& team, double tol) {
   std::vector<double>& x = dtemp;
   // x = 0, r = b, z = r / diag, p = 0 and the partials of r.z and of the residual were set by
@@ -82,7 +87,7 @@ int NewtonSolver::conjugate_gradients(BlockTeam& team, double tol) {
   std::vector<double>* po = &cg_p;
   std::vector<double>* pn = &cg_p2;
   for (int it = 0;; ++it) {
-    if (res <= tol || rz == 0 || it == kMaxCg) return it;
+    if (res <= tol || rz == 0 || it == kMaxCg || stop_requested()) return it;
     const std::vector<double>& p_old = *po;
     std::vector<double>& p_new = *pn;
     // z and the old p are zero outside the pure cells (start_cg, and p_new below), so the
@@ -204,10 +209,14 @@ double NewtonSolver::prepare_newton_iteration(BlockTeam& team, bool apply) {
   return largest(partial_newton);
 }
 
-NewtonOutcome NewtonSolver::solve(BlockTeam& team, double step_dt, GridStatistics& stats) {
+NewtonOutcome NewtonSolver::solve(BlockTeam& team, double step_dt, GridStatistics& stats,
+                                  const std::function<bool()>& stop) {
   dt = step_dt;
+  m_stop = &stop;
+  m_stopped = false;
   double best = std::numeric_limits<double>::infinity();
   for (int it = 0; it < kMaxNewton; ++it) {
+    if (stop_requested()) return NewtonOutcome::stopped;
     const double res = prepare_newton_iteration(team, it > 0);
     if (res <= kNewtonTolerance_K) return NewtonOutcome::converged;
     if (res <= kStagnantResidual_K && res > 0.5 * best) {

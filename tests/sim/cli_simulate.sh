@@ -134,4 +134,30 @@ printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 -1 0\nv 0 0 -1\nf 1 3 2\nf 1 2 4
 solid=${grid/cavity = \{ kind = \"box\", size_m = \[0.024, 0.024, 0.024\] \}/}
 check_bad grid_open_cube_obj "open_cube.obj" "not closed" "${solid/kind = \"box\", size_m = \[0.04, 0.04, 0.04\]/kind = \"obj\", file = \"$work/open_cube.obj\", scale = 0.02}"
 check_bad grid_non_manifold_obj "two_tets.obj" "not manifold" "${solid/kind = \"box\", size_m = \[0.04, 0.04, 0.04\]/kind = \"obj\", file = \"$work/two_tets.obj\", scale = 0.02}"
+# A step cap below the grid's physical floor is refused before any work (it once ran for ever).
+for tiny in 1e-9 1e-320; do
+  check_bad "grid_step_$tiny" "simulation.max_step_s" "below the smallest useful step" "${grid/output_interval_s = 30.0/output_interval_s = 30.0
+max_step_s = $tiny}"
+done
+# A grid run ends promptly on SIGTERM or SIGINT, mid-interval (steps of 0.01 s, outputs 30 s
+# apart; it used to run on until the next output): exit 130, no result folder. The solver stops
+# within a second of the flag (tests/sim/grid/test_grid_time_stepper.cpp); here the bound also
+# covers signal delivery and exit on a loaded machine.
+for sig in TERM INT; do
+  printf '%s\n' "${grid/output_interval_s = 30.0/output_interval_s = 30.0
+cell_size_m = 0.001
+max_step_s = 0.01}" > "$work/grid_signal.toml"
+  rm -rf "$work/grid_signal-out"
+  "$thaw" simulate "$work/grid_signal.toml" --out "$work/grid_signal-out" -q 2> "$work/grid_signal.err" &
+  pid=$!
+  sleep 3
+  start=$(date +%s%N)
+  kill -$sig $pid
+  wait $pid
+  code=$?
+  ms=$(( ($(date +%s%N) - start) / 1000000 ))
+  [ $code -eq 130 ] || note "grid SIG$sig: exit code $code, expected 130: $(cat "$work/grid_signal.err")"
+  [ $ms -lt 3000 ] || note "grid SIG$sig: took $ms ms to end"
+  [ -e "$work/grid_signal-out" ] && note "grid SIG$sig: result folder written"
+done
 exit $fail

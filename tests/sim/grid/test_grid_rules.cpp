@@ -59,6 +59,24 @@ TEST(GridRules, ValidShapesParse) {
   EXPECT_EQ(a.grid, GridGeometry::axisymmetric);
 }
 
+TEST(GridRules, MaxStepHasAPhysicalFloor) {
+  // The floor is a cell's diffusion time over the widest admitted temperature span: for ice
+  // (alpha = 2.22 / (917 * 2050) = 1.181e-6 m^2/s, larger than water's 1.34e-7) and 1 mm
+  // cells, 1e-6 / 1.181e-6 / 1273.15 = 6.65e-4 s.
+  const Materials ice;
+  EXPECT_NEAR(smallest_max_step_s(ice, 1e-3), 1e-6 / (2.22 / (917.0 * 2050.0)) / 1273.15, 1e-12);
+  const std::string cell = "cell_size_m = 0.001\n";
+  for (const char* tiny : {"1e-9", "1e-320", "0.0006"})
+    expect_refused(scenario("3d", kCube, cell + "max_step_s = " + tiny), "simulation.max_step_s",
+                   "below the smallest useful step");
+  expect_refused(scenario("axisymmetric", "outer = { kind = \"sphere\", radius_m = 0.02 }",
+                          cell + "max_step_s = 1e-9"),
+                 "simulation.max_step_s", "0.000665");
+  // just above the floor is a valid (if slow) scenario
+  EXPECT_NO_THROW(
+      parse_scenario_string(scenario("3d", kCube, cell + "max_step_s = 0.0007"), "good.toml"));
+}
+
 TEST(GridRules, CavityMustLieStrictlyInside) {
   expect_refused(scenario("3d", kCube + "cavity = { kind = \"box\", size_m = [0.04, 0.02, 0.02] }"),
                  "shape.cavity", "strictly inside");
