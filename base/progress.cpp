@@ -1,5 +1,7 @@
 #include "base/progress.h"
 
+#include "base/progress_observer.h"
+
 #include <unistd.h>
 
 #include <cmath>
@@ -7,6 +9,26 @@
 #include <exception>
 
 namespace thaw {
+namespace {
+
+// The observer and its context, read together under the lock (installs are rare; the lock is
+// uncontended but for OpenMP workers advancing one reporter, which serialise on m_mutex anyway).
+std::mutex g_observer_mutex;
+ProgressObserver g_observer = nullptr;
+void* g_observer_context = nullptr;
+
+void notify_observer(const std::string& title, std::int64_t done, std::int64_t total) {
+  std::lock_guard<std::mutex> lock(g_observer_mutex);
+  if (g_observer) g_observer(g_observer_context, title.c_str(), done, total);
+}
+
+}  // namespace
+
+void set_progress_observer(ProgressObserver observer, void* context) {
+  std::lock_guard<std::mutex> lock(g_observer_mutex);
+  g_observer = observer;
+  g_observer_context = context;
+}
 
 ProgressReporter::ProgressReporter(std::string title, std::int64_t total, bool quiet)
     : m_title(std::move(title)),
@@ -68,9 +90,9 @@ ProgressCallback ProgressReporter::callback() {
 }
 
 void ProgressReporter::report(std::int64_t done, bool force) {
-  if (m_quiet) return;
   std::lock_guard<std::mutex> lock(m_mutex);
-  if (m_finished) return;
+  notify_observer(m_title, done, m_total);
+  if (m_quiet || m_finished) return;
   const auto now = std::chrono::steady_clock::now();
   const double elapsed = std::chrono::duration<double>(now - m_start).count();
   const double frac = m_total > 0 ? std::min(1.0, double(done) / double(m_total)) : 1.0;

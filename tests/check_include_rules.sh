@@ -22,7 +22,7 @@ check() { # $1 description, $2 file list, $3 forbidden include regex
   if [ -n "$hits" ]; then echo "violation: $1"; echo "$hits"; fail=1; fi
 }
 all_but() { # the sources of every top folder except those named
-  local folders="base sim render src/mesh src/inspect src/pipeline src/cli src/gui" f out=""
+  local folders="base sim render src/mesh src/inspect src/pipeline src/cli src/gui python" f out=""
   for f in $folders; do case " $* " in *" $f "*) ;; *) out+="$(files_of "$f")"$'\n' ;; esac; done
   echo "$out"
 }
@@ -34,6 +34,8 @@ check "sim includes render/ or src/" "$(files_of sim)" "(render|src)/"
 check "render includes sim/ or src/" "$(files_of render)" "(sim|src)/"
 check "mesh or inspect include sim/ beyond sim/format" "$(files_of src/mesh; files_of src/inspect)" \
   "sim/(grid|scenario|shape|stefan1d|reference|simulate)"
+check "a library or a command includes python/ (the Python module is on top, like the CLI)" \
+  "$(all_but python)" "python/"
 check "a library includes src/gui" "$(files_of src/mesh; files_of src/inspect; files_of src/pipeline)" "src/gui/"
 hits=$(files_of src/cli | xargs grep -nE "$inc"'src/gui/' 2>/dev/null | grep -v 'src/gui/gui.h')
 if [ -n "$hits" ]; then echo "violation: src/cli includes more of src/gui than its Qt-free gui.h"; echo "$hits"; fail=1; fi

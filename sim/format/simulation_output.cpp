@@ -40,12 +40,7 @@ std::filesystem::path field_file(const std::filesystem::path& dir, std::size_t s
   return dir / "fields" / buf;
 }
 
-void write_grid_outputs(const std::filesystem::path& dir, const SimulationResult& r) {
-  write_interfaces_csv(dir / "interfaces.csv", r.interface_records());
-  ensure_directory(dir / "fields");
-  // Fields kept in memory are written here; streamed ones (field_stream) are there already.
-  for (std::size_t i = 0; i < r.fields.size(); ++i)
-    write_grid_field(field_file(dir, i), r.fields[i]);
+nlohmann::json grid_summary_json(const SimulationResult& r) {
   nlohmann::json j;
   j["parameters"] = scenario_to_json(r.scenario);
   j["events"] = nlohmann::json::array();
@@ -92,7 +87,16 @@ void write_grid_outputs(const std::filesystem::path& dir, const SimulationResult
       {"final_time_s", r.snapshots.back().time_s},
       {"radii", "volume-equivalent: inner from the liquid volume, outer from ice + liquid"}};
   j["final"] = final_state_json(r);
-  write_file_atomic(dir / "summary.json", j.dump(2) + "\n");
+  return j;
+}
+
+void write_grid_outputs(const std::filesystem::path& dir, const SimulationResult& r) {
+  write_interfaces_csv(dir / "interfaces.csv", r.interface_records());
+  ensure_directory(dir / "fields");
+  // Fields kept in memory are written here; streamed ones (field_stream) are there already.
+  for (std::size_t i = 0; i < r.fields.size(); ++i)
+    write_grid_field(field_file(dir, i), r.fields[i]);
+  write_file_atomic(dir / "summary.json", summary_json_text(r));
 }
 
 }  // namespace
@@ -126,22 +130,9 @@ FieldSink field_stream(const std::filesystem::path& dir, const Scenario& scenari
   };
 }
 
-void write_simulation_outputs(const std::filesystem::path& dir, const SimulationResult& r) {
+std::string summary_json_text(const SimulationResult& r) {
   THAW_CHECK(!r.snapshots.empty(), "a simulation result has at least one snapshot");
-  if (r.scenario.grid != GridGeometry::none) return write_grid_outputs(dir, r);
-  write_interfaces_csv(dir / "interfaces.csv", r.interface_records());
-  const auto profiles = dir / "profiles";
-  ensure_directory(profiles);
-  char buf[128];
-  for (std::size_t i = 0; i < r.snapshots.size(); ++i) {
-    std::string text = "r_m,temperature_c,phase\n";
-    for (const ProfilePoint& p : r.snapshots[i].profile) {
-      std::snprintf(buf, sizeof buf, "%.17g,%.17g,%s\n", p.r_m, p.temperature_c, p.phase);
-      text += buf;
-    }
-    std::snprintf(buf, sizeof buf, "step_%06zu.csv", i);
-    write_file_atomic(profiles / buf, text);
-  }
+  if (r.scenario.grid != GridGeometry::none) return grid_summary_json(r).dump(2) + "\n";
   nlohmann::json j;
   j["parameters"] = scenario_to_json(r.scenario);
   j["events"] = nlohmann::json::array();
@@ -167,7 +158,26 @@ void write_simulation_outputs(const std::filesystem::path& dir, const Simulation
                  {"ended_early", r.ended_early},
                  {"final_time_s", r.snapshots.back().time_s}};
   j["final"] = final_state_json(r);
-  write_file_atomic(dir / "summary.json", j.dump(2) + "\n");
+  return j.dump(2) + "\n";
+}
+
+void write_simulation_outputs(const std::filesystem::path& dir, const SimulationResult& r) {
+  THAW_CHECK(!r.snapshots.empty(), "a simulation result has at least one snapshot");
+  if (r.scenario.grid != GridGeometry::none) return write_grid_outputs(dir, r);
+  write_interfaces_csv(dir / "interfaces.csv", r.interface_records());
+  const auto profiles = dir / "profiles";
+  ensure_directory(profiles);
+  char buf[128];
+  for (std::size_t i = 0; i < r.snapshots.size(); ++i) {
+    std::string text = "r_m,temperature_c,phase\n";
+    for (const ProfilePoint& p : r.snapshots[i].profile) {
+      std::snprintf(buf, sizeof buf, "%.17g,%.17g,%s\n", p.r_m, p.temperature_c, p.phase);
+      text += buf;
+    }
+    std::snprintf(buf, sizeof buf, "step_%06zu.csv", i);
+    write_file_atomic(profiles / buf, text);
+  }
+  write_file_atomic(dir / "summary.json", summary_json_text(r));
 }
 
 std::optional<std::string> foreign_entry(const std::filesystem::path& dir) {

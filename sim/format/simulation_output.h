@@ -23,6 +23,10 @@ void write_simulation_outputs(const std::filesystem::path& dir, const Simulation
 FieldSink field_stream(const std::filesystem::path& dir, const Scenario& scenario,
                        std::size_t outputs);
 
+/// The text of DIR/summary.json (every effective parameter, the events, solver statistics,
+/// the final state), as write_simulation_outputs writes it.
+std::string summary_json_text(const SimulationResult& result);
+
 /// The first entry of the existing folder `dir` that no thaw command writes into a result folder
 /// (interfaces.csv, summary.json, profiles/, fields/, and thaw mesh's mesh/, mesh.partial/ and
 /// its temporaries *.tmp-*), or nullopt (also for a missing or empty folder). A result folder is
