@@ -1,12 +1,12 @@
 #include "base/progress.h"
 
-#include "base/progress_observer.h"
-
 #include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
 #include <exception>
+
+#include "base/progress_observer.h"
 
 namespace thaw {
 namespace {

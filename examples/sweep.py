@@ -50,11 +50,12 @@ def plot(runs, path):
     temps = [r["temperature_c"] for r in runs]
     ax_t.plot(temps, [r["break_through_s"] / 60 for r in runs], "o-")
     ax_t.axvline(4.0, color="0.6", ls="--", lw=1)
-    ax_t.text(4.05, ax_t.get_ylim()[0], " 4 C: densest water", color="0.4", va="bottom")
+    ax_t.text(4.05, 0.97, "4 C: densest water", color="0.4", va="top",
+              transform=ax_t.get_xaxis_transform())
     ax_t.set_xlabel("water temperature at t = 0 [C]")
     ax_t.set_ylabel("break-through time [min]")
     ax_t.set_title("When the shell opens")
-    colors = plt.cm.coolwarm(np.linspace(0, 1, len(runs)))
+    colors = plt.cm.viridis(np.linspace(0, 0.9, len(runs)))
     for run, c in zip(runs, colors):
         result, step = run["result"], run["step"]
         g = result.grid

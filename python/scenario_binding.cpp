@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <string>
 
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 #include <nlohmann/json.hpp>
 
 #include "base/text_file.h"

@@ -24,8 +24,7 @@ def test_from_dict_round_trips_every_parameter():
     base = thaw.Scenario.default()
     again = thaw.Scenario.from_dict(base.to_dict())
     assert again.parameters == base.parameters
-    # the effective parameters, given back as a document, are the same scenario
-    assert thaw.Scenario.from_dict(base.parameters).parameters == base.parameters
+    assert again.source == "<dict>"
 
 
 def test_with_changes_one_key_and_nothing_else():
@@ -52,6 +51,8 @@ def test_with_a_value_out_of_range_names_the_key():
     assert "shell.inner_radius_m" in e.value.key and "must not be negative" in e.value.problem
 
 
-def test_from_dict_makes_missing_sections_defaults():
-    sc = thaw.Scenario.from_dict({"simulation": {"duration_s": 120.0}})
-    assert sc.parameters["simulation"]["duration_s"] == 120.0
+def test_from_dict_names_a_missing_required_key():
+    with pytest.raises(thaw.UserError) as e:
+        thaw.Scenario.from_dict({"simulation": {"duration_s": 120.0}}, source="mine")
+    assert e.value.file == "mine" and "simulation.geometry" in e.value.key
+    assert e.value.problem == "required key is missing"
