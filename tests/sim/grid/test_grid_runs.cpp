@@ -266,7 +266,7 @@ TEST(GridRuns, AnInterruptStopsBetweenStepsAndTheNextRunIsUnchanged) {
       scenario_text("3d",
                     "outer = { kind = \"sphere\", radius_m = 0.013 }\ncavity = { kind = "
                     "\"sphere\", radius_m = 0.008 }",
-                    "cell_size_m = 0.002", 30, 50),
+                    "cell_size_m = 0.0015", 30, 50),
       "interrupt.toml");
   EnthalpySolver solver(build_grid_problem(sc));
   request_interrupt();
