@@ -60,7 +60,7 @@ print(f"  overhead: wall {(med(py_wall) - med(cpp_wall)) * 1e3:+.3f} ms, "
 
 print("fields(step) of 3D runs (hollow cube, one output step after t = 0):")
 cube = (pathlib.Path(__file__).parents[2] / "data" / "scenarios" / "hollow_cube.toml").read_text()
-for cell in (0.004, 0.002, 0.001):
+for cell in (0.0025, 0.00125, 0.000625):
     sc = thaw.Scenario.from_toml(cube, "hollow_cube.toml").with_(**{
         "simulation.duration_s": 1.0, "simulation.output_interval_s": 1.0,
         "simulation.cell_size_m": cell})
@@ -78,5 +78,5 @@ for cell in (0.004, 0.002, 0.001):
     f = r.fields(1)
     size, peak = tracemalloc.get_traced_memory()
     tracemalloc.stop()
-    print(f"  cell {cell * 1e3:.0f} mm: {cells:>9d} cells ({3 * 4 * cells / 2**20:7.1f} MiB of "
+    print(f"  cell {cell * 1e3:.3g} mm: {cells:>9d} cells ({3 * 4 * cells / 2**20:7.1f} MiB of "
           f"fields): {per_call * 1e6:.2f} us per call, {peak} bytes allocated by one call")
