@@ -70,7 +70,7 @@ py::dict run(const RunArgs& a, const py::object& progress) {
   out["gif"] = path(report.gif);
   out["plot"] = path(report.plot);
   out["pvd"] = path(report.pvd);
-  out["handoff_obj"] = path(report.handoff_obj);
+  out["handoff_scene"] = path(report.handoff_scene);
   out["fields_pvd"] = path(report.fields_pvd);
   out["handoff_vdb"] = path(report.handoff_vdb);
   out["events"] = report.events;

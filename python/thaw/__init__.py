@@ -231,7 +231,7 @@ def run(scenario, out_dir, frames=None, progress=None, *, stage=None, force=Fals
         force: redo every stage.  jobs: worker threads (0 = all cores).
         size: "WIDTHxHEIGHT" or (width, height).  spp: samples per pixel.  fps: film rate.
 
-    Returns a dict: film, gif, plot, pvd, handoff_obj, fields_pvd, handoff_vdb (paths or None),
+    Returns a dict: film, gif, plot, pvd, handoff_scene, fields_pvd, handoff_vdb (paths or None),
     events (lines as ``thaw run`` prints them), stages (stage, seconds, skipped, items_done),
     frames, total_seconds.
     """
