@@ -11,7 +11,6 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 
-#include "base/interrupt.h"
 #include "sim/format/scenario_file.h"
 #include "sim/format/simulation_output.h"
 #include "sim/grid/enthalpy_solver.h"
@@ -257,27 +256,6 @@ TEST(GridRuns, ResultsDoNotDependOnTheThreadCount) {
     EXPECT_EQ(stats[r].cg_iterations, stats[0].cg_iterations);
   }
   EXPECT_GT(stats[0].cg_iterations, 0);
-}
-
-TEST(GridRuns, AnInterruptStopsBetweenStepsAndTheNextRunIsUnchanged) {
-  // Ctrl-C (base/interrupt.h) ends advance_to at the next step, not the next output time: a
-  // long output interval must not delay it (thaw.simulate answers Ctrl-C within a second).
-  const Scenario sc = parse_scenario_string(
-      scenario_text("3d",
-                    "outer = { kind = \"sphere\", radius_m = 0.013 }\ncavity = { kind = "
-                    "\"sphere\", radius_m = 0.008 }",
-                    "cell_size_m = 0.0015", 30, 50),
-      "interrupt.toml");
-  EnthalpySolver solver(build_grid_problem(sc));
-  request_interrupt();
-  EXPECT_THROW(solver.advance_to(30), Interrupted);
-  clear_interrupt_request();
-  EXPECT_EQ(solver.time(), 0.0);
-  EXPECT_EQ(solver.statistics().steps, 0);
-  EnthalpySolver fresh(build_grid_problem(sc));
-  fresh.advance_to(30);
-  EXPECT_EQ(fresh.time(), 30.0);
-  EXPECT_GT(fresh.statistics().steps, 1);
 }
 
 TEST(GridRuns, ObjSphereMatchesTheAnalyticSphere) {
