@@ -1,7 +1,9 @@
 // `thaw run` on the tiny 3D cube (tests/src/pipeline/data/tiny_cube.toml) and the tiny
 // axisymmetric cylinder (tiny_cylinder.toml, its (r, y) field revolved) writes one OpenVDB file
 // per step into DIR/handoff/vdb, placed where the hand-off meshes are: the world bounding box of
-// the step-0 outer OBJ (the ice fraction's 1/2 isosurface, in world space) against the box of
+// the step-0 outer surface (the ice fraction's 1/2 isosurface: the mesh stage's OBJ placed as
+// handoff/surfaces.json says, world = scale * file + translate; the largest surface of frame 0,
+// since the outer surface encloses the others) against the box of
 // the cell faces of the voxels holding at least half ice. Across a face, the 1/2 crossing of the
 // fraction interpolated from a cell with f >= 1/2 to its neighbour with g < 1/2 is (f - 1/2) /
 // (f - g) of a cell edge h beyond the first centre, so within h/2 of the cell face: each side
@@ -16,7 +18,9 @@
 
 #include <algorithm>
 #include <array>
+#include <fstream>
 #include <limits>
+#include <nlohmann/json.hpp>
 
 #include "base/obj_reader.h"
 #include "base/subprocess.h"
@@ -68,14 +72,36 @@ TEST_P(ThawRunVdbOf, VolumesOfEveryStepSitWithTheMeshes) {
         hi[c] = std::max(hi[c], w[c] + h / 2);
       }
     }
-  const meshio::TriangleMesh outer = meshio::read_obj(out / "handoff/obj/shell_outer_000000.obj");
-  ASSERT_FALSE(outer.vertices.empty());
-  std::array<double, 3> mlo = outer.vertices[0], mhi = outer.vertices[0];
-  for (const auto& p : outer.vertices)
-    for (int c = 0; c < 3; ++c) {
-      mlo[c] = std::min(mlo[c], p[c]);
-      mhi[c] = std::max(mhi[c], p[c]);
+  // Frame 0's surfaces in world space, from the hand-off's listing of the mesh stage's files.
+  std::ifstream listing_file(out / "handoff/surfaces.json");
+  ASSERT_TRUE(listing_file) << "handoff/surfaces.json";
+  const nlohmann::json listing = nlohmann::json::parse(listing_file);
+  std::array<double, 3> mlo{}, mhi{};
+  double largest = -1;
+  for (const auto& surface : listing.at("surfaces")) {
+    const auto& frame = surface.at("frames").at(0);
+    if (frame.is_null()) continue;
+    const meshio::TriangleMesh m = meshio::read_obj(out / frame.at("file").get<std::string>());
+    if (m.vertices.empty()) continue;
+    const double scale = frame.at("scale").get<double>();
+    const auto translate = frame.at("translate_m").get<std::array<double, 3>>();
+    std::array<double, 3> lo_w, hi_w;
+    lo_w.fill(std::numeric_limits<double>::infinity());
+    hi_w.fill(-std::numeric_limits<double>::infinity());
+    for (const auto& p : m.vertices)
+      for (int c = 0; c < 3; ++c) {
+        const double w = scale * p[c] + translate[c];
+        lo_w[c] = std::min(lo_w[c], w);
+        hi_w[c] = std::max(hi_w[c], w);
+      }
+    const double extent = hi_w[0] - lo_w[0] + hi_w[1] - lo_w[1] + hi_w[2] - lo_w[2];
+    if (extent > largest) {
+      largest = extent;
+      mlo = lo_w;
+      mhi = hi_w;
     }
+  }
+  ASSERT_GT(largest, 0) << "no surface in frame 0 of handoff/surfaces.json";
   for (int c = 0; c < 3; ++c) {
     EXPECT_NEAR(mlo[c], lo[c], h / 2) << "axis " << c;
     EXPECT_NEAR(mhi[c], hi[c], h / 2) << "axis " << c;
