@@ -1,17 +1,31 @@
 // How close thaw's BVH is to what this machine can do (issue 30, item 1): records the rays of one
 // real frame (render/accel/ray_record.h: every Scene::intersect and Scene::occluded query of a
-// Whitted frame), sorted into camera rays (closest-hit rays from the camera position), secondary
-// rays (the other closest-hit rays: reflection and refraction) and shadow rays (any-hit), then
-// replays the same rays on the same triangles through thaw's Scene::intersect / Scene::occluded
-// and through Intel Embree 3's rtcIntersect1 / rtcOccluded1, same OpenMP threads, same run,
-// interleaved, best of several repetitions. Prints rays per second per kind and thaw / Embree, the
-// frame's own rays per CPU-second as a fraction of Embree's replay, and checks that both agree on
-// every ray (hit or miss; the same triangle or the same t within the bound below); a disagreement
-// is a bug in one of them, so the program exits 1 when any ray disagrees.
-// Usage: ray_limit [scene.toml] [threads] [repetitions]; only triangle scenes (Embree is given
-// the same triangles; spheres, boxes and planes would need user geometry).
+// Whitted frame and of its caustic photon pass), sorted into camera rays (closest-hit rays from
+// the camera position), secondary rays (the frame's other closest-hit rays: reflection and
+// refraction), shadow rays (any-hit) and photon rays (the photon pass's), then replays the same
+// rays on the same primitives through thaw's Scene::intersect / Scene::occluded and through Intel
+// Embree 3's rtcIntersect1 / rtcOccluded1, same OpenMP threads, same run, interleaved, best of
+// several repetitions. Prints rays per second per kind and thaw / Embree, the frame's own rays per
+// CPU-second as a fraction of Embree's replay, where the frame's CPU time goes outside traversal,
+// and checks that both agree on every ray (hit or miss; the same primitive or the same t within
+// the bound below); a disagreement is a bug in one of them, so the program exits 1 when any ray
+// disagrees.
+//
+// Embree is given thaw's triangles as its own triangles (its kernels, its watertightness) and
+// thaw's spheres and boxes as user geometry whose intersection callbacks are thaw's exact tests
+// (render/geometry/sphere.h, box.h): Embree's BVH and traversal, the same answers per primitive.
+// Infinite planes have no bounds to put in a BVH; thaw tests them before its traversal and the
+// Embree side does the same with the same code, handing the plane's distance on as tfar.
+// Objects that shadow rays see through (index-matched dielectrics) are left out of a second
+// Embree scene that serves the shadow rays, as thaw's occluded() skips them.
+//
+// Usage: ray_limit [scene.toml | RUN_DIR] [threads] [repetitions] [frame]
+//   scene.toml: a `thaw render` scene (default: data/scenes/s1_ice_shell_mesh.toml);
+//   RUN_DIR: a `thaw run --out RUN_DIR` folder whose simulate and mesh stages are done; its frame
+//   `frame` (default 30) is built as the render stage builds it (without the caption).
 #include <embree3/rtcore.h>
 #include <omp.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -20,6 +34,7 @@
 #include <cstdio>
 #include <cstring>
 #include <ctime>
+#include <filesystem>
 #include <limits>
 #include <mutex>
 #include <string>
@@ -27,14 +42,31 @@
 
 #include "render/accel/ray_record.h"
 #include "render/format/scene_parser.h"
+#include "render/geometry/box.h"
+#include "render/geometry/obj_loader.h"
+#include "render/geometry/plane.h"
+#include "render/geometry/sphere.h"
+#include "render/geometry/triangle.h"
+#include "render/image/image_io.h"
 #include "render/integrator/whitted.h"
+#include "render/photon/caustic_map.h"
 #include "render/scene/scene.h"
+#include "sim/format/interface_history.h"
+#include "src/mesh/mesh_series.h"
+#include "src/pipeline/frame_camera.h"
+#include "src/pipeline/frame_scene.h"
+#include "src/pipeline/run_scenario.h"
+#include "src/pipeline/water_budget.h"
 
 namespace thaw::render {
 namespace {
+namespace fs = std::filesystem;
 
-enum Kind { kCamera, kSecondary, kShadow, kKinds };
-const char* const kKindName[kKinds] = {"camera", "secondary", "shadow"};
+enum Kind { kCamera, kSecondary, kShadow, kPhoton, kPhotonShadow, kKinds };
+const char* const kKindName[kKinds] = {"camera", "secondary", "shadow", "photon", "photon-any"};
+bool any_hit(int kind) {
+  return kind == kShadow || kind == kPhotonShadow;
+}
 
 /// Sorts the recorded rays by kind (the frame is recorded on one thread: the order is the
 /// frame's own; the mutex only guards against a caller that records with more).
@@ -43,56 +75,177 @@ class Recorder final : public RayRecorder {
   explicit Recorder(const Vec3& camera) : m_camera(camera) {}
   void record(RayQuery query, const Ray& ray) noexcept override {
     const std::lock_guard<std::mutex> lock(m_mutex);
-    if (query == RayQuery::any)
+    if (m_stream == RayStream::photon)
+      rays[query == RayQuery::any ? kPhotonShadow : kPhoton].push_back(ray);
+    else if (query == RayQuery::any)
       rays[kShadow].push_back(ray);
     else if (ray.origin == m_camera)
       rays[kCamera].push_back(ray);
     else
       rays[kSecondary].push_back(ray);
   }
+  void stream(RayStream s) noexcept override {
+    const std::lock_guard<std::mutex> lock(m_mutex);
+    m_stream = s;
+  }
   std::vector<Ray> rays[kKinds];
 
  private:
   Vec3 m_camera;
+  RayStream m_stream = RayStream::frame;
   std::mutex m_mutex;
 };
 
+/// thaw's spheres and boxes as one Embree user geometry: primitive i is thaw's primitive
+/// index[i]; bounds and intersections are thaw's own.
+struct UserPrimitives {
+  const Primitive* prims = nullptr;
+  std::vector<std::uint32_t> index;
+};
+
+Ray thaw_ray(float ox, float oy, float oz, float dx, float dy, float dz) {
+  Ray r;
+  r.origin = Vec3(ox, oy, oz);
+  r.direction = Vec3(dx, dy, dz);
+  return r;
+}
+
+/// Nearest t in (0, t_max) on thaw's primitive `p` (a sphere or a box), as Scene::intersect.
+bool intersect_user(const Primitive& p, const Ray& r, float t_max, float& t) {
+  if (p.kind == PrimitiveKind::sphere) return intersect_sphere(r, p.a, p.b.x, t_max, t);
+  int axis;
+  bool high;
+  return intersect_box(r, p.a, p.b, t_max, t, axis, high);
+}
+
+void user_bounds(const RTCBoundsFunctionArguments* args) {
+  const auto* u = static_cast<const UserPrimitives*>(args->geometryUserPtr);
+  const Primitive& p = u->prims[u->index[args->primID]];
+  Vec3 lo = p.a, hi = p.b;
+  if (p.kind == PrimitiveKind::sphere) {  // centre -+ radius, one ulp outward against rounding
+    const float inf = std::numeric_limits<float>::infinity();
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = std::nextafter(p.a[i] - p.b.x, -inf);
+      hi[i] = std::nextafter(p.a[i] + p.b.x, inf);
+    }
+  }
+  RTCBounds* b = args->bounds_o;
+  b->lower_x = lo.x, b->lower_y = lo.y, b->lower_z = lo.z;
+  b->upper_x = hi.x, b->upper_y = hi.y, b->upper_z = hi.z;
+}
+
+// rtcIntersect1 / rtcOccluded1 call these with N = 1.
+void user_intersect(const RTCIntersectFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  const auto* u = static_cast<const UserPrimitives*>(args->geometryUserPtr);
+  auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
+  const RTCRay& e = rh->ray;
+  float t;
+  if (!intersect_user(u->prims[u->index[args->primID]],
+                      thaw_ray(e.org_x, e.org_y, e.org_z, e.dir_x, e.dir_y, e.dir_z), e.tfar, t) ||
+      t < e.tnear)
+    return;
+  rh->ray.tfar = t;
+  rh->hit.u = rh->hit.v = 0.0f;
+  rh->hit.Ng_x = rh->hit.Ng_y = rh->hit.Ng_z = 0.0f;
+  rh->hit.primID = args->primID;
+  rh->hit.geomID = args->geomID;
+  rh->hit.instID[0] = args->context->instID[0];
+}
+
+void user_occluded(const RTCOccludedFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  const auto* u = static_cast<const UserPrimitives*>(args->geometryUserPtr);
+  auto* e = reinterpret_cast<RTCRay*>(args->ray);
+  float t;
+  if (intersect_user(u->prims[u->index[args->primID]],
+                     thaw_ray(e->org_x, e->org_y, e->org_z, e->dir_x, e->dir_y, e->dir_z), e->tfar,
+                     t) &&
+      t >= e->tnear)
+    e->tfar = -std::numeric_limits<float>::infinity();
+}
+
+/// Embree scenes of thaw's BVH primitives: geometry 0 its triangles (in leaf order), geometry 1
+/// its spheres and boxes (user geometry). `closest` holds all; `any` (the shadow rays') leaves
+/// out index-matched objects, as Scene::occluded does, and is `closest` when there are none.
 struct EmbreeScene {
+  static constexpr unsigned kTriangles = 0, kUser = 1;
   RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
+  RTCScene closest = nullptr, any = nullptr;
+  /// thaw's primitive of (geometry, Embree primitive) in `closest`
+  std::vector<std::uint32_t> triangle_prim;
+  UserPrimitives user[2];
+
   EmbreeScene(const Scene& s, int threads) {
     const std::string config = "threads=" + std::to_string(threads);
     device = rtcNewDevice(config.c_str());
-    scene = rtcNewScene(device);
-    // One geometry whose primitive i is thaw's primitive i (leaf order): hits compare by index.
-    // Default build quality (RTC_BUILD_QUALITY_MEDIUM), as an application would use it.
-    const std::vector<Primitive>& prims = s.primitives();
-    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * prims.size()));
-    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), prims.size()));
-    for (std::size_t i = 0; i < prims.size(); ++i) {
-      const Vec3* corner[3] = {&prims[i].a, &prims[i].b, &prims[i].c};
-      for (int k = 0; k < 3; ++k) {
-        v[9 * i + 3 * k] = corner[k]->x;
-        v[9 * i + 3 * k + 1] = corner[k]->y;
-        v[9 * i + 3 * k + 2] = corner[k]->z;
-        idx[3 * i + k] = static_cast<unsigned>(3 * i + k);
-      }
-    }
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(scene, g);
-    rtcReleaseGeometry(g);
-    rtcCommitScene(scene);
+    bool matched = false;
+    for (const SceneObject& o : s.objects()) matched |= o.index_matched;
+    closest = make(s, false, user[0], &triangle_prim);
+    any = matched ? make(s, true, user[1], nullptr) : closest;
   }
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
   ~EmbreeScene() {
-    rtcReleaseScene(scene);
+    if (any != closest) rtcReleaseScene(any);
+    rtcReleaseScene(closest);
     rtcReleaseDevice(device);
+  }
+  /// thaw's primitive index of an Embree hit in `closest`.
+  std::uint32_t prim(unsigned geom, unsigned prim_id) const {
+    return geom == kTriangles ? triangle_prim[prim_id] : user[0].index[prim_id];
+  }
+
+ private:
+  RTCScene make(const Scene& s, bool skip_matched, UserPrimitives& u,
+                std::vector<std::uint32_t>* triangle_index) const {
+    // Default build quality (RTC_BUILD_QUALITY_MEDIUM), as an application would use it.
+    RTCScene scene = rtcNewScene(device);
+    const std::vector<Primitive>& prims = s.primitives();
+    std::vector<std::uint32_t> tri;
+    u.prims = prims.data();
+    for (std::uint32_t i = 0; i < prims.size(); ++i) {
+      if (skip_matched && s.objects()[prims[i].object].index_matched) continue;
+      (prims[i].kind == PrimitiveKind::triangle ? tri : u.index).push_back(i);
+    }
+    if (!tri.empty()) {
+      RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+          g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * tri.size()));
+      auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+          g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), tri.size()));
+      for (std::size_t i = 0; i < tri.size(); ++i) {
+        const Primitive& p = prims[tri[i]];
+        const Vec3* corner[3] = {&p.a, &p.b, &p.c};
+        for (int k = 0; k < 3; ++k) {
+          v[9 * i + 3 * k] = corner[k]->x;
+          v[9 * i + 3 * k + 1] = corner[k]->y;
+          v[9 * i + 3 * k + 2] = corner[k]->z;
+          idx[3 * i + k] = static_cast<unsigned>(3 * i + k);
+        }
+      }
+      rtcCommitGeometry(g);
+      rtcAttachGeometryByID(scene, g, kTriangles);
+      rtcReleaseGeometry(g);
+    }
+    if (!u.index.empty()) {
+      RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+      rtcSetGeometryUserPrimitiveCount(g, static_cast<unsigned>(u.index.size()));
+      rtcSetGeometryUserData(g, &u);
+      rtcSetGeometryBoundsFunction(g, user_bounds, nullptr);
+      rtcSetGeometryIntersectFunction(g, user_intersect);
+      rtcSetGeometryOccludedFunction(g, user_occluded);
+      rtcCommitGeometry(g);
+      rtcAttachGeometryByID(scene, g, kUser);
+      rtcReleaseGeometry(g);
+    }
+    rtcCommitScene(scene);
+    if (triangle_index) *triangle_index = std::move(tri);
+    return scene;
   }
 };
 
-RTCRay to_embree(const Ray& r) {
+RTCRay to_embree(const Ray& r, float t_max) {
   RTCRay e;
   e.org_x = r.origin.x;
   e.org_y = r.origin.y;
@@ -101,7 +254,7 @@ RTCRay to_embree(const Ray& r) {
   e.dir_y = r.direction.y;
   e.dir_z = r.direction.z;
   e.tnear = 0.0f;
-  e.tfar = r.t_max;
+  e.tfar = t_max;
   e.mask = ~0u;
   e.flags = 0;
   e.time = 0.0f;
@@ -109,7 +262,7 @@ RTCRay to_embree(const Ray& r) {
   return e;
 }
 
-/// Result of one ray: the hit primitive (kMiss if none) and its distance.
+/// Result of one ray: the hit primitive (kMiss if none; kPlaneBit | k for plane k) and its t.
 struct Result {
   static constexpr std::uint32_t kMiss = 0xffffffffu;
   std::uint32_t prim = kMiss;
@@ -122,17 +275,24 @@ struct Timing {
   double cpu_s = std::numeric_limits<double>::infinity();
 };
 
+/// Runs `f()` once and keeps its time if it is the fastest so far.
+template <class F>
+void timed_once(Timing& best, F&& f) {
+  const std::clock_t c0 = std::clock();
+  const auto w0 = std::chrono::steady_clock::now();
+  f();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+  best.wall_s = std::min(best.wall_s, wall);
+  best.cpu_s = std::min(best.cpu_s, double(std::clock() - c0) / CLOCKS_PER_SEC);
+}
+
 /// Runs `f(i)` for every ray on `threads` OpenMP threads; keeps the fastest of the repetitions.
 template <class F>
 void timed(Timing& best, std::size_t n, int threads, F&& f) {
-  const std::clock_t c0 = std::clock();
-  const auto w0 = std::chrono::steady_clock::now();
+  timed_once(best, [&] {
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 4096)
-  for (std::size_t i = 0; i < n; ++i) f(i);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
-  const double cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
-  best.wall_s = std::min(best.wall_s, wall);
-  best.cpu_s = std::min(best.cpu_s, cpu);
+    for (std::size_t i = 0; i < n; ++i) f(i);
+  });
 }
 
 /// Barycentric coordinates (all three) and t of `ray` against triangle `p`, in double precision
@@ -160,33 +320,59 @@ std::array<double, 4> exact_hit(const Ray& r, const Primitive& p) {
   return {1 - u - v, u, v, dt(e2, qv) / det};
 }
 
+/// Frame `frame` of the `thaw run` folder `dir` as its render stage builds it
+/// (src/pipeline/stage_render.cpp: the run's camera, the step's meshes, the puddle's water).
+SceneDescription run_frame_scene(const fs::path& dir, long frame) {
+  const pipeline::RunScenario sc = pipeline::read_run_scenario(dir / "scenario.toml");
+  const std::vector<sim::InterfaceRecord> rows =
+      sim::read_interfaces_csv(dir / "sim/interfaces.csv");
+  const fs::path mesh_dir = dir / "sim/mesh";
+  const mesh::MeshManifest meshes = mesh::read_mesh_manifest(mesh_dir / "manifest.json");
+  pipeline::RunScenario framed = sc;
+  framed.scene.camera = pipeline::run_camera(sc, rows, meshes.geometry);
+  const std::vector<pipeline::WaterBudget> water =
+      pipeline::water_budget(rows, meshes.geometry, sc.simulation.materials.ice_density_kg_m3,
+                             sc.simulation.materials.water_density_kg_m3);
+  const mesh::StepRecord& step = meshes.steps.at(static_cast<std::size_t>(frame));
+  pipeline::FrameShell shell;
+  if (step.outer.file)
+    shell.outer = std::make_shared<TriangleMesh>(load_obj(mesh_dir / *step.outer.file));
+  if (step.inner.file)
+    shell.inner = std::make_shared<TriangleMesh>(load_obj(mesh_dir / *step.inner.file));
+  shell.outer_radius_m = step.outer_radius_m;
+  return pipeline::frame_scene(framed, meshes.geometry, shell,
+                               water.at(static_cast<std::size_t>(step.step)));
+}
+
 int run(int argc, char** argv) {
   const std::string path =
       argc > 1 ? argv[1] : std::string(THAW_SOURCE_DIR) + "/data/scenes/s1_ice_shell_mesh.toml";
   const int threads = argc > 2 ? std::atoi(argv[2]) : 2;
   const int repetitions = argc > 3 ? std::atoi(argv[3]) : 5;
-  const Scene scene = build_scene(parse_scene_file(path));
+  const long frame_index = argc > 4 ? std::atol(argv[4]) : 30;
+  const bool run_dir = fs::is_directory(path);
+  const Scene scene =
+      build_scene(run_dir ? run_frame_scene(path, frame_index) : parse_scene_file(path));
   const SceneStatistics& st = scene.statistics();
-  if (st.spheres + st.boxes + st.planes > 0 || st.triangles == 0) {
-    std::fprintf(stderr, "ray_limit: %s has spheres, boxes or planes; only triangles compare\n",
-                 path.c_str());
-    return 2;
-  }
 
-  // 1. The frame, as thaw renders it (threads as given, recorder off): wall and CPU time.
-  Timing frame;
+  // 1. The frame, as thaw renders it (threads as given, recorder off): wall and CPU time; its
+  // photon pass alone, and the PNG of it (written as the render stage writes it).
+  Timing frame, photons, png;
   Image unrecorded;
+  const fs::path png_path =
+      fs::temp_directory_path() / ("ray_limit_" + std::to_string(::getpid()) + ".png");
   for (int r = 0; r < std::max(1, repetitions / 2); ++r) {
-    const std::clock_t c0 = std::clock();
-    const auto w0 = std::chrono::steady_clock::now();
-    RenderOptions opt;
-    opt.threads = threads;
-    unrecorded = render(scene, opt).image;
-    const double wall =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
-    frame.wall_s = std::min(frame.wall_s, wall);
-    frame.cpu_s = std::min(frame.cpu_s, double(std::clock() - c0) / CLOCKS_PER_SEC);
+    timed_once(frame, [&] {
+      RenderOptions opt;
+      opt.threads = threads;
+      unrecorded = render(scene, opt).image;
+    });
+    timed_once(photons, [&] { photon::CausticMap::build(scene, threads, nullptr); });
+    timed_once(png, [&] {
+      write_png(png_path, unrecorded, scene.settings().exposure, 8, scene.settings().view);
+    });
   }
+  fs::remove(png_path);
   // 2. Its rays (one thread: the rays do not depend on the thread count, the order then does not
   // either).
   Recorder rec(scene.camera().position());
@@ -204,9 +390,12 @@ int run(int argc, char** argv) {
   }
 
   const EmbreeScene es(scene, threads);
-  std::printf("ray_limit: %s, %zu triangles, %d x %d, %d spp, %d threads, best of %d\n",
-              path.c_str(), st.triangles, scene.settings().width, scene.settings().height,
-              scene.settings().samples_per_pixel, threads, repetitions);
+  std::printf(
+      "ray_limit: %s%s, %zu triangles, %zu spheres, %zu boxes, %zu planes, %d x %d, %d spp, %d "
+      "threads, best of %d\n",
+      path.c_str(), run_dir ? (" frame " + std::to_string(frame_index)).c_str() : "", st.triangles,
+      st.spheres, st.boxes, st.planes, scene.settings().width, scene.settings().height,
+      scene.settings().samples_per_pixel, threads, repetitions);
   std::printf("%-10s %9s %14s %15s %12s %12s %9s %10s\n", "rays", "count", "thaw [Mray/s]",
               "Embree [Mray/s]", "thaw/Embree", "(CPU-time)", "mismatch", "self-hits");
 
@@ -214,17 +403,28 @@ int run(int argc, char** argv) {
   // rounding error of a few ulps of the largest coordinate involved (watertight test: pbrt-v4
   // 6.5.3, gamma(7) of the sheared coordinates plus the shear's gamma(5)), so t differs by at most
   // 2 * gamma(16) * (max |vertex| + |origin|) / |direction| (the sum of both sides' bounds).
+  // Spheres and boxes are thaw's own tests on both sides: the same t, bit for bit.
   float extent = 0;
-  for (const Primitive& p : scene.primitives())
-    for (const Vec3* c : {&p.a, &p.b, &p.c})
-      extent = std::max({extent, std::fabs(c->x), std::fabs(c->y), std::fabs(c->z)});
+  for (const Primitive& p : scene.primitives()) {
+    std::vector<Vec3> corners{p.a, p.b, p.c};  // triangle
+    if (p.kind == PrimitiveKind::sphere)
+      corners = {p.a + Vec3(p.b.x, p.b.x, p.b.x), p.a - Vec3(p.b.x, p.b.x, p.b.x)};
+    else if (p.kind == PrimitiveKind::box)
+      corners = {p.a, p.b};
+    for (const Vec3& c : corners)
+      extent = std::max({extent, std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)});
+  }
   const float eps = std::numeric_limits<float>::epsilon() * 0.5f;
   const float g16 = 16 * eps / (1 - 16 * eps);
+  const auto is_triangle = [&](std::uint32_t prim) {
+    return !(prim & kPlaneBit) && scene.primitives()[prim].kind == PrimitiveKind::triangle;
+  };
   // A hit one side reports and the other not is a self-hit when the ray starts on that triangle
   // within the same bound and meets it within that distance of its origin: thaw offsets its
   // secondary origins by the hit point's error bound (offset_ray_origin) and never re-hits the
   // surface it leaves; Embree, given the same origin and tnear = 0, may. Not a traversal error.
   const auto self_hit = [&](const Ray& r, std::uint32_t prim, float t) {
+    if (!is_triangle(prim)) return false;
     const Primitive& p = scene.primitives()[prim];
     const Vec3 n = normalize(cross(p.b - p.a, p.c - p.a));
     const float bound = 2 * g16 * (extent + length(abs(r.origin)));
@@ -236,6 +436,7 @@ int run(int argc, char** argv) {
   // passed through a crack. "At the edge": the exact barycentric coordinate of the nearer side's
   // hit is within the rounding bound above, relative to the triangle's smallest altitude.
   const auto at_edge = [&](const Ray& r, std::uint32_t prim) {
+    if (!is_triangle(prim)) return false;
     const Primitive& p = scene.primitives()[prim];
     const auto e = exact_hit(r, p);
     const float longest = std::max({length(p.b - p.a), length(p.c - p.b), length(p.a - p.c)});
@@ -243,14 +444,74 @@ int run(int argc, char** argv) {
     const float bound = 2 * g16 * (extent + length(abs(r.origin))) / altitude;
     return std::min({std::fabs(e[0]), std::fabs(e[1]), std::fabs(e[2])}) <= bound;
   };
+  // thaw accepts a triangle's hit only beyond the rounding bound of its t (render/geometry/
+  // triangle.h; pbrt-v4), which grows with the triangle's extent: a ray that leaves a point just
+  // above a large triangle (S4's 200 m floor) may meet it nearer than that bound, where Embree
+  // reports the hit and thaw does not. Such a hit is thaw's bound when the same ray, started
+  // `extent` further back, meets the same triangle in thaw's own test at the distance moved
+  // plus Embree's t.
+  const auto t_bound_rejected = [&](const Ray& r, std::uint32_t prim, float t) {
+    if (!is_triangle(prim)) return false;
+    const Primitive& p = scene.primitives()[prim];
+    const float back = extent / length(r.direction);
+    Ray moved = r;
+    moved.origin = r.origin - r.direction * back;
+    TriangleHit th;
+    if (!intersect_triangle(ShearedRay(moved), p.a, p.b, p.c,
+                            std::numeric_limits<float>::infinity(), th))
+      return false;
+    const float tol = 2 * g16 * (3 * extent + length(abs(r.origin))) / length(r.direction);
+    return std::fabs(th.t - back - t) <= tol;
+  };
+  // The planes, as Scene::intersect / occluded test them before their traversal (the same code
+  // on both sides): the nearest, or whether any lies on the ray.
+  const std::vector<SceneObject>& objects = scene.objects();
+  std::vector<std::uint32_t> planes;
+  for (std::uint32_t i = 0; i < objects.size(); ++i)
+    if (objects[i].shape == ObjectDescription::Shape::plane) planes.push_back(i);
+  const auto nearest_plane = [&](const Ray& r, Result& res) {
+    float t_max = r.t_max;
+    for (std::uint32_t k = 0; k < planes.size(); ++k) {
+      const SceneObject& o = objects[planes[k]];
+      float t;
+      if (intersect_plane(r, o.plane_point, o.plane_normal, t_max, t)) {
+        t_max = t;
+        res = Result{kPlaneBit | k, t};
+      }
+    }
+    // A primitive at exactly the plane's t still wins (Scene::intersect).
+    return res.prim == Result::kMiss
+               ? t_max
+               : std::nextafter(t_max, std::numeric_limits<float>::infinity());
+  };
+  const auto any_plane = [&](const Ray& r) {
+    for (const std::uint32_t i : planes) {
+      float t;
+      if (intersect_plane(r, objects[i].plane_point, objects[i].plane_normal, r.t_max, t))
+        return true;
+    }
+    return false;
+  };
   const auto embree_closest = [&](const Ray& r) {
+    Result res;
+    const float t_max = nearest_plane(r, res);
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRayHit rh;
-    rh.ray = to_embree(r);
+    rh.ray = to_embree(r, t_max);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(es.scene, &ctx, &rh);
-    return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? Result{} : Result{rh.hit.primID, rh.ray.tfar};
+    rtcIntersect1(es.closest, &ctx, &rh);
+    return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID
+               ? res
+               : Result{es.prim(rh.hit.geomID, rh.hit.primID), rh.ray.tfar};
+  };
+  const auto embree_occluded = [&](const Ray& r) {
+    if (any_plane(r)) return true;
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay e = to_embree(r, r.t_max);
+    rtcOccluded1(es.any, &ctx, &e);
+    return e.tfar < 0.0f;  // rtcOccluded1 sets tfar = -inf on a hit
   };
   const auto thaw_closest = [&](const Ray& r) {
     Hit h;
@@ -258,22 +519,18 @@ int run(int argc, char** argv) {
   };
 
   std::size_t total_rays = 0, total_mismatch = 0, total_self = 0, cracks[2] = {0, 0};
-  Timing thaw_all{0, 0}, embree_all{0, 0};
+  std::size_t near_origin = 0;
+  Timing thaw_all{0, 0}, embree_all{0, 0}, thaw_photon{0, 0};
   for (int k = 0; k < kKinds; ++k) {
     const std::vector<Ray>& rays = rec.rays[k];
     const std::size_t n = rays.size();
+    if (n == 0) continue;
     std::vector<Result> a(n), b(n);
     Timing tt, te;
     for (int r = 0; r < repetitions; ++r) {  // interleaved: both see the same load
-      if (k == kShadow) {
+      if (any_hit(k)) {
         timed(tt, n, threads, [&](std::size_t i) { a[i].prim = scene.occluded(rays[i]) ? 1 : 0; });
-        timed(te, n, threads, [&](std::size_t i) {
-          RTCIntersectContext ctx;
-          rtcInitIntersectContext(&ctx);
-          RTCRay e = to_embree(rays[i]);
-          rtcOccluded1(es.scene, &ctx, &e);
-          b[i].prim = e.tfar < 0.0f ? 1 : 0;  // rtcOccluded1 sets tfar = -inf on a hit
-        });
+        timed(te, n, threads, [&](std::size_t i) { b[i].prim = embree_occluded(rays[i]) ? 1 : 0; });
       } else {
         timed(tt, n, threads, [&](std::size_t i) { a[i] = thaw_closest(rays[i]); });
         timed(te, n, threads, [&](std::size_t i) { b[i] = embree_closest(rays[i]); });
@@ -283,32 +540,41 @@ int run(int argc, char** argv) {
     for (std::size_t i = 0; i < n; ++i) {
       if (a[i].prim == b[i].prim) continue;
       Result ta = a[i], eb = b[i];
-      if (k == kShadow) {  // which triangle the occluding side met: its closest hit
+      if (any_hit(k)) {  // which primitive the occluding side met: its closest hit
         ta = ta.prim ? thaw_closest(rays[i]) : Result{};
         eb = eb.prim ? embree_closest(rays[i]) : Result{};
       }
       const bool thaw_hit = ta.prim != Result::kMiss, embree_hit = eb.prim != Result::kMiss;
+      if (embree_hit && (!thaw_hit || eb.t < ta.t) && self_hit(rays[i], eb.prim, eb.t)) {
+        ++self;
+        continue;
+      }
       if (thaw_hit && embree_hit) {
         const float tol =
             2 * g16 * (extent + length(abs(rays[i].origin))) / length(rays[i].direction);
-        if (k == kShadow || std::fabs(ta.t - eb.t) <= tol) continue;  // a shared edge
-      } else if (embree_hit && self_hit(rays[i], eb.prim, eb.t)) {
-        ++self;
+        if (any_hit(k) || std::fabs(ta.t - eb.t) <= tol) continue;  // a shared edge
+      } else if (embree_hit && t_bound_rejected(rays[i], eb.prim, eb.t)) {
+        ++near_origin;
         continue;
       }
       // One side's hit is the nearer (or the only) one and lies on an edge: the other passed
       // through a crack there (cracks[0]: thaw did, cracks[1]: Embree did).
       const bool thaw_nearer = thaw_hit && (!embree_hit || ta.t < eb.t);
       const Result& nearer = thaw_nearer ? ta : eb;
-      if (k != kShadow && nearer.prim != Result::kMiss && at_edge(rays[i], nearer.prim)) {
+      if (!any_hit(k) && nearer.prim != Result::kMiss && at_edge(rays[i], nearer.prim)) {
         ++cracks[thaw_nearer ? 1 : 0];
         continue;
       }
       if (mismatch < 5) {
         std::fprintf(stderr, "  %s ray %zu: thaw prim %u t %.9g, Embree prim %u t %.9g\n",
                      kKindName[k], i, ta.prim, double(ta.t), eb.prim, double(eb.t));
+        const Ray& r = rays[i];
+        std::fprintf(stderr, "    origin %.9g %.9g %.9g direction %.9g %.9g %.9g t_max %.9g\n",
+                     double(r.origin.x), double(r.origin.y), double(r.origin.z),
+                     double(r.direction.x), double(r.direction.y), double(r.direction.z),
+                     double(r.t_max));
         for (const Result& x : {ta, eb})
-          if (x.prim != Result::kMiss) {
+          if (x.prim != Result::kMiss && is_triangle(x.prim)) {
             const auto e = exact_hit(rays[i], scene.primitives()[x.prim]);
             std::fprintf(stderr, "    prim %u exact: b = %.3g %.3g %.3g, t = %.9g\n", x.prim, e[0],
                          e[1], e[2], e[3]);
@@ -322,10 +588,11 @@ int run(int argc, char** argv) {
     total_rays += n;
     total_mismatch += mismatch;
     total_self += self;
-    thaw_all.wall_s += tt.wall_s;
-    thaw_all.cpu_s += tt.cpu_s;
-    embree_all.wall_s += te.wall_s;
-    embree_all.cpu_s += te.cpu_s;
+    for (auto [sum, part] : {std::pair{&thaw_all, &tt}, std::pair{&embree_all, &te}}) {
+      sum->wall_s += part->wall_s;
+      sum->cpu_s += part->cpu_s;
+    }
+    if (k == kPhoton || k == kPhotonShadow) thaw_photon.cpu_s += tt.cpu_s;
   }
   std::printf("%-10s %9zu %14.2f %15.2f %12.3f %12.3f %9zu %10zu\n", "all", total_rays,
               double(total_rays) / thaw_all.wall_s * 1e-6,
@@ -334,16 +601,33 @@ int run(int argc, char** argv) {
   const double frame_per_cpu = double(total_rays) / frame.cpu_s * 1e-6;
   const double embree_per_cpu = double(total_rays) / embree_all.cpu_s * 1e-6;
   std::printf(
-      "frame: %.3f s wall, %.3f CPU-s, %.2f Mrays per CPU-second = %.3f of Embree's replay of the "
-      "same rays (%.2f Mrays per CPU-second); thaw's traversal alone is %.0f %% of the frame's "
-      "CPU time (the rest: camera sampling, shading, film)\n",
-      frame.wall_s, frame.cpu_s, frame_per_cpu, frame_per_cpu / embree_per_cpu, embree_per_cpu,
-      100.0 * thaw_all.cpu_s / frame.cpu_s);
+      "frame: %.3f s wall, %.3f CPU-s (photon pass included), %.2f Mrays per CPU-second = %.3f of "
+      "Embree's replay of the same rays (%.2f Mrays per CPU-second)\n",
+      frame.wall_s, frame.cpu_s, frame_per_cpu, frame_per_cpu / embree_per_cpu, embree_per_cpu);
+  // Where the frame's CPU time goes: the replays measure traversal alone (the same queries the
+  // frame makes, answered by the same code); the photon pass and the PNG are timed alone; the
+  // rest is the frame's own work between its queries.
+  const double photon_other = std::max(0.0, photons.cpu_s - thaw_photon.cpu_s);
+  const double rest = frame.cpu_s - thaw_all.cpu_s - photon_other;
+  std::printf(
+      "frame CPU time (best of %d each, %d threads): traversal %.3f s (%.0f %%: frame rays %.3f, "
+      "photon rays %.3f), photon pass outside its traversal %.3f s (%.0f %%; the pass %.3f s in "
+      "all), camera sampling + shading + film %.3f s (%.0f %%); the PNG (not in the frame) %.3f "
+      "CPU-s = %.0f %% of the frame\n",
+      std::max(1, repetitions / 2), threads, thaw_all.cpu_s, 100 * thaw_all.cpu_s / frame.cpu_s,
+      thaw_all.cpu_s - thaw_photon.cpu_s, thaw_photon.cpu_s, photon_other,
+      100 * photon_other / frame.cpu_s, photons.cpu_s, rest, 100 * rest / frame.cpu_s, png.cpu_s,
+      100 * png.cpu_s / frame.cpu_s);
   if (total_self > 0)
     std::printf(
         "self-hits: %zu rays Embree found re-hitting the triangle they start on, at t "
         "within rounding (thaw's offset origins exclude these); not counted as mismatches\n",
         total_self);
+  if (near_origin > 0)
+    std::printf(
+        "t bound: %zu rays met a large triangle nearer than thaw's rounding bound of t there "
+        "(thaw rejects such hits, Embree reports them); not counted as mismatches\n",
+        near_origin);
   std::printf(
       "cracks: %zu rays passed between two triangles at their shared edge in thaw, %zu in "
       "Embree (the other found the hit on that edge); not counted as mismatches\n",

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "base/interrupt.h"
+#include "render/accel/ray_record.h"
 #include "render/photon/light_cone.h"
 #include "render/photon/low_discrepancy.h"
 #include "render/photon/photon_tracer.h"
@@ -111,6 +112,8 @@ CausticMap CausticMap::build(const Scene& scene, int threads, const std::atomic<
   if (cones.empty()) return result;
 
   const PhotonTracer tracer(scene, kRouletteWeight);
+  // bench/render/ray_limit tells the photons' rays from the frame's (nothing when not recording).
+  const RayStreamScope photon_rays(RayStream::photon);
   std::vector<double> weight;
   for (const LightCone& c : cones) {
     const Emitter& l = lights[c.emitter];

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "render/accel/ray_record.h"
 #include "render/photon/low_discrepancy.h"
 #include "render/photon/photon_tracer.h"
 #include "tests/render/photon/photon_test_scenes.h"
@@ -374,6 +375,33 @@ TEST(CausticMap, SettingsAndAutomaticRule) {
   EXPECT_EQ(map.statistics().photons_traced, kDefaultPhotons);
   EXPECT_NEAR(map.statistics().targets[0].radius,
               1.0 * std::sqrt(kPhotonsPerDisc / double(kDefaultPhotons)), 1e-5);
+}
+
+// bench/render/ray_limit tells the photon pass's rays from the frame's by the stream the pass
+// marks (render/accel/ray_record.h): every query of the pass arrives marked photon (at least one
+// closest-hit query per photon traced), and the mark is back to frame when the pass returns.
+TEST(CausticMap, MarksItsRaysAsThePhotonStream) {
+  struct Log final : RayRecorder {
+    RayStream now = RayStream::frame;
+    long long photon = 0, frame = 0, marks = 0;
+    void record(RayQuery, const Ray&) noexcept override {
+      ++(now == RayStream::photon ? photon : frame);
+    }
+    void stream(RayStream s) noexcept override {
+      now = s;
+      ++marks;
+    }
+  };
+  const Scene scene = ball_over_floor("ior = 1.31", -1.0, "[0.0, 6.0, 0.0]", "", "photons = 2000");
+  Log log;
+  set_ray_recorder(&log);
+  const CausticMap map = CausticMap::build(scene, 1);
+  set_ray_recorder(nullptr);
+  EXPECT_EQ(log.frame, 0);
+  EXPECT_GE(log.photon, map.statistics().photons_traced);
+  EXPECT_GT(map.statistics().photons_traced, 0);
+  EXPECT_EQ(log.marks, 2);
+  EXPECT_EQ(log.now, RayStream::frame);
 }
 
 }  // namespace
