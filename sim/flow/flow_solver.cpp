@@ -33,6 +33,14 @@ double koren_face(double t_uu, double t_u, double t_d) {
   return t_u + 0.5 * s * std::min({2.0 * b, (a + 2.0 * b) / 3.0, 2.0 * a});
 }
 
+/// The implicit steps' solves: largest residual relative to the right-hand side's largest
+/// entry. The momentum increment's residual leaves a velocity error of that order times the
+/// step's change, removed at steady state (the right-hand side vanishes); the conduction's
+/// final update is conservative whatever the residual, which then only bounds the deviation
+/// from the implicit solution (temperatures stay within their bounds to ~1e-12 of the change).
+constexpr double kImplicitTolerance = 1e-8;
+constexpr double kConductionTolerance = 1e-12;
+
 }  // namespace
 
 FlowSolver::FlowSolver(FlowProblem problem, std::unique_ptr<PressureSolver> pressure)
@@ -50,7 +58,14 @@ FlowSolver::FlowSolver(FlowProblem problem, std::unique_ptr<PressureSolver> pres
   parallel_ = g.cell_count() >= 8192;
   operator_drag_dt_ = -1;  // forces the first build
   set_pressure_operator(0);
-  for (auto& p : psi_) p.assign(g.cell_count(), 0.0);
+  psi_.assign(g.cell_count(), 0.0);
+  p_.assign(g.cell_count(), 0.0);
+  for (int d = 0; d < g.dims(); ++d) {
+    viscous_[d] = std::make_unique<MultigridPressureSolver>();
+    delta_[d].assign(g.face_count(d), 0.0);
+  }
+  conduction_ = std::make_unique<MultigridPressureSolver>();
+  t_delta_.assign(g.cell_count(), 0.0);
 }
 
 FlowSolver::~FlowSolver() = default;
@@ -60,17 +75,21 @@ void FlowSolver::set_drag_per_s(std::vector<double> drag) {
              "flow drag: one value per cell");
   drag_ = std::move(drag);
   drag_changed_ = true;
+  viscous_drag_changed_ = true;
 }
 
-void FlowSolver::update_cell_properties(const std::vector<double>& t) {
+bool FlowSolver::update_cell_properties(const std::vector<double>& t) {
   const std::size_t cells = t.size();
+  bool changed = nu_.size() != cells;
   nu_.resize(cells);
   buoyancy_.resize(cells);
-#pragma omp parallel for schedule(static) if (parallel_)
-  for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t>(cells); ++c) {
-    nu_[c] = problem_.fluid.kinematic_viscosity_m2_s(t[c]);
+  for (std::size_t c = 0; c < cells; ++c) {
+    const double nu = problem_.fluid.kinematic_viscosity_m2_s(t[c]);
+    changed = changed || nu != nu_[c];
+    nu_[c] = nu;
     buoyancy_[c] = problem_.fluid.buoyancy_m_s2(t[c]);
   }
+  return changed;
 }
 
 double FlowSolver::cell_velocity_m_s(int d, int i, int j, int k) const {
@@ -84,28 +103,47 @@ double FlowSolver::cell_velocity_m_s(int d, int i, int j, int k) const {
 
 double FlowSolver::stable_time_step_s() const {
   const MacGrid& g = problem_.grid;
-  double rate = 0;  // largest sum over axes of |u| / h at a cell
+  double rate = 0;      // largest sum over axes of |u| / h at a cell
+  double momentum = 0;  // largest sum over axes of u^2 / (2 nu) at a cell
+  double b_lo = std::numeric_limits<double>::infinity(), b_hi = -b_lo;
   for (int k = 0; k < g.n[2]; ++k)
     for (int j = 0; j < g.n[1]; ++j)
       for (int i = 0; i < g.n[0]; ++i) {
-        double s = 0;
+        double s = 0, q = 0;
         for (int d = 0; d < g.dims(); ++d) {
           Idx a{{i, j, k}};
           Idx b = shifted(a, d, 1);
-          s += std::max(std::abs(velocity_[d][g.face(d, a[0], a[1], a[2])]),
-                        std::abs(velocity_[d][g.face(d, b[0], b[1], b[2])]));
+          const double u = std::max(std::abs(velocity_[d][g.face(d, a[0], a[1], a[2])]),
+                                    std::abs(velocity_[d][g.face(d, b[0], b[1], b[2])]));
+          s += u;
+          q += u * u;
         }
+        const double t = temperature_[g.cell(i, j, k)];
         rate = std::max(rate, s / g.h_m);
+        if (q > 0)
+          momentum = std::max(momentum, q / (2 * problem_.fluid.kinematic_viscosity_m2_s(t)));
+        const double b = problem_.fluid.buoyancy_m_s2(t);
+        b_lo = std::min(b_lo, b);
+        b_hi = std::max(b_hi, b);
       }
-  double kappa = problem_.thermal_diffusivity_m2_s;
-  for (double t : temperature_) kappa = std::max(kappa, problem_.fluid.kinematic_viscosity_m2_s(t));
-  // Explicit diffusion: the stress operator's largest eigenvalue is at most
-  // (4 dims + 4) nu / h^2 (normal stress 2 nu, the axisymmetric hoop term 2 nu / r^2 at r >= h);
-  // the two-stage scheme is stable for dt lambda <= 2; 0.9 of that.
-  const double dt_diffusion = 0.9 * 2.0 * g.h_m * g.h_m / ((4.0 * g.dims() + 4.0) * kappa);
-  const double dt_advection =
-      rate > 0 ? problem_.courant / rate : std::numeric_limits<double>::infinity();
-  return std::min(dt_diffusion, dt_advection);
+  for (int w = 0; w < 2 * g.dims(); ++w)  // held walls drive the fluid too
+    if (problem_.walls[w].kind == WallCondition::Kind::temperature) {
+      const double b = problem_.fluid.buoyancy_m_s2(problem_.walls[w].temperature_c);
+      b_lo = std::min(b_lo, b);
+      b_hi = std::max(b_hi, b);
+    }
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  // Forward-Euler advection: Courant number (Koren's limiter stays bounded at <= 1/2); the
+  // central momentum fluxes with implicit viscosity are stable for dt sum_d u_d^2 <= 2 nu
+  // (von Neumann: |1 - i c sin k| <= 1 + 4 d sin^2(k/2) for c^2 <= 2 d, c = u dt / h,
+  // d = nu dt / h^2).
+  const double dt_advection = rate > 0 ? problem_.courant / rate : kInf;
+  const double dt_momentum = momentum > 0 ? 1.0 / momentum : kInf;
+  // From rest the spread of the buoyancy (over the cells and the held walls) accelerates the
+  // fluid: it moves (b dt^2) at most courant h in a step.
+  const double spread = b_hi - b_lo;
+  const double dt_buoyancy = spread > 0 ? std::sqrt(problem_.courant * g.h_m / spread) : kInf;
+  return std::min({dt_advection, dt_momentum, dt_buoyancy});
 }
 
 void FlowSolver::momentum_rhs(const Field& u, const std::vector<double>& t, Field& out) const {
@@ -196,8 +234,8 @@ void FlowSolver::momentum_rhs(const Field& u, const std::vector<double>& t, Fiel
   }
 }
 
-void FlowSolver::temperature_rhs(const Field& u, const std::vector<double>& t,
-                                 std::vector<double>& out) const {
+void FlowSolver::temperature_rhs(const Field& u, const std::vector<double>& t, bool advect,
+                                 bool diffuse, std::vector<double>& out) const {
   const MacGrid& g = problem_.grid;
   const int dims = g.dims();
   const double h = g.h_m, alpha = problem_.thermal_diffusivity_m2_s;
@@ -233,19 +271,21 @@ void FlowSolver::temperature_rhs(const Field& u, const std::vector<double>& t,
             const double sgn = side == 0 ? -1.0 : 1.0;  // outward normal along d
             if (f[d] == 0 || f[d] == n[d]) {
               const WallCondition& w = walls[2 * d + side];
-              if (w.kind == WallCondition::Kind::temperature)
+              if (diffuse && w.kind == WallCondition::Kind::temperature)
                 sum += area * alpha * (w.temperature_c - tc) / (0.5 * h);
               continue;
             }
             const Idx nb = shifted(c, d, side == 0 ? -1 : 1);
             const double tn = t[g.cell(nb[0], nb[1], nb[2])];
+            if (diffuse) sum += area * alpha * (tn - tc) / h;
+            if (!advect) continue;
             const double un = u[d][g.face(d, f[0], f[1], f[2])];
             // lower cell of the face and upper cell
             const Idx lo = side == 0 ? nb : c, hi = side == 0 ? c : nb;
             const double t_lo = side == 0 ? tn : tc, t_hi = side == 0 ? tc : tn;
             const double tf = un >= 0 ? koren_face(T(shifted(lo, d, -1)), t_lo, t_hi)
                                       : koren_face(T(shifted(hi, d, 1)), t_hi, t_lo);
-            sum += area * (-sgn * un * tf + alpha * (tn - tc) / h);
+            sum -= area * sgn * un * tf;
           }
         out[g.cell(i, j, k)] = sum / (g.radius_at_centre(i) * h);
       }
@@ -336,11 +376,8 @@ int FlowSolver::project(Field& u, std::vector<double>& psi) {
         for (int i = 0; i < fd[0]; ++i)
           flow_scale = std::max(flow_scale, std::abs(g.face_area(d, i) * u[d][g.face(d, i, j, k)]));
   }
-  // The implicit drag: u* <- a u*, and the correction below is a grad psi.
-  if (!face_factor_[0].empty())
-    for (int d = 0; d < dims; ++d)
-      for (std::size_t f = 0; f < u[d].size(); ++f) u[d][f] *= face_factor_[d][f];
-        // b = -(net volume flow out of each cell)
+  // b = -(net volume flow out of each cell); the correction below is a grad psi (the implicit
+  // drag's share of it).
 #pragma omp parallel for collapse(2) schedule(static) if (parallel_)
   for (int k = 0; k < g.n[2]; ++k)
     for (int j = 0; j < g.n[1]; ++j)
@@ -413,43 +450,210 @@ void FlowSolver::set_pressure_operator(double drag_dt) {
   drag_changed_ = false;
 }
 
-FlowStepReport FlowSolver::step(double dt) {
+int FlowSolver::momentum_predictor(double dt, bool nu_changed) {
   const MacGrid& g = problem_.grid;
   const int dims = g.dims();
+  const double h = g.h_m;
+  const auto& n = g.n;
+  auto nu_at = [&](const Idx& c) { return nu_[g.cell(c[0], c[1], c[2])]; };
+  auto drag_at = [&](const Idx& c) {
+    return drag_.empty() ? 0.0 : drag_[g.cell(c[0], c[1], c[2])];
+  };
+  // Index of the face along e of node f in the box of nodes fd (the face grid of d).
+  auto node_face = [](const std::array<int, 3>& fd, int e, const Idx& f) {
+    std::array<int, 3> m = fd;
+    ++m[e];
+    return static_cast<std::size_t>(f[0]) +
+           static_cast<std::size_t>(m[0]) *
+               (static_cast<std::size_t>(f[1]) + static_cast<std::size_t>(m[1]) * f[2]);
+  };
+  // Face "volume" (reduced: radius weight x h, the common h^(dims-1) dropped as in momentum_rhs).
+  auto weight = [&](int d, int i) { return d == 0 ? g.radius_at_plane(i) : g.radius_at_centre(i); };
+  // nu at the edge between node f and node f + e_e (d plane f[d], e plane m): the mean over the
+  // up to 4 cells around it inside the box, as momentum_rhs.
+  auto nu_edge = [&](int d, int e, const Idx& f, int m) {
+    double sum = 0;
+    int count = 0;
+    for (int a = -1; a <= 0; ++a)
+      for (int b = -1; b <= 0; ++b) {
+        Idx c = f;
+        c[d] += a;
+        c[e] = m + b;
+        if (c[e] < 0 || c[e] >= n[e]) continue;
+        sum += nu_at(c);
+        ++count;
+      }
+    return sum / count;
+  };
+  if (nu_changed || dt != viscous_dt_ || viscous_drag_changed_) {
+    // (V (1 + dt D) + dt V hoop) delta + dt sum_f nu A / h (delta - delta_nb): the no-slip walls
+    // along the face (mirrored ghost: -delta) and the wall faces themselves (delta = 0) enter
+    // the diagonal; wall-face nodes are decoupled (mass 1, right-hand side 0).
+    for (int d = 0; d < dims; ++d) {
+      const auto fd = g.face_dims(d);
+      std::array<std::vector<double>, 3> cond;
+      for (int e = 0; e < 3; ++e) {
+        std::array<int, 3> m = fd;
+        ++m[e];
+        cond[e].assign(static_cast<std::size_t>(m[0]) * m[1] * m[2], 0.0);
+      }
+      std::vector<double> mass(g.face_count(d), 0.0);
+      for (int k = 0; k < fd[2]; ++k)
+        for (int j = 0; j < fd[1]; ++j)
+          for (int i = 0; i < fd[0]; ++i) {
+            const Idx f{{i, j, k}};
+            const std::size_t fi = g.face(d, i, j, k);
+            if (f[d] == 0 || f[d] == n[d]) {
+              mass[fi] = 1;
+              continue;
+            }
+            const Idx lo = shifted(f, d, -1);
+            const double w = weight(d, i), volume = w * h;
+            double m = volume * (1 + dt * 0.5 * (drag_at(lo) + drag_at(f)));
+            if (d == 0 && g.axisymmetric())  // hoop stress 2 nu u / r^2
+              m += dt * 2 * 0.5 * (nu_at(lo) + nu_at(f)) * volume / (w * w);
+            // along d, through the cells above (f) and below (lo)
+            const double area_hi = d == 0 ? g.radius_at_centre(f[0]) : w;
+            const double area_lo = d == 0 ? g.radius_at_centre(lo[0]) : w;
+            const double g_hi = dt * nu_at(f) * area_hi / h, g_lo = dt * nu_at(lo) * area_lo / h;
+            if (f[d] + 1 == n[d])
+              m += g_hi;
+            else
+              cond[d][node_face(fd, d, shifted(f, d, 1))] = g_hi;
+            if (f[d] - 1 == 0) m += g_lo;
+            // across e != d, through the edges at e planes f[e] (below) and f[e] + 1 (above)
+            for (int e = 0; e < dims; ++e) {
+              if (e == d) continue;
+              for (int side = 0; side < 2; ++side) {
+                const int plane = f[e] + side;
+                const double area = e == 0 ? g.radius_at_plane(plane) : w;
+                const double c = dt * nu_edge(d, e, f, plane) * area / h;
+                if (plane == 0 || plane == n[e])
+                  m += 2 * c;  // no-slip: the ghost mirrors -delta
+                else if (side == 1)
+                  cond[e][node_face(fd, e, shifted(f, e, 1))] = c;
+              }
+            }
+            mass[fi] = m;
+          }
+      viscous_[d]->set_operator(fd, cond, mass);
+    }
+    viscous_dt_ = dt;
+    viscous_drag_changed_ = false;
+  }
+  int iterations = 0;
+  std::vector<double> b;
+  for (int d = 0; d < dims; ++d) {
+    const auto fd = g.face_dims(d);
+    b.assign(g.face_count(d), 0.0);
+    double b_max = 0;
+    for (int k = 0; k < fd[2]; ++k)
+      for (int j = 0; j < fd[1]; ++j)
+        for (int i = 0; i < fd[0]; ++i) {
+          const Idx f{{i, j, k}};
+          if (f[d] == 0 || f[d] == n[d]) continue;
+          const Idx lo = shifted(f, d, -1);
+          const std::size_t fi = g.face(d, i, j, k);
+          const double grad_p = (p_[g.cell(i, j, k)] - p_[g.cell(lo[0], lo[1], lo[2])]) / h;
+          const double drag = 0.5 * (drag_at(lo) + drag_at(f));
+          b[fi] = dt * weight(d, i) * h * (rhs_[d][fi] - grad_p - drag * velocity_[d][fi]);
+          b_max = std::max(b_max, std::abs(b[fi]));
+        }
+    std::vector<double>& delta = delta_[d];
+    if (b_max == 0) {
+      std::fill(delta.begin(), delta.end(), 0.0);
+      continue;
+    }
+    const PressureSolveReport r = viscous_[d]->solve(b, delta, kImplicitTolerance * b_max);
+    THAW_CHECK(r.converged, "flow: the implicit viscous solve did not converge");
+    iterations += r.iterations;
+    std::vector<double>& u = velocity_[d];
+    for (std::size_t f = 0; f < u.size(); ++f) u[f] += delta[f];
+  }
+  return iterations;
+}
+
+int FlowSolver::conduct(double dt, FlowStepReport& report) {
+  const MacGrid& g = problem_.grid;
+  const int dims = g.dims();
+  const double h = g.h_m, alpha = problem_.thermal_diffusivity_m2_s;
+  const auto& n = g.n;
+  const auto& walls = problem_.walls;
+  std::vector<double>& t = temperature_;
+  // T* = T^n + dt (advection of T^n by u^n), held in t_rhs_ by step().
+  for (std::size_t c = 0; c < t.size(); ++c) t[c] += dt * t_rhs_[c];
+  if (dt != conduction_dt_) {
+    // (V + dt sum_f alpha A / h) delta - ...: held walls at half a cell in the diagonal.
+    std::array<std::vector<double>, 3> cond;
+    for (int d = 0; d < 3; ++d) cond[d].assign(g.face_count(d), 0.0);
+    std::vector<double> mass(g.cell_count());
+    for (int k = 0; k < n[2]; ++k)
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = 0; i < n[0]; ++i) {
+          const Idx c{{i, j, k}};
+          double m = g.radius_at_centre(i) * h;
+          for (int d = 0; d < dims; ++d)
+            for (int side = 0; side < 2; ++side) {
+              const Idx f = shifted(c, d, side);
+              const double area = d == 0 ? g.radius_at_plane(f[0]) : g.radius_at_centre(i);
+              if (f[d] == 0 || f[d] == n[d]) {
+                if (walls[2 * d + side].kind == WallCondition::Kind::temperature)
+                  m += dt * alpha * area / (0.5 * h);
+              } else if (side == 1) {
+                cond[d][g.face(d, f[0], f[1], f[2])] = dt * alpha * area / h;
+              }
+            }
+          mass[g.cell(i, j, k)] = m;
+        }
+    conduction_->set_operator(n, cond, mass);
+    conduction_dt_ = dt;
+  }
+  std::vector<double> diffusion, b(t.size());
+  temperature_rhs(velocity_, t, false, true, diffusion);
+  double b_max = 0;
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i) {
+        const std::size_t c = g.cell(i, j, k);
+        b[c] = dt * g.radius_at_centre(i) * h * diffusion[c];
+        b_max = std::max(b_max, std::abs(b[c]));
+      }
+  int iterations = 0;
+  std::vector<double> t_solved = t;
+  if (b_max > 0) {
+    const PressureSolveReport r = conduction_->solve(b, t_delta_, kConductionTolerance * b_max);
+    THAW_CHECK(r.converged, "flow: the implicit conduction solve did not converge");
+    iterations = r.iterations;
+    for (std::size_t c = 0; c < t.size(); ++c) t_solved[c] += t_delta_[c];
+  }
+  // The conservative final update: the fluxes of the solved temperatures telescope, so
+  // integral T dV changes by exactly the wall heat whatever the solve's residual.
+  temperature_rhs(velocity_, t_solved, false, true, diffusion);
+  for (std::size_t c = 0; c < t.size(); ++c) t[c] += dt * diffusion[c];
+  const std::array<double, 6> q = wall_heat_flows(t_solved);
+  for (int w = 0; w < 6; ++w) report.wall_heat_k_m3 += dt * q[w];
+  return iterations;
+}
+
+FlowStepReport FlowSolver::step(double dt) {
   FlowStepReport report;
   report.dt_s = dt;
-  Field rhs, u1;
-  std::vector<double> t_rhs, t1(temperature_.size());
-  // Stage 1: forward Euler; the drag implicit, (1 + dt D) u1 = u + dt R(u) - grad psi.
-  update_cell_properties(temperature_);
-  momentum_rhs(velocity_, temperature_, rhs);
-  if (hold_temperature_)
-    t_rhs.assign(temperature_.size(), 0.0);
-  else
-    temperature_rhs(velocity_, temperature_, t_rhs);
-  const std::array<double, 6> q0 = wall_heat_flows(temperature_);
-  for (int d = 0; d < dims; ++d) {
-    u1[d].resize(velocity_[d].size());
-    for (std::size_t f = 0; f < u1[d].size(); ++f) u1[d][f] = velocity_[d][f] + dt * rhs[d][f];
-  }
-  for (std::size_t c = 0; c < t1.size(); ++c) t1[c] = temperature_[c] + dt * t_rhs[c];
+  const bool nu_changed = update_cell_properties(temperature_);
+  momentum_rhs(velocity_, temperature_, rhs_);
+  if (!hold_temperature_) temperature_rhs(velocity_, temperature_, true, false, t_rhs_);
   set_pressure_operator(dt);
-  report.pressure_iterations += project(u1, psi_[0]);
-  // Stage 2: the mean of the start and a second Euler step from stage 1, the drag implicit on
-  // the result: (1 + dt D / 2) u2 = u / 2 + (u1 + dt R(u1)) / 2 - grad psi.
-  update_cell_properties(t1);
-  momentum_rhs(u1, t1, rhs);
-  if (!hold_temperature_) temperature_rhs(u1, t1, t_rhs);
-  const std::array<double, 6> q1 = wall_heat_flows(t1);
-  for (int d = 0; d < dims; ++d)
-    for (std::size_t f = 0; f < u1[d].size(); ++f)
-      velocity_[d][f] = 0.5 * velocity_[d][f] + 0.5 * (u1[d][f] + dt * rhs[d][f]);
-  for (std::size_t c = 0; c < t1.size(); ++c)
-    temperature_[c] = 0.5 * temperature_[c] + 0.5 * (t1[c] + dt * t_rhs[c]);
-  set_pressure_operator(0.5 * dt);
-  report.pressure_iterations += project(velocity_, psi_[1]);
-  if (!hold_temperature_)
-    for (int w = 0; w < 6; ++w) report.wall_heat_k_m3 += 0.5 * dt * (q0[w] + q1[w]);
+  // The pressure that balances the explicit forces: a R - a grad p divergence-free (warm
+  // started from the last step's). A fluid in hydrostatic balance then stays at rest, and the
+  // implicit viscous step sees only the forces that move the fluid.
+  for (int d = 0; d < problem_.grid.dims(); ++d) {
+    forces_[d] = rhs_[d];
+    if (!face_factor_[d].empty())
+      for (std::size_t f = 0; f < forces_[d].size(); ++f) forces_[d][f] *= face_factor_[d][f];
+  }
+  report.pressure_iterations += project(forces_, p_);
+  implicit_iterations_ += momentum_predictor(dt, nu_changed);
+  report.pressure_iterations += project(velocity_, psi_);
+  if (!hold_temperature_) implicit_iterations_ += conduct(dt, report);
   time_s_ += dt;
   return report;
 }

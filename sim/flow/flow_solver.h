@@ -3,11 +3,20 @@
 // (r, y) or 3D, gravity along -y. Finite volumes throughout: momentum in conservative form with
 // central fluxes and the full viscous stress div(nu (grad u + grad u^T)) (nu varies with T; the
 // axisymmetric hoop stress included), heat advected with Koren's limited kappa = 1/3 upwind
-// face values (bounded) and diffused with central fluxes. Time: the two-stage strong-stability-
-// preserving Runge-Kutta scheme (Heun), every stage projected onto divergence-free fields (Chorin
-// 1968) by a pressure solve behind PressureSolver (default: multigrid-preconditioned CG). A
-// per-cell drag [1/s] (Carman-Kozeny in melting cells: Voller & Prakash 1987) is applied
-// implicitly, so a cell of infinite drag holds still: the ice of enthalpy-porosity.
+// face values (bounded) and diffused with central fluxes. Time: semi-implicit, first order:
+// advection and buoyancy explicit (forward Euler), viscous diffusion, drag and heat conduction
+// implicit (backward Euler, each a Helmholtz problem solved by multigrid-preconditioned CG).
+// Two pressure solves behind PressureSolver (default: multigrid-preconditioned CG) per step:
+// first the pressure p that balances the explicit forces R (R - grad p divergence-free, so a
+// fluid in hydrostatic balance stays at rest), which the implicit step then carries (a pressure-
+// correction scheme, Goda 1979; van Kan 1986), then the projection of the predicted velocity
+// onto divergence-free fields (Chorin 1968). The implicit momentum step is written for the
+// increment u* - u^n, so a steady state is the steady state of the spatial discretisation
+// exactly, whatever the step. The step is limited by
+// the advection only (Courant number, and dt <= 2 nu / |u|^2 for the central momentum
+// fluxes), not by the viscous or conductive h^2 limits. A per-cell drag [1/s] (Carman-Kozeny in
+// melting cells: Voller & Prakash 1987) is implicit, so a cell of infinite drag holds still: the
+// ice of enthalpy-porosity.
 // Walls are no-slip, each held at a temperature or adiabatic; the axisymmetric x_min is the axis.
 // Results do not depend on the thread count (disjoint writes, sums in fixed order).
 // Knows nothing of scenarios, files or the enthalpy solver.
@@ -20,6 +29,8 @@
 #include "sim/flow/pressure_solver.h"
 
 namespace thaw::sim::flow {
+
+class MultigridPressureSolver;
 
 struct WallCondition {
   enum class Kind { adiabatic, temperature };
@@ -77,10 +88,14 @@ class FlowSolver {
   void advective_transport(const std::vector<double>& q, const std::vector<char>& carries,
                            std::vector<double>& out) const;
 
-  /// The largest stable step [s]: Courant number on the current velocity, and the explicit
-  /// viscous and conductive limit of the two-stage scheme.
+  /// The largest stable step [s]: the Courant number on the current velocity, the central
+  /// momentum fluxes' forward-Euler limit dt <= 2 nu / sum_d u_d^2 per cell, and from rest a
+  /// buoyancy limit (a fluid accelerated by b from rest moves b dt^2 <= courant h).
   double stable_time_step_s() const;
   FlowStepReport step(double dt_s);
+  /// Helmholtz-solve iterations of the implicit viscous (all components) and conductive steps,
+  /// summed over the steps so far.
+  long implicit_iterations() const { return implicit_iterations_; }
   double time_s() const { return time_s_; }
 
   /// integral of T over the fluid [K m^3, per m depth | per radian | -]
@@ -97,11 +112,21 @@ class FlowSolver {
  private:
   using Field = std::array<std::vector<double>, 3>;
   void momentum_rhs(const Field& u, const std::vector<double>& t, Field& out) const;
-  void temperature_rhs(const Field& u, const std::vector<double>& t,
+  /// dT/dt of cells by advection with u and/or diffusion (walls included) [K/s].
+  void temperature_rhs(const Field& u, const std::vector<double>& t, bool advect, bool diffuse,
                        std::vector<double>& out) const;
   std::array<double, 6> wall_heat_flows(const std::vector<double>& t) const;
+  /// Projects u onto divergence-free velocities: u -= a grad psi, div(a grad psi) = div u,
+  /// a = 1 / (1 + dt D) per face; returns the solve's iterations.
   int project(Field& u, std::vector<double>& psi);
-  void update_cell_properties(const std::vector<double>& t);
+  /// nu and buoyancy per cell from t; true if nu changed.
+  bool update_cell_properties(const std::vector<double>& t);
+  /// The implicit momentum predictor: u <- u + delta, (V (1 + dt D) - dt V nu L) delta =
+  /// dt V (R - grad p - D u), L the component-wise Laplacian (with the hoop term).
+  int momentum_predictor(double dt, bool nu_changed);
+  /// The implicit conduction of t over dt after its explicit advection; returns the iterations
+  /// and adds the wall heat to report.
+  int conduct(double dt, FlowStepReport& report);
   /// (Re)builds the pressure operator for the implicit drag over drag_dt (0: no drag).
   void set_pressure_operator(double drag_dt);
 
@@ -112,7 +137,17 @@ class FlowSolver {
   std::vector<double> drag_;
   // per cell, refreshed from the temperature of each stage: nu [m^2/s], buoyancy [m/s^2]
   std::vector<double> nu_, buoyancy_;
-  std::array<std::vector<double>, 2> psi_;  // warm starts of the two stages' pressure solves
+  std::vector<double> psi_;     // the last projection's potential (warm start)
+  std::vector<double> p_;       // kinematic pressure p [m^2/s^2] balancing the explicit forces
+  Field rhs_, forces_, delta_;  // R(u^n); a R; the predictor's increment (warm start)
+  std::vector<double> t_rhs_, t_delta_;
+  // the implicit steps' Helmholtz solvers (one per velocity component, one for heat) and the
+  // step and properties they were built for
+  std::array<std::unique_ptr<MultigridPressureSolver>, 3> viscous_;
+  std::unique_ptr<MultigridPressureSolver> conduction_;
+  double viscous_dt_ = -1, conduction_dt_ = -1;
+  bool viscous_drag_changed_ = true;
+  long implicit_iterations_ = 0;
   // per face: 1 / (1 + dt D) of the current stage (empty without drag)
   std::array<std::vector<double>, 3> face_factor_;
   double operator_drag_dt_ = 0;

@@ -76,12 +76,13 @@ void smooth_colour(Level& L, int colour) {
 void compute_diagonal(Level& L) {
   const auto n = L.n;
   L.diag.assign(static_cast<std::size_t>(n[0]) * n[1] * n[2], 0.0);
+  if (!L.mass.empty()) L.diag = L.mass;
   for (auto& v : L.nb) v.assign(L.diag.size(), 0.0);
   for (int k = 0; k < n[2]; ++k)
     for (int j = 0; j < n[1]; ++j)
       for (int i = 0; i < n[0]; ++i) {
-        double s = 0;
         const std::size_t c = cell_index(n, i, j, k);
+        double s = L.diag[c];
         for (int d = 0; d < 3; ++d) {
           int hi[3] = {i, j, k};
           ++hi[d];
@@ -125,6 +126,14 @@ Level coarsen(const Level& fine) {
           c.g[d][face_index(c.n, d, I, J, K)] = 0.5 * s;
         }
   }
+  if (!fine.mass.empty()) {  // P^T M P: the children's sum
+    c.mass.assign(static_cast<std::size_t>(c.n[0]) * c.n[1] * c.n[2], 0.0);
+    for (int k = 0; k < fine.n[2]; ++k)
+      for (int j = 0; j < fine.n[1]; ++j)
+        for (int i = 0; i < fine.n[0]; ++i)
+          c.mass[cell_index(c.n, fine.n[0] == 1 ? i : i / 2, fine.n[1] == 1 ? j : j / 2,
+                            fine.n[2] == 1 ? k : k / 2)] += fine.mass[cell_index(fine.n, i, j, k)];
+  }
   compute_diagonal(c);
   return c;
 }
@@ -140,10 +149,20 @@ MultigridPressureSolver::MultigridPressureSolver(int sweeps, int max_iterations)
 
 void MultigridPressureSolver::set_operator(const std::array<int, 3>& cells,
                                            const std::array<std::vector<double>, 3>& g) {
+  set_operator(cells, g, {});
+}
+
+void MultigridPressureSolver::set_operator(const std::array<int, 3>& cells,
+                                           const std::array<std::vector<double>, 3>& g,
+                                           const std::vector<double>& mass) {
   levels_.clear();
   Level top;
   top.n = cells;
   top.g = g;
+  top.mass = mass;
+  THAW_CHECK(
+      mass.empty() || mass.size() == static_cast<std::size_t>(cells[0]) * cells[1] * cells[2],
+      "operator: one mass per cell");
   for (int d = 0; d < 3; ++d)
     THAW_CHECK(top.g[d].size() == static_cast<std::size_t>(cells[0] + (d == 0)) *
                                       (cells[1] + (d == 1)) * (cells[2] + (d == 2)),

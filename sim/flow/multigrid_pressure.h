@@ -5,7 +5,9 @@
 // rediscretised on the coarse cells (Braess 1984's scaled Galerkin coarse operator);
 // symmetric red-black Gauss-Seidel smoothing, so the preconditioner is symmetric). Every loop
 // writes disjoint cells and every sum is taken in a fixed order: the result does not depend on
-// the thread count. Knows nothing of velocities or fluids.
+// the thread count. With a diagonal (mass) term it also solves the Helmholtz problems of the
+// flow's implicit viscous and conductive steps (coarse mass: the children's sum, P^T M P).
+// Knows nothing of velocities or fluids.
 #include <array>
 #include <vector>
 
@@ -19,6 +21,10 @@ class MultigridPressureSolver final : public PressureSolver {
   explicit MultigridPressureSolver(int sweeps = 2, int max_iterations = 200);
   void set_operator(const std::array<int, 3>& cells,
                     const std::array<std::vector<double>, 3>& g) override;
+  /// The operator plus a diagonal: (A x)_c = mass_c x_c + sum over c's faces g_f (x_c - x_nb),
+  /// mass_c >= 0 (a cell with mass and no conductance is decoupled: x_c = b_c / mass_c).
+  void set_operator(const std::array<int, 3>& cells, const std::array<std::vector<double>, 3>& g,
+                    const std::vector<double>& mass);
   PressureSolveReport solve(const std::vector<double>& b, std::vector<double>& p,
                             double tolerance) override;
   /// Number of grid levels (1 = no coarsening).
@@ -29,7 +35,7 @@ class MultigridPressureSolver final : public PressureSolver {
     std::array<std::vector<double>, 3> g;
     /// per cell: the conductances of its faces x-, x+, y-, y+, z-, z+
     std::array<std::vector<double>, 6> nb;
-    std::vector<double> diag, x, b, r;
+    std::vector<double> mass, diag, x, b, r;
   };
 
  private:
