@@ -17,43 +17,93 @@ void write_paraview_state(const std::filesystem::path& path, const render::Camer
   char size[64], fov[48];
   std::snprintf(size, sizeof size, "[%d, %d]", width, height);
   std::snprintf(fov, sizeof fov, "%.17g", c.vertical_fov_deg);
-  const std::string text =
-      std::string() +
-      "# thaw run's meshes in ParaView through the film's camera (written by thaw run;\n"
-      "# docs/handoff.md). pvpython paraview_state.py [--screenshot PATH], or File > Load State.\n"
-      "import os\n"
-      "import sys\n"
-      "from paraview.simple import *\n"
-      "\n"
-      "# The run folder: this file's folder's parent, else the current folder.\n"
-      "RUN_DIR = os.getcwd()\n"
-      "if '__file__' in globals():\n"
-      "    RUN_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))\n"
-      "reader = PVDReader(registrationName='meshes.pvd',\n"
-      "                   FileName=os.path.join(RUN_DIR, 'meshes.pvd'))\n"
-      "view = GetActiveViewOrCreate('RenderView')\n"
-      "view.ViewSize = " +
-      size +
-      "\n"
-      "display = Show(reader, view)\n"
-      "view.CameraPosition = " +
-      v(c.position) +
-      "\n"
-      "view.CameraFocalPoint = " +
-      v(c.look_at) +
-      "\n"
-      "view.CameraViewUp = " +
-      v(c.up) +
-      "\n"
-      "view.CameraViewAngle = " +
-      fov +
-      "  # vertical [degrees]\n"
-      "view.CameraParallelProjection = 0\n"
-      "Render(view)\n"
-      "if '--screenshot' in sys.argv:\n"
-      "    SaveScreenshot(sys.argv[sys.argv.index('--screenshot') + 1], view,\n"
-      "                   ImageResolution=" +
-      size + ")\n";
+  // The script's text, with @SIZE@, @POSITION@, @FOCAL@, @UP@ and @FOV@ filled in below.
+  std::string text =
+      R"(# thaw run's meshes in ParaView through the film's camera (written by thaw run;
+# docs/handoff.md). File > Load State, or with ParaView's Python:
+#   pvpython paraview_state.py [--frame N] [--screenshot PATH] [--mask PATH]
+# --frame N: the run's step N (default 0); --screenshot: the view as a PNG at the frames' size;
+# --mask: the meshes' silhouette, white on black, unlit (the hand-off test compares it with the
+# film's frame).
+import os
+import sys
+
+try:
+    import paraview.simple
+    from paraview.simple import *
+except ImportError:
+    sys.stderr.write("thaw hand-off: this script needs ParaView's Python (paraview.simple, "
+                     "ParaView 5.10 or newer)\n")
+    sys.exit(2)
+
+
+def fail(problem):
+    sys.stderr.write('thaw hand-off: ' + problem + '\n')
+    sys.exit(2)
+
+
+def option(name, default=None):
+    if name not in sys.argv:
+        return default
+    at = sys.argv.index(name)
+    if at + 1 >= len(sys.argv):
+        fail(name + ' needs a value')
+    return sys.argv[at + 1]
+
+
+# The run folder: this file's folder's parent, else the current folder.
+RUN_DIR = os.getcwd()
+if '__file__' in globals():
+    RUN_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+MESHES = os.path.join(RUN_DIR, 'meshes.pvd')
+if not os.path.isfile(MESHES):
+    fail(MESHES + ' is missing (the inspect stage of thaw run writes it)')
+# paraview.simple resets the camera on a view's first render unless told not to: the camera
+# set below must be the one that renders.
+paraview.simple._DisableFirstRenderCameraReset()
+reader = PVDReader(registrationName='meshes.pvd', FileName=MESHES)
+view = GetActiveViewOrCreate('RenderView')
+view.ViewSize = @SIZE@
+view.OrientationAxesVisibility = 0
+display = Show(reader, view)
+view.CameraPosition = @POSITION@
+view.CameraFocalPoint = @FOCAL@
+view.CameraViewUp = @UP@
+view.CameraViewAngle = @FOV@  # vertical [degrees]
+view.CameraParallelProjection = 0
+
+times = list(reader.TimestepValues) if reader.TimestepValues else [0.0]
+try:
+    frame = int(option('--frame', '0'))
+except ValueError:
+    fail('--frame needs a whole number')
+if not 0 <= frame < len(times):
+    fail('--frame %d is not a step of this run (0 to %d)' % (frame, len(times) - 1))
+scene = GetAnimationScene()
+scene.UpdateAnimationUsingDataTimeSteps()
+scene.AnimationTime = times[frame]
+Render(view)
+if option('--screenshot'):
+    SaveScreenshot(option('--screenshot'), view, ImageResolution=@SIZE@)
+if option('--mask'):
+    display.ColorArrayName = ['POINTS', '']
+    display.AmbientColor = [1, 1, 1]
+    display.DiffuseColor = [1, 1, 1]
+    display.Ambient, display.Diffuse, display.Specular = 1.0, 0.0, 0.0
+    view.UseColorPaletteForBackground = 0
+    view.Background = [0, 0, 0]
+    Render(view)
+    SaveScreenshot(option('--mask'), view, ImageResolution=@SIZE@)
+)";
+  const auto fill = [&text](const std::string& mark, const std::string& value) {
+    for (auto at = text.find(mark); at != std::string::npos; at = text.find(mark, at))
+      text.replace(at, mark.size(), value);
+  };
+  fill("@SIZE@", size);
+  fill("@POSITION@", v(c.position));
+  fill("@FOCAL@", v(c.look_at));
+  fill("@UP@", v(c.up));
+  fill("@FOV@", fov);
   write_file_atomic(path, text);
   // ParaView's camera configuration (pqCameraDialog's Save / Load).
   const auto property = [](const char* name, const double* values, int n) {

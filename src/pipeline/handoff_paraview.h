@@ -2,9 +2,9 @@
 // DIR/handoff/paraview_state.py: a ParaView Python state that opens the run's meshes.pvd (the
 // inspect stage's series, placed where the film shows the shell) and looks at it through the
 // camera the frames were rendered with (VTK's view angle is the vertical field of view, as
-// thaw's), at the frames' size. `pvpython paraview_state.py [--screenshot PATH]`, or File > Load
-// State in ParaView (both need ParaView's Python: Debian 12's python3-paraview, which cannot be
-// installed beside libvtk9-dev). Beside it DIR/handoff/paraview_camera.pvcc, the same camera as
+// thaw's), at the frames' size. `pvpython paraview_state.py [--frame N] [--screenshot PATH]
+// [--mask PATH]`, or File > Load State in ParaView (both need ParaView's Python; on a machine that
+// builds thaw, scripts/setup unpacks it beside libvtk9-dev: docs/handoff.md). Beside it DIR/handoff/paraview_camera.pvcc, the same camera as
 // ParaView's camera configuration (the camera dialog's Load, no Python needed). Knows nothing
 // about VTK: it writes text.
 #include <filesystem>

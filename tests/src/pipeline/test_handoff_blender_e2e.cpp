@@ -4,26 +4,15 @@
 // camera. The silhouette must agree with thaw's (the EXR's object ids at the pixel centres) on at
 // least 98 % of the pixels, and the camera must put the corners within 0.1 pixel. The pictures go
 // to BUILD/handoff_screenshots/ (docs/handoff.md shows them). Labelled `blender`.
-#include <OpenEXR/ImfChannelList.h>
-#include <OpenEXR/ImfFrameBuffer.h>
-#include <OpenEXR/ImfHeader.h>
-#include <OpenEXR/ImfInputFile.h>
-#include <OpenEXR/ImfMatrixAttribute.h>
-#include <OpenEXR/ImfStringVectorAttribute.h>
 #include <gtest/gtest.h>
-#include <stb/stb_image.h>
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "base/subprocess.h"
-#include "render/image/image.h"
-#include "render/image/image_io.h"
-#include "tests/src/pipeline/run_test_support.h"
+#include "tests/src/pipeline/handoff_test_support.h"
 
 namespace thaw::pipeline {
 namespace {
@@ -32,71 +21,8 @@ using namespace test;
 namespace fs = std::filesystem;
 
 const fs::path kBlender = THAW_BLENDER;
-const fs::path kShots = fs::path(THAW_BINARY_DIR) / "handoff_screenshots";
 constexpr int kFrame = 3;
 constexpr int kWidth = 160, kHeight = 120;
-
-struct Rgba8 {
-  int width = 0, height = 0;
-  std::vector<unsigned char> pixels;  // RGBA, row 0 at the top
-};
-
-Rgba8 read_png(const fs::path& path) {
-  Rgba8 img;
-  int channels = 0;
-  unsigned char* data = stbi_load(path.c_str(), &img.width, &img.height, &channels, 4);
-  EXPECT_NE(data, nullptr) << path;
-  if (!data) return img;
-  img.pixels.assign(data, data + std::size_t(4) * img.width * img.height);
-  stbi_image_free(data);
-  return img;
-}
-
-/// The EXR layers thaw wrote for a frame, and its camera attributes.
-struct ExrFrame {
-  int width = 0, height = 0;
-  std::vector<float> r, g, b, depth, nx, ny, nz, object_id;
-  std::vector<std::string> object_names;
-  Imath::M44f world_to_ndc, world_to_camera;
-};
-
-ExrFrame read_exr(const fs::path& path) {
-  Imf::InputFile in(path.c_str());
-  const Imath::Box2i dw = in.header().dataWindow();
-  ExrFrame f;
-  f.width = dw.max.x - dw.min.x + 1, f.height = dw.max.y - dw.min.y + 1;
-  const std::size_t n = std::size_t(f.width) * f.height;
-  Imf::FrameBuffer fb;
-  const auto slice = [&](const char* name, std::vector<float>& v) {
-    v.assign(n, 0.0f);
-    fb.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(v.data()), sizeof(float),
-                               sizeof(float) * f.width));
-  };
-  slice("R", f.r), slice("G", f.g), slice("B", f.b), slice("Z", f.depth);
-  slice("N.X", f.nx), slice("N.Y", f.ny), slice("N.Z", f.nz), slice("id.object", f.object_id);
-  in.setFrameBuffer(fb);
-  in.readPixels(dw.min.y, dw.max.y);
-  f.object_names = in.header().typedAttribute<Imf::StringVectorAttribute>("thaw.objectIds").value();
-  f.world_to_ndc = in.header().typedAttribute<Imf::M44fAttribute>("worldToNDC").value();
-  f.world_to_camera = in.header().typedAttribute<Imf::M44fAttribute>("worldToCamera").value();
-  return f;
-}
-
-/// A picture for the docs from display values in [0, 1] (write_png encodes linear as sRGB).
-void write_display_png(const fs::path& path, int w, int h,
-                       const std::function<std::array<float, 3>(int, int)>& colour) {
-  render::Image img(w, h);
-  const auto linear = [](float v) {
-    v = std::clamp(v, 0.0f, 1.0f);
-    return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
-  };
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const auto c = colour(x, y);
-      img.at(x, y) = render::Rgb(linear(c[0]), linear(c[1]), linear(c[2]));
-    }
-  render::write_png(path, img);
-}
 
 class BlenderHandoff : public ::testing::Test {
  protected:
@@ -107,22 +33,8 @@ class BlenderHandoff : public ::testing::Test {
   /// One run for the suite: the default scenario with 8 frames (6 before break-through) as EXR.
   static void SetUpTestSuite() {
     s_dir = fs::temp_directory_path() / ("thaw_test_blender_" + std::to_string(::getpid()));
-    fs::remove_all(s_dir);
-    fs::create_directories(s_dir);
     s_out = s_dir / "out";
-    const ProcessResult def = run_process({kThaw.string(), "run", "--print-default"});
-    std::string text = def.output;
-    const auto edit = [&](const std::string& from, const std::string& to) {
-      const auto p = text.find(from);
-      ASSERT_NE(p, std::string::npos) << from;
-      text.replace(p, from.size(), to);
-    };
-    edit("frames = 80 ", "frames = 8 ");
-    edit("gif = false", "gif = false\nframes_format = \"exr\"");
-    std::ofstream(s_dir / "default_small.toml") << text;
-    const ProcessResult r = run_process(
-        {kThaw.string(), "run", (s_dir / "default_small.toml").string(), "--out", s_out.string(),
-         "--size", std::to_string(kWidth) + "x" + std::to_string(kHeight), "--spp", "1", "-q"});
+    const ProcessResult r = film_small_default(s_dir, 8, kWidth, kHeight);
     s_run_exit = r.exit_code;
     s_run_output = r.output;
   }
@@ -153,29 +65,21 @@ TEST_F(BlenderHandoff, CyclesRendersTheFrameWithThawsSilhouetteAndCamera) {
   char name[32];
   std::snprintf(name, sizeof name, "frame_%06d", kFrame);
   const ExrFrame thaw = read_exr(s_out / "frames" / (std::string(name) + ".exr"));
-  const auto ice = std::find(thaw.object_names.begin(), thaw.object_names.end(),
-                             std::string("shell outer surface"));
-  ASSERT_NE(ice, thaw.object_names.end());
-  const float ice_id = static_cast<float>(ice - thaw.object_names.begin() + 1);
+  const float ice_id = thaw.id_of("shell outer surface");
+  ASSERT_GT(ice_id, 0.0f);
   const Rgba8 mask = read_png(dir / "mask.png");
   ASSERT_EQ(mask.width, kWidth);
   ASSERT_EQ(mask.height, kHeight);
   ASSERT_EQ(thaw.width, kWidth);
-  long agree = 0, thaw_ice = 0, blender_ice = 0, both = 0;
-  std::vector<int> kind(std::size_t(kWidth) * kHeight);
-  for (std::size_t i = 0; i < kind.size(); ++i) {
-    const bool t = thaw.object_id[i] == ice_id, b = mask.pixels[4 * i + 3] > 127;
-    agree += t == b, thaw_ice += t, blender_ice += b, both += t && b;
-    kind[i] = t + 2 * b;
-  }
-  const double n = static_cast<double>(kind.size());
+  const SilhouetteAgreement s = compare_silhouettes(
+      thaw, ice_id, [&](std::size_t i) { return mask.pixels[4 * i + 3] > 127; });
   // The ice must be a real part of the picture, or agreeing would mean nothing.
-  EXPECT_GT(thaw_ice, n / 50) << "thaw's frame shows little ice";
-  EXPECT_GT(blender_ice, n / 50) << "Blender's mask shows little ice";
-  EXPECT_GE(agree / n, 0.98) << "thaw ice " << thaw_ice << ", Blender ice " << blender_ice
-                             << ", both " << both;
+  EXPECT_GT(s.thaw(), s.pixels / 50) << "thaw's frame shows little ice";
+  EXPECT_GT(s.peer(), s.pixels / 50) << "Blender's mask shows little ice";
+  EXPECT_GE(s.fraction(), 0.98) << "thaw ice " << s.thaw() << ", Blender ice " << s.peer()
+                                << ", both " << s.both;
   std::printf("silhouette: %.4f of %ld pixels agree; ice: thaw %ld, Blender %ld, both %ld\n",
-              agree / n, long(n), thaw_ice, blender_ice, both);
+              s.fraction(), s.pixels, s.thaw(), s.peer(), s.both);
 
   // The camera: Blender's projection of the world points thaw's rays through the image corners
   // reach (handoff/camera.json), and the EXR header's worldToNDC of the same points.
@@ -205,30 +109,18 @@ TEST_F(BlenderHandoff, CyclesRendersTheFrameWithThawsSilhouetteAndCamera) {
   EXPECT_NE(pvcc.find(fov), std::string::npos) << pvcc;
 
   // The pictures of docs/handoff.md.
-  fs::create_directories(kShots);
-  fs::copy_file(dir / "cycles.png", kShots / "blender_cycles.png",
+  fs::create_directories(kHandoffShots);
+  fs::copy_file(dir / "cycles.png", kHandoffShots / "blender_cycles.png",
                 fs::copy_options::overwrite_existing);
-  fs::copy_file(s_out / "frames" / (std::string(name) + ".png"), kShots / "thaw_frame.png",
+  fs::copy_file(s_out / "frames" / (std::string(name) + ".png"), kHandoffShots / "thaw_frame.png",
                 fs::copy_options::overwrite_existing);
-  // Silhouettes: white both, red thaw only, blue Blender only, dark grey neither.
-  write_display_png(kShots / "silhouettes.png", kWidth, kHeight, [&](int x, int y) {
-    switch (kind[std::size_t(y) * kWidth + x]) {
-      case 3:
-        return std::array<float, 3>{1, 1, 1};
-      case 1:
-        return std::array<float, 3>{1, 0, 0};
-      case 2:
-        return std::array<float, 3>{0, 0.3f, 1};
-      default:
-        return std::array<float, 3>{0.15f, 0.15f, 0.15f};
-    }
-  });
+  s.write_png(kHandoffShots / "silhouettes.png", kWidth, kHeight);
   // The EXR's layers side by side: beauty (linear, clipped), N (0.5 + 0.5 n), id.object (one
   // grey per object), Z (near bright, far dark).
   float zmax = 0;
   for (float z : thaw.depth)
     if (std::isfinite(z)) zmax = std::max(zmax, std::min(z, 3.0f));
-  write_display_png(kShots / "exr_layers.png", 4 * kWidth, kHeight, [&](int x, int y) {
+  write_display_png(kHandoffShots / "exr_layers.png", 4 * kWidth, kHeight, [&](int x, int y) {
     const std::size_t i = std::size_t(y) * kWidth + x % kWidth;
     const auto srgb = [](float v) {
       v = std::clamp(v, 0.0f, 1.0f);
