@@ -269,7 +269,8 @@ void write_scene_handoff(const SceneHandoffInput& in) {
     const auto* inside = find_medium(*first, face.inside);
     const auto* outside = find_medium(*first, face.outside);
     THAW_CHECK(inside && outside, "a rendered interface names known media");
-    // The renderer's RGB index (n at the d line) and per-channel absorption of the inside.
+    // The renderer's RGB index (n at the d line), the inside's per-channel absorption and its
+    // scattering (cloudy ice: Cycles' Volume Scatter, density in 1/m as thaw's, HG anisotropy).
     const double n_in = inside->n_at(render::media::kFraunhoferD_nm);
     const double n_out = outside->n_at(render::media::kFraunhoferD_nm);
     const auto a = inside->absorption().srgb_per_m();
@@ -281,8 +282,8 @@ void write_scene_handoff(const SceneHandoffInput& in) {
                            {"ior", n_in / n_out},
                            {"absorption_per_m", {a.r, a.g, a.b}},
                            {"roughness", face.roughness},
-                           {"scattering_per_m", 0.0},
-                           {"scattering_g", 0.0}});
+                           {"scattering_per_m", inside->scattering_per_m()},
+                           {"scattering_g", inside->asymmetry()}});
   }
   data["interfaces"] = media_pairs;
 

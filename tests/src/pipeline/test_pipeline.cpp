@@ -465,5 +465,35 @@ TEST_F(ThawRun, HandOffMeshesSitWhereTheFilmShowsThem) {
   EXPECT_TRUE(contains(vtp, "Normals=\"Normals\"")) << vtp.substr(0, 600);
 }
 
+TEST_F(ThawRun, BlenderHandOffCarriesTheIcesScattering) {
+  // Cloudy ice (issue 26) reaches Blender as the inside medium's scattering coefficient and
+  // Henyey-Greenstein asymmetry of each interface, as given in the scene.
+  const fs::path scenario = tiny_variant(
+      m_dir, {{"[render.media.ice]\nior = 1.31",
+               "[render.media.ice]\nior = 1.31\nscattering_per_m = 30.0\nasymmetry = 0.86"}});
+  const fs::path out = m_dir / "out";
+  const auto r = thaw({"run", scenario.string(), "--out", out.string(), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string script = read_file(out / "handoff/blender_scene.py");
+  const std::string open = "THAW = json.loads(r\'\'\'";
+  const auto from = script.find(open), to = script.find("\'\'\')", from);
+  ASSERT_NE(from, std::string::npos);
+  const auto data =
+      nlohmann::json::parse(script.substr(from + open.size(), to - from - open.size()));
+  int cloudy = 0, clear = 0;
+  for (const auto& face : data["interfaces"]) {
+    if (face["inside"] == "ice") {
+      EXPECT_DOUBLE_EQ(face["scattering_per_m"].get<double>(), 30.0) << face.dump();
+      EXPECT_DOUBLE_EQ(face["scattering_g"].get<double>(), 0.86) << face.dump();
+      ++cloudy;
+    } else {
+      EXPECT_EQ(face["scattering_per_m"].get<double>(), 0.0) << face.dump();
+      ++clear;
+    }
+  }
+  EXPECT_GE(cloudy, 1) << data["interfaces"].dump(1);
+  EXPECT_GE(clear, 1) << data["interfaces"].dump(1);
+}
+
 }  // namespace
 }  // namespace thaw::pipeline
