@@ -1,6 +1,6 @@
 // `thaw run [SCENARIO.toml] --out DIR [--force] [--jobs N] [--quiet] [--size WxH] [--spp N]
-// [--fps F] [--frames A-B|A:B:S] [--stage NAME]`: simulate, mesh, render, film and inspect in one
-// command (src/pipeline). Parsing and the closing summary only.
+// [--preview-dir P] [--fps F] [--frames N,A-B,A:B:S] [--stage NAME]`: simulate, mesh, render, film
+// and inspect in one command (src/pipeline). Parsing and the closing summary only.
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -29,7 +29,7 @@ struct RunArgs {
   std::optional<std::string> size;
   std::optional<long long> spp;
   std::optional<double> fps;
-  std::optional<std::string> frames, stage;
+  std::optional<std::string> frames, stage, preview_dir;
 };
 
 void run_alone_or_as_rank(const RunArgs& a, pipeline::RunRanks* ranks);
@@ -87,6 +87,7 @@ void run_alone_or_as_rank(const RunArgs& a, pipeline::RunRanks* ranks) {
   options.frames = frames;
   options.stage = a.stage.value_or("");
   options.out_dir = a.out;
+  if (a.preview_dir) options.preview_dir = *a.preview_dir;
   options.force = a.force;
   options.jobs = a.jobs;
   options.quiet = a.quiet;
@@ -94,7 +95,8 @@ void run_alone_or_as_rank(const RunArgs& a, pipeline::RunRanks* ranks) {
   const pipeline::RunReport report = pipeline::run_pipeline(scenario, options);
   if (a.quiet || !speaks) return;
   std::printf("thaw run: %s -> %s (%d frames, %s)\n",
-              a.scenario.empty() ? "built-in default scenario" : a.scenario.c_str(), a.out.c_str(),
+              a.scenario.empty() ? "built-in default scenario" : a.scenario.c_str(),
+              report.preview_dir.empty() ? a.out.c_str() : report.preview_dir.c_str(),
               report.frames, ProgressReporter::format_duration(report.total_seconds).c_str());
   for (const auto& e : report.events) std::printf("  %s\n", e.c_str());
   for (const auto& s : report.stages)
@@ -108,6 +110,9 @@ void run_alone_or_as_rank(const RunArgs& a, pipeline::RunRanks* ranks) {
                                     {"fields:", report.fields_pvd},
                                     {"vdb:   ", report.handoff_vdb}})
     if (!path.empty()) std::printf("%s%s\n", label, path.string().c_str());
+  if (!report.preview_dir.empty())
+    std::printf("preview: %s (the finals in %s are kept; --force replaces them)\n",
+                report.preview_dir.c_str(), a.out.c_str());
 }
 
 }  // namespace
@@ -122,24 +127,32 @@ void register_run(CLI::App& app) {
   cmd->add_option("scenario", args->scenario,
                   "scenario file (TOML); omit for the built-in default");
   cmd->add_option("-o,--out", args->out, "output folder (default: thaw-out)");
-  cmd->add_flag("--force", args->force, "redo every stage, even those up to date");
+  cmd->add_flag("--force", args->force,
+                "redo every stage, even those up to date; with --size / --spp, replace the "
+                "folder's final frames and film rather than writing a preview");
   cmd->add_option("-j,--jobs", args->jobs,
                   "worker threads for meshing and rendering (0 = all cores)");
   cmd->add_flag("-q,--quiet", args->quiet, "no progress display and no summary");
   cmd->add_option(
       "--size", args->size,
       "image size WIDTHxHEIGHT [pixels] (overrides [render.image] width and height; only "
-      "the frames are re-rendered)");
+      "the frames are re-rendered; if DIR holds frames of another size, this run is a preview in "
+      "DIR/preview/ and keeps them)");
   cmd->add_option(
       "--spp", args->spp,
       "samples per pixel (overrides [render.image] samples_per_pixel; only the frames are "
-      "re-rendered)");
+      "re-rendered; a preview in DIR/preview/ if DIR holds frames of other settings)");
+  cmd->add_option("--preview-dir", args->preview_dir,
+                  "run as a preview in this folder, starting from DIR's simulation and meshes and "
+                  "keeping DIR's frames and film (default with --size / --spp other than the "
+                  "finals': DIR/preview)");
   cmd->add_option("--fps", args->fps,
                   "frame rate of melt.mp4 (overrides [film] fps for playback only: the frames' "
                   "simulated times stay, so only the film is re-encoded)");
   cmd->add_option("--frames", args->frames,
-                  "render only these frames, numbered from 0: N, FIRST-LAST or FIRST:LAST:STEP "
-                  "(e.g. 10-20, 3:40:2) for Slurm job arrays or GNU parallel; the film is made "
+                  "render only these frames, numbered from 0: N, FIRST-LAST or FIRST:LAST:STEP, "
+                  "or a list of them (e.g. 17,36 or 10-20 or 3:40:2 or 0-4,30) for a look at "
+                  "a few frames, Slurm job arrays or GNU parallel; the film is made "
                   "once every frame is rendered (docs/pipeline.md)");
   cmd->add_option("--stage", args->stage,
                   "run only this stage: simulate, mesh, render, film or inspect (the stages "

@@ -10,6 +10,8 @@
 
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "src/pipeline/preview_folder.h"
+#include "src/pipeline/rank_agreement.h"
 #include "src/pipeline/stages.h"
 
 namespace thaw::pipeline {
@@ -85,7 +87,19 @@ std::vector<long> frame_indexes(const PipelineRun& r, long frame_count, bool* cu
 RunReport run_pipeline(const RunScenario& sc, const RunOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
   const std::unique_ptr<RunRanks> alone = opt.ranks ? nullptr : single_process();
-  PipelineRun r(sc, opt, opt.ranks ? *opt.ranks : *alone);
+  RunRanks& ranks = opt.ranks ? *opt.ranks : *alone;
+  // A preview runs in its own folder, started from DIR's simulation and meshes: the leader
+  // decides and prepares it, every rank goes there.
+  RunFolder folder;
+  on_leader(ranks, [&] {
+    folder = choose_run_folder(sc, opt);
+    if (folder.preview) start_preview_from(opt.out_dir, folder.dir);
+  });
+  RunOptions o = opt;
+  o.out_dir = ranks.broadcast(folder.dir.string());
+  if (o.out_dir != opt.out_dir && ranks.leader()) say(o, folder.why);
+  PipelineRun r(sc, o, ranks);
+  if (o.out_dir != opt.out_dir) r.report.preview_dir = o.out_dir;
   check_stage_inputs(r);
   prepare_output(r);
   bool past_stage = false;  // --stage: the asked stage is done; later stages are left

@@ -44,6 +44,10 @@ struct RunOptions {
   /// inspect only after a whole mesh stage. Such a process leaves other processes' temporary
   /// files alone (they may be rendering into the same folder).
   std::optional<FrameSelection> frames;
+  /// --preview-dir: run as a preview in this folder, starting from out_dir's simulation and
+  /// meshes and keeping its finals (preview_folder.h); unset: DIR/preview when --size / --spp
+  /// differ from the finals' settings
+  std::optional<std::filesystem::path> preview_dir;
   /// --stage: run only this stage (one of kStageNames); the stages before it must be up to date.
   std::string stage;
   /// the processes sharing this run (MPI ranks); nullptr = this process alone
@@ -64,6 +68,8 @@ struct StageTiming {
 
 struct RunReport {
   std::filesystem::path film, gif, plot, pvd;  ///< empty if not made in this run
+  /// a preview: the folder it went to (the finals in RunOptions::out_dir were kept), else empty
+  std::filesystem::path preview_dir;
   /// DIR/handoff/blender_scene.py: the run in Blender in one step (handoff_blender.h)
   std::filesystem::path handoff_scene;
   /// grid runs: the solver's fields as .vti series (src/inspect/field_export.h)
@@ -78,7 +84,8 @@ struct RunReport {
   double total_seconds = 0;
 };
 
-/// Runs every stage that is not up to date. Throws thaw::UserError (one line) on bad input or a
+/// Runs every stage that is not up to date, in RunOptions::out_dir or, for a preview, in its
+/// preview folder (preview_folder.h). Throws thaw::UserError (one line) on bad input or a
 /// failed stage; work already finished stays on disk and in the manifest.
 RunReport run_pipeline(const RunScenario& scenario, const RunOptions& options);
 

@@ -60,7 +60,10 @@ void apply_render_overrides(RunScenario& sc, const RenderOverrides& o) {
     sc.scene.image.samples_per_pixel = *o.samples_per_pixel;
     text += "samples_per_pixel=" + std::to_string(*o.samples_per_pixel) + "\n";
   }
-  if (!text.empty()) sc.render_text += "\n[command line]\n" + text;
+  if (!text.empty()) {
+    sc.render_text += "\n[command line]\n" + text;
+    sc.image_overridden = true;
+  }
   if (o.fps) {
     sc.film.playback_fps = *o.fps;
     char buf[64];

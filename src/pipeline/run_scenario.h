@@ -67,6 +67,9 @@ struct RunScenario {
   /// the scenario sets [render.camera]; otherwise the frames use the built-in framing camera
   /// (src/pipeline/frame_camera.h)
   bool camera_set = false;
+  /// --size / --spp replaced [render.image]'s settings (render_overrides.h): a run with other
+  /// settings than its folder's finals is then a preview (preview_folder.h)
+  bool image_overridden = false;
   /// canonical text of each section, for fingerprinting what a stage depends on
   std::string simulation_text, film_text, mesh_text, render_text;
 };

@@ -18,6 +18,7 @@
 #include "src/pipeline/frame_label.h"
 #include "src/pipeline/frame_scene.h"
 #include "src/pipeline/handoff_camera.h"
+#include "src/pipeline/preview_folder.h"
 #include "src/pipeline/stages.h"
 #include "src/pipeline/water_budget.h"
 
@@ -121,6 +122,8 @@ StageDone render_frames(PipelineRun& r, const StageCall& call) {
                    sc.simulation.materials.water_density_kg_m3);
   if (r.leader) {
     ensure_directory(r.frames_dir);
+    // What these frames are rendered with: a later run with other settings is a preview.
+    write_image_settings(r.out, image_settings(sc));
     // Frames beyond the current count belong to an older, longer run.
     if (!r.subset)
       for (long k = r.frame_count; fs::exists(r.frames_dir / (frame_name(k) + ".png")); ++k) {

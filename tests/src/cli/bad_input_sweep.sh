@@ -534,10 +534,11 @@ group_run() {
   done
   file_case run.dev_zero "/dev/zero.*not a regular file" run /dev/zero --out "$OUT/run"
   file_case run.missing "no_such\.toml: no such file" run "$IN/no_such.toml" --out "$OUT/run"
-  for v in 5-3 1:10:0 -1 1- - : 3:2 3:2:1 a-b 1.5 99999999999999999999 '' 4 100 9223372036854775807 ' 1' 1-2-3 1:2:3:4; do
+  for v in 5-3 1:10:0 -1 1- - : 3:2 3:2:1 a-b 1.5 99999999999999999999 '' 4 100 9223372036854775807 ' 1' 1-2-3 1:2:3:4 \
+    , 1, ,1 1,,2 0,100 '1, 2' 1-2:3 1\;2; do
     bad "run.--frames=$v" "--frames" -- "${R[@]}" --frames "$v"
   done
-  for v in 0:0 0-0 0:9223372036854775807:9223372036854775807 3 0:3:2; do
+  for v in 0:0 0-0 0:9223372036854775807:9223372036854775807 3 0:3:2 0,3 3,0-1 0:3:2,1-2; do
     either "run.--frames=$v" "--frames" -- "${R[@]}" --frames "$v" --stage simulate
   done
   for v in 0x0 100000x100000 -5x3 1000000x1000000 16384x16384 x 640x 640x480x3 ' 640x480' 1e3x1e3 \

@@ -102,6 +102,19 @@ TEST_F(ThawRun, ChangingOnlyTheCameraReRendersWithoutReSimulatingOrReMeshing) {
   EXPECT_EQ(fs::last_write_time(out / "frames/frame_000000.png"), frame_time);
 }
 
+/// A PNG's width and height (IHDR, big-endian, bytes 16..23).
+std::pair<std::uint32_t, std::uint32_t> png_size(const fs::path& file) {
+  const std::string png = read_file(file);
+  if (png.size() < 24) return {0, 0};
+  const auto be32 = [&](std::size_t at) {
+    return (std::uint32_t(std::uint8_t(png[at])) << 24) |
+           (std::uint32_t(std::uint8_t(png[at + 1])) << 16) |
+           (std::uint32_t(std::uint8_t(png[at + 2])) << 8) |
+           std::uint32_t(std::uint8_t(png[at + 3]));
+  };
+  return {be32(16), be32(20)};
+}
+
 TEST_F(ThawRun, SizeAndSppOverridesReRenderOnlyAndBadValuesAreOneLine) {
   const fs::path out = m_dir / "out";
   ASSERT_EQ(thaw({"run", kTiny.string(), "--out", out.string(), "-q"}).exit_code, 0);
@@ -114,17 +127,11 @@ TEST_F(ThawRun, SizeAndSppOverridesReRenderOnlyAndBadValuesAreOneLine) {
   EXPECT_EQ(fs::last_write_time(out / "sim/mesh/manifest.json"), mesh_time);
   EXPECT_NE(r.output.find("simulate: up to date"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("mesh: up to date"), std::string::npos) << r.output;
-  // PNG IHDR: width and height, big-endian, at bytes 16..23
-  const std::string png = read_file(out / "frames/frame_000000.png");
-  ASSERT_GT(png.size(), 24u);
-  const auto be32 = [&](std::size_t at) {
-    return (std::uint32_t(std::uint8_t(png[at])) << 24) |
-           (std::uint32_t(std::uint8_t(png[at + 1])) << 16) |
-           (std::uint32_t(std::uint8_t(png[at + 2])) << 8) |
-           std::uint32_t(std::uint8_t(png[at + 3]));
-  };
-  EXPECT_EQ(be32(16), 40u);
-  EXPECT_EQ(be32(20), 30u);
+  // Other settings than the finals': a preview, beside them.
+  EXPECT_EQ(png_size(out / "preview/frames/frame_000000.png"),
+            (std::pair<std::uint32_t, std::uint32_t>{40, 30}));
+  EXPECT_EQ(png_size(out / "frames/frame_000000.png"),
+            (std::pair<std::uint32_t, std::uint32_t>{64, 64}));
   // The same overrides again: nothing to do.
   const auto again =
       thaw({"run", kTiny.string(), "--out", out.string(), "--size", "40x30", "--spp", "2"});
@@ -145,6 +152,74 @@ TEST_F(ThawRun, SizeAndSppOverridesReRenderOnlyAndBadValuesAreOneLine) {
     EXPECT_EQ(std::count(e.output.begin(), e.output.end(), '\n'), 1) << e.output;
     EXPECT_FALSE(fs::exists(m_dir / "never")) << bad[1];
   }
+}
+
+// Issue 27 item 1: a preview (--size / --spp other than the finals') never touches the finals;
+// --force replaces them; a final made with --size is kept from a plain rerun too.
+TEST_F(ThawRun, PreviewsNeverOverwriteTheFinals) {
+  const fs::path out = m_dir / "out";
+  ASSERT_EQ(thaw({"run", kTiny.string(), "--out", out.string(), "-q"}).exit_code, 0);
+  const auto frames = frames_of(out);
+  const std::string film = read_file(out / "melt.mp4");
+  ASSERT_EQ(frames.size(), 4u);
+  const auto preview = thaw({"run", kTiny.string(), "--out", out.string(), "--size", "32x24",
+                             "--spp", "1", "--frames", "1,3"});
+  ASSERT_EQ(preview.exit_code, 0) << preview.output;
+  EXPECT_NE(preview.output.find("preview: 32x24, 1 spp differs from the finals in " + out.string() +
+                                " (64x64, 1 spp)"),
+            std::string::npos)
+      << preview.output;
+  EXPECT_NE(preview.output.find("preview: " + (out / "preview").string()), std::string::npos)
+      << preview.output;
+  // The preview starts from the finals' simulation and meshes.
+  EXPECT_NE(preview.output.find("simulate: up to date"), std::string::npos) << preview.output;
+  EXPECT_NE(preview.output.find("mesh: up to date"), std::string::npos) << preview.output;
+  EXPECT_EQ(frames_of(out / "preview").size(), 2u);
+  EXPECT_EQ(png_size(out / "preview/frames/frame_000003.png"),
+            (std::pair<std::uint32_t, std::uint32_t>{32, 24}));
+  EXPECT_EQ(frames_of(out), frames);
+  EXPECT_EQ(read_file(out / "melt.mp4"), film);
+  // A whole preview makes its own film; the finals' stay.
+  ASSERT_EQ(thaw({"run", kTiny.string(), "--out", out.string(), "--size", "32x24", "-q"}).exit_code,
+            0);
+  EXPECT_EQ(count_video_frames(out / "preview/melt.mp4"), 4);
+  EXPECT_EQ(frames_of(out), frames);
+  EXPECT_EQ(read_file(out / "melt.mp4"), film);
+  // A plain rerun: the finals are up to date.
+  const auto plain = thaw({"run", kTiny.string(), "--out", out.string()});
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_EQ(plain.output.find("preview"), std::string::npos) << plain.output;
+  EXPECT_EQ(frames_of(out), frames);
+  EXPECT_EQ(read_file(out / "melt.mp4"), film);
+  // A folder the user names.
+  const fs::path named = m_dir / "look";
+  const auto there = thaw({"run", kTiny.string(), "--out", out.string(), "--preview-dir",
+                           named.string(), "--frames", "2", "-q"});
+  ASSERT_EQ(there.exit_code, 0) << there.output;
+  EXPECT_TRUE(fs::exists(named / "frames/frame_000002.png"));
+  EXPECT_EQ(frames_of(out), frames);
+  const auto same =
+      thaw({"run", kTiny.string(), "--out", out.string(), "--preview-dir", out.string(), "-q"});
+  EXPECT_EQ(same.exit_code, 2) << same.output;
+  EXPECT_NE(same.output.find("--preview-dir"), std::string::npos) << same.output;
+  EXPECT_EQ(std::count(same.output.begin(), same.output.end(), '\n'), 1) << same.output;
+  // --force replaces the finals.
+  ASSERT_EQ(thaw({"run", kTiny.string(), "--out", out.string(), "--size", "48x36", "--force", "-q"})
+                .exit_code,
+            0);
+  EXPECT_EQ(png_size(out / "frames/frame_000000.png"),
+            (std::pair<std::uint32_t, std::uint32_t>{48, 36}));
+  const auto large = frames_of(out);
+  const std::string large_film = read_file(out / "melt.mp4");
+  // Finals made with --size are kept from a plain rerun, which becomes the preview.
+  const auto after = thaw({"run", kTiny.string(), "--out", out.string()});
+  ASSERT_EQ(after.exit_code, 0) << after.output;
+  EXPECT_NE(after.output.find("preview: 64x64, 1 spp differs"), std::string::npos) << after.output;
+  EXPECT_EQ(frames_of(out), large);
+  EXPECT_EQ(read_file(out / "melt.mp4"), large_film);
+  EXPECT_EQ(png_size(out / "preview/frames/frame_000000.png"),
+            (std::pair<std::uint32_t, std::uint32_t>{64, 64}));
+  expect_no_temporaries(out);
 }
 
 TEST_F(ThawRun, KilledDuringRenderAndRestartedGivesByteIdenticalFrames) {
