@@ -429,7 +429,7 @@ TEST_F(ThawRun, StageRunsOneStageOnceTheStagesItReadsAreUpToDate) {
        std::vector<std::array<std::string, 3>>{{"--frames", "4-9", "the film has frames 0-3"},
                                                {"--frames", "3-1", "last frame comes before"},
                                                {"--frames", "1:3:0", "step must be at least 1"},
-                                               {"--frames", "one", "expected a frame N"},
+                                               {"--frames", "one", "expected frames N"},
                                                {"--stage", "bake", "must be simulate, mesh"},
                                                {"--fps", "0", "--fps: must be between 0.01 and"},
                                                {"--fps", "1e-300", "between 0.01 and 240"},
