@@ -19,7 +19,7 @@
 // Objects that shadow rays see through (index-matched dielectrics) are left out of a second
 // Embree scene that serves the shadow rays, as thaw's occluded() skips them.
 //
-// Usage: ray_limit [scene.toml | RUN_DIR] [threads] [repetitions] [frame]
+// Usage: ray_limit [scene.toml | RUN_DIR] [threads] [repetitions] [frame] [frames-only]
 //   scene.toml: a `thaw render` scene (default: data/scenes/s1_ice_shell_mesh.toml);
 //   RUN_DIR: a `thaw run --out RUN_DIR` folder whose simulate and mesh stages are done; its frame
 //   `frame` (default 30) is built as the render stage builds it (without the caption).
@@ -350,6 +350,9 @@ int run(int argc, char** argv) {
   const int threads = argc > 2 ? std::atoi(argv[2]) : 2;
   const int repetitions = argc > 3 ? std::atoi(argv[3]) : 5;
   const long frame_index = argc > 4 ? std::atol(argv[4]) : 30;
+  // frames-only: render and write the frame `repetitions` times and stop (for a profiler:
+  // bench/render/frame_profile.sh), no photon pass alone, no recording, no replay.
+  const bool frames_only = argc > 5 && std::string(argv[5]) == "frames-only";
   const bool run_dir = fs::is_directory(path);
   const Scene scene =
       build_scene(run_dir ? run_frame_scene(path, frame_index) : parse_scene_file(path));
@@ -361,18 +364,24 @@ int run(int argc, char** argv) {
   Image unrecorded;
   const fs::path png_path =
       fs::temp_directory_path() / ("ray_limit_" + std::to_string(::getpid()) + ".png");
-  for (int r = 0; r < std::max(1, repetitions / 2); ++r) {
+  for (int r = 0; r < (frames_only ? repetitions : std::max(1, repetitions / 2)); ++r) {
     timed_once(frame, [&] {
       RenderOptions opt;
       opt.threads = threads;
       unrecorded = render(scene, opt).image;
     });
-    timed_once(photons, [&] { photon::CausticMap::build(scene, threads, nullptr); });
+    if (!frames_only)
+      timed_once(photons, [&] { photon::CausticMap::build(scene, threads, nullptr); });
     timed_once(png, [&] {
       write_png(png_path, unrecorded, scene.settings().exposure, 8, scene.settings().view);
     });
   }
   fs::remove(png_path);
+  if (frames_only) {
+    std::printf("ray_limit: %d frames of %s: best %.3f s wall, %.3f CPU-s; PNG %.3f CPU-s\n",
+                repetitions, path.c_str(), frame.wall_s, frame.cpu_s, png.cpu_s);
+    return 0;
+  }
   // 2. Its rays (one thread: the rays do not depend on the thread count, the order then does not
   // either).
   Recorder rec(scene.camera().position());
