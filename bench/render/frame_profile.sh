@@ -34,8 +34,8 @@ perf report -i "$data" --no-children --sort dso,sym --stdio -g none -t ';' 2>/de
     if (s ~ /PhotonMap::lookup|PhotonMap::irradiance_at/) return "photon lookup (caustic gather)"
     if (s ~ /photon::/) return "photon pass (tracing, Halton, kd-tree build)"
     if (s ~ /Bvh::|intersect_triangle|intersect_sphere|intersect_box|intersect_plane|Scene::intersect|Scene::occluded/) return "traversal (BVH, primitive tests)"
-    if (s ~ /Texture::|Filter::/) return "texture filtering"
-    if (s ~ /render_image_tiles|PixelSampler|sampling::|Camera/) return "tile loop, camera rays, sampling, film"
+    if (s ~ /Texture::/) return "texture filtering (checker footprints)"
+    if (s ~ /render_image_tiles|PixelSampler|sampling::|Camera|Filter::/) return "tile loop, camera rays, pixel filter, sampling"
     if (s ~ /WhittedShading|interaction|irradiance|IrradianceSH|sphere_light|fresnel|microfacet|media::/ || dso ~ /libm/) return "shading (lights, environment, Fresnel, libm)"
     return "other"
   }

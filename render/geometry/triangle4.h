@@ -89,6 +89,10 @@ inline bool intersect_triangle4(const ShearedRay& r, const Triangle4& tri, float
       _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(u, zero), _mm_cmplt_ps(v, zero)), _mm_cmplt_ps(w, zero));
   const __m128 any_pos =
       _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(u, zero), _mm_cmpgt_ps(v, zero)), _mm_cmpgt_ps(w, zero));
+  // Most leaves' triangles miss the ray: where no lane passes the edge test and none needs the
+  // scalar redo, the answer is already "no hit" (the rest below would mask every lane out).
+  const __m128 mixed = _mm_and_ps(any_neg, any_pos);
+  if (exact_zero == 0 && _mm_movemask_ps(mixed) == 0xf) return false;
   const __m128 det = _mm_add_ps(_mm_add_ps(u, v), w);
   const __m128 az = _mm_mul_ps(sz, a_z), bz = _mm_mul_ps(sz, b_z), cz = _mm_mul_ps(sz, c_z);
   const __m128 t_scaled =
@@ -100,9 +104,11 @@ inline bool intersect_triangle4(const ShearedRay& r, const Triangle4& tri, float
   const __m128 ok_pos =
       _mm_and_ps(_mm_cmpgt_ps(det, zero),
                  _mm_and_ps(_mm_cmpgt_ps(t_scaled, zero), _mm_cmple_ps(t_scaled, limit)));
+  __m128 ok = _mm_andnot_ps(mixed, _mm_or_ps(ok_neg, ok_pos));
+  // The same before the division: no lane ahead within t_max (as t_scaled against det says).
+  if (exact_zero == 0 && _mm_movemask_ps(ok) == 0) return false;
   const __m128 inv_det = _mm_div_ps(_mm_set1_ps(1.0f), det);
   const __m128 t = _mm_mul_ps(t_scaled, inv_det);
-  __m128 ok = _mm_andnot_ps(_mm_and_ps(any_neg, any_pos), _mm_or_ps(ok_neg, ok_pos));
   ok = _mm_and_ps(ok, _mm_cmplt_ps(t, _mm_set1_ps(t_max)));
   int mask = _mm_movemask_ps(ok) & ~exact_zero;
   if (mask)
