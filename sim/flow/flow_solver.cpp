@@ -33,12 +33,10 @@ double koren_face(double t_uu, double t_u, double t_d) {
   return t_u + 0.5 * s * std::min({2.0 * b, (a + 2.0 * b) / 3.0, 2.0 * a});
 }
 
-/// The implicit steps' solves: largest residual relative to the right-hand side's largest
-/// entry. The momentum increment's residual leaves a velocity error of that order times the
-/// step's change, removed at steady state (the right-hand side vanishes); the conduction's
-/// final update is conservative whatever the residual, which then only bounds the deviation
-/// from the implicit solution (temperatures stay within their bounds to ~1e-12 of the change).
-constexpr double kImplicitTolerance = 1e-8;
+/// The implicit conduction's solve: largest residual relative to the right-hand side's largest
+/// entry. The final update is conservative whatever the residual, which then only bounds the
+/// deviation from the implicit solution (temperatures stay within their bounds to ~1e-12 of
+/// the change).
 constexpr double kConductionTolerance = 1e-12;
 
 }  // namespace
@@ -69,6 +67,27 @@ FlowSolver::FlowSolver(FlowProblem problem, std::unique_ptr<PressureSolver> pres
 }
 
 FlowSolver::~FlowSolver() = default;
+
+bool FlowSolver::rebuild_coarse(OperatorBuild& build, double dt) {
+  // The coarse levels only precondition: rebuilt when the step has moved by a quarter since
+  // they were built, and every kCoarseRefresh updates (the drag and nu move with the melt).
+  constexpr int kCoarseRefresh = 16;
+  const bool rebuild = build.updates < 0 || build.updates >= kCoarseRefresh ||
+                       !(dt <= 1.25 * build.dt && dt >= 0.8 * build.dt);
+  if (rebuild) {
+    build.dt = dt;
+    build.updates = 0;
+  } else {
+    ++build.updates;
+  }
+  return rebuild;
+}
+
+void FlowSolver::set_velocity_m_s(int d, std::vector<double> u) {
+  THAW_CHECK(d < problem_.grid.dims() && u.size() == problem_.grid.face_count(d),
+             "flow velocity: one value per face");
+  velocity_[d] = std::move(u);
+}
 
 void FlowSolver::set_drag_per_s(std::vector<double> drag) {
   THAW_CHECK(drag.empty() || drag.size() == problem_.grid.cell_count(),
@@ -152,84 +171,81 @@ void FlowSolver::momentum_rhs(const Field& u, const std::vector<double>& t, Fiel
   const int dims = g.dims();
   const double h = g.h_m;
   const auto& n = g.n;
-  // u_d at (possibly ghost) face a: tangential indices outside the box mirror with a sign flip
-  // (no-slip: the wall value is 0).
-  auto U = [&](int d, Idx a) {
-    double sign = 1;
-    for (int e = 0; e < dims; ++e) {
-      if (e == d) continue;
-      if (a[e] < 0) {
-        a[e] = 0;
-        sign = -sign;
-      } else if (a[e] >= n[e]) {
-        a[e] = n[e] - 1;
-        sign = -sign;
-      }
-    }
-    return sign * u[d][g.face(d, a[0], a[1], a[2])];
-  };
-  auto nu_at = [&](const Idx& c) { return nu_[g.cell(c[0], c[1], c[2])]; };
+  // strides of the cells and of each component's faces
+  const std::ptrdiff_t sc[3] = {1, n[0], static_cast<std::ptrdiff_t>(n[0]) * n[1]};
+  std::ptrdiff_t sf[3][3];
+  for (int d = 0; d < 3; ++d) {
+    const auto fd = g.face_dims(d);
+    sf[d][0] = 1;
+    sf[d][1] = fd[0];
+    sf[d][2] = static_cast<std::ptrdiff_t>(fd[0]) * fd[1];
+  }
+  const double* nu = nu_.data();
   for (int d = 0; d < dims; ++d) {
     const auto fd = g.face_dims(d);
     std::vector<double>& o = out[d];
     o.assign(g.face_count(d), 0.0);
+    const double* ud = u[d].data();
 #pragma omp parallel for collapse(2) schedule(static) if (parallel_)
     for (int k = 0; k < fd[2]; ++k)
       for (int j = 0; j < fd[1]; ++j)
         for (int i = 0; i < fd[0]; ++i) {
-          const Idx f{{i, j, k}};
+          const int f[3] = {i, j, k};
           if (f[d] == 0 || f[d] == n[d]) continue;  // wall faces stay at rest
+          const std::ptrdiff_t fi = static_cast<std::ptrdiff_t>(g.face(d, i, j, k));
+          const std::ptrdiff_t c_hi = static_cast<std::ptrdiff_t>(g.cell(i, j, k));
+          const std::ptrdiff_t c_lo = c_hi - sc[d];
           const double w = d == 0 ? g.radius_at_plane(i) : g.radius_at_centre(i);
-          double sum = 0;
-          // Along d: fluxes at the two cell centres either side of the face.
-          for (int side = 0; side < 2; ++side) {
-            const Idx c = shifted(f, d, side - 1);  // cell below (side 0) or above (side 1)
-            const double lo = U(d, c), hi = U(d, shifted(c, d, 1));
-            const double ubar = 0.5 * (lo + hi);
-            const double flux = -ubar * ubar + 2.0 * nu_at(c) * (hi - lo) / h;
-            const double area = d == 0 ? g.radius_at_centre(c[0]) : w;
-            sum += (side == 0 ? -1.0 : 1.0) * area * flux;
-          }
-          // Across e != d: fluxes at the edges (d plane f[d], e plane m), m = f[e], f[e] + 1.
+          const double u0 = ud[fi - sf[d][d]], u1 = ud[fi], u2 = ud[fi + sf[d][d]];
+          // Along d: fluxes at the centres of the cells above (c_hi) and below (c_lo).
+          const double ub_hi = 0.5 * (u1 + u2), ub_lo = 0.5 * (u0 + u1);
+          const double area_hi = d == 0 ? g.radius_at_centre(i) : w;
+          const double area_lo = d == 0 ? g.radius_at_centre(i - 1) : w;
+          double sum = area_hi * (-ub_hi * ub_hi + 2.0 * nu[c_hi] * (u2 - u1) / h) -
+                       area_lo * (-ub_lo * ub_lo + 2.0 * nu[c_lo] * (u1 - u0) / h);
+          // Across e != d: fluxes at the edges (d plane f[d], e plane m), m = f[e] + side; u_d
+          // beyond a wall mirrors with a sign flip (no-slip), u_e on the e faces of the cells
+          // below (c_lo) and above (c_hi) along d; nu the mean of the edge's cells in the box.
           for (int e = 0; e < dims; ++e) {
             if (e == d) continue;
+            const std::ptrdiff_t ef_hi =
+                static_cast<std::ptrdiff_t>(g.face(e, i, j, k));  // lower e face of c_hi
+            const std::ptrdiff_t ef_lo = ef_hi - sf[e][d];
+            const double* ue = u[e].data();
             for (int side = 0; side < 2; ++side) {
               const int m = f[e] + side;
-              Idx below = f, above = f;
-              below[e] = m - 1;
-              above[e] = m;
-              const double ud_lo = U(d, below), ud_hi = U(d, above);
-              Idx ce = f;  // the e face at plane m, cells f[d]-1 and f[d] along d
-              ce[e] = m;
-              const double ue_lo = U(e, shifted(ce, d, -1)), ue_hi = U(e, ce);
-              // nu at the edge: mean over the (up to 4) cells around it inside the box
-              double nu_sum = 0;
-              int nu_count = 0;
-              for (int a = -1; a <= 0; ++a)
-                for (int b = -1; b <= 0; ++b) {
-                  Idx c = f;
-                  c[d] += a;
-                  c[e] = m + b;
-                  if (c[e] < 0 || c[e] >= n[e]) continue;
-                  nu_sum += nu_at(c);
-                  ++nu_count;
+              double ud_lo, ud_hi, nu_sum = nu[c_lo] + nu[c_hi];
+              int nu_count = 2;
+              if (side == 1) {
+                ud_lo = u1;
+                ud_hi = m < n[e] ? ud[fi + sf[d][e]] : -u1;
+                if (m < n[e]) {
+                  nu_sum += nu[c_lo + sc[e]] + nu[c_hi + sc[e]];
+                  nu_count = 4;
                 }
-              const double nu_edge = nu_sum / nu_count;
+              } else {
+                ud_hi = u1;
+                ud_lo = m > 0 ? ud[fi - sf[d][e]] : -u1;
+                if (m > 0) {
+                  nu_sum += nu[c_lo - sc[e]] + nu[c_hi - sc[e]];
+                  nu_count = 4;
+                }
+              }
+              const std::ptrdiff_t off = side == 1 ? sf[e][e] : 0;
+              const double ue_lo = ue[ef_lo + off], ue_hi = ue[ef_hi + off];
               const double flux = -0.25 * (ud_lo + ud_hi) * (ue_lo + ue_hi) +
-                                  nu_edge * ((ud_hi - ud_lo) / h + (ue_hi - ue_lo) / h);
+                                  nu_sum / nu_count * ((ud_hi - ud_lo) / h + (ue_hi - ue_lo) / h);
               const double area = e == 0 ? g.radius_at_plane(m) : w;
               sum += (side == 0 ? -1.0 : 1.0) * area * flux;
             }
           }
           double r = sum / (w * h);
-          const Idx c0 = shifted(f, d, -1);
           if (d == 0 && g.axisymmetric()) {  // hoop stress: -tau_theta_theta / r = -2 nu u / r^2
-            const double nu_f = 0.5 * (nu_at(c0) + nu_at(f));
-            r -= 2.0 * nu_f * u[0][g.face(0, i, j, k)] / (w * w);
+            const double nu_f = 0.5 * (nu[c_lo] + nu[c_hi]);
+            r -= 2.0 * nu_f * u1 / (w * w);
           }
-          if (d == 1)
-            r += 0.5 * (buoyancy_[g.cell(c0[0], c0[1], c0[2])] + buoyancy_[g.cell(i, j, k)]);
-          o[g.face(d, i, j, k)] = r;
+          if (d == 1) r += 0.5 * (buoyancy_[c_lo] + buoyancy_[c_hi]);
+          o[fi] = r;
         }
   }
 }
@@ -445,7 +461,10 @@ void FlowSolver::set_pressure_operator(double drag_dt) {
           cond[d][g.face(d, i, j, k)] = factor * g.face_area(d, i) / g.h_m;
         }
   }
-  pressure_->set_operator(g.n, cond);
+  if (rebuild_coarse(pressure_built_, drag_dt))
+    pressure_->set_operator(g.n, cond);
+  else
+    pressure_->update_operator(g.n, cond);
   operator_drag_dt_ = drag_.empty() ? 0 : drag_dt;
   drag_changed_ = false;
 }
@@ -536,7 +555,10 @@ int FlowSolver::momentum_predictor(double dt, bool nu_changed) {
             }
             mass[fi] = m;
           }
-      viscous_[d]->set_operator(fd, cond, mass);
+      if (d == 0 ? rebuild_coarse(viscous_built_, dt) : viscous_built_.updates == 0)
+        viscous_[d]->set_operator(fd, cond, mass);
+      else
+        viscous_[d]->update_operator(fd, cond, mass);
     }
     viscous_dt_ = dt;
     viscous_drag_changed_ = false;
@@ -564,7 +586,7 @@ int FlowSolver::momentum_predictor(double dt, bool nu_changed) {
       std::fill(delta.begin(), delta.end(), 0.0);
       continue;
     }
-    const PressureSolveReport r = viscous_[d]->solve(b, delta, kImplicitTolerance * b_max);
+    const PressureSolveReport r = viscous_[d]->solve(b, delta, problem_.implicit_tolerance * b_max);
     THAW_CHECK(r.converged, "flow: the implicit viscous solve did not converge");
     iterations += r.iterations;
     std::vector<double>& u = velocity_[d];

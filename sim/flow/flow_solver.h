@@ -52,6 +52,9 @@ struct FlowProblem {
   /// pressure solve: largest net volume flow out of a cell after projection, relative to the
   /// largest face volume flow
   double pressure_tolerance = 1e-10;
+  /// implicit viscous solves: largest residual relative to the right-hand side's largest entry
+  /// (the increment's error; it vanishes with the right-hand side at steady state)
+  double implicit_tolerance = 1e-8;
 };
 
 struct FlowStepReport {
@@ -76,6 +79,9 @@ class FlowSolver {
   const std::vector<double>& temperature_c() const { return temperature_; }
   /// face velocities of component d [m/s], MacGrid::face(d, ...) order (wall faces are 0)
   const std::vector<double>& velocity_m_s(int d) const { return velocity_[d]; }
+  /// Replaces the face velocities of component d (a divergence-free field, walls 0), e.g. to carry
+  /// a flow over when a coupled solver moves the box.
+  void set_velocity_m_s(int d, std::vector<double> u);
   /// per-cell drag coefficient [1/s] (empty: none)
   void set_drag_per_s(std::vector<double> drag);
   /// true: step() advances the velocity only, the temperature held as set (a coupled solver
@@ -127,6 +133,14 @@ class FlowSolver {
   /// The implicit conduction of t over dt after its explicit advection; returns the iterations
   /// and adds the wall heat to report.
   int conduct(double dt, FlowStepReport& report);
+  /// The step of an operator's last full multigrid build and the updates of its finest level
+  /// since (-1: never built).
+  struct OperatorBuild {
+    double dt = 0;
+    int updates = -1;
+  };
+  /// true: rebuild all levels (and note it); false: update the finest level only.
+  static bool rebuild_coarse(OperatorBuild& build, double dt);
   /// (Re)builds the pressure operator for the implicit drag over drag_dt (0: no drag).
   void set_pressure_operator(double drag_dt);
 
@@ -146,6 +160,7 @@ class FlowSolver {
   std::array<std::unique_ptr<MultigridPressureSolver>, 3> viscous_;
   std::unique_ptr<MultigridPressureSolver> conduction_;
   double viscous_dt_ = -1, conduction_dt_ = -1;
+  OperatorBuild pressure_built_, viscous_built_;
   bool viscous_drag_changed_ = true;
   long implicit_iterations_ = 0;
   // per face: 1 / (1 + dt D) of the current stage (empty without drag)

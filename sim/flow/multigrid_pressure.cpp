@@ -33,18 +33,27 @@ std::size_t face_index(const std::array<int, 3>& n, int d, int i, int j, int k) 
              (static_cast<std::size_t>(j) + static_cast<std::size_t>(f[1]) * k);
 }
 
-/// sum over the faces of cell (i,j,k) of g_f x_neighbour, from the per-cell coefficients.
-inline double neighbour_sum(const Level& L, const std::vector<double>& x, int i, int j, int k,
-                            std::size_t c) {
+/// The rows a cell row (j, k) sees: its own and its neighbours along y and z (a row of zeros
+/// beyond the box, where the conductances are zero anyway).
+struct Rows {
+  const double *self, *ym, *yp, *zm, *zp;
+};
+inline Rows rows_of(const Level& L, const std::vector<double>& x, int j, int k) {
   const auto& n = L.n;
-  const std::size_t sx = 1, sy = static_cast<std::size_t>(n[0]), sz = sy * n[1];
-  double s = 0;
-  if (i > 0) s += L.nb[0][c] * x[c - sx];
-  if (i + 1 < n[0]) s += L.nb[1][c] * x[c + sx];
-  if (j > 0) s += L.nb[2][c] * x[c - sy];
-  if (j + 1 < n[1]) s += L.nb[3][c] * x[c + sy];
-  if (k > 0) s += L.nb[4][c] * x[c - sz];
-  if (k + 1 < n[2]) s += L.nb[5][c] * x[c + sz];
+  const std::size_t sy = static_cast<std::size_t>(n[0]), sz = sy * n[1];
+  const std::size_t row = cell_index(n, 0, j, k);
+  const double* zero = L.zero.data();
+  const double* self = x.data() + row;
+  return {self, j > 0 ? self - sy : zero, j + 1 < n[1] ? self + sy : zero, k > 0 ? self - sz : zero,
+          k + 1 < n[2] ? self + sz : zero};
+}
+
+/// sum over the faces of cell i of row r of g_f x_neighbour (c: the cell's index).
+inline double neighbour_sum(const Level& L, const Rows& r, int i, std::size_t c) {
+  double s = L.nb[2][c] * r.ym[i] + L.nb[3][c] * r.yp[i];
+  if (L.n[2] > 1) s += L.nb[4][c] * r.zm[i] + L.nb[5][c] * r.zp[i];
+  if (i > 0) s += L.nb[0][c] * r.self[i - 1];
+  if (i + 1 < L.n[0]) s += L.nb[1][c] * r.self[i + 1];
   return s;
 }
 
@@ -54,11 +63,14 @@ void residual(Level& L, const std::vector<double>& x, const std::vector<double>&
   const auto n = L.n;
 #pragma omp parallel for collapse(2) schedule(static) if (kParallel(n))
   for (int k = 0; k < n[2]; ++k)
-    for (int j = 0; j < n[1]; ++j)
+    for (int j = 0; j < n[1]; ++j) {
+      const Rows rows = rows_of(L, x, j, k);
+      const std::size_t row = cell_index(n, 0, j, k);
       for (int i = 0; i < n[0]; ++i) {
-        const std::size_t c = cell_index(n, i, j, k);
-        r[c] = b[c] - (L.diag[c] * x[c] - neighbour_sum(L, x, i, j, k, c));
+        const std::size_t c = row + i;
+        r[c] = b[c] - (L.diag[c] * x[c] - neighbour_sum(L, rows, i, c));
       }
+    }
 }
 
 /// One Gauss-Seidel half sweep over the cells of one colour ((i + j + k) % 2 == colour).
@@ -66,11 +78,14 @@ void smooth_colour(Level& L, int colour) {
   const auto n = L.n;
 #pragma omp parallel for collapse(2) schedule(static) if (kParallel(n))
   for (int k = 0; k < n[2]; ++k)
-    for (int j = 0; j < n[1]; ++j)
+    for (int j = 0; j < n[1]; ++j) {
+      const Rows rows = rows_of(L, L.x, j, k);
+      const std::size_t row = cell_index(n, 0, j, k);
       for (int i = (j + k + colour) & 1; i < n[0]; i += 2) {
-        const std::size_t c = cell_index(n, i, j, k);
-        if (L.diag[c] > 0) L.x[c] = (L.b[c] + neighbour_sum(L, L.x, i, j, k, c)) / L.diag[c];
+        const std::size_t c = row + i;
+        L.x[c] = (L.b[c] + neighbour_sum(L, rows, i, c)) * L.inv_diag[c];
       }
+    }
 }
 
 void compute_diagonal(Level& L) {
@@ -93,6 +108,10 @@ void compute_diagonal(Level& L) {
         L.diag[c] = s;
       }
   const std::size_t cells = L.diag.size();
+  // a cell without conductance or mass is left alone by the smoother
+  L.inv_diag.resize(cells);
+  for (std::size_t c = 0; c < cells; ++c) L.inv_diag[c] = L.diag[c] > 0 ? 1.0 / L.diag[c] : 0.0;
+  L.zero.assign(static_cast<std::size_t>(n[0]), 0.0);
   L.x.assign(cells, 0.0);
   L.b.assign(cells, 0.0);
   L.r.assign(cells, 0.0);
@@ -178,6 +197,24 @@ void MultigridPressureSolver::set_operator(const std::array<int, 3>& cells,
     if (!can) break;
     levels_.push_back(coarsen(f));
   }
+}
+
+void MultigridPressureSolver::update_operator(const std::array<int, 3>& cells,
+                                              const std::array<std::vector<double>, 3>& g,
+                                              const std::vector<double>& mass) {
+  if (levels_.empty() || levels_[0].n != cells || levels_[0].mass.empty() != mass.empty()) {
+    set_operator(cells, g, mass);
+    return;
+  }
+  Level& top = levels_[0];
+  for (int d = 0; d < 3; ++d) {
+    THAW_CHECK(g[d].size() == top.g[d].size(),
+               "pressure operator: conductance array of the wrong size");
+    top.g[d] = g[d];
+  }
+  THAW_CHECK(mass.size() == top.mass.size(), "operator: one mass per cell");
+  top.mass = mass;
+  compute_diagonal(top);
 }
 
 void MultigridPressureSolver::v_cycle(int l) {

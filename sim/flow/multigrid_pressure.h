@@ -25,6 +25,14 @@ class MultigridPressureSolver final : public PressureSolver {
   /// mass_c >= 0 (a cell with mass and no conductance is decoupled: x_c = b_c / mass_c).
   void set_operator(const std::array<int, 3>& cells, const std::array<std::vector<double>, 3>& g,
                     const std::vector<double>& mass);
+  /// The finest level's operator replaced (same cells), the coarse levels kept as built: they
+  /// only precondition, so CG still solves the new operator.
+  void update_operator(const std::array<int, 3>& cells,
+                       const std::array<std::vector<double>, 3>& g) override {
+    update_operator(cells, g, {});
+  }
+  void update_operator(const std::array<int, 3>& cells, const std::array<std::vector<double>, 3>& g,
+                       const std::vector<double>& mass);
   PressureSolveReport solve(const std::vector<double>& b, std::vector<double>& p,
                             double tolerance) override;
   /// Number of grid levels (1 = no coarsening).
@@ -35,7 +43,8 @@ class MultigridPressureSolver final : public PressureSolver {
     std::array<std::vector<double>, 3> g;
     /// per cell: the conductances of its faces x-, x+, y-, y+, z-, z+
     std::array<std::vector<double>, 6> nb;
-    std::vector<double> mass, diag, x, b, r;
+    std::vector<double> mass, diag, inv_diag, x, b, r;
+    std::vector<double> zero;  ///< a row of zeros (neighbours beyond the box)
   };
 
  private:

@@ -23,6 +23,12 @@ class PressureSolver {
   /// MacGrid::face(d, ...) (n + e_d per axis).
   virtual void set_operator(const std::array<int, 3>& cells,
                             const std::array<std::vector<double>, 3>& g) = 0;
+  /// The operator changed a little since set_operator (same cells): a back end may keep its
+  /// preconditioner (the solve stays exact: only its speed depends on the preconditioner).
+  virtual void update_operator(const std::array<int, 3>& cells,
+                               const std::array<std::vector<double>, 3>& g) {
+    set_operator(cells, g);
+  }
   /// Solves L p = b until max |b - L p| <= tolerance, p holding the first guess. b must be
   /// consistent (sum zero over each connected region).
   virtual PressureSolveReport solve(const std::vector<double>& b, std::vector<double>& p,

@@ -64,7 +64,8 @@ struct EnthalpySolver::Impl {
         surface(mesh, cells.m, cavity.exposed()),
         op(mesh, phase, p, cells, surface.area()),
         newton(mesh, phase, op, cells),
-        flow(p.flow ? std::make_unique<GridFlow>(mesh, phase, p, cells) : nullptr),
+        flow(p.flow ? std::make_unique<GridFlow>(mesh, phase, p, cells, cavity.exposed())
+                    : nullptr),
         stepper(p, mesh, phase, cells, cavity, surface, op, newton, flow.get()) {
     if (flow) op.set_advection(&flow->advected_w());
   }

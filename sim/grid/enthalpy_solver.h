@@ -53,6 +53,7 @@ struct GridStatistics {
   double max_step_energy_error = 0;  ///< max over steps of |dE - heat + drained| / reference
   long long cell_updates = 0;        ///< cells x Newton iterations
   long flow_steps = 0;               ///< steps of the water's flow solver ([simulation] flow)
+  double flow_cell_steps = 0;        ///< sum over the flow's steps of the cells of its box
   long loose_steps = 0;  ///< steps accepted after 12 Newton iterations, residual in (1e-7, 1e-3] K
   long stagnant_steps = 0;     ///< steps whose Newton stalled at a residual in (1e-7, 1e-5] K
   long unconverged_steps = 0;  ///< steps accepted at the smallest step without Newton convergence

@@ -100,6 +100,7 @@ GridTimeStepper::StepResult GridTimeStepper::step(BlockTeam& team,
     team.serial([&] {
       m_flow->advance(dt);
       m_stats.flow_steps = m_flow->flow_steps();
+      m_stats.flow_cell_steps = m_flow->flow_cell_steps();
     });
   // assemble reads the neighbours' H, which nothing writes in this phase
   team.for_blocks([&](long bl) {
