@@ -16,6 +16,7 @@
 #include "src/pipeline/handoff_blender.h"
 #include "src/pipeline/handoff_export.h"
 #include "src/pipeline/handoff_vdb.h"
+#include "src/pipeline/input_files.h"
 #include "src/pipeline/ranks_mesh_farm.h"
 #include "src/pipeline/stages.h"
 
@@ -98,6 +99,7 @@ Stage inspect_stage() {
     hash.add(sc.shell.floor_y);
     // The scene hand-off (handoff_blender.h) sees the scene and the film's rate.
     hash.add("handoff/2").add(sc.render_text).add(sc.film.film_fps());
+    add_input_files(hash, scene_input_files(sc));  // handoff/environment.hdr is made from the map
 #if THAW_OPENVDB
     // A build with OpenVDB adds the volumes to an older run's (/2: axisymmetric runs' too).
     hash.add("openvdb/2");

@@ -18,6 +18,7 @@
 #include "src/pipeline/frame_label.h"
 #include "src/pipeline/frame_scene.h"
 #include "src/pipeline/handoff_camera.h"
+#include "src/pipeline/input_files.h"
 #include "src/pipeline/preview_folder.h"
 #include "src/pipeline/stages.h"
 #include "src/pipeline/water_budget.h"
@@ -192,10 +193,7 @@ Stage render_stage() {
       else
         say(r.o, "caption: " + problem + "; using the built-in bitmap font");
     }
-    for (const auto& obj : sc.scene.objects)
-      if (!obj.mesh_file.empty())
-        hash.add_file(obj.mesh_file.is_absolute() ? obj.mesh_file
-                                                  : sc.scene.base_dir / obj.mesh_file);
+    add_input_files(hash, scene_input_files(sc));  // the environment map, object meshes
   };
   s.outputs_exist = [](const PipelineRun& r) {
     for (long k = 0; k < r.frame_count; ++k)

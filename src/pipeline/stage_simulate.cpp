@@ -12,6 +12,7 @@
 #include "sim/format/interface_history.h"
 #include "sim/format/simulation_output.h"
 #include "sim/simulate.h"
+#include "src/pipeline/input_files.h"
 #include "src/pipeline/stages.h"
 #include "thaw_version.h"
 
@@ -71,6 +72,7 @@ Stage simulate_stage() {
   s.fingerprint = [](PipelineRun& r, ContentHash& hash) {
     hash.add(THAW_VERSION_STRING).add(r.sc.simulation_text);
     for (double t : r.times) hash.add(t);
+    add_input_files(hash, simulation_input_files(r.sc));  // a [shape] OBJ
   };
   s.outputs_exist = [](const PipelineRun& r) {
     return fs::exists(r.simdir / "interfaces.csv") && fs::exists(r.simdir / "summary.json");

@@ -222,6 +222,95 @@ TEST_F(ThawRun, PreviewsNeverOverwriteTheFinals) {
   expect_no_temporaries(out);
 }
 
+// Issue 27 item 2: the files a scenario names are inputs as much as its text.
+/// A uniform Radiance .hdr, 8x4 texels of level `mantissa` / 256 (flat RGBE scanlines).
+void write_hdr(const fs::path& p, unsigned char mantissa) {
+  std::ofstream out(p, std::ios::binary);
+  out << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n";
+  for (int i = 0; i < 32; ++i) out << mantissa << mantissa << mantissa << char(-128);
+}
+
+/// A closed cube of edge `edge_m` centred at (cx, edge / 2, 0), as an OBJ.
+void write_cube(const fs::path& p, double edge_m, double cx) {
+  std::ofstream out(p);
+  for (int i = 0; i < 8; ++i)
+    out << "v " << cx + ((i & 1) ? 0.5 : -0.5) * edge_m << " " << ((i & 2) ? edge_m : 0.0) << " "
+        << ((i & 4) ? 0.5 : -0.5) * edge_m << "\n";
+  // outward faces, vertex index = 1 + x + 2y + 4z
+  for (const char* f : {"1 3 4", "1 4 2", "5 6 8", "5 8 7", "1 2 6", "1 6 5", "3 7 8", "3 8 4",
+                        "1 5 7", "1 7 3", "2 4 8", "2 8 6"})
+    out << "f " << f << "\n";
+}
+
+bool says(const ProcessResult& r, const std::string& part) {
+  return r.output.find(part) != std::string::npos;
+}
+
+TEST_F(ThawRun, AChangedEnvironmentMapOrObjectMeshRedoesTheStagesThatReadIt) {
+  const fs::path out = m_dir / "out";
+  write_hdr(m_dir / "sky.hdr", 100);
+  write_cube(m_dir / "cube.obj", 0.006, 0.025);
+  const fs::path scenario = variant(m_dir, "[render.ambient]",
+                                    "[render.environment]\nkind = \"latlong\"\nfile = \"sky.hdr\"\n"
+                                    "\n[[render.objects]]\nshape = \"mesh\"\nfile = \"cube.obj\"\n"
+                                    "material = \"floor\"\n\n[render.ambient]");
+  const std::vector<std::string> run{"run", scenario.string(), "--out", out.string()};
+  ASSERT_EQ(thaw(run).exit_code, 0);
+  const auto frames = frames_of(out);
+  const std::string film = read_file(out / "melt.mp4");
+  const std::string sky = read_file(out / "handoff/environment.hdr");
+  EXPECT_TRUE(says(thaw(run), "render: up to date"));
+  // Another sky: the frames, the film and the hand-off's sky are redone; nothing else.
+  write_hdr(m_dir / "sky.hdr", 200);
+  const auto brighter = thaw(run);
+  ASSERT_EQ(brighter.exit_code, 0) << brighter.output;
+  EXPECT_TRUE(says(brighter, "simulate: up to date")) << brighter.output;
+  EXPECT_TRUE(says(brighter, "mesh: up to date")) << brighter.output;
+  EXPECT_FALSE(says(brighter, "render: up to date")) << brighter.output;
+  EXPECT_FALSE(says(brighter, "film: up to date")) << brighter.output;
+  const auto lit = frames_of(out);
+  for (const auto& [name, bytes] : frames) EXPECT_NE(lit.at(name), bytes) << name;
+  EXPECT_NE(read_file(out / "melt.mp4"), film);
+  EXPECT_NE(read_file(out / "handoff/environment.hdr"), sky);
+  // Another mesh of the object: the frames again.
+  write_cube(m_dir / "cube.obj", 0.008, 0.025);
+  const auto bigger = thaw(run);
+  ASSERT_EQ(bigger.exit_code, 0) << bigger.output;
+  EXPECT_TRUE(says(bigger, "mesh: up to date")) << bigger.output;
+  EXPECT_FALSE(says(bigger, "render: up to date")) << bigger.output;
+  EXPECT_NE(frames_of(out).at("frame_000000.png"), lit.at("frame_000000.png"));
+  EXPECT_TRUE(says(thaw(run), "render: up to date"));
+}
+
+TEST_F(ThawRun, AChangedShapeObjResimulates) {
+  const fs::path out = m_dir / "out";
+  const fs::path cube = fs::path(THAW_SOURCE_DIR) / "tests/src/pipeline/data/tiny_cube.toml";
+  std::string text = read_file(cube);
+  const std::string box = "outer  = { kind = \"box\", size_m = [0.02, 0.02, 0.02] }";
+  ASSERT_NE(text.find(box), std::string::npos);
+  text.replace(text.find(box), box.size(),
+               "outer = { kind = \"obj\", file = \"ice.obj\", translate_m = [0.0, -0.011, 0.0] }");
+  text.replace(text.find("duration_s = 480.0"), 18, "duration_s = 120.0");
+  std::ofstream(m_dir / "obj_cube.toml") << text;
+  write_cube(m_dir / "ice.obj", 0.02, 0.0);
+  const std::vector<std::string> run{
+      "run", (m_dir / "obj_cube.toml").string(), "--out", out.string(), "--stage", "simulate"};
+  const auto first = thaw(run);
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  const std::string summary = read_file(out / "sim/summary.json");
+  EXPECT_TRUE(says(thaw(run), "simulate: up to date"));
+  write_cube(m_dir / "ice.obj", 0.022, 0.0);
+  const auto bigger = thaw(run);
+  ASSERT_EQ(bigger.exit_code, 0) << bigger.output;
+  EXPECT_FALSE(says(bigger, "simulate: up to date")) << bigger.output;
+  EXPECT_NE(read_file(out / "sim/summary.json"), summary);
+  // A shape file that is gone is reported by the parser before any work (one line, exit 2).
+  fs::remove(m_dir / "ice.obj");
+  const auto gone = thaw(run);
+  EXPECT_EQ(gone.exit_code, 2) << gone.output;
+  EXPECT_TRUE(says(gone, "ice.obj")) << gone.output;
+}
+
 TEST_F(ThawRun, KilledDuringRenderAndRestartedGivesByteIdenticalFrames) {
   // Heavier frames so the render stage lasts long enough to be interrupted.
   const fs::path heavy = heavy_scenario(m_dir);
