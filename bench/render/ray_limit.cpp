@@ -169,24 +169,32 @@ void user_occluded(const RTCOccludedFunctionNArguments* args) {
 /// its spheres and boxes (user geometry). `closest` holds all; `any` (the shadow rays') leaves
 /// out index-matched objects, as Scene::occluded does, and is `closest` when there are none.
 struct EmbreeScene {
-  static constexpr unsigned kTriangles = 0, kUser = 1;
+  static constexpr unsigned kTriangles = 0, kUser = 1, kSpheres = 2;
   RTCDevice device = nullptr;
   RTCScene closest = nullptr, any = nullptr;
-  /// thaw's primitive of (geometry, Embree primitive) in `closest`
-  std::vector<std::uint32_t> triangle_prim;
-  UserPrimitives user[2];
+  /// Spheres as Embree's own sphere primitives (RTC_GEOMETRY_TYPE_SPHERE_POINT: its kernels and
+  /// its arithmetic, not thaw's), boxes as above; null without spheres, or with index-matched
+  /// objects (one scene must serve both queries). Timed for comparison; its answers are Embree's.
+  RTCScene native = nullptr;
+  /// thaw's primitive of (geometry, Embree primitive) in `closest`, and of a native sphere
+  std::vector<std::uint32_t> triangle_prim, sphere_prim;
+  UserPrimitives user[3];
 
   EmbreeScene(const Scene& s, int threads) {
     const std::string config = "threads=" + std::to_string(threads);
     device = rtcNewDevice(config.c_str());
     bool matched = false;
     for (const SceneObject& o : s.objects()) matched |= o.index_matched;
-    closest = make(s, false, user[0], &triangle_prim);
-    any = matched ? make(s, true, user[1], nullptr) : closest;
+    closest = make(s, false, false, user[0], &triangle_prim);
+    any = matched ? make(s, true, false, user[1], nullptr) : closest;
+    if (!matched && s.statistics().spheres > 0 &&
+        rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_POINT_GEOMETRY_SUPPORTED))
+      native = make(s, false, true, user[2], nullptr);
   }
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
   ~EmbreeScene() {
+    if (native) rtcReleaseScene(native);
     if (any != closest) rtcReleaseScene(any);
     rtcReleaseScene(closest);
     rtcReleaseDevice(device);
@@ -195,18 +203,41 @@ struct EmbreeScene {
   std::uint32_t prim(unsigned geom, unsigned prim_id) const {
     return geom == kTriangles ? triangle_prim[prim_id] : user[0].index[prim_id];
   }
+  /// The same in `native`.
+  std::uint32_t native_prim(unsigned geom, unsigned prim_id) const {
+    return geom == kTriangles ? triangle_prim[prim_id]
+           : geom == kUser    ? user[2].index[prim_id]
+                              : sphere_prim[prim_id];
+  }
 
  private:
-  RTCScene make(const Scene& s, bool skip_matched, UserPrimitives& u,
-                std::vector<std::uint32_t>* triangle_index) const {
+  RTCScene make(const Scene& s, bool skip_matched, bool native_spheres, UserPrimitives& u,
+                std::vector<std::uint32_t>* triangle_index) {
     // Default build quality (RTC_BUILD_QUALITY_MEDIUM), as an application would use it.
     RTCScene scene = rtcNewScene(device);
     const std::vector<Primitive>& prims = s.primitives();
-    std::vector<std::uint32_t> tri;
+    std::vector<std::uint32_t> tri, spheres;
     u.prims = prims.data();
     for (std::uint32_t i = 0; i < prims.size(); ++i) {
       if (skip_matched && s.objects()[prims[i].object].index_matched) continue;
-      (prims[i].kind == PrimitiveKind::triangle ? tri : u.index).push_back(i);
+      const PrimitiveKind kind = prims[i].kind;
+      (kind == PrimitiveKind::triangle                   ? tri
+       : kind == PrimitiveKind::sphere && native_spheres ? spheres
+                                                         : u.index)
+          .push_back(i);
+    }
+    if (!spheres.empty()) {
+      RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+          g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), spheres.size()));
+      for (std::size_t i = 0; i < spheres.size(); ++i) {
+        const Primitive& p = prims[spheres[i]];
+        v[4 * i] = p.a.x, v[4 * i + 1] = p.a.y, v[4 * i + 2] = p.a.z, v[4 * i + 3] = p.b.x;
+      }
+      rtcCommitGeometry(g);
+      rtcAttachGeometryByID(scene, g, kSpheres);
+      rtcReleaseGeometry(g);
+      sphere_prim = std::move(spheres);
     }
     if (!tri.empty()) {
       RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -522,6 +553,28 @@ int run(int argc, char** argv) {
     rtcOccluded1(es.any, &ctx, &e);
     return e.tfar < 0.0f;  // rtcOccluded1 sets tfar = -inf on a hit
   };
+  // The same through `native` (Embree's own spheres).
+  const auto native_closest = [&](const Ray& r) {
+    Result res;
+    const float t_max = nearest_plane(r, res);
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh;
+    rh.ray = to_embree(r, t_max);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(es.native, &ctx, &rh);
+    return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID
+               ? res
+               : Result{es.native_prim(rh.hit.geomID, rh.hit.primID), rh.ray.tfar};
+  };
+  const auto native_occluded = [&](const Ray& r) {
+    if (any_plane(r)) return true;
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay e = to_embree(r, r.t_max);
+    rtcOccluded1(es.native, &ctx, &e);
+    return e.tfar < 0.0f;
+  };
   const auto thaw_closest = [&](const Ray& r) {
     Hit h;
     return scene.intersect(r, h) ? Result{h.prim, h.t} : Result{};
@@ -529,21 +582,47 @@ int run(int argc, char** argv) {
 
   std::size_t total_rays = 0, total_mismatch = 0, total_self = 0, cracks[2] = {0, 0};
   std::size_t near_origin = 0;
-  Timing thaw_all{0, 0}, embree_all{0, 0}, thaw_photon{0, 0};
+  Timing thaw_all{0, 0}, embree_all{0, 0}, thaw_photon{0, 0}, native_all{0, 0};
+  std::size_t native_differ = 0;
+  std::vector<std::string> native_lines;
   for (int k = 0; k < kKinds; ++k) {
     const std::vector<Ray>& rays = rec.rays[k];
     const std::size_t n = rays.size();
     if (n == 0) continue;
-    std::vector<Result> a(n), b(n);
-    Timing tt, te;
+    std::vector<Result> a(n), b(n), c(es.native ? n : 0);
+    Timing tt, te, tn;
     for (int r = 0; r < repetitions; ++r) {  // interleaved: both see the same load
       if (any_hit(k)) {
         timed(tt, n, threads, [&](std::size_t i) { a[i].prim = scene.occluded(rays[i]) ? 1 : 0; });
         timed(te, n, threads, [&](std::size_t i) { b[i].prim = embree_occluded(rays[i]) ? 1 : 0; });
+        if (es.native)
+          timed(tn, n, threads,
+                [&](std::size_t i) { c[i].prim = native_occluded(rays[i]) ? 1 : 0; });
       } else {
         timed(tt, n, threads, [&](std::size_t i) { a[i] = thaw_closest(rays[i]); });
         timed(te, n, threads, [&](std::size_t i) { b[i] = embree_closest(rays[i]); });
+        if (es.native)
+          timed(tn, n, threads, [&](std::size_t i) { c[i] = native_closest(rays[i]); });
       }
+    }
+    if (es.native) {
+      // Embree's own spheres answer with Embree's arithmetic: rays that differ from thaw's by
+      // more than a rounding bound of t (either side hits and the other not, or t differs by
+      // more than 1e-4 relative) are counted for information, not judged.
+      std::size_t differ = 0;
+      for (std::size_t i = 0; i < n; ++i)
+        if (a[i].prim != c[i].prim &&
+            (any_hit(k) || a[i].prim == Result::kMiss || c[i].prim == Result::kMiss ||
+             std::fabs(a[i].t - c[i].t) > 1e-4f * std::max(a[i].t, c[i].t)))
+          ++differ;
+      char line[160];
+      std::snprintf(line, sizeof line, "%-10s %9zu %15.2f %12.3f %12.3f %9zu", kKindName[k], n,
+                    double(n) / tn.wall_s * 1e-6, tn.wall_s / tt.wall_s, tn.cpu_s / tt.cpu_s,
+                    differ);
+      native_lines.push_back(line);
+      native_all.wall_s += tn.wall_s;
+      native_all.cpu_s += tn.cpu_s;
+      native_differ += differ;
     }
     std::size_t mismatch = 0, self = 0;
     for (std::size_t i = 0; i < n; ++i) {
@@ -607,6 +686,16 @@ int run(int argc, char** argv) {
               double(total_rays) / thaw_all.wall_s * 1e-6,
               double(total_rays) / embree_all.wall_s * 1e-6, embree_all.wall_s / thaw_all.wall_s,
               embree_all.cpu_s / thaw_all.cpu_s, total_mismatch, total_self);
+  if (es.native) {
+    std::printf(
+        "Embree with its own sphere primitives (RTC_GEOMETRY_TYPE_SPHERE_POINT; its answers, "
+        "not thaw's exact ones):\n%-10s %9s %15s %12s %12s %9s\n",
+        "rays", "count", "Embree [Mray/s]", "thaw/Embree", "(CPU-time)", "differ");
+    for (const std::string& l : native_lines) std::printf("%s\n", l.c_str());
+    std::printf("%-10s %9zu %15.2f %12.3f %12.3f %9zu\n", "all", total_rays,
+                double(total_rays) / native_all.wall_s * 1e-6, native_all.wall_s / thaw_all.wall_s,
+                native_all.cpu_s / thaw_all.cpu_s, native_differ);
+  }
   const double frame_per_cpu = double(total_rays) / frame.cpu_s * 1e-6;
   const double embree_per_cpu = double(total_rays) / embree_all.cpu_s * 1e-6;
   std::printf(
