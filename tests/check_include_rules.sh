@@ -36,6 +36,10 @@ check "mesh or inspect include sim/ beyond sim/format" "$(files_of src/mesh; fil
   "sim/(grid|scenario|shape|stefan1d|reference|simulate)"
 check "a library or a command includes python/ (the Python module is on top, like the CLI)" \
   "$(all_but python)" "python/"
+check "mesh and inspect include each other (they share base/work_farm.h)" \
+  "$(files_of src/inspect)" "src/mesh/"
+check "mesh and inspect include each other (they share base/work_farm.h)" \
+  "$(files_of src/mesh)" "src/inspect/"
 check "a library includes src/gui" "$(files_of src/mesh; files_of src/inspect; files_of src/pipeline)" "src/gui/"
 hits=$(files_of src/cli | xargs grep -nE "$inc"'src/gui/' 2>/dev/null | grep -v 'src/gui/gui.h')
 if [ -n "$hits" ]; then echo "violation: src/cli includes more of src/gui than its Qt-free gui.h"; echo "$hits"; fail=1; fi

@@ -10,11 +10,13 @@
 
 #include "base/error.h"
 #include "base/format/toml_table.h"
+#include "base/outcome.h"
 #include "base/progress.h"
 #include "base/text_file.h"
 #include "src/cli/commands.h"
 #include "src/pipeline/frame_selection.h"
 #include "src/pipeline/pipeline.h"
+#include "src/pipeline/rank_agreement.h"
 #include "src/pipeline/render_overrides.h"
 #include "src/pipeline/run_ranks.h"
 #include "src/pipeline/run_scenario.h"
@@ -39,24 +41,12 @@ void run_run(const RunArgs& a) {
     std::fputs(pipeline::default_run_scenario_text().c_str(), stdout);
     return;
   }
-  // Under mpirun every rank runs this; the leader speaks. An error is the leader's word (all
+  // Under mpirun every rank runs this; the leader speaks. A failure is the leader's word (all
   // ranks hear it, the leader prints it); a rank that alone failed prints its own.
   std::unique_ptr<pipeline::RunRanks> ranks = pipeline::mpi_ranks_if_launched();
   if (!ranks || ranks->size() == 1) return run_alone_or_as_rank(a, ranks.get());
-  std::string error;
-  try {
-    run_alone_or_as_rank(a, ranks.get());
-  } catch (const UserError& e) {
-    error = e.what();
-  }
-  const std::string leaders = ranks->broadcast(error);
-  if (ranks->leader() && !error.empty()) throw UserError("", "", error);
-  if (!ranks->leader() && !error.empty()) {
-    if (leaders.empty())
-      std::fprintf(stderr, "thaw: error (rank %d): %s\n", ranks->rank(), error.c_str());
-    ranks.reset();  // MPI_Finalize, then leave without a second copy of the leader's line
-    std::exit(2);
-  }
+  const Outcome mine = Outcome::of([&] { run_alone_or_as_rank(a, ranks.get()); });
+  pipeline::end_on_ranks(ranks, mine);
 }
 
 void run_alone_or_as_rank(const RunArgs& a, pipeline::RunRanks* ranks) {

@@ -20,6 +20,7 @@
 #include "base/error.h"
 #include "base/interrupt.h"
 #include "base/obj_reader.h"
+#include "base/outcome.h"
 #include "sim/format/grid_field_file.h"
 #include "src/inspect/field_probe.h"
 #include "src/inspect/simulation_folder.h"
@@ -271,67 +272,47 @@ std::optional<std::array<double, 3>> write_series_step(const fs::path& simdir, c
   return offset;
 }
 
-// The series over the processes of options.farm (PvdSeriesOptions::farm). A step's result
-// travels to the leader as text: "+" and its offset (17 digits: read back exactly; nothing
-// without a placement), "E" and the failure's message, or "I": interrupted.
+// The series over the processes of options.farm (PvdSeriesOptions::farm). A step's offset
+// travels to the leader as text ("+" and 17 digits: read back exactly; "+" alone without a
+// placement); a failure travels as its outcome and is thrown on every process as it was.
 StepOffsets write_series_on_farm(const fs::path& out_pvd, const fs::path& simdir,
                                  const SimulationFolder& folder, const PvdSeriesOptions& options) {
-  mesh::MeshFarm& farm = *options.farm;
-  // The leader stages the data sets' folder; every process learns where ("+path" or "-error"),
-  // so that none waits for a leader that has given up.
+  WorkFarm& farm = *options.farm;
+  // The leader stages the data sets' folder; every process learns how that went, then where, so
+  // that none waits for a leader that has given up.
   std::optional<PvdWriter> writer;
-  std::string said;
-  if (farm.leader()) try {
-      writer.emplace(out_pvd);
-      said = '+';  // appended: GCC 12's -Wrestrict misreads "+" + path (a false positive)
-      said += writer->write_dir().string();
-    } catch (const UserError& e) {
-      said = '-';
-      said += e.what();
-    }
-  const std::string word = farm.share(said);
-  if (word.empty() || word[0] == '-')
-    throw UserError("", "", word.empty() ? out_pvd.string() + ": not staged" : word.substr(1));
-  if (!farm.leader()) writer.emplace(out_pvd, fs::path(word.substr(1)));
+  Outcome staged;
+  if (farm.leader()) staged = Outcome::of([&] { writer.emplace(out_pvd); });
+  farm.leaders_outcome(staged).rethrow();
+  const std::string write_dir = farm.share(writer ? writer->write_dir().string() : "");
+  if (!farm.leader()) writer.emplace(out_pvd, fs::path(write_dir));
   const auto total = static_cast<std::int64_t>(folder.steps.size());
   std::int64_t done = 0;
-  std::exception_ptr progress_failure;
+  Outcome progress_failure;
   const std::vector<std::string> texts = farm.run(
       total, options.threads,
       [&](long k) -> std::string {
-        if (interrupt_requested()) return "I";
-        try {
-          const auto offset = write_series_step(simdir, folder.steps[static_cast<std::size_t>(k)],
-                                                *writer, options);
-          char text[96] = "+";
-          if (offset)
-            std::snprintf(text, sizeof text, "+%.17g %.17g %.17g", (*offset)[0], (*offset)[1],
-                          (*offset)[2]);
-          return text;
-        } catch (const std::exception& e) {
-          return std::string("E") + e.what();
-        } catch (...) {
-          return "Eunknown failure";
-        }
+        throw_if_interrupted();
+        const auto offset =
+            write_series_step(simdir, folder.steps[static_cast<std::size_t>(k)], *writer, options);
+        char text[96] = "+";
+        if (offset)
+          std::snprintf(text, sizeof text, "+%.17g %.17g %.17g", (*offset)[0], (*offset)[1],
+                        (*offset)[2]);
+        return text;
       },
-      [&] {  // on the leader, one call at a time; an interrupt thrown here stops at the end
+      [&] {  // on the leader, one call at a time (maybe on the farm's dispatcher thread, where
+             // nothing may be thrown): an interrupt thrown here is thrown at the end
         ++done;
-        if (options.progress && !progress_failure) try {
-            options.progress(done, total);
-          } catch (...) {
-            progress_failure = std::current_exception();
-          }
+        if (options.progress && progress_failure.ok())
+          progress_failure = Outcome::of([&] { options.progress(done, total); });
       });
   if (!farm.leader()) return {};
-  if (progress_failure) std::rethrow_exception(progress_failure);
-  throw_if_interrupted();
+  progress_failure.rethrow();
   StepOffsets offsets;
   for (std::size_t i = 0; i < texts.size(); ++i) {
-    const std::string& text = texts[i];
-    if (text.empty() || text[0] != '+')
-      throw UserError("", "", text.size() > 1 && text[0] == 'E' ? text.substr(1) : "interrupted");
     std::array<double, 3> offset{};
-    if (std::sscanf(text.c_str(), "+%lf %lf %lf", &offset[0], &offset[1], &offset[2]) == 3)
+    if (std::sscanf(texts[i].c_str(), "+%lf %lf %lf", &offset[0], &offset[1], &offset[2]) == 3)
       offsets[folder.steps[i].step] = offset;
   }
   for (const MeshedStep& s : folder.steps)

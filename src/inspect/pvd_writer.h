@@ -15,9 +15,9 @@
 
 #include "base/atomic_file.h"
 #include "base/progress.h"
+#include "base/work_farm.h"
 #include "src/inspect/simulation_folder.h"
 #include "src/inspect/triangle_mesh.h"
-#include "src/mesh/mesh_farm.h"
 
 namespace thaw::inspect {
 
@@ -120,7 +120,7 @@ struct PvdSeriesOptions {
   /// sets' folder and shares its path, the farm hands the steps out (each process writing its
   /// steps on `threads` threads), and the leader records and commits them. `progress` is called
   /// on the leader only, `placement` and `surface` wherever a step is written.
-  mesh::MeshFarm* farm = nullptr;
+  WorkFarm* farm = nullptr;
 };
 
 /// Where `placement` put each step (by step number): nothing without a placement.
@@ -128,9 +128,9 @@ using StepOffsets = std::map<long, std::array<double, 3>>;
 
 /// write_pvd_series with PvdSeriesOptions; returns the offset each step was placed at (with a
 /// farm: every step's on the leader, nothing on the others). A failure (the first in step order)
-/// is thrown after every step has been attempted; nothing is committed then. With a farm the
-/// leader throws it as a UserError with the failure's message, and a failure to stage as well on
-/// every process; the other processes throw nothing else.
+/// is thrown after every step has been attempted; nothing is committed then. With a farm, a
+/// failure to stage or to write a step is thrown on every process as it was (base/outcome.h),
+/// and steps not yet begun are skipped.
 StepOffsets write_pvd_series(const std::filesystem::path& simdir,
                              const std::filesystem::path& out_pvd, const PvdSeriesOptions& options);
 

@@ -231,7 +231,7 @@ StepResult mesh_or_resume_step(const fs::path& simdir, const fs::path& out_dir, 
 }  // namespace
 
 MeshManifest mesh_grid_simulation_folder(const fs::path& simdir, const MeshOptions& requested,
-                                         const ProgressCallback& progress, MeshFarm& farm) {
+                                         const ProgressCallback& progress, WorkFarm& farm) {
   validate(requested);
   const auto rows = sim::read_interfaces_csv(simdir / "interfaces.csv");
   for (const auto& row : rows)

@@ -29,6 +29,6 @@ bool is_grid_simulation_folder(const std::filesystem::path& simdir);
 MeshManifest mesh_grid_simulation_folder(const std::filesystem::path& simdir,
                                          const MeshOptions& options,
                                          const ProgressCallback& progress = {},
-                                         MeshFarm& farm = this_process_farm());
+                                         WorkFarm& farm = this_process_farm());
 
 }  // namespace thaw::mesh

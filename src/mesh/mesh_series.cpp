@@ -16,6 +16,7 @@
 #include "base/format/mesh_manifest.h"
 #include "base/interrupt.h"
 #include "base/obj_reader.h"
+#include "base/outcome.h"
 #include "sim/format/interface_history.h"
 #include "src/mesh/geodesic_sphere.h"
 #include "src/mesh/grid_series.h"
@@ -184,12 +185,10 @@ std::optional<TriangleMesh> load_cached_form(const fs::path& file, const std::st
 void store_cached_form(const fs::path& file, const std::string& description,
                        const TriangleMesh& m) {
   if (!m.normals.empty()) return;
-  try {
-    std::error_code ec;
-    fs::create_directories(file.parent_path(), ec);
-    write_obj(file, m, description);
-  } catch (const UserError&) {
-  }
+  std::error_code ec;
+  fs::create_directories(file.parent_path(), ec);
+  const Outcome kept = Outcome::of([&] { write_obj(file, m, description); });
+  if (kept.kind() != Outcome::Kind::user) kept.rethrow();  // a write failure only is ignored
 }
 
 // The inputs of a 1D series: the steps of interfaces.csv and the shell of summary.json.
@@ -394,7 +393,7 @@ void mesh_form(const FormPlan& plan, std::size_t k, const MeshOptions& unit_opti
 // one through the resume cache (kept since the farm returned); one that cannot be read back (a
 // failed cache write) is meshed again here.
 void mesh_missing_forms(const FormPlan& plan, const MeshOptions& unit_options, int jobs,
-                        const fs::path& partial_dir, MeshFarm& farm, SeriesProgress& progress,
+                        const fs::path& partial_dir, WorkFarm& farm, SeriesProgress& progress,
                         FormMeshes& m) {
   std::vector<std::size_t> to_mesh;
   for (std::size_t k = 0; k < plan.forms.size(); ++k)
@@ -500,7 +499,7 @@ std::string check_form(std::size_t k, FormMeshes& m) {
 std::vector<TaskResult> write_surfaces(const std::vector<Task>& tasks, const FormPlan& plan,
                                        FormMeshes& m, const MeshManifest& manifest,
                                        const MeshOptions& options, const fs::path& out_dir,
-                                       MeshFarm& farm, SeriesProgress& progress) {
+                                       WorkFarm& farm, SeriesProgress& progress) {
   const long checks = static_cast<long>(plan.forms.size());
   const std::vector<std::string> texts = farm.run(
       checks + static_cast<long>(tasks.size()), options.jobs,
@@ -606,7 +605,7 @@ void keep_only_steps(const std::vector<long>& step_indexes, std::vector<Task>& t
 
 // mesh_simulation_folder, or with `only` mesh_simulation_steps.
 MeshManifest mesh_series(const fs::path& simdir, const MeshOptions& requested,
-                         const ProgressCallback& progress, MeshFarm& farm,
+                         const ProgressCallback& progress, WorkFarm& farm,
                          const std::vector<long>* only) {
   // A run killed outright (SIGKILL, a lost node) leaves its staged folder and temporaries: the
   // leader removes those of dead processes before staging (the other processes of a farm write
@@ -678,13 +677,13 @@ fs::path partial_steps_dir(const fs::path& simdir) {
 }
 
 MeshManifest mesh_simulation_folder(const fs::path& simdir, const MeshOptions& requested,
-                                    const ProgressCallback& progress, MeshFarm& farm) {
+                                    const ProgressCallback& progress, WorkFarm& farm) {
   return mesh_series(simdir, requested, progress, farm, nullptr);
 }
 
 MeshManifest mesh_simulation_steps(const fs::path& simdir, const MeshOptions& requested,
                                    const std::vector<long>& step_indexes,
-                                   const ProgressCallback& progress, MeshFarm& farm) {
+                                   const ProgressCallback& progress, WorkFarm& farm) {
   return mesh_series(simdir, requested, progress, farm, &step_indexes);
 }
 

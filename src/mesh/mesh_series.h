@@ -82,7 +82,7 @@ std::string surface_file_name(long step, bool inner);
 /// before the checks, which only the leader makes and throws from).
 MeshManifest mesh_simulation_folder(const std::filesystem::path& simdir, const MeshOptions& options,
                                     const ProgressCallback& progress = {},
-                                    MeshFarm& farm = this_process_farm());
+                                    WorkFarm& farm = this_process_farm());
 
 /// For `thaw run --frames`: meshes only the surfaces of the steps at `step_indexes` (positions in
 /// interfaces.csv) into partial_steps_dir(simdir), each file atomically, and returns the manifest
@@ -94,7 +94,7 @@ MeshManifest mesh_simulation_folder(const std::filesystem::path& simdir, const M
 MeshManifest mesh_simulation_steps(const std::filesystem::path& simdir, const MeshOptions& options,
                                    const std::vector<long>& step_indexes,
                                    const ProgressCallback& progress = {},
-                                   MeshFarm& farm = this_process_farm());
+                                   WorkFarm& farm = this_process_farm());
 
 /// SIMDIR/mesh.partial/steps: where mesh_simulation_steps writes its surfaces.
 std::filesystem::path partial_steps_dir(const std::filesystem::path& simdir);

@@ -16,20 +16,20 @@
 #include <utility>
 #include <vector>
 
-#include "base/error.h"
+#include "base/outcome.h"
 #include "src/pipeline/run_ranks.h"
 
 namespace thaw::pipeline {
 namespace {
 
-constexpr int kTagAsk = 1;   // worker -> leader: "ready" ('R'), "done" ('D'), "failed: ..." ('E')
+constexpr int kTagAsk = 1;  // worker -> leader: "ready" ('R'), "done" ('D'), failed ('E' + outcome)
 constexpr int kTagItem = 2;  // leader -> worker: the next item, or -1: no more
 constexpr auto kPoll = std::chrono::milliseconds(1);
 
 // The sleeps between polls grow from 50 us to kPoll: an answer that comes within microseconds (a
-// hand-out; the default film's surfaces take ~2 ms each, and a fixed 1 ms sleep on each side of
-// a hand-out cost up to 2 ms of idling per chunk) is not held for a millisecond, while a long
-// wait (the leader's simulation) still wakes at most about a thousand times a second.
+// hand-out) is not held for a millisecond (a fixed 1 ms sleep on each side of a hand-out idled
+// ranks for longer than a surface takes: docs/benchmarks.md), while a long wait (the leader's
+// simulation) still wakes at most about a thousand times a second.
 class Backoff {
  public:
   void pause() {
@@ -85,20 +85,20 @@ class MpiRanks final : public RunRanks {
     return out;
   }
 
-  std::vector<std::string> farm(const std::vector<long>& items,
-                                const std::function<std::string(long)>& work,
-                                const std::function<void(long, long)>& done,
-                                int ahead = 0) override {
-    if (m_size == 1) return RunRanks::farm(items, work, done);
+  std::vector<std::string> hand_out(const std::vector<long>& items,
+                                    const std::function<std::string(long)>& work,
+                                    const std::function<void(long)>& done, int ahead) override {
+    if (m_size == 1) return RunRanks::hand_out(items, work, done, ahead);
     std::vector<std::string> results(items.size());
     const int depth = 1 + std::max(0, ahead);
-    std::string error = leader() ? lead(items, work, done, results, depth) : follow(work, depth);
-    error = broadcast(error);
-    if (!error.empty()) throw UserError("", "", error);
+    const Outcome failure =
+        leader() ? lead(items, work, done, results, depth) : follow(work, depth);
+    leaders_outcome(failure).rethrow();  // the leader heard every rank's: its word is the end
     return results;
   }
 
-  std::string first_error(const std::string& error) override {
+ protected:
+  std::string first_nonempty(const std::string& error) override {
     // Every rank's length, then the texts of the ranks that failed (rank order).
     std::vector<int> lengths(static_cast<std::size_t>(m_size));
     int mine = static_cast<int>(error.size());
@@ -121,29 +121,25 @@ class MpiRanks final : public RunRanks {
   }
 
  private:
-  /// "" and the work's text, or the failure's message and "".
-  static std::pair<std::string, std::string> attempt(const std::function<std::string(long)>& work,
-                                                     long item) {
-    try {
-      return {"", work(item)};
-    } catch (const UserError& e) {
-      return {e.what(), ""};
-    } catch (const std::exception& e) {
-      return {std::string("internal error: ") + e.what(), ""};
-    }
+  /// How the work on `item` ended, and its text.
+  static std::pair<Outcome, std::string> attempt(const std::function<std::string(long)>& work,
+                                                 long item) {
+    std::string text;
+    const Outcome outcome = Outcome::of([&] { text = work(item); });
+    return {outcome, std::move(text)};
   }
 
-  std::string lead(const std::vector<long>& items, const std::function<std::string(long)>& work,
-                   const std::function<void(long, long)>& done, std::vector<std::string>& results,
-                   int depth) {
+  /// The first failure on any rank (ok if none).
+  Outcome lead(const std::vector<long>& items, const std::function<std::string(long)>& work,
+               const std::function<void(long)>& done, std::vector<std::string>& results,
+               int depth) {
     std::atomic<std::size_t> next{0};
-    std::atomic<long> finished{0};
     std::atomic<bool> failed{false};
     std::mutex mutex, done_mutex;
-    std::string first_error;
-    const auto fail = [&](const std::string& e) {
+    Outcome first_failure;
+    const auto fail = [&](const Outcome& e) {
       std::lock_guard<std::mutex> lock(mutex);
-      if (first_error.empty()) first_error = e;
+      if (first_failure.ok()) first_failure = e;
       failed = true;
     };
     const auto take = [&]() -> long {  // an index into items, or -1
@@ -153,8 +149,7 @@ class MpiRanks final : public RunRanks {
     };
     const auto finish = [&](long index) {
       std::lock_guard<std::mutex> lock(done_mutex);  // done() is never called concurrently
-      const long n = ++finished;
-      if (done) done(n, index);
+      if (done) done(index);
     };
     // Items not yet taken by anyone.
     const auto left = [&]() -> std::size_t {
@@ -211,7 +206,7 @@ class MpiRanks final : public RunRanks {
             results[static_cast<std::size_t>(index)] = message.substr(1);
             finish(index);
           } else {
-            fail(message.substr(1));
+            fail(Outcome::from_text(message.substr(1)));
           }
         }
         // Answers go out in the order asked (a held request first): they are all alike.
@@ -229,7 +224,7 @@ class MpiRanks final : public RunRanks {
       std::thread dispatcher(dispatch);
       for (long index = take(); index >= 0; index = take()) {
         auto [e, text] = attempt(work, items[static_cast<std::size_t>(index)]);
-        if (e.empty()) {
+        if (e.ok()) {
           results[static_cast<std::size_t>(index)] = std::move(text);
           finish(index);
         } else {
@@ -240,13 +235,13 @@ class MpiRanks final : public RunRanks {
     } else {
       dispatch();  // an MPI without thread support: the leader only hands out
     }
-    return first_error;
+    return first_failure;
   }
 
   // Asks for `depth` items at once, then for one more with each result: the next item is there
   // when this one is done. The leader answers in order, and "no more" (-1) once means no more
   // after it: done when `depth` requests have been answered so.
-  std::string follow(const std::function<std::string(long)>& work, int depth) {
+  Outcome follow(const std::function<std::string(long)>& work, int depth) {
     std::string message = "R";
     for (int i = 0; i < depth; ++i)
       MPI_Send(message.data(), 1, MPI_CHAR, 0, kTagAsk, MPI_COMM_WORLD);
@@ -260,11 +255,13 @@ class MpiRanks final : public RunRanks {
         continue;
       }
       auto [e, text] = attempt(work, item);
-      message = e.empty() ? "D" + text : "E" + e;
+      // Built with append, not "E" + text: GCC 12 reports a false -Wrestrict on the latter.
+      message.assign(1, e.ok() ? 'D' : 'E');
+      message.append(e.ok() ? text : e.to_text());
       MPI_Send(message.data(), static_cast<int>(message.size()), MPI_CHAR, 0, kTagAsk,
                MPI_COMM_WORLD);
     }
-    return "";
+    return {};
   }
 
   int m_rank = 0, m_size = 1;

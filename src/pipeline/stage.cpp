@@ -6,6 +6,7 @@
 
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "base/outcome.h"
 #include "src/pipeline/rank_agreement.h"
 
 namespace thaw::pipeline {
@@ -55,10 +56,8 @@ void write_stage_seconds(const PipelineRun& r, const Stage& stage, double second
   const fs::path note = r.out / "run_items" / stage.name / "stage_s";
   std::error_code ec;
   fs::create_directories(note.parent_path(), ec);
-  try {
-    write_file_atomic(note, text);
-  } catch (const UserError&) {
-  }
+  const Outcome noted = Outcome::of([&] { write_file_atomic(note, text); });
+  if (noted.kind() != Outcome::Kind::user) noted.rethrow();  // a write failure only is ignored
 }
 
 }  // namespace

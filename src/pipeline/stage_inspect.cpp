@@ -17,7 +17,6 @@
 #include "src/pipeline/handoff_export.h"
 #include "src/pipeline/handoff_vdb.h"
 #include "src/pipeline/input_files.h"
-#include "src/pipeline/ranks_mesh_farm.h"
 #include "src/pipeline/stages.h"
 
 namespace thaw::pipeline {
@@ -54,14 +53,13 @@ StageDone inspect(PipelineRun& r, const StageCall& call) {
     }
   // One pass over the surfaces, each OBJ read once: placed by its outer surface as the film
   // shows it and written as .vtp, steps on each rank's threads.
-  RanksMeshFarm farm(ranks);
   inspect::PvdSeriesOptions series;
   series.progress = interruptible(progress.callback());
   series.placement = [&](const inspect::MeshedStep&, const meshio::TriangleMesh* outer) {
     return rendered_offset(sc, outer);
   };
   series.threads = r.o.jobs;
-  if (ranks.size() > 1) series.farm = &farm;
+  if (ranks.size() > 1) series.farm = &ranks;
   const inspect::StepOffsets placed = inspect::write_pvd_series(r.simdir, pvd_file(r), series);
   if (plot_failure) std::rethrow_exception(plot_failure);
   if (!r.leader) return {};

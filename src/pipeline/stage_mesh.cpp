@@ -6,7 +6,7 @@
 
 #include "base/atomic_file.h"
 #include "base/error.h"
-#include "src/pipeline/ranks_mesh_farm.h"
+#include "base/outcome.h"
 #include "src/pipeline/stages.h"
 
 namespace thaw::pipeline {
@@ -14,19 +14,19 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// What this rank's farm phases cost: beside the stage's items, one file per rank, forgotten with
-/// them when the stage's inputs change (read by bench/pipeline/mpi_scaling.sh). A note only:
-/// failing to write it does not fail the stage.
-void write_cost_note(const PipelineRun& r, const RanksMeshFarm& farm) {
+/// What this rank's farm phases of the stage (from the first of `costs`) cost: beside the
+/// stage's items, one file per rank, forgotten with them when the stage's inputs change (read by
+/// bench/pipeline/mpi_scaling.sh). A note only: failing to write it does not fail the stage.
+void write_cost_note(const PipelineRun& r, std::size_t first) {
   char name[32];
   std::snprintf(name, sizeof name, "costs_rank_%03d", r.ranks.rank());
   const fs::path costs = r.out / "run_items" / "mesh" / name;
+  const std::vector<FarmCost>& all = r.ranks.costs();
+  const std::vector<FarmCost> stage(all.begin() + static_cast<std::ptrdiff_t>(first), all.end());
   std::error_code ec;
   fs::create_directories(costs.parent_path(), ec);
-  try {
-    write_file_atomic(costs, cost_note(farm.costs()) + "\n");
-  } catch (const UserError&) {
-  }
+  const Outcome noted = Outcome::of([&] { write_file_atomic(costs, cost_note(stage) + "\n"); });
+  if (noted.kind() != Outcome::Kind::user) noted.rethrow();  // a write failure only is ignored
 }
 
 StageDone mesh(PipelineRun& r, const StageCall& call) {
@@ -36,12 +36,12 @@ StageDone mesh(PipelineRun& r, const StageCall& call) {
   const std::vector<long> frames = frame_indexes(r, steps);
   const bool part = r.subset && r.o.stage.empty() && static_cast<long>(frames.size()) < steps;
   ProgressReporter progress(call.title, 2 * steps, r.o.quiet);
-  RanksMeshFarm farm(r.ranks);
+  const std::size_t first_cost = r.ranks.costs().size();
   const mesh::MeshManifest meshes =
-      part ? mesh::mesh_simulation_steps(r.simdir, options, frames, progress.callback(), farm)
-           : mesh::mesh_simulation_folder(r.simdir, options, progress.callback(), farm);
+      part ? mesh::mesh_simulation_steps(r.simdir, options, frames, progress.callback(), r.ranks)
+           : mesh::mesh_simulation_folder(r.simdir, options, progress.callback(), r.ranks);
   if (meshes.partial) r.partial_meshes = meshes;
-  write_cost_note(r, farm);
+  write_cost_note(r, first_cost);
   if (!r.leader) return {};
   if (meshes.partial) {
     progress.finish_early("for the " + std::to_string(frames.size()) +

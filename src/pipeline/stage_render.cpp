@@ -145,11 +145,13 @@ StageDone render_frames(PipelineRun& r, const StageCall& call) {
                             r.o.quiet || todo.empty());
   progress.set_done(done_before);
   long rendered_here = 0;
-  r.ranks.farm(
-      todo,
-      [&](long k) {
+  long finished = 0;
+  r.ranks.run(
+      static_cast<long>(todo.size()), r.o.jobs,
+      [&](long i) {
         // What the frame cost, on its item's second line (bench/pipeline/mpi_scaling.sh reads
         // it): wall and process CPU seconds, and which rank.
+        const long k = todo[static_cast<std::size_t>(i)];
         const auto start = std::chrono::steady_clock::now();
         const std::clock_t cpu_start = std::clock();
         render_frame(r, framed, water, k);
@@ -162,7 +164,7 @@ StageDone render_frames(PipelineRun& r, const StageCall& call) {
         ++rendered_here;
         return std::string();
       },
-      [&](long n, long) { progress.set_done(done_before + n); });
+      [&] { progress.set_done(done_before + ++finished); }, WorkFarm::Grain::coarse);
   progress.finish();
   // Every frame (not only this process's) must be there before the stage is complete.
   StageDone done;

@@ -19,6 +19,7 @@
 #include <mutex>
 
 #include "base/error.h"
+#include "base/outcome.h"
 #include "sim/format/grid_field_file.h"
 #include "tests/base/file_size_limit.h"
 #include "tests/src/inspect/test_meshes.h"
@@ -341,7 +342,7 @@ TEST(PvdWriter, FarmedSeriesGivesTheSameFilesAndEveryStepsOffset) {
   const fs::path alone = dir.path() / "alone" / "melt.pvd";
   const fs::path farmed = dir.path() / "farmed" / "melt.pvd";
   const StepOffsets expected = write_pvd_series(dir.path() / "sim", alone, options);
-  mesh::MeshFarm farm;
+  WorkFarm farm;
   options.farm = &farm;
   const StepOffsets offsets = write_pvd_series(dir.path() / "sim", farmed, options);
   ASSERT_EQ(offsets.size(), rows.size());
@@ -355,18 +356,23 @@ TEST(PvdWriter, FarmedSeriesGivesTheSameFilesAndEveryStepsOffset) {
         << e.path();
 }
 
-// A process other than the leader writes its steps into the folder the leader staged (the path
-// the farm shares), commits nothing and returns no offsets; a step failing there travels as text
-// and the leader throws it as one UserError, committing nothing.
-class FarmHere : public mesh::MeshFarm {
+// A process other than the leader writes its steps into the folder the leader staged (the farm
+// shares that it staged, then the path), commits nothing and returns no offsets; a step failing
+// travels as its outcome and is thrown as it was (a UserError with its file), committing nothing.
+class FarmHere : public WorkFarm {
  public:
-  FarmHere(bool leader, std::string shared) : m_leader(leader), m_shared(std::move(shared)) {}
+  /// `staged`: the leader's outcome of staging (ok: ""), then `shared`: its folder.
+  FarmHere(bool leader, std::string shared, std::string staged = "")
+      : m_leader(leader), m_words{std::move(staged), std::move(shared)} {}
   bool leader() const override { return m_leader; }
-  std::string share(const std::string& text) override { return m_leader ? text : m_shared; }
+  std::string share(const std::string& text) override {
+    return m_leader ? text : m_words[m_told++ % 2];
+  }
 
  private:
   bool m_leader;
-  std::string m_shared;
+  std::string m_words[2];
+  int m_told = 0;
 };
 
 TEST(PvdWriter, FarmedSeriesOnAnotherProcessWritesIntoTheLeadersStagedFolder) {
@@ -374,7 +380,7 @@ TEST(PvdWriter, FarmedSeriesOnAnotherProcessWritesIntoTheLeadersStagedFolder) {
   testing::write_sphere_simulation(dir.path() / "sim", 3);
   const fs::path pvd = dir.path() / "out" / "melt.pvd";
   const PvdWriter leaders(pvd);  // stages out/melt_vtp
-  FarmHere other(false, "+" + leaders.write_dir().string());
+  FarmHere other(false, leaders.write_dir().string());
   PvdSeriesOptions options;
   options.farm = &other;
   EXPECT_TRUE(write_pvd_series(dir.path() / "sim", pvd, options).empty());
@@ -383,9 +389,15 @@ TEST(PvdWriter, FarmedSeriesOnAnotherProcessWritesIntoTheLeadersStagedFolder) {
   EXPECT_FALSE(fs::exists(pvd));
   EXPECT_FALSE(fs::exists(pvd.parent_path() / "melt_vtp"));
   // The leader's word that it could not stage is every process's error.
-  FarmHere refused(false, "-out/melt_vtp: cannot create output directory");
+  FarmHere refused(false, "",
+                   Outcome::user("out/melt_vtp", "", "cannot create output directory").to_text());
   options.farm = &refused;
-  EXPECT_THROW(write_pvd_series(dir.path() / "sim", pvd, options), UserError);
+  try {
+    write_pvd_series(dir.path() / "sim", pvd, options);
+    ADD_FAILURE() << "no error";
+  } catch (const UserError& e) {
+    EXPECT_EQ(e.file(), "out/melt_vtp");  // as the leader had it
+  }
 }
 
 TEST(PvdWriter, FarmedSeriesFailureIsOneUserErrorOnTheLeaderAndCommitsNothing) {
@@ -403,6 +415,7 @@ TEST(PvdWriter, FarmedSeriesFailureIsOneUserErrorOnTheLeaderAndCommitsNothing) {
     ADD_FAILURE() << "no error";
   } catch (const UserError& e) {
     EXPECT_STREQ(e.what(), "hook.obj: disk full");
+    EXPECT_EQ(e.file(), "hook.obj");  // the failure as it was, not rebuilt from its text
   }
   EXPECT_TRUE(fs::is_empty(out)) << fs::directory_iterator(out)->path();
 }

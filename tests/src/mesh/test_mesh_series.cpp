@@ -212,21 +212,25 @@ TEST(MeshSeries, SphereSeriesMeshedOnceAndScaled) {
 
 // One of two processes sharing a series (thaw run under MPI): the items run here, and the farm
 // counts its runs. `shared`: what the leader says (the others' share()), "" on the leader.
-class OneOfTwo final : public MeshFarm {
+class OneOfTwo final : public WorkFarm {
  public:
   explicit OneOfTwo(std::string shared = "") : m_shared(std::move(shared)) {}
   bool leader() const override { return m_shared.empty(); }
-  std::string share(const std::string& text) override { return leader() ? text : m_shared; }
+  // What the leader says: that it staged (ok: ""), then where.
+  std::string share(const std::string& text) override {
+    return leader() ? text : (m_told++ % 2 == 0 ? "" : m_shared);
+  }
   int processes() const override { return 2; }
   std::vector<std::string> run(long n, int threads, const std::function<std::string(long)>& work,
-                               const std::function<void()>& done) override {
+                               const std::function<void()>& done, Grain grain) override {
     ++runs;
-    return MeshFarm::run(n, threads, work, done);
+    return WorkFarm::run(n, threads, work, done, grain);
   }
   int runs = 0;
 
  private:
   std::string m_shared;
+  int m_told = 0;
 };
 
 // The default sphere series has one geodesic form, fewer than the processes: each process builds
@@ -248,7 +252,7 @@ TEST(MeshSeries, FewerGeodesicFormsThanProcessesAreBuiltByEachProcess) {
   // Another process writes its surfaces into the leader's staged folder and keeps no form.
   const fs::path other = fresh_copy("sphere", "geodesic_other");
   fs::create_directories(other / "staged");
-  OneOfTwo follower("+" + (other / "staged").string());
+  OneOfTwo follower((other / "staged").string());
   mesh_simulation_folder(other, o, {}, follower);
   EXPECT_EQ(follower.runs, 1);
   for (const auto& e : fs::directory_iterator(alone / "mesh")) {

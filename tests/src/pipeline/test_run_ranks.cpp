@@ -1,13 +1,16 @@
-// RanksMeshFarm (src/pipeline/ranks_mesh_farm.h): with one rank, the threads of this process;
-// with several, guided chunks farmed out and their texts (any bytes, ':' included) put back at
-// their items' indices. The several-rank path is exercised here by ranks whose farm
-// runs the chunks in this process (MPI itself: test_pipeline_mpi.cpp).
-#include "src/pipeline/ranks_mesh_farm.h"
+// RunRanks as the run's work farm (src/pipeline/run_ranks.h): with one rank, the threads of this
+// process; with several, guided chunks (fine grain) or single items (coarse) handed out and their
+// texts (any bytes, ':' included) put back at their items' indices, a failure thrown as it was.
+// The several-rank path is exercised here by ranks whose hand-out runs the items in this process
+// (MPI itself: test_pipeline_mpi.cpp, test_rank_failure_mpi.cpp).
+#include "src/pipeline/run_ranks.h"
 
 #include <gtest/gtest.h>
 
 #include <ctime>
 #include <string>
+
+#include "base/error.h"
 
 namespace thaw::pipeline {
 namespace {
@@ -21,21 +24,48 @@ std::string text_of(long k) {
   return std::string(static_cast<std::size_t>(k % 4), ':') + "t" + std::to_string(k);
 }
 
-TEST(RanksMeshFarm, ChunksComeBackAtTheirItemsWithProgressPerItem) {
-  for (const int threads : {1, 2, 3}) {
-    for (const long n : {0L, 1L, 7L, 12L}) {
-      TwoRanksHere ranks;
-      RanksMeshFarm farm(ranks);
-      long done = 0;
-      const auto texts = farm.run(n, threads, text_of, [&] { ++done; });
-      ASSERT_EQ(texts.size(), static_cast<std::size_t>(n));
-      for (long k = 0; k < n; ++k) EXPECT_EQ(texts[static_cast<std::size_t>(k)], text_of(k));
-      EXPECT_EQ(done, n) << threads;
+TEST(RunRanks, ChunksComeBackAtTheirItemsWithProgressPerItem) {
+  for (const auto grain : {WorkFarm::Grain::fine, WorkFarm::Grain::coarse})
+    for (const int threads : {1, 2, 3}) {
+      for (const long n : {0L, 1L, 7L, 12L}) {
+        TwoRanksHere farm;
+        long done = 0;
+        const auto texts = farm.run(
+            n, threads, text_of, [&] { ++done; }, grain);
+        ASSERT_EQ(texts.size(), static_cast<std::size_t>(n));
+        for (long k = 0; k < n; ++k) EXPECT_EQ(texts[static_cast<std::size_t>(k)], text_of(k));
+        EXPECT_EQ(done, n) << threads;
+      }
+    }
+}
+
+TEST(RunRanks, AFailingItemIsThrownAsItWasOverTheRanks) {
+  for (const auto grain : {WorkFarm::Grain::fine, WorkFarm::Grain::coarse}) {
+    TwoRanksHere farm;
+    try {
+      farm.run(
+          9, 2,
+          [](long k) -> std::string {
+            if (k == 4) throw UserError("frames/frame_000004.png", "", "disk full");
+            return "";
+          },
+          {}, grain);
+      ADD_FAILURE() << "no error";
+    } catch (const UserError& e) {
+      EXPECT_EQ(e.file(), "frames/frame_000004.png");
     }
   }
 }
 
-TEST(RanksMeshFarm, GuidedChunksCoverTheItemsLargeFirstThenOneRoundOfThreads) {
+TEST(RunRanks, RanksAgreeOnTheFirstFailureAndTheLeadersOutcome) {
+  const auto ranks = single_process();
+  const Outcome user = Outcome::user("a.toml", "[film] fps", "must be > 0");
+  EXPECT_EQ(ranks->first_failure(user), user);
+  EXPECT_TRUE(ranks->first_failure(Outcome()).ok());
+  EXPECT_EQ(ranks->leaders_outcome(Outcome::internal("x")), Outcome::internal("x"));
+}
+
+TEST(RunRanks, GuidedChunksCoverTheItemsLargeFirstThenOneRoundOfThreads) {
   for (const int ranks : {2, 3, 8})
     for (const int threads : {1, 2, 4})
       for (const long n : {0L, 1L, 5L, 103L, 1000L}) {
@@ -70,9 +100,8 @@ TEST(RanksMeshFarm, GuidedChunksCoverTheItemsLargeFirstThenOneRoundOfThreads) {
 // What each run() cost is recorded for bench/pipeline/mpi_scaling.sh: one entry per run, the
 // run's item count, and the CPU spent inside the items (here: a busy loop of known CPU) counted
 // once per item and within the run's process CPU.
-TEST(RanksMeshFarm, EveryRunsCostIsRecordedPerPhase) {
-  TwoRanksHere ranks;
-  RanksMeshFarm farm(ranks);
+TEST(RunRanks, EveryRunsCostIsRecordedPerPhase) {
+  TwoRanksHere farm;
   const auto thread_cpu_s = [] {
     timespec t{};
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
@@ -101,9 +130,9 @@ TEST(RanksMeshFarm, EveryRunsCostIsRecordedPerPhase) {
             "farm 1 items 1 cpu_s 1.0000 wall_s 2.0000 work_cpu_s 0.1250 items_here 0");
 }
 
-TEST(RanksMeshFarm, OneRankIsThisProcessesThreads) {
+TEST(RunRanks, OneRankIsThisProcessesThreads) {
   const auto ranks = single_process();
-  RanksMeshFarm farm(*ranks);
+  RunRanks& farm = *ranks;
   EXPECT_TRUE(farm.leader());
   EXPECT_EQ(farm.share("dir"), "dir");
   const auto texts = farm.run(5, 2, text_of, {});
