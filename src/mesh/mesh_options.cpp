@@ -140,7 +140,7 @@ void check_triangle_count(const ShellShape& s, const SurfaceCriteria& c) {
                        : "the distance bound " + shortest_text(c.facet_distance_m) + " m") +
           " gives about " + count + " triangles on a surface of radius " +
           shortest_text(s.radius_m) + " m, more than the " + "5e7 a surface may have; use a " +
-          (edge ? "longer edge" : "larger distance") + " or --triangles");
+          (edge ? "longer edge" : "larger distance") + " or a triangle target (triangles)");
 }
 
 bool too_thin_to_mesh(const ShellShape& s, const MeshOptions& o) {

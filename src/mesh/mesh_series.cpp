@@ -137,8 +137,9 @@ void validate_geometry(const sim::ShellGeometry& g, const fs::path& summary) {
 // meshing run that is interrupted (SIGINT, SIGTERM, a kill) keeps its finished surfaces and the
 // next run meshes only the others. The file's first line is the full description of what was
 // meshed (form and options, thaw version); a file is used only if that line matches exactly.
-// Vertices are written with 17 digits and read back bit for bit (base/obj_reader.h), so a resumed run
-// writes exactly the bytes a fresh one does. The folder is removed once SIMDIR/mesh is complete.
+// Vertices are written with 17 digits and read back bit for bit (base/obj_reader.h), so a resumed
+// run writes exactly the bytes a fresh one does. The folder is removed once SIMDIR/mesh is
+// complete.
 std::string form_description(const SimilarSurface& f, const MeshOptions& unit_options,
                              int geodesic) {
   // Every input of the mesher: the shape (radius too: without reuse of similar surfaces the
@@ -540,7 +541,8 @@ void record_surfaces(const std::vector<Task>& tasks, const std::vector<TaskResul
     if (!results[k].error.empty())
       throw UserError(
           (final_dir / surface_file_name(rec.step, t.inner)).string(), "",
-          "meshing failed: " + results[k].error + " (try a smaller --edge-length or --distance)");
+          "meshing failed: " + results[k].error +
+              " (try a smaller edge length or distance bound: edge_length_m, distance_m)");
     SurfaceRecord& s = t.inner ? rec.inner : rec.outer;
     s.triangles = results[k].triangles;
     s.volume_m3 = results[k].volume_m3;

@@ -9,6 +9,7 @@
 #include "render/scene/scene_rules.h"
 #include "sim/format/scenario_file.h"
 #include "sim/grid/grid_rules.h"
+#include "src/pipeline/film_size.h"
 
 namespace thaw::pipeline {
 namespace fs = std::filesystem;
@@ -168,6 +169,7 @@ RunScenario parse_run_scenario(const TomlTable& root) {
     }
   }
   root.check_no_unknown_keys();
+  check_film_size(root, r);  // a radius in centimetres is refused here, naming metres
 
   const auto times = frame_times(r);
   if (times.size() < 1) root.fail("film", "no frames");
