@@ -134,35 +134,49 @@ void user_bounds(const RTCBoundsFunctionArguments* args) {
   b->upper_x = hi.x, b->upper_y = hi.y, b->upper_z = hi.z;
 }
 
-// rtcIntersect1 / rtcOccluded1 call these with N = 1.
+// rtcIntersect1 / rtcOccluded1 call these with N = 1, the stream API (rtcIntersect1M) with packets
+// of N rays (structure of arrays, RTCRayN accessors), lanes not `valid` left alone.
 void user_intersect(const RTCIntersectFunctionNArguments* args) {
-  if (!args->valid[0]) return;
   const auto* u = static_cast<const UserPrimitives*>(args->geometryUserPtr);
-  auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
-  const RTCRay& e = rh->ray;
-  float t;
-  if (!intersect_user(u->prims[u->index[args->primID]],
-                      thaw_ray(e.org_x, e.org_y, e.org_z, e.dir_x, e.dir_y, e.dir_z), e.tfar, t) ||
-      t < e.tnear)
-    return;
-  rh->ray.tfar = t;
-  rh->hit.u = rh->hit.v = 0.0f;
-  rh->hit.Ng_x = rh->hit.Ng_y = rh->hit.Ng_z = 0.0f;
-  rh->hit.primID = args->primID;
-  rh->hit.geomID = args->geomID;
-  rh->hit.instID[0] = args->context->instID[0];
+  const Primitive& p = u->prims[u->index[args->primID]];
+  RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
+  RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
+  const unsigned N = args->N;
+  for (unsigned i = 0; i < N; ++i) {
+    if (!args->valid[i]) continue;
+    float t;
+    if (!intersect_user(
+            p,
+            thaw_ray(RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i),
+                     RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i)),
+            RTCRayN_tfar(ray, N, i), t) ||
+        t < RTCRayN_tnear(ray, N, i))
+      continue;
+    RTCRayN_tfar(ray, N, i) = t;
+    RTCHitN_u(hit, N, i) = RTCHitN_v(hit, N, i) = 0.0f;
+    RTCHitN_Ng_x(hit, N, i) = RTCHitN_Ng_y(hit, N, i) = RTCHitN_Ng_z(hit, N, i) = 0.0f;
+    RTCHitN_primID(hit, N, i) = args->primID;
+    RTCHitN_geomID(hit, N, i) = args->geomID;
+    RTCHitN_instID(hit, N, i, 0) = args->context->instID[0];
+  }
 }
 
 void user_occluded(const RTCOccludedFunctionNArguments* args) {
-  if (!args->valid[0]) return;
   const auto* u = static_cast<const UserPrimitives*>(args->geometryUserPtr);
-  auto* e = reinterpret_cast<RTCRay*>(args->ray);
-  float t;
-  if (intersect_user(u->prims[u->index[args->primID]],
-                     thaw_ray(e->org_x, e->org_y, e->org_z, e->dir_x, e->dir_y, e->dir_z), e->tfar,
-                     t) &&
-      t >= e->tnear)
-    e->tfar = -std::numeric_limits<float>::infinity();
+  const Primitive& p = u->prims[u->index[args->primID]];
+  RTCRayN* ray = args->ray;
+  const unsigned N = args->N;
+  for (unsigned i = 0; i < N; ++i) {
+    if (!args->valid[i]) continue;
+    float t;
+    if (intersect_user(
+            p,
+            thaw_ray(RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i),
+                     RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i)),
+            RTCRayN_tfar(ray, N, i), t) &&
+        t >= RTCRayN_tnear(ray, N, i))
+      RTCRayN_tfar(ray, N, i) = -std::numeric_limits<float>::infinity();
+  }
 }
 
 /// Embree scenes of thaw's BVH primitives: geometry 0 its triangles (in leaf order), geometry 1
@@ -323,6 +337,16 @@ void timed(Timing& best, std::size_t n, int threads, F&& f) {
   timed_once(best, [&] {
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 4096)
     for (std::size_t i = 0; i < n; ++i) f(i);
+  });
+}
+
+/// Runs `f(begin, end)` over chunks of `chunk` rays on `threads` OpenMP threads; keeps the fastest.
+template <class F>
+void timed_chunks(Timing& best, std::size_t n, std::size_t chunk, int threads, F&& f) {
+  timed_once(best, [&] {
+    const std::size_t chunks = (n + chunk - 1) / chunk;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 16)
+    for (std::size_t c = 0; c < chunks; ++c) f(c * chunk, std::min(n, (c + 1) * chunk));
   });
 }
 
@@ -575,6 +599,40 @@ int run(int argc, char** argv) {
     rtcOccluded1(es.native, &ctx, &e);
     return e.tfar < 0.0f;
   };
+  // Embree's stream API (rtcIntersect1M / rtcOccluded1M) over the same rays, kStream at a time,
+  // flagged coherent for camera rays and incoherent for the others (Embree may trace them as
+  // packets); planes as above, per ray, before the call.
+  constexpr std::size_t kStream = 256;
+  const auto stream_closest = [&](const Ray* rays, std::size_t m, Result* out, bool coherent) {
+    RTCRayHit rh[kStream];
+    for (std::size_t j = 0; j < m; ++j) {
+      out[j] = Result{};
+      rh[j].ray = to_embree(rays[j], nearest_plane(rays[j], out[j]));
+      rh[j].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    }
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags =
+        coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    rtcIntersect1M(es.closest, &ctx, rh, static_cast<unsigned>(m), sizeof(RTCRayHit));
+    for (std::size_t j = 0; j < m; ++j)
+      if (rh[j].hit.geomID != RTC_INVALID_GEOMETRY_ID)
+        out[j] = Result{es.prim(rh[j].hit.geomID, rh[j].hit.primID), rh[j].ray.tfar};
+  };
+  const auto stream_occluded = [&](const Ray* rays, std::size_t m, Result* out) {
+    RTCRay e[kStream];
+    for (std::size_t j = 0; j < m; ++j) {
+      out[j].prim = any_plane(rays[j]) ? 1 : 0;
+      // a ray a plane already blocks is sent with an empty interval (tfar < tnear)
+      e[j] = to_embree(rays[j], out[j].prim ? -1.0f : rays[j].t_max);
+    }
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    rtcOccluded1M(es.any, &ctx, e, static_cast<unsigned>(m), sizeof(RTCRay));
+    for (std::size_t j = 0; j < m; ++j)
+      if (!out[j].prim && e[j].tfar < 0.0f) out[j].prim = 1;
+  };
   const auto thaw_closest = [&](const Ray& r) {
     Hit h;
     return scene.intersect(r, h) ? Result{h.prim, h.t} : Result{};
@@ -583,14 +641,15 @@ int run(int argc, char** argv) {
   std::size_t total_rays = 0, total_mismatch = 0, total_self = 0, cracks[2] = {0, 0};
   std::size_t near_origin = 0;
   Timing thaw_all{0, 0}, embree_all{0, 0}, thaw_photon{0, 0}, native_all{0, 0};
-  std::size_t native_differ = 0;
-  std::vector<std::string> native_lines;
+  std::size_t native_differ = 0, stream_differ = 0;
+  std::vector<std::string> native_lines, stream_lines;
+  Timing stream_all{0, 0};
   for (int k = 0; k < kKinds; ++k) {
     const std::vector<Ray>& rays = rec.rays[k];
     const std::size_t n = rays.size();
     if (n == 0) continue;
-    std::vector<Result> a(n), b(n), c(es.native ? n : 0);
-    Timing tt, te, tn;
+    std::vector<Result> a(n), b(n), c(es.native ? n : 0), d(n);
+    Timing tt, te, tn, ts;
     for (int r = 0; r < repetitions; ++r) {  // interleaved: both see the same load
       if (any_hit(k)) {
         timed(tt, n, threads, [&](std::size_t i) { a[i].prim = scene.occluded(rays[i]) ? 1 : 0; });
@@ -598,12 +657,36 @@ int run(int argc, char** argv) {
         if (es.native)
           timed(tn, n, threads,
                 [&](std::size_t i) { c[i].prim = native_occluded(rays[i]) ? 1 : 0; });
+        timed_chunks(ts, n, kStream, threads, [&](std::size_t b0, std::size_t b1) {
+          stream_occluded(&rays[b0], b1 - b0, &d[b0]);
+        });
       } else {
         timed(tt, n, threads, [&](std::size_t i) { a[i] = thaw_closest(rays[i]); });
         timed(te, n, threads, [&](std::size_t i) { b[i] = embree_closest(rays[i]); });
         if (es.native)
           timed(tn, n, threads, [&](std::size_t i) { c[i] = native_closest(rays[i]); });
+        timed_chunks(ts, n, kStream, threads, [&](std::size_t b0, std::size_t b1) {
+          stream_closest(&rays[b0], b1 - b0, &d[b0], k == kCamera);
+        });
       }
+    }
+    {
+      // The stream's answers are Embree's too (rtcIntersect1's, possibly traced as packets):
+      // counted as the native spheres' below.
+      std::size_t differ = 0;
+      for (std::size_t i = 0; i < n; ++i)
+        if (a[i].prim != d[i].prim &&
+            (any_hit(k) || a[i].prim == Result::kMiss || d[i].prim == Result::kMiss ||
+             std::fabs(a[i].t - d[i].t) > 1e-4f * std::max(a[i].t, d[i].t)))
+          ++differ;
+      char line[160];
+      std::snprintf(line, sizeof line, "%-10s %9zu %15.2f %12.3f %12.3f %9zu", kKindName[k], n,
+                    double(n) / ts.wall_s * 1e-6, ts.wall_s / tt.wall_s, ts.cpu_s / tt.cpu_s,
+                    differ);
+      stream_lines.push_back(line);
+      stream_all.wall_s += ts.wall_s;
+      stream_all.cpu_s += ts.cpu_s;
+      stream_differ += differ;
     }
     if (es.native) {
       // Embree's own spheres answer with Embree's arithmetic: rays that differ from thaw's by
@@ -686,6 +769,14 @@ int run(int argc, char** argv) {
               double(total_rays) / thaw_all.wall_s * 1e-6,
               double(total_rays) / embree_all.wall_s * 1e-6, embree_all.wall_s / thaw_all.wall_s,
               embree_all.cpu_s / thaw_all.cpu_s, total_mismatch, total_self);
+  std::printf(
+      "Embree's stream API (rtcIntersect1M / rtcOccluded1M, %zu rays a call, camera rays flagged "
+      "coherent):\n%-10s %9s %15s %12s %12s %9s\n",
+      kStream, "rays", "count", "Embree [Mray/s]", "thaw/Embree", "(CPU-time)", "differ");
+  for (const std::string& l : stream_lines) std::printf("%s\n", l.c_str());
+  std::printf("%-10s %9zu %15.2f %12.3f %12.3f %9zu\n", "all", total_rays,
+              double(total_rays) / stream_all.wall_s * 1e-6, stream_all.wall_s / thaw_all.wall_s,
+              stream_all.cpu_s / thaw_all.cpu_s, stream_differ);
   if (es.native) {
     std::printf(
         "Embree with its own sphere primitives (RTC_GEOMETRY_TYPE_SPHERE_POINT; its answers, "
