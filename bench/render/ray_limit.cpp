@@ -18,6 +18,9 @@
 // Embree side does the same with the same code, handing the plane's distance on as tfar.
 // Objects that shadow rays see through (index-matched dielectrics) are left out of a second
 // Embree scene that serves the shadow rays, as thaw's occluded() skips them.
+// The same rays also go through Embree's stream API (rtcIntersect1M / rtcOccluded1M, camera rays
+// flagged coherent, so Embree may trace them as packets) and, where there are spheres, through
+// Embree's own sphere primitives; those two are timed and their answers counted, not judged.
 //
 // Usage: ray_limit [scene.toml | RUN_DIR] [threads] [repetitions] [frame] [frames-only]
 //   scene.toml: a `thaw render` scene (default: data/scenes/s1_ice_shell_mesh.toml);
