@@ -1,10 +1,14 @@
 #pragma once
 // Cavities and drainage of the grid solver: which cells are open to the outside air (a flood
-// fill from the grid's air border through cells less than half ice), which are exposed
-// (outside or next to it), the melt that drains from exposed cells (its enthalpy booked as
-// drained; ice remnants below kRemnantFraction go with it), the liquid still enclosed, and the
-// moment an enclosed cavity joins the outside (break-through). Writes m and H of drained cells
-// and its own openness arrays. Knows nothing of heat conduction, Newton or step sizes.
+// fill from the grid's air border through cells less than half ice that are not held in a
+// cavity), which are exposed (outside or next to it), the melt that drains from exposed cells
+// outside the cavities (its enthalpy booked as drained; ice remnants below kRemnantFraction go
+// with it), the liquid still enclosed, and the moment a cavity joins the outside
+// (break-through: where the wall between them is gone, not where a cell is less than half
+// ice). Writes m and H of drained cells and its own arrays. Knows nothing of heat conduction,
+// Newton or step sizes.
+#include <array>
+#include <optional>
 #include <vector>
 
 #include "sim/grid/block_team.h"
@@ -34,25 +38,32 @@ class CavityDrain {
   /// `drain`: melt drains away where it touches the outside air (GridProblem::drain).
   CavityDrain(const GridMesh& mesh, const PhaseRelation& phase, CellState& cells, bool drain);
 
-  /// exposed[c]: cell c is outside, or next to a cell outside.
+  /// exposed[c]: cell c is outside, or next to a cell outside (it takes the surface heat).
   const std::vector<char>& exposed() const { return m_exposed; }
-  /// Openness from the current state, and remembered as the previous step's (the constructor's
-  /// start: the initial state drains nothing by definition).
+  /// cavity[c]: cell c holds liquid of a cavity whose wall still stands: it is never outside
+  /// and does not drain, even next to the outside (the wall is then inside it or its
+  /// neighbour).
+  const std::vector<char>& cavity() const { return m_cavity; }
+  /// Openness, exposure and the cavities from the current state (the constructor's start: the
+  /// initial cavities are the liquid enclosed by cells at least half ice, with the wall cells
+  /// it wets).
   void classify(BlockTeam& team);
   /// open_now[c] from the cell's ice fraction (less than half ice).
   void mark_open(long c) { open_now[c] = ice_fraction(c) < 0.5; }
-  /// outside_now from open_now: a breadth-first flood from the grid's border (serial).
+  /// outside_now from open_now: a breadth-first flood from the grid's border through open cells
+  /// outside the cavities; then the cavities (grown into the wall cells their liquid reached,
+  /// shrunk where it froze) and their openings: a cavity whose wall is gone somewhere joins
+  /// the outside (serial).
   void fill_outside();
   /// exposed[c] from outside_now.
   void exposure(long c, int i, int j, int k);
-  /// Keeps cell c's openness as the previous step's.
-  void remember_openness(long c);
-  /// After fill_outside: a former cavity cell now outside means break-through, at the first
-  /// wall cell that opened this step next to the former cavity. Returns that cell, or -1 (no
-  /// break-through now, or one already reported). Serial.
-  long detect_break_through();
+  /// After fill_outside: the first break-through, where the first cavity opened (the middle of
+  /// the face between its ice-free cell and the ice-free outside cell), once; nothing if no
+  /// cavity has opened or the first one was already reported. Serial.
+  std::optional<std::array<double, 3>> detect_break_through();
   bool broke_through() const { return m_broke_through; }
-  /// Drains cell c if it is exposed and holds liquid, booking it in `tally`.
+  /// Drains cell c if it is exposed, outside the cavities and holds liquid, booking it in
+  /// `tally`.
   void drain_cell(long c, DrainTally& tally);
   /// Adds cell c's enclosed liquid to `tally`.
   void add_enclosed(long c, EnclosedTally& tally) const;
@@ -63,13 +74,22 @@ class CavityDrain {
 
  private:
   void flood(BlockTeam& team);
+  void flood_outside();
+  void grow_cavities();
+  /// Opens every cavity whose wall is gone somewhere; the first opening's position.
+  void open_cavities();
+  /// Cell c holds no wall: its ice is below the remnant fraction that draining removes.
+  bool ice_free(long c) const;
+  /// Liquid that stays in the body: not exposed, or held in a cavity.
+  bool held(long c) const { return !m_exposed[c] || m_cavity[c]; }
 
   const GridMesh& m_mesh;
   const PhaseRelation& m_phase;
   CellState& m_cells;
   bool m_drain = true;
   bool m_broke_through = false;
-  std::vector<char> open_prev, enclosed_prev, m_exposed, open_now, outside_now;
+  std::optional<std::array<double, 3>> m_opening;  ///< the first opening, until reported
+  std::vector<char> m_exposed, open_now, outside_now, m_cavity, cavity_prev;
   std::vector<long> queue;  ///< the flood fill's breadth-first queue
 };
 

@@ -147,8 +147,8 @@ GridTimeStepper::StepResult GridTimeStepper::step(BlockTeam& team,
     m_time = dt == step_remaining ? step_target : m_time + dt;
     m_heat_in += heat_step;
     m_cavity.fill_outside();
-    const long opened = m_cavity.detect_break_through();
-    if (opened >= 0) m_events.push_back({"break_through", m_time, m_mesh.centre(opened)});
+    if (const auto opened = m_cavity.detect_break_through())
+      m_events.push_back({"break_through", m_time, *opened});
   });
   // exposure, draining (booked), openness for a re-flood, energies and the end events' sums
   team.for_blocks([&](long bl) {
@@ -161,7 +161,6 @@ GridTimeStepper::StepResult GridTimeStepper::step(BlockTeam& team,
       const double before = m[c];
       m_cavity.drain_cell(c, b.drain);
       b.drained_m3 += (before - m[c]) * vol[c];
-      m_cavity.remember_openness(c);
       m_cavity.mark_open(c);
       b.energy_end += m[c] * vol[c] * H[c];
       m_cavity.add_enclosed(c, b.enclosed);
@@ -196,7 +195,11 @@ GridTimeStepper::StepResult GridTimeStepper::step(BlockTeam& team,
     m_stats.steps++;
     m_stats.min_step_s = m_stats.steps == 1 ? dt : std::min(m_stats.min_step_s, dt);
     m_stats.max_step_s = std::max(m_stats.max_step_s, dt);
-    if (drained_step > 0) m_cavity.fill_outside();  // the drained cells opened: the next outside
+    if (drained_step > 0) {  // the drained cells opened: the next outside
+      m_cavity.fill_outside();
+      if (const auto opened = m_cavity.detect_break_through())
+        m_events.push_back({"break_through", m_time, *opened});
+    }
     m_surface.after_step(drained_step > 0,
                          sum_blocks([](const BlockSums& b) { return b.drained_m3; }), dt);
   });

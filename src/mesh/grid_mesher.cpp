@@ -68,18 +68,22 @@ double ice_between(const GridSurfaces& s) {
 }
 
 // Whether `f` holds water sealed from the outside by the solver's own rule
-// (sim/grid/enthalpy_solver.cpp): a cell is open when less than half of it is ice, the outside
-// is the open cells 6-connected to the material-free cells of the grid's border (the axis of an
-// axisymmetric grid is no border), and the solver drains every cell in or next to the outside
-// each step; an enclosed open cell holding water is a sealed cavity (melt inside the ice, in cells
-// at least half ice, is not: after break-through such cells hold ~1e-6 of water). Until the
-// solver's break_through the film must show the cavity closed and full, after it open.
+// (sim/grid/cavity_drain.h): a cell is open when less than half of it is ice, the outside is the
+// open cells 6-connected to the material-free cells of the grid's border (the axis of an
+// axisymmetric grid is no border) that are not a cavity's (at least as much water as ice: the
+// solver drains every other cell in or next to the outside each step, so in a field such water
+// is a cavity's), and an enclosed open cell holding water is a sealed cavity (melt inside the
+// ice, in cells at least half ice, is not: after break-through such cells hold ~1e-6 of water).
+// Until the solver's break_through the film must show the cavity closed and full, after it open.
 bool holds_sealed_water(const sim::GridField& f) {
   const bool axi = f.geometry == sim::GridField::Geometry::axisymmetric;
   const int nx = f.cells[0], ny = f.cells[1], nz = f.cells[2];
   std::vector<char> outside(f.cell_count(), 0);
   std::vector<std::size_t> queue;
   auto open = [&](std::size_t c) { return f.ice_fraction[c] < 0.5f; };
+  auto cavity = [&](std::size_t c) {
+    return f.water_fraction[c] > 0 && f.water_fraction[c] >= f.ice_fraction[c];
+  };
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
@@ -98,7 +102,7 @@ bool holds_sealed_water(const sim::GridField& f) {
     const int i = static_cast<int>(c % sy), j = static_cast<int>((c / sy) % ny),
               k = static_cast<int>(c / sz);
     auto visit = [&](bool inside, std::size_t nb) {
-      if (inside && !outside[nb] && open(nb)) {
+      if (inside && !outside[nb] && open(nb) && !cavity(nb)) {
         outside[nb] = 1;
         queue.push_back(nb);
       }

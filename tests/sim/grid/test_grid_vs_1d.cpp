@@ -30,7 +30,8 @@ double break_through_time(const SimulationResult& r) {
   return r.snapshots.back().time_s;
 }
 
-void compare_sphere(const std::string& geometry) {
+/// `opening_bar`: the largest relative difference of the break-through times asserted.
+void compare_sphere(const std::string& geometry, double opening_bar) {
   // The built-in default: 3 cm sphere, 2 cm water core, 10 C water, -5 C ice, 25 C air, h = 50.
   const SimulationResult one = simulate(default_scenario());
   const Scenario grid =
@@ -41,9 +42,8 @@ void compare_sphere(const std::string& geometry) {
                             "sphere.toml");
   const SimulationResult g = simulate(grid);
   const double v0 = one.snapshots.front().ice_volume_m3;
-  // The whole run up to the first break-through (the grid's: its shell opens when a path of
-  // cells less than half ice joins the cavity to the outside, i.e. about one cell of shell
-  // thickness early; after that the cavity has drained in one and not in the other).
+  // The whole run up to the first break-through (after it the cavity has drained in one and
+  // not in the other).
   const double until = std::min(break_through_time(g), break_through_time(one));
   double worst_ice = 0, worst_liquid = 0;
   for (std::size_t i = 0; i < std::min(one.snapshots.size(), g.snapshots.size()); ++i) {
@@ -66,13 +66,19 @@ void compare_sphere(const std::string& geometry) {
   EXPECT_LT(worst_ice, 0.01);
   EXPECT_LT(worst_liquid, 0.01);
   EXPECT_LT(g.grid_statistics.max_step_energy_error, 1e-8);
+  // The shell opens where the wall is gone (sim/grid/cavity_drain.h), not where a cell is less
+  // than half ice: within the 3 % of the 1D time (measured 2250 s vs 2310 s in (r, y),
+  // -2.6 %; the 3D shell opens at 2190 s, -5.2 %, at its poles, where the grid-aligned faces
+  // melt faster than the 1D sphere (docs/validation.md): not yet asserted at 3 %).
+  const double t_grid = break_through_time(g), t_one = break_through_time(one);
+  EXPECT_LT(std::abs(t_grid - t_one) / t_one, opening_bar);
 }
 
 TEST(GridVs1d, SphereAxisymmetric) {
-  compare_sphere("axisymmetric");
+  compare_sphere("axisymmetric", 0.03);
 }
 TEST(GridVs1d, Sphere3d) {
-  compare_sphere("3d");
+  compare_sphere("3d", 0.06);
 }
 
 TEST(GridVs1d, LongCylinderMidPlane) {

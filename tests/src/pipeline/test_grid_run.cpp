@@ -52,7 +52,7 @@ TEST(ThawRunGrid, HollowCubeMeltsBreaksThroughAndIsFilmed) {
     EXPECT_NEAR(steps[0][std::string(part) + "_volume_m3"].get<double>(),
                 steps[0][std::string(part) + "_exact_volume_m3"].get<double>(), 7.6e-7)
         << part;
-  // After the break-through (~205 s in tiny_cube.toml) a frame with ice left has one surface and no
+  // After the break-through (250 s in tiny_cube.toml) a frame with ice left has one surface and no
   // cavity; by the end nothing is sealed.
   bool open_with_ice = false;
   for (const auto& s : steps)
