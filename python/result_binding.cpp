@@ -66,6 +66,15 @@ py::dict fields(const py::object& self, long step_arg) {
     out["temperature_c"] = view(self, f.temperature_c.data(), shape, strides);
     out["liquid_fraction"] = view(self, f.water_fraction.data(), shape, strides);
     out["ice_fraction"] = view(self, f.ice_fraction.data(), shape, strides);
+    // (nx, ny, nz, 3); a run without flow has no velocity: zeros, every element viewing the
+    // same three (strides 0), still O(1) and still based on the Result.
+    static const float kRest[3] = {0, 0, 0};
+    const bool moving = f.has_velocity();
+    const std::vector<py::ssize_t> shape3{nx, ny, nz, 3};
+    const std::vector<py::ssize_t> strides3 =
+        moving ? std::vector<py::ssize_t>{3 * s, 3 * s * nx, 3 * s * nx * ny, s}
+               : std::vector<py::ssize_t>{0, 0, 0, s};
+    out["velocity_m_s"] = view(self, moving ? f.velocity_m_s.data() : kRest, shape3, strides3);
     return out;
   }
   // 1D runs: the profile points (cell centres and phase boundaries), strided views.
@@ -220,7 +229,10 @@ void bind_result(py::module_& m) {
            "fields(step) -> dict of read-only NumPy arrays viewing the result's memory (no copy; "
            "each array's .base is this Result). Grid runs: temperature_c, liquid_fraction, "
            "ice_fraction, float32, shape (nx, ny, nz) indexed [i, j, k] (axisymmetric: (nr, ny, "
-           "1)). 1D runs: radius_m, temperature_c (the profile points: cell centres and the "
+           "1)), and velocity_m_s, float32, shape (nx, ny, nz, 3): the water's velocity [m/s] at "
+           "the cell centres, (u_x, u_y, u_z) (axisymmetric: (u_r, u_y, 0)); zeros for a run "
+           "without flow. 1D runs: radius_m, temperature_c (the profile points: cell centres and "
+           "the "
            "fronts) and liquid_fraction (1 in the water, 0 in the ice), float64.")
       .def(
           "write",

@@ -39,8 +39,8 @@ std::vector<double> output_times(const Scenario& sc) {
 }
 
 double field_bytes(const GridField& grid, std::size_t outputs) {
-  return 3.0 * sizeof(float) * static_cast<double>(grid.cell_count()) *
-         static_cast<double>(outputs);
+  return (grid.has_velocity() ? 6.0 : 3.0) * sizeof(float) *
+         static_cast<double>(grid.cell_count()) * static_cast<double>(outputs);
 }
 
 namespace {
@@ -146,9 +146,11 @@ SimulationResult simulate_grid(const Scenario& scenario, const std::vector<doubl
     GridField first = solver.field();
     if (!sink) check_fields_fit_in_memory(scenario, first, times.size());
     first.temperature_c.clear(), first.ice_fraction.clear(), first.water_fraction.clear();
+    first.velocity_m_s.clear();
     result.grid = std::move(first);
   }
   result.reference_energy_j = solver.reference_energy();
+  result.boundary_faces = solver.face_names();
   const auto total = static_cast<std::int64_t>(times.size());
   for (std::size_t i = 0; i < times.size(); ++i) {
     try {
@@ -159,6 +161,7 @@ SimulationResult simulate_grid(const Scenario& scenario, const std::vector<doubl
     }
     const GridSnapshot g = solver.snapshot();
     result.snapshots.push_back(grid_snapshot(g));
+    result.boundary_heat_j.push_back(g.face_heat_in_j);
     if (scenario.natural_convection)
       result.flow_records.push_back({g.time_s, g.max_speed_m_s, g.rayleigh});
     if (sink)

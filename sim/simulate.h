@@ -38,6 +38,10 @@ struct SimulationResult {
   /// Grid runs with natural convection: per output time, {time [s], largest speed [m/s],
   /// Rayleigh number of the liquid}.
   std::vector<std::array<double, 3>> flow_records;
+  /// Grid runs: the body's faces (sim/grid/body_faces.h) and, per snapshot, the heat that has
+  /// entered the body through each since t = 0 [J] (boundary_heat.csv).
+  std::vector<std::string> boundary_faces;
+  std::vector<std::vector<double>> boundary_heat_j;
   /// interfaces.csv rows, step = index into snapshots.
   std::vector<InterfaceRecord> interface_records() const;
 };
@@ -48,7 +52,7 @@ struct SimulationResult {
 using FieldSink = std::function<void(std::size_t step, const GridField& field)>;
 
 /// Bytes of the fields a grid run keeps for `outputs` output times on `grid`: three floats per
-/// cell per output (temperature, ice and water fractions).
+/// cell per output (temperature, ice and water fractions), six with the flow's velocity.
 double field_bytes(const GridField& grid, std::size_t outputs);
 
 /// The output times of a scenario: 0, interval, 2 interval, ... and duration_s (exactly

@@ -21,7 +21,10 @@ static_assert(std::endian::native == std::endian::little, "the .grid format is l
 namespace {
 
 constexpr char kMagic[8] = {'T', 'H', 'A', 'W', 'G', 'R', 'I', 'D'};
-constexpr std::uint32_t kVersion = 1;
+/// Version 1: temperatures and fractions; version 2: the same, then the velocity (3 floats per
+/// cell). The writer picks the lowest version that holds the field.
+constexpr std::uint32_t kVersionWithoutVelocity = 1;
+constexpr std::uint32_t kVersionWithVelocity = 2;
 /// Larger grids are refused as corrupt (2^31 cells would be 24 GiB of fields).
 constexpr std::uint64_t kMaxCells = std::uint64_t{1} << 31;
 /// float rounding of fractions that sum to 1 in double precision.
@@ -87,16 +90,18 @@ void write_grid_field(const std::filesystem::path& file, const GridField& f) {
   THAW_CHECK(
       f.temperature_c.size() == n && f.ice_fraction.size() == n && f.water_fraction.size() == n,
       "grid field arrays must have one value per cell");
+  THAW_CHECK(!f.has_velocity() || f.velocity_m_s.size() == 3 * n,
+             "a grid field's velocity has three values per cell");
   std::string out;
-  out.reserve(96 + 3 * n * sizeof(float));
+  out.reserve(96 + (f.has_velocity() ? 6 : 3) * n * sizeof(float));
   out.append(kMagic, sizeof kMagic);
-  put(out, kVersion);
+  put(out, f.has_velocity() ? kVersionWithVelocity : kVersionWithoutVelocity);
   put(out, static_cast<std::uint32_t>(f.geometry == GridField::Geometry::axisymmetric ? 0 : 1));
   for (int c : f.cells) put(out, static_cast<std::int32_t>(c));
   for (double o : f.origin_m) put(out, o);
   put(out, f.spacing_m);
   put(out, f.time_s);
-  for (const auto* a : {&f.temperature_c, &f.ice_fraction, &f.water_fraction})
+  for (const auto* a : {&f.temperature_c, &f.ice_fraction, &f.water_fraction, &f.velocity_m_s})
     out.append(reinterpret_cast<const char*>(a->data()), a->size() * sizeof(float));
   put(out, checksum(out));
   write_file_atomic(file, out);
@@ -117,9 +122,10 @@ GridField read_grid_field(const std::filesystem::path& file) {
   if (std::memcmp(magic, kMagic, sizeof kMagic) != 0)
     fail("not a thaw grid field file (bad magic)");
   const auto version = r.get<std::uint32_t>("header");
-  if (version != kVersion)
+  if (version != kVersionWithoutVelocity && version != kVersionWithVelocity)
     fail("grid field format version " + std::to_string(version) + " is not supported (expected " +
-         std::to_string(kVersion) + ")");
+         std::to_string(kVersionWithoutVelocity) + " or " + std::to_string(kVersionWithVelocity) +
+         ")");
   GridField f;
   const auto geometry = r.get<std::uint32_t>("header");
   if (geometry > 1) fail("unknown geometry code " + std::to_string(geometry));
@@ -142,6 +148,7 @@ GridField read_grid_field(const std::filesystem::path& file) {
   r.floats(f.temperature_c, n, "temperatures");
   r.floats(f.ice_fraction, n, "ice fractions");
   r.floats(f.water_fraction, n, "water fractions");
+  if (version == kVersionWithVelocity) r.floats(f.velocity_m_s, 3 * n, "velocities");
   const std::size_t payload = r.position();
   const auto stored_checksum = r.get<std::uint64_t>("checksum");
   if (r.position() != r.size()) fail("unexpected bytes after the checksum");
@@ -154,6 +161,11 @@ GridField read_grid_field(const std::filesystem::path& file) {
     if (ice < 0 || ice > 1 || water < 0 || water > 1 || ice + water > 1 + kFractionSlack)
       fail("volume fractions out of [0, 1] in cell " + std::to_string(i));
   }
+  for (std::size_t i = 0; i < f.velocity_m_s.size(); ++i)
+    if (!(std::abs(f.velocity_m_s[i]) <= kMaxFieldSpeedM_S))
+      fail("velocity component " + std::to_string(i % 3) + " of cell " + std::to_string(i / 3) +
+           " is not finite or faster than " + std::to_string(static_cast<int>(kMaxFieldSpeedM_S)) +
+           " m/s");
   return f;
 }
 

@@ -92,6 +92,7 @@ nlohmann::json grid_summary_json(const SimulationResult& r) {
 
 void write_grid_outputs(const std::filesystem::path& dir, const SimulationResult& r) {
   write_interfaces_csv(dir / "interfaces.csv", r.interface_records());
+  write_file_atomic(dir / "boundary_heat.csv", format_boundary_heat_csv(r));
   ensure_directory(dir / "fields");
   // Fields kept in memory are written here; streamed ones (field_stream) are there already.
   for (std::size_t i = 0; i < r.fields.size(); ++i)
@@ -180,9 +181,27 @@ void write_simulation_outputs(const std::filesystem::path& dir, const Simulation
   write_file_atomic(dir / "summary.json", summary_json_text(r));
 }
 
+std::string format_boundary_heat_csv(const SimulationResult& r) {
+  THAW_CHECK(r.boundary_heat_j.size() == r.snapshots.size(),
+             "a grid result books the boundary heat of every snapshot");
+  std::string text = "time_s,face,heat_flow_w\n";
+  for (std::size_t k = 1; k < r.snapshots.size(); ++k) {
+    const double t = r.snapshots[k].time_s, interval = t - r.snapshots[k - 1].time_s;
+    for (std::size_t f = 0; f < r.boundary_faces.size(); ++f) {
+      const double q = (r.boundary_heat_j[k][f] - r.boundary_heat_j[k - 1][f]) / interval;
+      char buf[96];
+      std::snprintf(buf, sizeof buf, ",%.17g\n", q);
+      char time[40];
+      std::snprintf(time, sizeof time, "%.17g,", t);
+      text += time + r.boundary_faces[f] + buf;
+    }
+  }
+  return text;
+}
+
 std::optional<std::string> foreign_entry(const std::filesystem::path& dir) {
-  static const char* const kOwn[] = {"interfaces.csv", "summary.json", "profiles",
-                                     "fields",         "mesh",         "mesh.partial"};
+  static const char* const kOwn[] = {"interfaces.csv", "summary.json", "profiles",         "fields",
+                                     "mesh",           "mesh.partial", "boundary_heat.csv"};
   std::error_code ec;
   if (!std::filesystem::is_directory(dir, ec)) return std::nullopt;
   for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {

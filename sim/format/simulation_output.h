@@ -1,8 +1,8 @@
 #pragma once
 // A simulation's result folder, written from a SimulationResult (sim/simulate.h): interfaces.csv,
 // summary.json (every effective parameter, events, solver statistics) and profiles/step_NNNNNN.csv
-// for the 1D geometries or fields/step_NNNNNN.grid for the grid ones. The sim's file-format
-// layer: the solver core never sees these formats.
+// for the 1D geometries or fields/step_NNNNNN.grid and boundary_heat.csv for the grid ones. The
+// sim's file-format layer: the solver core never sees these formats.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -22,6 +22,13 @@ void write_simulation_outputs(const std::filesystem::path& dir, const Simulation
 /// space of DIR's file system.
 FieldSink field_stream(const std::filesystem::path& dir, const Scenario& scenario,
                        std::size_t outputs);
+
+/// The text of DIR/boundary_heat.csv of a grid run: "time_s,face,heat_flow_w", then for each
+/// output time after t = 0 one row per face of the body (sim/grid/body_faces.h: box x_min ...
+/// z_max, cylinder top, bottom, side, any other body surface): the heat flowing into the body
+/// through that face, averaged over the interval since the previous output time [W]. Summed
+/// over the faces and times the interval, it is the energy balance's boundary heat.
+std::string format_boundary_heat_csv(const SimulationResult& result);
 
 /// The text of DIR/summary.json (every effective parameter, the events, solver statistics,
 /// the final state), as write_simulation_outputs writes it.

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "base/check.h"
+#include "sim/grid/body_faces.h"
 #include "sim/grid/cavity_drain.h"
 #include "sim/grid/cell_state.h"
 #include "sim/grid/conduction_operator.h"
@@ -87,6 +88,7 @@ struct EnthalpySolver::Impl {
     out.enthalpy_j = stepper.energy();
     out.heat_in_j = stepper.heat_in();
     out.drained_j = stepper.drained();
+    out.face_heat_in_j = stepper.face_heat_in();
     out.energy_balance_error = std::abs(out.enthalpy_j - stepper.initial_energy() -
                                         stepper.heat_in() + stepper.drained()) /
                                stepper.reference_energy();
@@ -117,6 +119,16 @@ struct EnthalpySolver::Impl {
       f.water_fraction[c] = static_cast<float>(m * liq);
       f.ice_fraction[c] = static_cast<float>(std::min(m * (1 - liq), 1.0 - f.water_fraction[c]));
     }
+    if (flow) {
+      // The flow's face velocities averaged to the cell centres (axisymmetric: u_r, u_y, 0).
+      f.velocity_m_s.resize(3 * n);
+      for (int k = 0; k < f.cells[2]; ++k)
+        for (int j = 0; j < f.cells[1]; ++j)
+          for (int i = 0; i < f.cells[0]; ++i)
+            for (int d = 0; d < 3; ++d)
+              f.velocity_m_s[3 * f.index(i, j, k) + static_cast<std::size_t>(d)] =
+                  static_cast<float>(flow->cell_velocity_m_s(d, i, j, k));
+    }
     return f;
   }
 };
@@ -138,6 +150,9 @@ GridSnapshot EnthalpySolver::snapshot() const {
 }
 GridField EnthalpySolver::field() const {
   return m_impl->field();
+}
+std::vector<std::string> EnthalpySolver::face_names() const {
+  return body_face_names(m_impl->p.face_shape);
 }
 const std::vector<GridEvent>& EnthalpySolver::events() const {
   return m_impl->stepper.events();

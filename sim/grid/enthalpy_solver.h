@@ -69,6 +69,8 @@ struct GridSnapshot {
   double enclosed_liquid_volume_m3 = 0;  ///< liquid not open to the outside
   double enthalpy_j = 0, heat_in_j = 0, drained_j = 0;
   double energy_balance_error = 0;  ///< |E - E0 - heat_in + drained| / reference energy
+  /// heat_in_j by the body's face (EnthalpySolver::face_names) [J]
+  std::vector<double> face_heat_in_j;
   /// With natural convection ([simulation] flow): the largest speed [m/s] at a cell centre and
   /// the liquid's Rayleigh number (GridFlow::rayleigh); 0 without.
   double max_speed_m_s = 0, rayleigh = 0;
@@ -105,6 +107,8 @@ class EnthalpySolver {
   bool finished() const;
   GridSnapshot snapshot() const;
   GridField field() const;
+  /// The body's faces whose heat GridSnapshot::face_heat_in_j holds, in its order.
+  std::vector<std::string> face_names() const;
   const std::vector<GridEvent>& events() const;
   const GridStatistics& statistics() const;
   /// Scale of the relative energy error: latent heat of all initial material [J].

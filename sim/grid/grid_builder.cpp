@@ -7,6 +7,7 @@
 
 #include "base/check.h"
 #include "sim/boundary/scenario_air.h"
+#include "sim/grid/body_faces.h"
 #include "sim/grid/grid_rules.h"
 
 namespace thaw::sim {
@@ -160,6 +161,19 @@ GridProblem build_grid_problem(const Scenario& sc) {
     g.material_fraction[c] = std::min(f, 1.0);
     g.enthalpy_j_m3[c] = f > 0 ? (ice[c] * h_ice + water[c] * h_water) / f : 0.0;
   }
+  // Each cell's face of the body, by its centre's direction from the body's centre.
+  const bool axisymmetric = g.geometry == GridField::Geometry::axisymmetric;
+  g.face_shape = sc.shape.outer.kind;
+  g.face_of_cell.assign(ice.size(), 0);
+  if (body_face_names(g.face_shape).size() > 1)
+    for (int k = 0; k < g.cells[2]; ++k)
+      for (int j = 0; j < g.cells[1]; ++j)
+        for (int i = 0; i < g.cells[0]; ++i)
+          g.face_of_cell[(static_cast<std::size_t>(k) * g.cells[1] + j) * g.cells[0] + i] =
+              body_face_of_point(sc.shape.outer,
+                                 {g.origin_m[0] + (i + 0.5) * s, g.origin_m[1] + (j + 0.5) * s,
+                                  axisymmetric ? 0.0 : g.origin_m[2] + (k + 0.5) * s},
+                                 axisymmetric);
   g.surface_kind = sc.outer_kind;
   g.surface_temperature_c = sc.outer_temperature_c;
   g.heat_transfer_coefficient_w_m2k = sc.heat_transfer_coefficient_w_m2k;
@@ -170,14 +184,7 @@ GridProblem build_grid_problem(const Scenario& sc) {
   }
   g.drain = true;
   g.flow = sc.natural_convection;
-  g.fluid.density = m.water_density_model == Materials::DensityModel::linear
-                        ? flow::FluidModel::Density::linear
-                        : flow::FluidModel::Density::water;
-  if (g.fluid.density == flow::FluidModel::Density::linear)
-    g.fluid.reference_density_kg_m3 = m.water_density_kg_m3;
-  g.fluid.expansion_per_k = m.water_expansion_per_k;
-  g.fluid.reference_temperature_c = m.melting_point_c;
-  g.fluid.viscosity_pa_s = m.water_viscosity_pa_s;
+  g.fluid = fluid_model_of(m);
   g.max_step_s = sc.max_step_s;
   g.end_time_s = sc.duration_s;
   return g;

@@ -25,9 +25,15 @@ struct GridField {
   /// per cell, index i + cells[0]*(j + cells[1]*k): temperature [C], ice volume fraction [0,1],
   /// liquid water volume fraction [0,1] (the rest is air / outside)
   std::vector<float> temperature_c, ice_fraction, water_fraction;
+  /// With flow ([simulation] flow = "natural_convection"): the water's velocity [m/s] at each
+  /// cell centre, three floats per cell at 3 * index(i, j, k): (u_x, u_y, u_z); axisymmetric:
+  /// (u_r, u_y, 0). Empty for a run without flow (and in files written before it was kept).
+  std::vector<float> velocity_m_s;
 
   /// cells[0] * cells[1] * cells[2].
   std::size_t cell_count() const;
+  /// The field carries a velocity (velocity_m_s not empty).
+  bool has_velocity() const { return !velocity_m_s.empty(); }
   /// Flat index of cell (i, j, k).
   std::size_t index(int i, int j, int k) const {
     return static_cast<std::size_t>(i) +

@@ -4,12 +4,14 @@
 // the rest is air) with its enthalpy, plus the boundary conditions. Built from a scenario's
 // [shape] (sim/grid/grid_builder.h) or directly by tests. Knows nothing of TOML or files.
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "sim/boundary/air_model.h"
 #include "sim/flow/fluid_model.h"
 #include "sim/grid/grid_field.h"
 #include "sim/scenario/scenario.h"
+#include "sim/shape/shape.h"
 
 namespace thaw::sim {
 
@@ -39,6 +41,11 @@ struct GridProblem {
   /// water) at t = 0 [m]; the solver follows the volume as it melts.
   Air air;
   double air_diameter_m = 0;
+  /// The body's faces (sim/grid/body_faces.h: those of a box, a cylinder, or one surface), whose
+  /// heat the solver books apart, and per cell the face of its centre, for cells without a
+  /// surface normal (empty: face 0).
+  ShapeKind face_shape = ShapeKind::sphere;
+  std::vector<std::uint8_t> face_of_cell;
   /// Grid walls, order x-, x+, y-, y+, z-, z+ (axisymmetric: x- is the axis, z unused).
   std::array<GridWall, 6> walls{};
   /// Melt drains away where it touches air that is connected to the grid's border.

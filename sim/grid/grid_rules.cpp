@@ -140,6 +140,42 @@ double default_cell(const Scenario& s, double extent, double wall) {
 }
 }  // namespace
 
+flow::FluidModel fluid_model_of(const Materials& m) {
+  flow::FluidModel f;
+  f.density = m.water_density_model == Materials::DensityModel::linear
+                  ? flow::FluidModel::Density::linear
+                  : flow::FluidModel::Density::water;
+  if (f.density == flow::FluidModel::Density::linear)
+    f.reference_density_kg_m3 = m.water_density_kg_m3;
+  f.expansion_per_k = m.water_expansion_per_k;
+  f.reference_temperature_c = m.melting_point_c;
+  f.viscosity_pa_s = m.water_viscosity_pa_s;
+  return f;
+}
+
+FlowScale cavity_flow_scale(const Scenario& s, double extent_m) {
+  const flow::FluidModel fluid = fluid_model_of(s.materials);
+  const double tm = s.materials.melting_point_c, tw = s.water_initial_temperature_c;
+  // The buoyancy's spread over [T_m, T_water], sampled, with the density maximum when inside.
+  double lo = fluid.buoyancy_m_s2(tm), hi = lo;
+  const auto take = [&](double t) {
+    lo = std::min(lo, fluid.buoyancy_m_s2(t));
+    hi = std::max(hi, fluid.buoyancy_m_s2(t));
+  };
+  for (int k = 1; k <= 64; ++k) take(tm + (tw - tm) * k / 64.0);
+  if (fluid.density == flow::FluidModel::Density::water &&
+      (flow::kWaterDensityMaxTemperatureC - tm) * (flow::kWaterDensityMaxTemperatureC - tw) < 0)
+    take(flow::kWaterDensityMaxTemperatureC);
+  const double nu = fluid.kinematic_viscosity_m2_s(0.5 * (tm + tw));
+  const double alpha = s.materials.water_conductivity_w_mk / s.materials.water_heat_capacity();
+  FlowScale f;
+  f.length_m = extent_m;
+  f.rayleigh = (hi - lo) * extent_m * extent_m * extent_m / (nu * alpha);
+  f.boundary_layer_m = f.rayleigh > 0 ? extent_m * std::pow(f.rayleigh, -0.25)
+                                      : std::numeric_limits<double>::infinity();
+  return f;
+}
+
 double smallest_max_step_s(const Materials& m, double cell_m) {
   const double alpha = std::max(m.ice_conductivity_w_mk / m.ice_heat_capacity(),
                                 m.water_conductivity_w_mk / m.water_heat_capacity());
@@ -222,6 +258,20 @@ std::optional<GridRuleProblem> find_grid_problem(const Scenario& s) {
     return GridRuleProblem{"water.initial_temperature_c",
                            "(" + num(s.water_initial_temperature_c) +
                                " C) is below the melting point: supercooled water is not modelled"};
+  if (s.natural_convection && cavity) {
+    const FlowScale flow = cavity_flow_scale(s, largest_extent(*cavity));
+    if (flow.boundary_layer_m < kMinBoundaryLayerCells * cell) {
+      std::string message = s.cell_size_m > 0 ? "(" + num(cell) + " m) is too coarse for the flow: "
+                                              : "the default cell size (" + num(cell) +
+                                                    " m) is too coarse for the flow: ";
+      message += "the water's thermal boundary layer is about " + num(flow.boundary_layer_m);
+      message += " m (L Ra^-1/4, Ra = " + num(std::round(flow.rayleigh)) + " over the cavity's ";
+      message += num(flow.length_m) + " m) and needs at least " + num(kMinBoundaryLayerCells);
+      message += " cells across it: use cell_size_m <= " +
+                 num(flow.boundary_layer_m / kMinBoundaryLayerCells) + " (or flow = \"none\")";
+      return GridRuleProblem{"simulation.cell_size_m", message};
+    }
+  }
   return std::nullopt;
 }
 

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "sim/flow/fluid_model.h"
 #include "sim/scenario/scenario.h"
 #include "sim/shape/signed_distance.h"
 
@@ -35,6 +36,24 @@ constexpr double kStepTemperatureChangeK = 1.0;
 /// within this time: a cap below it never makes a step more accurate, it only multiplies the
 /// steps (a cap of 1e-9 s asks for 3.6e12 steps per hour and ran for ever).
 double smallest_max_step_s(const Materials& materials, double cell_m);
+
+/// The water's buoyancy and viscosity of a scenario's materials ([materials] water_density_model,
+/// water_expansion_per_k, water_viscosity_pa_s): the flow solver's fluid.
+flow::FluidModel fluid_model_of(const Materials& materials);
+
+/// Cells that must span the water's thermal boundary layer when it flows.
+constexpr double kMinBoundaryLayerCells = 2.0;
+
+/// The scale of the water's flow in a cavity at the start of a run with natural convection:
+/// L the cavity's largest extent [m], Ra = g (rho_max - rho_min) / rho_0 L^3 / (nu alpha) over
+/// the water's temperatures [T_m, T_water] (the 4 C maximum included; nu at their mean, alpha =
+/// k_w / (rho c)_w), and the thermal boundary layer along its walls, delta = L Ra^(-1/4) [m]
+/// (laminar natural convection along a wall: the scale analysis of Bejan, Convection Heat
+/// Transfer, 4th ed. 2013, sec. 4.2, delta_T ~ H Ra_H^(-1/4) for Pr >= 1).
+struct FlowScale {
+  double length_m = 0, rayleigh = 0, boundary_layer_m = 0;
+};
+FlowScale cavity_flow_scale(const Scenario& s, double cavity_extent_m);
 
 struct GridRuleProblem {
   std::string key;  ///< dotted key, e.g. "shape.cavity"

@@ -53,6 +53,10 @@ GridTimeStepper::GridTimeStepper(const GridProblem& problem, const GridMesh& mes
       m_newton(newton),
       m_flow(flow) {
   m_block_sums.assign(static_cast<std::size_t>(mesh.block_count()), BlockSums{});
+  THAW_CHECK(
+      problem.face_of_cell.empty() || static_cast<long>(problem.face_of_cell.size()) == mesh.n,
+      "a grid problem gives each cell's face or none");
+  m_face_heat_in.assign(body_face_names(problem.face_shape).size(), 0.0);
   const std::vector<double>& m = cells.m;
   initial_material = sum_cells(mesh.n, [&](long c) { return m[c] * mesh.vol[c]; });
   m_reference = phase.latent * initial_material;
@@ -65,6 +69,15 @@ GridTimeStepper::GridTimeStepper(const GridProblem& problem, const GridMesh& mes
   surface.update(team);
   m_e0 = energy();
   dt_next = p.fixed_step_s > 0 ? p.fixed_step_s : std::min(p.max_step_s, 0.05);
+}
+
+std::array<double, 3> GridTimeStepper::outward_normal(long c, int i, int j, int k) const {
+  const std::vector<double>& m = m_cells.m;
+  const auto diff = [&](bool has_lo, bool has_hi, long step) {
+    return (has_hi ? m[c + step] : m[c]) - (has_lo ? m[c - step] : m[c]);
+  };
+  return {-diff(i > 0, i + 1 < m_mesh.nx, 1), -diff(j > 0, j + 1 < m_mesh.ny, m_mesh.nx),
+          m_mesh.axisymmetric ? 0.0 : -diff(k > 0, k + 1 < m_mesh.nz, m_mesh.nxy())};
 }
 
 double GridTimeStepper::energy() const {
@@ -131,12 +144,22 @@ GridTimeStepper::StepResult GridTimeStepper::step(BlockTeam& team,
   // temperatures (T is current: Newton's last iteration set it from H), so that the interior
   // fluxes cancel exactly in the total. heat_rate reads the temperatures only, so each cell
   // may overwrite its own H. Then the cell's openness for the flood fill.
+  const std::vector<std::uint8_t>& face_of = p.face_of_cell;
   team.for_blocks([&](long bl) {
     double heat = 0;
+    auto& face_heat = m_block_sums[static_cast<std::size_t>(bl)].face_heat;
+    face_heat.fill(0.0);
     m_mesh.for_cells(bl, [&](long c, int i, int j, int k) {
       if (m[c] > 0) {
         H[c] = H_start[c] + dt * m_op.heat_rate(c, i, j, k) / (m[c] * vol[c]);
-        heat += m_op.boundary_heat(c, T[c]);
+        const double q = m_op.boundary_heat(c, T[c]);
+        heat += q;
+        if (q != 0) {
+          const FaceWeights w =
+              body_face_weights(p.face_shape, outward_normal(c, i, j, k), m_mesh.axisymmetric,
+                                face_of.empty() ? 0 : face_of[c]);
+          for (std::size_t f = 0; f < kMaxBodyFaces; ++f) face_heat[f] += w[f] * q;
+        }
       }
       m_cavity.mark_open(c);
     });
@@ -146,6 +169,8 @@ GridTimeStepper::StepResult GridTimeStepper::step(BlockTeam& team,
   team.serial([&] {
     m_time = dt == step_remaining ? step_target : m_time + dt;
     m_heat_in += heat_step;
+    for (std::size_t f = 0; f < m_face_heat_in.size(); ++f)
+      m_face_heat_in[f] += dt * sum_blocks([f](const BlockSums& b) { return b.face_heat[f]; });
     m_cavity.fill_outside();
     if (const auto opened = m_cavity.detect_break_through())
       m_events.push_back({"break_through", m_time, *opened});

@@ -8,11 +8,13 @@
 // drives the parts and owns none of their physics: the operator (conduction_operator.h), the
 // implicit solve (newton_solver.h), the surface areas (surface_area.h), cavities and drainage
 // (cavity_drain.h). Knows nothing of files or TOML.
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "sim/grid/block_team.h"
+#include "sim/grid/body_faces.h"
 #include "sim/grid/cavity_drain.h"
 #include "sim/grid/cell_state.h"
 #include "sim/grid/conduction_operator.h"
@@ -49,6 +51,8 @@ class GridTimeStepper {
   double reference_energy() const { return m_reference; }
   double initial_energy() const { return m_e0; }
   double heat_in() const { return m_heat_in; }
+  /// heat_in() by the body's face (body_face_names(GridProblem::face_shape)) [J].
+  const std::vector<double>& face_heat_in() const { return m_face_heat_in; }
   double drained() const { return m_drained; }
   /// Total enthalpy of the material [J].
   double energy() const;
@@ -59,7 +63,8 @@ class GridTimeStepper {
   /// thread count.
   struct BlockSums {
     double energy_start = 0, heat = 0, energy_end = 0, ice = 0, dtemp = 0, dmelt = 0;
-    double drained_m3 = 0;  ///< material volume drained
+    FaceWeights face_heat{};  ///< heat by body face
+    double drained_m3 = 0;    ///< material volume drained
     DrainTally drain;
     EnclosedTally enclosed;
   };
@@ -101,7 +106,12 @@ class GridTimeStepper {
   bool m_done = false, melt_started = false, core_frozen = false;
   bool had_enclosed_liquid = false;
   long last_liquid_cell = 0;
+  /// The outward normal of the material's surface at cell c (i, j, k): minus the central
+  /// differences of the material fraction (one-sided at the grid's border) [1/cell].
+  std::array<double, 3> outward_normal(long c, int i, int j, int k) const;
+
   double m_e0 = 0, m_heat_in = 0, m_drained = 0, m_reference = 0, initial_material = 0;
+  std::vector<double> m_face_heat_in;
   std::vector<GridEvent> m_events;
   GridStatistics m_stats;
   long m_attempts = 0;              ///< attempted steps (accepted and rejected)

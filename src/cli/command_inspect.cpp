@@ -13,7 +13,9 @@
 #include "base/obj_reader.h"
 #include "base/output_file.h"
 #include "base/progress.h"
+#include "sim/format/grid_field_file.h"
 #include "src/cli/commands.h"
+#include "src/inspect/field_line.h"
 #include "src/inspect/mesh_report.h"
 #include "src/inspect/pvd_writer.h"
 #include "src/inspect/radius_plot.h"
@@ -30,7 +32,42 @@ struct InspectArgs {
   bool quiet = false;
   std::string pvd, screenshot, plot;
   std::optional<long> step;
+  /// --over-line "x0,y0,z0;x1,y1,z1" --samples N [--csv]
+  std::string over_line;
+  std::optional<long> samples;
+  bool csv = false;
 };
+
+/// Largest --samples: a line of ten million points is already 1 GB of CSV.
+constexpr long kMaxLineSamples = 10'000'000;
+
+/// --over-line: the fields of one step sampled along a line, as CSV on stdout.
+void run_over_line(const InspectArgs& a) {
+  const auto ends = inspect::parse_line_ends(a.over_line);
+  if (!a.samples)
+    throw UserError(a.path, "--samples", "--over-line needs --samples N (N >= 2 points)");
+  if (*a.samples < 2 || *a.samples > kMaxLineSamples)
+    throw UserError(a.path, "--samples",
+                    std::to_string(*a.samples) + " points: at least 2 (the two ends), at most " +
+                        std::to_string(kMaxLineSamples));
+  if (!a.pvd.empty() || !a.screenshot.empty() || !a.plot.empty() || a.json)
+    throw UserError(a.path, "--over-line",
+                    "prints CSV only: it cannot be combined with --json, --pvd, --screenshot or "
+                    "--plot");
+  std::error_code ec;
+  if (!fs::is_directory(a.path, ec))
+    throw UserError(a.path, "--over-line", "needs a simulation folder (fields/step_*.grid)");
+  const fs::path file = inspect::field_file_of_step(a.path, a.step);
+  const sim::GridField field = sim::read_grid_field(file);
+  std::vector<inspect::LineSample> samples;
+  try {
+    samples = inspect::sample_over_line(field, ends[0], ends[1], *a.samples);
+  } catch (const UserError& e) {
+    throw UserError(file.string(), e.where(), e.problem());  // the points outside name the file
+  }
+  std::cout << inspect::format_line_csv(samples);
+  std::cout.flush();
+}
 
 /// The output names, before any work: a .pvd, PNG pictures (a missing folder is created).
 void check_outputs(const InspectArgs& a) {
@@ -40,6 +77,9 @@ void check_outputs(const InspectArgs& a) {
 }
 
 void run_inspect(const InspectArgs& a) {
+  if (!a.over_line.empty()) return run_over_line(a);
+  if (a.samples) throw UserError(a.path, "--samples", "only applies with --over-line");
+  if (a.csv) throw UserError(a.path, "--csv", "only applies with --over-line");
   check_outputs(a);
   const fs::path path(a.path);
   std::error_code ec;
@@ -122,8 +162,18 @@ void register_inspect(CLI::App& app) {
                   "write inner/outer radius and volumes against time to PNG (simulation folder)")
       ->type_name("OUT.png");
   cmd->add_option("--step", args->step,
-                  "with --screenshot on a folder: draw this step only (default: up to 4 steps)")
+                  "with --screenshot on a folder: draw this step only (default: up to 4 steps); "
+                  "with --over-line: the step sampled (default: the last)")
       ->type_name("N");
+  cmd->add_option("--over-line", args->over_line,
+                  "sample a grid run's fields at --samples points from (x0,y0,z0) to (x1,y1,z1) "
+                  "[m, the scenario's coordinates; axisymmetric: x is the radius], linear "
+                  "between cell centres, and print CSV: " +
+                      std::string(inspect::kLineCsvHeader))
+      ->type_name("\"x0,y0,z0;x1,y1,z1\"");
+  cmd->add_option("--samples", args->samples, "with --over-line: points on the line (>= 2)")
+      ->type_name("N");
+  cmd->add_flag("--csv", args->csv, "with --over-line: print CSV (its only format)");
   cmd->add_flag("-q,--quiet", args->quiet, "no progress or 'wrote' lines on stderr");
   cmd->callback([args] { run_inspect(*args); });
 }

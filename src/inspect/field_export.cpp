@@ -37,6 +37,16 @@ void write_vti(const fs::path& path, const sim::GridField& f,
   add("ice_fraction", f.ice_fraction);
   add("water_fraction", f.water_fraction);
   image->GetCellData()->SetActiveScalars("temperature_c");
+  if (f.has_velocity()) {
+    // (u_x, u_y, u_z) per cell, as the field holds it: ParaView's Glyph and Stream Tracer take it.
+    vtkNew<vtkFloatArray> a;
+    a->SetName("velocity_m_s");
+    a->SetNumberOfComponents(3);
+    a->SetNumberOfTuples(static_cast<vtkIdType>(f.cell_count()));
+    std::copy(f.velocity_m_s.begin(), f.velocity_m_s.end(), a->GetPointer(0));
+    image->GetCellData()->AddArray(a);
+    image->GetCellData()->SetActiveVectors("velocity_m_s");
+  }
   vtkNew<vtkXMLImageDataWriter> writer;
   writer->SetInputData(image);
   // Each array inline (base64 in its DataArray element), no appended section: VTK reads an

@@ -1,9 +1,10 @@
 #pragma once
 // The grid solver's fields (sim/format/grid_field_file.h, DIR/sim/fields/step_NNNNNN.grid) as VTK
 // image data for ParaView: one .vti per step with the cell data temperature_c [C], ice_fraction and
-// water_fraction [0, 1] on the solver's own cells (origin and spacing in metres; an axisymmetric
-// field is the (r, y) half-plane, x = r, one cell thick in z), and a .pvd time series of them
-// (timestep = simulated time [s]), placed like the surfaces of meshes.pvd (pvd_writer.h's
+// water_fraction [0, 1] and, from runs with flow, the 3-component velocity_m_s [m/s] (the active
+// vectors; axisymmetric: (u_r, u_y, 0)) on the solver's own cells (origin and spacing in metres; an
+// axisymmetric field is the (r, y) half-plane, x = r, one cell thick in z), and a .pvd time series
+// of them (timestep = simulated time [s]), placed like the surfaces of meshes.pvd (pvd_writer.h's
 // StepPlacement) so that ParaView shows the fields inside them. Every file is atomic; the .pvd is
 // written last. Needs no display.
 #include <array>

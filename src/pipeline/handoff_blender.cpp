@@ -306,8 +306,11 @@ void write_scene_handoff(const SceneHandoffInput& in) {
                     camera_json(cam, sc.scene.image.width, sc.scene.image.height));
   required.push_back({"handoff/camera.json", in.stage});
   data["required"] = required;
+  // A grid run with flow keeps the velocity in its fields (fields.pvd): the state shows it.
+  const bool velocity =
+      sc.simulation.grid != sim::GridGeometry::none && sc.simulation.natural_convection;
   write_paraview_state(handoff / "paraview_state.py", cam, sc.scene.image.width,
-                       sc.scene.image.height);
+                       sc.scene.image.height, velocity);
 
   // The description goes into the script as a raw Python string; ' occurs in JSON only inside
   // strings, where \u0027 means the same.

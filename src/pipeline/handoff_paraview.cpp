@@ -6,9 +6,31 @@
 #include "base/atomic_file.h"
 
 namespace thaw::pipeline {
+namespace {
+
+/// The state's lines that show fields.pvd's velocity as arrows (ParaView's Glyph on cell data:
+/// one arrow per cell centre), following the meshes' time.
+constexpr const char* kVelocityGlyphs =
+    R"(# The water's velocity (fields.pvd, cell data velocity_m_s [m/s]) as arrows at the cell
+# centres, the fastest as long as a twentieth of the fields' box, coloured by the speed.
+fields = PVDReader(registrationName='fields.pvd', FileName=os.path.join(RUN_DIR, 'fields.pvd'))
+fields.UpdatePipeline(fields.TimestepValues[-1] if fields.TimestepValues else 0.0)
+bounds = fields.GetDataInformation().GetBounds()
+extent = max(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4])
+fastest = fields.CellData['velocity_m_s'].GetRange(-1)[1]
+arrows = Glyph(registrationName='velocity', Input=fields, GlyphType='Arrow')
+arrows.OrientationArray = ['CELLS', 'velocity_m_s']
+arrows.ScaleArray = ['CELLS', 'velocity_m_s']
+arrows.ScaleFactor = extent / 20.0 / fastest if fastest > 0 else 1.0
+arrows.GlyphMode = 'All Points'
+arrows_display = Show(arrows, view)
+ColorBy(arrows_display, ('POINTS', 'velocity_m_s', 'Magnitude'))
+)";
+
+}  // namespace
 
 void write_paraview_state(const std::filesystem::path& path, const render::CameraDescription& c,
-                          int width, int height) {
+                          int width, int height, bool velocity) {
   const auto v = [](const std::array<double, 3>& a) {
     char buf[96];
     std::snprintf(buf, sizeof buf, "[%.17g, %.17g, %.17g]", a[0], a[1], a[2]);
@@ -66,7 +88,7 @@ view = GetActiveViewOrCreate('RenderView')
 view.ViewSize = @SIZE@
 view.OrientationAxesVisibility = 0
 display = Show(reader, view)
-view.CameraPosition = @POSITION@
+@VELOCITY@view.CameraPosition = @POSITION@
 view.CameraFocalPoint = @FOCAL@
 view.CameraViewUp = @UP@
 view.CameraViewAngle = @FOV@  # vertical [degrees]
@@ -86,7 +108,7 @@ Render(view)
 if option('--screenshot'):
     SaveScreenshot(option('--screenshot'), view, ImageResolution=@SIZE@)
 if option('--mask'):
-    display.ColorArrayName = ['POINTS', '']
+@MASK@    display.ColorArrayName = ['POINTS', '']
     display.AmbientColor = [1, 1, 1]
     display.DiffuseColor = [1, 1, 1]
     display.Ambient, display.Diffuse, display.Specular = 1.0, 0.0, 0.0
@@ -104,6 +126,8 @@ if option('--mask'):
   fill("@FOCAL@", v(c.look_at));
   fill("@UP@", v(c.up));
   fill("@FOV@", fov);
+  fill("@VELOCITY@", velocity ? kVelocityGlyphs : "");
+  fill("@MASK@", velocity ? "    Hide(arrows, view)  # the meshes' silhouette alone\n" : "");
   write_file_atomic(path, text);
   // ParaView's camera configuration (pqCameraDialog's Save / Load).
   const auto property = [](const char* name, const double* values, int n) {

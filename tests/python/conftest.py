@@ -57,3 +57,17 @@ def grid_scenario_file(tmp_path_factory):
     path = tmp_path_factory.mktemp("scenarios") / "cube.toml"
     path.write_text(text)
     return path
+
+
+@pytest.fixture(scope="session")
+def flow_scenario_file(tmp_path_factory):
+    """data/scenarios/hollow_sphere_flow.toml (natural convection) cut to 20 s on 0.6 mm cells
+    (2.2 across the water's thermal boundary layer, sim/grid/grid_rules.h)."""
+    src = (SOURCE_DIR / "data" / "scenarios" / "hollow_sphere_flow.toml").read_text()
+    text = src.replace("duration_s = 3600.0", "duration_s = 20.0").replace(
+        "output_interval_s = 60.0", "output_interval_s = 10.0").replace(
+        "max_step_s = 10.0", "max_step_s = 10.0\ncell_size_m = 0.0006")
+    assert "duration_s = 20.0" in text and "cell_size_m" in text
+    path = tmp_path_factory.mktemp("scenarios") / "flow.toml"
+    path.write_text(text)
+    return path

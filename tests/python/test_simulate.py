@@ -72,6 +72,36 @@ def test_grid_fields_are_read_only_views_owned_by_the_result(grid_scenario_file)
     assert sys.getrefcount(t.base) >= 2
 
 
+def test_grid_velocity_is_a_read_only_view_of_the_flow(flow_scenario_file, scratch):
+    r = thaw.simulate(flow_scenario_file)
+    g = r.grid
+    u = r.fields(-1)["velocity_m_s"]
+    assert u.base is r and not u.flags.writeable and not u.flags.owndata
+    assert u.shape == (*g["cells"], 3) and u.dtype == np.float32
+    with pytest.raises(ValueError):
+        u[0, 0, 0, 0] = 1.0
+    # the cell-centre velocities whose largest speed summary.json reports (float rounding)
+    speed = np.sqrt((u.astype(np.float64) ** 2).sum(axis=-1))
+    reported = r.summary["flow"][-1]["max_speed_m_s"]
+    assert reported > 0
+    assert abs(speed.max() - reported) <= 1e-6 * reported
+    assert np.all(u[..., 2] == 0)  # axisymmetric: (u_r, u_y, 0)
+    # the CLI's field files hold the same bytes
+    out = _cli_result(flow_scenario_file, scratch / "cli")
+    r.write(scratch / "py")
+    for step in range(r.steps):
+        name = f"fields/step_{step:06d}.grid"
+        assert (scratch / "py" / name).read_bytes() == (out / name).read_bytes()
+
+
+def test_grid_velocity_without_flow_is_zero_and_costs_nothing(grid_scenario_file):
+    r = thaw.simulate(grid_scenario_file)
+    u = r.fields(1)["velocity_m_s"]
+    assert u.base is r and not u.flags.writeable
+    assert u.shape == (*r.grid["cells"], 3) and not u.any()
+    assert u.strides[:3] == (0, 0, 0)  # one (0, 0, 0) seen from every cell: no memory per cell
+
+
 def test_1d_fields_view_the_profile(short_scenario_file):
     r = thaw.simulate(short_scenario_file)
     f = r.fields(3)

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <string>
 
 #include "base/error.h"
@@ -212,6 +213,85 @@ TEST(GridField, AbsurdButFiniteSpacingOrOriginIsRefusedNamingTheHeaderField) {
     const double top = kMaxFieldCoordinateM - f.cells[1] * f.spacing_m - 1e-6;
     write_bytes(bad, with_header_double(bytes, 36, top));
     EXPECT_EQ(read_grid_field(bad).origin_m[1], top);
+  }
+}
+
+/// sample_field with a velocity: distinct components in every cell (axisymmetric: u_z = 0).
+GridField moving_field(GridField::Geometry geometry) {
+  GridField f = sample_field(geometry);
+  const std::size_t n = f.cell_count();
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = static_cast<double>(i) / static_cast<double>(n);
+    f.velocity_m_s.push_back(static_cast<float>(1e-3 * (x - 0.5)));
+    f.velocity_m_s.push_back(static_cast<float>(-2e-3 * x * x));
+    f.velocity_m_s.push_back(
+        geometry == GridField::Geometry::axisymmetric ? 0.0f : static_cast<float>(3e-4 * x));
+  }
+  return f;
+}
+
+TEST(GridField, VelocityRoundTripsBitExactAsVersion2) {
+  const fs::path dir = fresh_dir("velocity");
+  for (auto geometry : {GridField::Geometry::axisymmetric, GridField::Geometry::cartesian3d}) {
+    const GridField f = moving_field(geometry);
+    const fs::path file = dir / (std::string(to_string(geometry)) + ".grid");
+    write_grid_field(file, f);
+    const std::string bytes = read_bytes(file);
+    std::uint32_t version = 0;
+    std::memcpy(&version, bytes.data() + 8, sizeof version);
+    EXPECT_EQ(version, 2u);
+    // 68 bytes of header, 12 n of temperatures and fractions, 12 n of velocity, the checksum
+    EXPECT_EQ(bytes.size(), 68 + 24 * f.cell_count() + 8);
+    const GridField g = read_grid_field(file);
+    EXPECT_TRUE(g.has_velocity());
+    EXPECT_EQ(g.velocity_m_s, f.velocity_m_s);
+    EXPECT_EQ(g.temperature_c, f.temperature_c);
+    EXPECT_EQ(g.water_fraction, f.water_fraction);
+  }
+}
+
+// A field without velocity is written as before the velocity was kept (version 1), so runs
+// without flow stay byte-identical, and files written then still read (no velocity).
+TEST(GridField, WithoutVelocityTheFileIsVersion1AndReadsWithoutVelocity) {
+  const fs::path dir = fresh_dir("still");
+  const GridField moving = moving_field(GridField::Geometry::cartesian3d);
+  GridField still = moving;
+  still.velocity_m_s.clear();
+  write_grid_field(dir / "still.grid", still);
+  write_grid_field(dir / "moving.grid", moving);
+  const std::string a = read_bytes(dir / "still.grid"), b = read_bytes(dir / "moving.grid");
+  std::uint32_t version = 0;
+  std::memcpy(&version, a.data() + 8, sizeof version);
+  EXPECT_EQ(version, 1u);
+  EXPECT_EQ(a.size(), 68 + 12 * still.cell_count() + 8);
+  // the same bytes up to the velocity but for the version
+  EXPECT_EQ(a.substr(12, a.size() - 20), b.substr(12, a.size() - 20));
+  EXPECT_FALSE(read_grid_field(dir / "still.grid").has_velocity());
+}
+
+TEST(GridField, DamagedVelocitiesAreRefused) {
+  const fs::path dir = fresh_dir("bad_velocity");
+  const fs::path good = dir / "good.grid";
+  const GridField f = moving_field(GridField::Geometry::cartesian3d);
+  write_grid_field(good, f);
+  const std::string bytes = read_bytes(good);
+  const fs::path bad = dir / "bad.grid";
+  // cut inside the velocities: truncated, naming them
+  expect_refused(bad, bytes.substr(0, bytes.size() - 8 - 6), "velocities");
+  // a version-2 header over a version-1 body: the velocities are missing
+  GridField still = f;
+  still.velocity_m_s.clear();
+  write_grid_field(good, still);
+  std::string relabelled = read_bytes(good);
+  relabelled[8] = 2;
+  expect_refused(bad, relabelled, "truncated");
+  // an absurd or non-finite component with a valid checksum
+  for (float v : {2e3f, -1e30f, std::numeric_limits<float>::infinity(),
+                  std::numeric_limits<float>::quiet_NaN()}) {
+    GridField g = f;
+    g.velocity_m_s[3 * 5 + 1] = v;
+    write_grid_field(good, g);
+    expect_refused(bad, read_bytes(good), "velocity component 1 of cell 5");
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -129,6 +130,45 @@ TEST(GridRules, TooCoarseForTheThinnestWallGivesTheNumbers) {
 // Issue 27: an OBJ shape with one vertex at 1e308 was blamed on simulation.cell_size_m ("needs inf
 // cells"), a key the file did not hold. Now the OBJ file is named, with the span and the unit;
 // so is a 1 km sphere.
+// Issue 24's bad input: a grid too coarse for the flow's boundary layer names the resolution it
+// needs. A linear fluid makes the numbers exact: Ra = g beta dT L^3 / (nu alpha) with
+// nu = mu / rho_0, alpha = k / (rho c), and delta = L Ra^(-1/4) must span 2 cells.
+TEST(GridRules, TooCoarseForTheFlowsBoundaryLayerSaysWhatIsNeeded) {
+  const std::string shell =
+      "outer = { kind = \"sphere\", radius_m = 0.01 }\n"
+      "cavity = { kind = \"sphere\", radius_m = 0.006 }\n";
+  const std::string fluid =
+      "[materials]\nwater_density_model = \"linear\"\nwater_expansion_per_k = 2e-4\n"
+      "water_viscosity_pa_s = 1e-3\n";
+  const double L = 0.012, ra = 9.81 * 2e-4 * 10.0 * L * L * L / (1e-3 / 1000.0 * 0.56 / 4.186e6);
+  const double delta = L * std::pow(ra, -0.25);  // 0.53 mm
+  // 0.3 mm cells: 1.8 across the layer, refused, naming the cell size that is needed
+  for (const char* geometry : {"axisymmetric", "3d"}) {
+    const std::string text =
+        scenario(geometry, shell, "flow = \"natural_convection\"\ncell_size_m = 0.0003") + fluid;
+    const std::string fragment = "needs at least 2 cells across it: use cell_size_m <= ";
+    expect_refused(text, "simulation.cell_size_m", fragment);
+    try {
+      parse_scenario_string(text, "bad.toml");
+    } catch (const UserError& e) {
+      const std::string what = e.what();
+      const double needed = std::stod(what.substr(what.find(fragment) + fragment.size()));
+      EXPECT_NEAR(needed, delta / 2, 1e-6 * delta) << what;
+      EXPECT_NE(what.find("(or flow = \"none\")"), std::string::npos) << what;
+    }
+  }
+  // 0.25 mm cells: 2.1 across it, and the same grid without flow: accepted
+  EXPECT_NO_THROW(parse_scenario_string(
+      scenario("axisymmetric", shell, "flow = \"natural_convection\"\ncell_size_m = 0.00025") +
+          fluid,
+      "ok.toml"));
+  EXPECT_NO_THROW(parse_scenario_string(
+      scenario("axisymmetric", shell, "flow = \"none\"\ncell_size_m = 0.0003") + fluid, "ok.toml"));
+  // The shipped flow scenario's default cells (0.5 mm) span its layer (1.3 mm at Ra 8.5e5)
+  EXPECT_NO_THROW(read_scenario_file(std::filesystem::path(THAW_SOURCE_DIR) /
+                                     "data/scenarios/hollow_sphere_flow.toml"));
+}
+
 TEST(GridRules, FarOutBodyNamesItsFileNotTheCellSize) {
   const std::filesystem::path obj =
       std::filesystem::path(THAW_BINARY_DIR) / "test-tmp" / "grid_rules_far.obj";

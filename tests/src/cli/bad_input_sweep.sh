@@ -704,6 +704,23 @@ group_inspect() {
   for o in x.vtk x "$IN/cube.obj/x.pvd" "$OUT" "$IN/melt/interfaces.csv" "$IN/dir.pvd"; do
     bad "inspect.--pvd=$o" "pvd|x\.vtk|such|out|cube|interfaces" -- "$THAW" inspect "$IN/melt" -q --pvd "$o"
   done
+  # --over-line: a grid run's fields along a line (a 1 cm cube for 2 s to sample)
+  "$THAW" simulate "$data/tiny_grid.toml" --out "$IN/grid" -q >/dev/null 2>&1
+  local L=(--over-line "0,0,0;0.005,0,0" --samples 5)
+  for v in '' '0,0,0' '0,0,0;1,1' 'a,0,0;1,1,1' '0,0,0;1,1,inf' '0,0,0;0.1,0,0' \
+           '0,0,0;1,1,1;2,2,2' '0,0,0;1e999,0,0'; do
+    bad "inspect.--over-line=$v" "--over-line" -- "$THAW" inspect "$IN/grid" --over-line "$v" --samples 5
+  done
+  for v in 1 0 -3 x 10000001 ''; do
+    bad "inspect.--samples=$v" "--samples" -- "$THAW" inspect "$IN/grid" "${L[@]:0:2}" --samples "$v"
+  done
+  bad inspect.over_line_without_samples "--samples" -- "$THAW" inspect "$IN/grid" "${L[@]:0:2}"
+  bad inspect.over_line_step_beyond "--step" -- "$THAW" inspect "$IN/grid" "${L[@]}" --step 99
+  bad inspect.over_line_1d "fields|--over-line" -- "$THAW" inspect "$IN/melt" "${L[@]}"
+  bad inspect.over_line_obj "--over-line" -- "$THAW" inspect "$IN/cube.obj" "${L[@]}"
+  bad inspect.over_line_with_pvd "--over-line" -- "$THAW" inspect "$IN/grid" "${L[@]}" --pvd "$OUT/x.pvd"
+  bad inspect.csv_without_line "--csv" -- "$THAW" inspect "$IN/melt" --csv
+  bad inspect.samples_without_line "--samples" -- "$THAW" inspect "$IN/melt" --samples 3
   rm -rf "$IN/m2" && cp -r "$IN/melt" "$IN/m2" && cp "$IN/garbage.toml" "$IN/m2/mesh/manifest.json"
   bad inspect.manifest_garbage "manifest\.json" -- "$THAW" inspect "$IN/m2"
   rm -rf "$IN/m2" && cp -r "$IN/melt" "$IN/m2" && rm -f "$IN"/m2/mesh/*inner*.obj

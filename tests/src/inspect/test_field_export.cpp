@@ -121,6 +121,44 @@ TEST(FieldExport, FieldsArePlacedLikeTheMeshesWithTheirArraysInline) {
             a.temperature_c[5]);
 }
 
+// A run with flow: the velocity is a 3-component cell array (the active vectors, for ParaView's
+// Glyph and Stream Tracer), each cell's (u_x, u_y, u_z) exact; a run without has no such array.
+TEST(FieldExport, VelocityIsAThreeComponentCellArrayOnlyWhenTheRunFlows) {
+  testing::ScratchDir dir("fields_velocity");
+  sim::GridField moving = field(10.0);
+  for (std::size_t c = 0; c < moving.cell_count(); ++c)
+    for (int d = 0; d < 3; ++d)
+      moving.velocity_m_s.push_back(1e-4f * static_cast<float>((d + 1) * (c + 1)) *
+                                    (d == 1 ? -1.0f : 1.0f));
+  const sim::GridField still = field(10.0);
+  for (const sim::GridField* f : {static_cast<const sim::GridField*>(&moving), &still}) {
+    const fs::path vti = dir.path() / (f->has_velocity() ? "moving.vti" : "still.vti");
+    write_vti(vti, *f);
+    vtkNew<vtkXMLImageDataReader> reader;
+    reader->SetFileName(vti.c_str());
+    reader->Update();
+    ASSERT_EQ(reader->GetErrorCode(), 0u);
+    vtkCellData* cells = reader->GetOutput()->GetCellData();
+    vtkDataArray* u = cells->GetArray("velocity_m_s");
+    if (!f->has_velocity()) {
+      EXPECT_EQ(u, nullptr);
+      EXPECT_EQ(cells->GetNumberOfArrays(), 3);
+      continue;
+    }
+    ASSERT_NE(u, nullptr);
+    EXPECT_EQ(cells->GetVectors(), u);
+    ASSERT_EQ(u->GetNumberOfComponents(), 3);
+    ASSERT_EQ(u->GetNumberOfTuples(), static_cast<vtkIdType>(f->cell_count()));
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 3; ++i) {
+        int ijk[3] = {i, j, 1};
+        const vtkIdType cell = reader->GetOutput()->ComputeCellId(ijk);
+        for (int d = 0; d < 3; ++d)
+          EXPECT_EQ(u->GetComponent(cell, d), f->velocity_m_s[3 * f->index(i, j, 1) + d]);
+      }
+  }
+}
+
 TEST(FieldExport, NoFieldsWritesNothing) {
   testing::ScratchDir dir("no_fields");
   EXPECT_EQ(write_field_series(dir.path(), dir.path() / "fields.pvd"), 0);
