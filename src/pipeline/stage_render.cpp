@@ -1,6 +1,7 @@
 // The render stage: one frame per meshed step, handed out over the ranks one at a time (frames
 // differ in cost), each written atomically and recorded as an item, so a rerun or another process
 // renders only the frames not yet done. The film needs every frame of the run.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -64,9 +65,16 @@ void stamp_frame_caption(render::Image& image, double time_s, const CaptionFont*
     }
 }
 
-/// Renders frame k and writes its PNG (and EXR) atomically; nothing if interrupted.
+/// The tiles of one frame, as the renderer counts them (render/integrator/image_tile_integrator.h).
+long tiles_of(const RunScenario& sc) {
+  const long tile = std::max(1, render::RenderOptions{}.tile_size);
+  return ((sc.scene.image.width + tile - 1) / tile) * ((sc.scene.image.height + tile - 1) / tile);
+}
+
+/// Renders frame k and writes its PNG (and EXR) atomically; nothing if interrupted. `tiles`
+/// (may be empty) hears of the render's tiles as they finish.
 void render_frame(const PipelineRun& r, const RunScenario& framed,
-                  const std::vector<WaterBudget>& water, long k) {
+                  const std::vector<WaterBudget>& water, long k, const ProgressCallback& tiles) {
   const RunScenario& sc = r.sc;
   throw_if_interrupted();
   const mesh::StepRecord& step = r.meshes.steps[static_cast<std::size_t>(k)];
@@ -74,7 +82,7 @@ void render_frame(const PipelineRun& r, const RunScenario& framed,
       framed, r.mesh_dir, r.meshes.geometry, step, water.at(static_cast<std::size_t>(step.step))));
   render::RenderOptions ro;
   ro.threads = r.o.jobs;
-  render::RenderResult result = render::render(scene, ro);
+  render::RenderResult result = render::render(scene, ro, tiles);
   throw_if_interrupted();  // the render skipped its remaining tiles: write nothing
   if (exr_frames(sc)) {    // for compositing: no caption, linear, with the AOV layers
     const render::AovImage aovs = render::render_aovs(scene, r.o.jobs);
@@ -141,9 +149,15 @@ StageDone render_frames(PipelineRun& r, const StageCall& call) {
     if (!(r.manifest.item_done("render", frame_name(k)) && frame_files_exist(r, k)))
       todo.push_back(k);
   const long done_before = static_cast<long>(selected.size() - todo.size());
-  ProgressReporter progress(call.title, static_cast<long>(selected.size()),
-                            r.o.quiet || todo.empty());
-  progress.set_done(done_before);
+  // One frame to render: its tiles are the progress (a big frame no longer shows "0/1, ETA ?"
+  // until it ends), counted by the renderer as they finish.
+  const bool by_tiles = todo.size() == 1;
+  const long tiles = tiles_of(sc);
+  ProgressReporter progress(
+      by_tiles ? call.title + ": frame " + std::to_string(todo[0]) + ", tiles" : call.title,
+      by_tiles ? tiles : static_cast<long>(selected.size()), r.o.quiet || todo.empty());
+  progress.set_done(by_tiles ? 0 : done_before);
+  const ProgressCallback tile_progress = by_tiles ? progress.callback() : ProgressCallback{};
   long rendered_here = 0;
   long finished = 0;
   r.ranks.run(
@@ -154,7 +168,7 @@ StageDone render_frames(PipelineRun& r, const StageCall& call) {
         const long k = todo[static_cast<std::size_t>(i)];
         const auto start = std::chrono::steady_clock::now();
         const std::clock_t cpu_start = std::clock();
-        render_frame(r, framed, water, k);
+        render_frame(r, framed, water, k, tile_progress);
         char note[128];
         std::snprintf(
             note, sizeof note, "rank %d wall_s %.3f cpu_s %.3f", r.ranks.rank(),
@@ -164,7 +178,11 @@ StageDone render_frames(PipelineRun& r, const StageCall& call) {
         ++rendered_here;
         return std::string();
       },
-      [&] { progress.set_done(done_before + ++finished); }, WorkFarm::Grain::coarse);
+      [&] {
+        ++finished;
+        progress.set_done(by_tiles ? tiles : done_before + finished);
+      },
+      WorkFarm::Grain::coarse);
   progress.finish();
   // Every frame (not only this process's) must be there before the stage is complete.
   StageDone done;

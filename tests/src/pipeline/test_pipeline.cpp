@@ -311,6 +311,33 @@ TEST_F(ThawRun, AChangedShapeObjResimulates) {
   EXPECT_TRUE(says(gone, "ice.obj")) << gone.output;
 }
 
+// Issue 27 item 4: one frame's progress counts its tiles, with an ETA before it ends.
+TEST_F(ThawRun, OneFrameCountsItsTilesWithAnEta) {
+  const fs::path out = m_dir / "out";
+  const auto r =
+      thaw({"run", kTiny.string(), "--out", out.string(), "--frames", "2", "--size", "160x96"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // 160x96 in 16-pixel tiles: 10 x 6.
+  EXPECT_TRUE(says(r, "[3/5] render: frame 2, tiles: 60/60 done in ")) << r.output;
+  // A line part-way, between the first tile and the last, has an ETA.
+  std::istringstream lines(r.output);
+  int part_way = 0;
+  for (std::string line; std::getline(lines, line);) {
+    const std::string head = "[3/5] render: frame 2, tiles: ";
+    if (line.rfind(head, 0) != 0 || line.find("done in") != std::string::npos) continue;
+    const long n = std::stol(line.substr(head.size()));
+    if (n == 0 || n == 60) continue;
+    ++part_way;
+    EXPECT_EQ(line.find("ETA ?"), std::string::npos) << line;
+    EXPECT_NE(line.find(" s elapsed, ETA "), std::string::npos) << line;
+  }
+  EXPECT_GE(part_way, 5) << r.output;
+  // Several frames count frames.
+  const auto two =
+      thaw({"run", kTiny.string(), "--out", out.string(), "--frames", "0,1", "--size", "160x96"});
+  EXPECT_TRUE(says(two, "[3/5] render: 2/2 done in ")) << two.output;
+}
+
 TEST_F(ThawRun, KilledDuringRenderAndRestartedGivesByteIdenticalFrames) {
   // Heavier frames so the render stage lasts long enough to be interrupted.
   const fs::path heavy = heavy_scenario(m_dir);
