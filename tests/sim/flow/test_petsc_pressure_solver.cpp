@@ -3,7 +3,7 @@
 // planar, axisymmetric and 3D boxes, and a box cut in two closed regions with an isolated cell
 // (a null space of two constants and a zero row), with BoomerAMG and with GAMG.
 // The residual max |b - L x| is recomputed here from the conductances, and the two solutions
-// agree within the bound the tolerance implies.
+// agree within the bound the tolerance implies; also distributed over two MPI ranks.
 #include "sim/flow/petsc_pressure_solver.h"
 
 #include <gtest/gtest.h>
@@ -112,7 +112,8 @@ std::vector<double> without_constants(const Poisson& P, std::vector<double> x) {
 }
 
 void solve_both(FlowGeometry geometry, int n, bool cut,
-                PetscPressureSolver::Preconditioner preconditioner) {
+                PetscPressureSolver::Preconditioner preconditioner,
+                PetscPressureSolver::Ranks ranks = PetscPressureSolver::Ranks::one) {
   const Poisson P = make_poisson(geometry, n, cut);
   const MacGrid& g = P.grid;
   std::vector<double> exact(g.cell_count());
@@ -131,7 +132,7 @@ void solve_both(FlowGeometry geometry, int n, bool cut,
   MultigridPressureSolver own;
   own.set_operator(g.n, P.g);
   const PressureSolveReport r_own = own.solve(b, x_own, tolerance);
-  PetscPressureSolver petsc(preconditioner);
+  PetscPressureSolver petsc(preconditioner, ranks);
   petsc.set_operator(g.n, P.g);
   const PressureSolveReport r_petsc = petsc.solve(b, x_petsc, tolerance);
 
@@ -182,6 +183,17 @@ TEST(PetscPressureSolver, SolvesTheOwnSolversProblemsToTheSameTolerance) {
     solve_both(FlowGeometry::planar, 32, true, pc);
     solve_both(FlowGeometry::cartesian3d, 12, true, pc);
   }
+}
+
+// Over every rank of MPI_COMM_WORLD: one rank under ctest's plain run, two under the
+// PetscPressureSolverTwoRanks test (mpirun -np 2), where the DMDA splits the boxes.
+TEST(PetscPressureSolverDistributed, SolvesTheSameProblemsOverTheRanks) {
+  using Pc = PetscPressureSolver::Preconditioner;
+  const auto all = PetscPressureSolver::Ranks::all;
+  solve_both(FlowGeometry::axisymmetric, 48, false, Pc::boomeramg, all);
+  solve_both(FlowGeometry::cartesian3d, 16, false, Pc::boomeramg, all);
+  solve_both(FlowGeometry::cartesian3d, 12, true, Pc::boomeramg, all);
+  solve_both(FlowGeometry::cartesian3d, 12, true, Pc::gamg, all);
 }
 
 TEST(PetscPressureSolver, AWarmStartThatSolvesTakesNoIteration) {
