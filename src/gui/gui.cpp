@@ -26,7 +26,7 @@ int run_gui(const GuiOptions& options) {
   // --screenshot is a batch run: a scenario that breaks a rule is its one-line error, exit 2, no
   // picture (as for `thaw run`); the interactive window opens it to be fixed.
   if (!options.screenshot.empty())
-    if (const ScenarioCheck c = document.check(); !c.ok()) throw UserError("", "", c.message);
+    if (const ScenarioCheck c = document.check(); !c.ok()) c.failure.rethrow();
   // Qt's xcb platform needs an X display; --screenshot may start a private Xvfb for it (as
   // `thaw inspect --screenshot` does). The offscreen platform needs none.
   const char* platform = std::getenv("QT_QPA_PLATFORM");

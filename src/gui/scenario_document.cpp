@@ -272,6 +272,7 @@ ScenarioCheck ScenarioDocument::check() const {
   } catch (const UserError& e) {
     c.key = key_of_problem(e.where());
     c.message = e.what();
+    c.failure = Outcome::user(e.file(), e.where(), e.problem());
   }
   return c;
 }

@@ -15,6 +15,7 @@
 #include <variant>
 #include <vector>
 
+#include "base/outcome.h"
 #include "src/pipeline/run_scenario.h"
 
 namespace toml {
@@ -29,10 +30,12 @@ namespace thaw::gui {
 using TomlValue = std::variant<double, long long, bool, std::string, std::array<double, 3>>;
 
 /// The result of checking the document: the parsed scenario, or the parser's one-line problem and
-/// the dotted key it names ("" when the message names no key).
+/// the dotted key it names ("" when the message names no key), and the failure as it was thrown
+/// (file, where, problem), to be thrown again as itself.
 struct ScenarioCheck {
   std::optional<pipeline::RunScenario> scenario;
   std::string key, message;
+  Outcome failure;
   bool ok() const { return scenario.has_value(); }
 };
 
