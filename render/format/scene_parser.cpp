@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "base/error.h"
+#include "base/format/key_table_toml.h"
 #include "base/format/toml_table.h"
 #include "base/text_file.h"
 #include "render/format/medium_library.h"
@@ -51,52 +52,9 @@ int int_key(const TomlTable& t, const std::string& key, int fallback, Rule rule)
   return static_cast<int>(checked<long long>(t, key, t.get_int(key, fallback), rule));
 }
 
-/// "a", "b" or "c": the names of a choice key, for its message.
-std::string names_text(std::span<const std::string_view> names) {
-  std::string out;
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (i > 0) out += i + 1 == names.size() ? " or " : ", ";
-    out += '"';
-    out.append(names[i]);
-    out += '"';
-  }
-  return out;
-}
-
-/// One [image] key by its row (render/scene/image_keys.h): absent keys keep the value they have
-/// (or take the row's `absent` value), present ones are read, checked by the row's rule and set.
-void parse_image_key(const TomlTable& img, const ImageKey& row, ImageSettings& image) {
-  const std::string key(row.name);
-  if (const auto* k = std::get_if<IntegerKey>(&row.value)) {
-    image.*(k->field) = int_key(img, key, image.*(k->field), k->rule);
-  } else if (const auto* k = std::get_if<NumberKey>(&row.value)) {
-    const double fallback = k->absent ? k->absent(image) : image.*(k->field);
-    image.*(k->field) = checked(img, key, img.get_double(key, fallback), k->rule);
-  } else if (const auto* k = std::get_if<FlagKey>(&row.value)) {
-    image.*(k->field) = img.get_bool(key, image.*(k->field));
-  } else if (const auto* k = std::get_if<ColourKey>(&row.value)) {
-    image.*(k->field) = color3(img, key, image.*(k->field));
-  } else if (const auto* k = std::get_if<ChoiceKey>(&row.value)) {
-    const std::string name = img.get_string(key, std::string(k->get(image)));
-    if (!k->set(image, name)) {
-      std::string problem = "must be ";
-      problem.append(names_text(k->names)).append(" (got \"").append(name).append("\")");
-      img.fail(key, problem);
-    }
-  } else if (const auto* k = std::get_if<AutoFlagKey>(&row.value)) {
-    if (!img.has(key)) return;
-    if (img.is<bool>(key))
-      k->set(image, img.get_bool(key, false));
-    else if (img.is<std::string>(key) && img.get_string(key) == "auto")
-      k->set(image, std::nullopt);
-    else
-      img.fail(key, "must be \"auto\", true or false");
-  }
-}
-
 /// [image]: every key by its row; every limit is a rule of render/scene/scene_rules.h.
 ImageSettings parse_image(const TomlTable& img, ImageSettings image) {
-  for (const ImageKey& row : image_keys()) parse_image_key(img, row, image);
+  read_keys(img, image_keys(), image);
   if (const auto problem = image_pixels_problem(image.width, image.height))
     img.fail("height", *problem);
   return image;

@@ -9,6 +9,12 @@ namespace thaw::render {
 namespace {
 
 using S = ImageSettings;
+using IntegerKey = thaw::IntegerKey<S>;
+using NumberKey = thaw::NumberKey<S>;
+using FlagKey = thaw::FlagKey<S>;
+using ColourKey = thaw::ColourKey<S>;
+using ChoiceKey = thaw::ChoiceKey<S>;
+using AutoFlagKey = thaw::AutoFlagKey<S>;
 
 constexpr std::array<std::string_view, 3> kFilterNames{"box", "gaussian", "mitchell"};
 constexpr std::array<std::string_view, 3> kDispersionNames{"adaptive", "split", "hero"};
@@ -147,15 +153,7 @@ std::span<const ImageKey> image_keys() {
 }
 
 const ImageKey* find_image_key(std::string_view name) {
-  for (const ImageKey& k : kImageKeys)
-    if (k.name == name) return &k;
-  return nullptr;
-}
-
-std::optional<std::string> image_key_problem(const ImageKey& key, const ImageSettings& image) {
-  if (const auto* k = std::get_if<IntegerKey>(&key.value)) return k->rule(image.*(k->field));
-  if (const auto* k = std::get_if<NumberKey>(&key.value)) return k->rule(image.*(k->field));
-  return std::nullopt;
+  return find_key(image_keys(), name);
 }
 
 }  // namespace thaw::render

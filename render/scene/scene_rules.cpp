@@ -42,7 +42,7 @@ double max_abs(const Vec3d& v) {
 /// Every [image] row's rule (render/scene/image_keys.h), then the image's pixel count.
 std::optional<SceneProblem> image_problem(const ImageSettings& img) {
   for (const ImageKey& key : image_keys())
-    if (auto problem = image_key_problem(key, img))
+    if (auto problem = key_problem(key, img))
       return SceneProblem{"image." + std::string(key.name), *problem};
   if (auto problem = image_pixels_problem(img.width, img.height))
     return SceneProblem{"image.height", *problem};

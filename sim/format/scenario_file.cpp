@@ -9,10 +9,12 @@
 #include <vector>
 
 #include "base/error.h"
+#include "base/format/key_table_toml.h"
 #include "base/format/toml_table.h"
 #include "embedded/kDefaultScenarioToml.h"
 #include "embedded/kIceWaterMaterialsToml.h"
 #include "sim/grid/grid_rules.h"
+#include "sim/scenario/materials_keys.h"
 
 namespace thaw::sim {
 
@@ -47,11 +49,7 @@ void check_schema(const TomlTable& root, const std::set<std::string>& foreign_se
       {"outer_boundary",
        {"kind", "temperature_c", "heat_transfer_coefficient_w_m2k", "flux_w_m2",
         "relative_humidity", "speed_m_s", "surroundings_temperature_c", "emissivity"}},
-      {"materials",
-       {"ice_conductivity_w_mk", "ice_density_kg_m3", "ice_specific_heat_j_kgk",
-        "water_conductivity_w_mk", "water_density_kg_m3", "water_specific_heat_j_kgk",
-        "latent_heat_j_kg", "melting_point_c", "water_density_model", "water_expansion_per_k",
-        "water_viscosity_pa_s"}}};
+      {"materials", key_names(materials_keys())}};
   for (const std::string& name : root.keys()) {
     if (foreign_sections.count(name)) continue;
     const auto it =
@@ -120,15 +118,10 @@ Shape parse_shape(const TomlTable& t) {
 }
 
 Materials parse_materials(const TomlTable& t, Materials m) {
-  m.ice_conductivity_w_mk = t.get_double("ice_conductivity_w_mk", m.ice_conductivity_w_mk);
-  m.ice_density_kg_m3 = t.get_double("ice_density_kg_m3", m.ice_density_kg_m3);
-  m.ice_specific_heat_j_kgk = t.get_double("ice_specific_heat_j_kgk", m.ice_specific_heat_j_kgk);
-  m.water_conductivity_w_mk = t.get_double("water_conductivity_w_mk", m.water_conductivity_w_mk);
-  m.water_density_kg_m3 = t.get_double("water_density_kg_m3", m.water_density_kg_m3);
-  m.water_specific_heat_j_kgk =
-      t.get_double("water_specific_heat_j_kgk", m.water_specific_heat_j_kgk);
-  m.latent_heat_j_kg = t.get_double("latent_heat_j_kg", m.latent_heat_j_kg);
-  m.melting_point_c = t.get_double("melting_point_c", m.melting_point_c);
+  // The properties by their rows (their ranges are rules: scenario_rules.cpp); the flowing
+  // water's keys depend on each other, read below.
+  for (const MaterialsKey& row : materials_keys())
+    if (!row.extra.flow) read_key(t, row, m);
   if (t.has("water_density_model")) {
     const std::string model = t.get_string("water_density_model");
     if (model == "water")
@@ -287,10 +280,9 @@ Materials default_materials() {
                                                 "<built-in data/materials/ice_water.toml>");
     Materials out = parse_materials(t, Materials{});
     // every key of the data file is required: a renamed key must not fall back silently
-    for (const char* key : {"ice_conductivity_w_mk", "ice_density_kg_m3", "ice_specific_heat_j_kgk",
-                            "water_conductivity_w_mk", "water_density_kg_m3",
-                            "water_specific_heat_j_kgk", "latent_heat_j_kg", "melting_point_c"})
-      if (!t.has(key)) t.fail(key, "missing from the built-in material table");
+    for (const MaterialsKey& row : materials_keys())
+      if (!row.extra.flow && !t.has(std::string(row.name)))
+        t.fail(std::string(row.name), "missing from the built-in material table");
     t.check_no_unknown_keys();
     return out;
   }();
@@ -412,14 +404,10 @@ nlohmann::json scenario_to_json(const Scenario& s) {
   if (s.outer_kind == OuterBoundary::flux) outer["flux_w_m2"] = s.flux_w_m2;
   j["outer_boundary"] = outer;
   const Materials& m = s.materials;
-  j["materials"] = {{"ice_conductivity_w_mk", m.ice_conductivity_w_mk},
-                    {"ice_density_kg_m3", m.ice_density_kg_m3},
-                    {"ice_specific_heat_j_kgk", m.ice_specific_heat_j_kgk},
-                    {"water_conductivity_w_mk", m.water_conductivity_w_mk},
-                    {"water_density_kg_m3", m.water_density_kg_m3},
-                    {"water_specific_heat_j_kgk", m.water_specific_heat_j_kgk},
-                    {"latent_heat_j_kg", m.latent_heat_j_kg},
-                    {"melting_point_c", m.melting_point_c}};
+  j["materials"] = nlohmann::json::object();
+  for (const MaterialsKey& row : materials_keys())
+    if (!row.extra.flow)
+      j["materials"][std::string(row.name)] = m.*(std::get<NumberKey<Materials>>(row.value).field);
   if (s.natural_convection) {
     const bool linear = m.water_density_model == Materials::DensityModel::linear;
     j["materials"]["water_density_model"] = linear ? "linear" : "water";

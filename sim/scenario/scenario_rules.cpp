@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -9,6 +10,7 @@
 #include "base/number_text.h"
 #include "sim/boundary/scenario_air.h"
 #include "sim/grid/grid_rules.h"
+#include "sim/scenario/materials_keys.h"
 
 // GCC 12 reports a false -Wrestrict inside std::string's operator+(const char*, string&&) once
 // these messages are inlined into one function (GCC bug 105651, fixed in GCC 13).
@@ -48,15 +50,15 @@ std::string num(double v) {
 /// The supported physical range of one numeric key, and the range typical scenarios use (only
 /// for naming the likely cause when the solver fails). Documented in docs/simulate.md.
 struct KeyRange {
-  const char* key;
-  double (*value)(const Scenario&);  ///< the quantity checked (the key itself, or a ratio)
-  double (*raw)(const Scenario&);    ///< the key's own value when `value` is a ratio, else null
+  std::string key;
+  std::function<double(const Scenario&)> value;  ///< the quantity checked (the key, or a ratio)
+  double (*raw)(const Scenario&);  ///< the key's own value when `value` is a ratio, else null
   bool (*applies)(const Scenario&);
   double lo, hi;                  ///< allowed, inclusive
   double typical_lo, typical_hi;  ///< what the shipped scenarios and the literature use
   bool decades;                   ///< distance from typical in decades (else in units of 100 K)
-  const char* unit;
-  const char* why;
+  std::string unit;
+  std::string why;
 };
 
 constexpr double kAbsoluteZeroC = -273.15;
@@ -102,65 +104,54 @@ bool flux(const Scenario& s) {
 /// al., Fundamentals of Heat and Mass Transfer, 7th ed., Table 1.1); fluxes up to 1e7 W/m^2
 /// (a solar furnace). Materials within the span of real solids and liquids.
 const std::vector<KeyRange>& key_ranges() {
-  static const std::vector<KeyRange> ranges = {
-      {"shell.outer_radius_m", [](const Scenario& s) { return s.outer_radius_m; }, nullptr, always,
-       1e-4, 100, 1e-3, 1, true, "m", "a hand-sized continuum object"},
-      // After outer_radius_m, whose multiples they default to (a huge outer radius is named,
-      // not the infinite length derived from it).
-      {"shell.length_m", [](const Scenario& s) { return s.length_m; }, nullptr, cylinder, 1e-4, 100,
-       1e-3, 1, true, "m", "a hand-sized continuum object"},
-      {"shell.lateral_size_m", [](const Scenario& s) { return s.lateral_size_m; }, nullptr, planar,
-       1e-4, 100, 1e-3, 1, true, "m", "a hand-sized continuum object"},
-      {"shell.inner_radius_m",
-       [](const Scenario& s) { return s.inner_radius_m / s.outer_radius_m; }, inner_m, has_core,
-       1e-4, 1, 0.05, 1, true, "x outer_radius_m",
-       "a core thinner than 1e-4 of the shell is below the solver's resolution"},
-      {"shell.inner_radius_m",
-       [](const Scenario& s) { return 1 - s.inner_radius_m / s.outer_radius_m; }, inner_m, has_ice,
-       1e-4, 1, 0.05, 1, true, "x outer_radius_m of ice thickness",
-       "an ice layer thinner than 1e-4 of the shell is below the solver's resolution"},
-      {"water.initial_temperature_c",
-       [](const Scenario& s) { return s.water_initial_temperature_c; }, nullptr, has_core,
-       kAbsoluteZeroC, 100, 0, 40, false, "C", "liquid water boils at 100 C (not modelled)"},
-      {"ice.initial_temperature_c", [](const Scenario& s) { return s.ice_initial_temperature_c; },
-       nullptr, has_ice, kAbsoluteZeroC, 100, -40, 0, false, "C",
-       "nothing is colder than absolute zero"},
-      {"inner_boundary.temperature_c", [](const Scenario& s) { return s.inner_temperature_c; },
-       nullptr, held_inner, kAbsoluteZeroC, 100, 0, 60, false, "C",
-       "water at the wall boils at 100 C (not modelled)"},
-      {"outer_boundary.temperature_c", [](const Scenario& s) { return s.outer_temperature_c; },
-       nullptr, uses_outer_temperature, kAbsoluteZeroC, 1000, -40, 60, false, "C",
-       "air from absolute zero to a flame"},
-      {"outer_boundary.heat_transfer_coefficient_w_m2k",
-       [](const Scenario& s) { return s.heat_transfer_coefficient_w_m2k; }, nullptr, convective,
-       1e-3, 1e5, 2, 1000, true, "W/(m^2 K)",
-       "free convection to boiling water (Incropera Table 1.1)"},
-      {"outer_boundary.flux_w_m2", [](const Scenario& s) { return std::abs(s.flux_w_m2); }, nullptr,
-       flux, 0, 1e7, 0, 1e4, true, "W/m^2 (absolute)", "up to a solar furnace"},
-      {"materials.ice_conductivity_w_mk",
-       [](const Scenario& s) { return s.materials.ice_conductivity_w_mk; }, nullptr, always, 1e-3,
-       1e4, 0.1, 10, true, "W/(m K)", "aerogel to diamond"},
-      {"materials.water_conductivity_w_mk",
-       [](const Scenario& s) { return s.materials.water_conductivity_w_mk; }, nullptr, always, 1e-3,
-       1e4, 0.1, 10, true, "W/(m K)", "aerogel to diamond"},
-      {"materials.ice_density_kg_m3",
-       [](const Scenario& s) { return s.materials.ice_density_kg_m3; }, nullptr, always, 1, 1e5,
-       500, 2000, true, "kg/m^3", "real solids and liquids"},
-      {"materials.water_density_kg_m3",
-       [](const Scenario& s) { return s.materials.water_density_kg_m3; }, nullptr, always, 1, 1e5,
-       500, 2000, true, "kg/m^3", "real solids and liquids"},
-      {"materials.ice_specific_heat_j_kgk",
-       [](const Scenario& s) { return s.materials.ice_specific_heat_j_kgk; }, nullptr, always, 10,
-       1e5, 500, 5000, true, "J/(kg K)", "real solids and liquids"},
-      {"materials.water_specific_heat_j_kgk",
-       [](const Scenario& s) { return s.materials.water_specific_heat_j_kgk; }, nullptr, always, 10,
-       1e5, 500, 5000, true, "J/(kg K)", "real solids and liquids"},
-      {"materials.latent_heat_j_kg", [](const Scenario& s) { return s.materials.latent_heat_j_kg; },
-       nullptr, always, 100, 1e7, 1e4, 1e6, true, "J/kg", "real solids"},
-      {"materials.melting_point_c", [](const Scenario& s) { return s.materials.melting_point_c; },
-       nullptr, always, kAbsoluteZeroC, 100, -10, 10, false, "C",
-       "below the boiling point of water"},
-  };
+  static const std::vector<KeyRange> ranges = [] {
+    std::vector<KeyRange> out = {
+        {"shell.outer_radius_m", [](const Scenario& s) { return s.outer_radius_m; }, nullptr,
+         always, 1e-4, 100, 1e-3, 1, true, "m", "a hand-sized continuum object"},
+        // After outer_radius_m, whose multiples they default to (a huge outer radius is named,
+        // not the infinite length derived from it).
+        {"shell.length_m", [](const Scenario& s) { return s.length_m; }, nullptr, cylinder, 1e-4,
+         100, 1e-3, 1, true, "m", "a hand-sized continuum object"},
+        {"shell.lateral_size_m", [](const Scenario& s) { return s.lateral_size_m; }, nullptr,
+         planar, 1e-4, 100, 1e-3, 1, true, "m", "a hand-sized continuum object"},
+        {"shell.inner_radius_m",
+         [](const Scenario& s) { return s.inner_radius_m / s.outer_radius_m; }, inner_m, has_core,
+         1e-4, 1, 0.05, 1, true, "x outer_radius_m",
+         "a core thinner than 1e-4 of the shell is below the solver's resolution"},
+        {"shell.inner_radius_m",
+         [](const Scenario& s) { return 1 - s.inner_radius_m / s.outer_radius_m; }, inner_m,
+         has_ice, 1e-4, 1, 0.05, 1, true, "x outer_radius_m of ice thickness",
+         "an ice layer thinner than 1e-4 of the shell is below the solver's resolution"},
+        {"water.initial_temperature_c",
+         [](const Scenario& s) { return s.water_initial_temperature_c; }, nullptr, has_core,
+         kAbsoluteZeroC, 100, 0, 40, false, "C", "liquid water boils at 100 C (not modelled)"},
+        {"ice.initial_temperature_c", [](const Scenario& s) { return s.ice_initial_temperature_c; },
+         nullptr, has_ice, kAbsoluteZeroC, 100, -40, 0, false, "C",
+         "nothing is colder than absolute zero"},
+        {"inner_boundary.temperature_c", [](const Scenario& s) { return s.inner_temperature_c; },
+         nullptr, held_inner, kAbsoluteZeroC, 100, 0, 60, false, "C",
+         "water at the wall boils at 100 C (not modelled)"},
+        {"outer_boundary.temperature_c", [](const Scenario& s) { return s.outer_temperature_c; },
+         nullptr, uses_outer_temperature, kAbsoluteZeroC, 1000, -40, 60, false, "C",
+         "air from absolute zero to a flame"},
+        {"outer_boundary.heat_transfer_coefficient_w_m2k",
+         [](const Scenario& s) { return s.heat_transfer_coefficient_w_m2k; }, nullptr, convective,
+         1e-3, 1e5, 2, 1000, true, "W/(m^2 K)",
+         "free convection to boiling water (Incropera Table 1.1)"},
+        {"outer_boundary.flux_w_m2", [](const Scenario& s) { return std::abs(s.flux_w_m2); },
+         nullptr, flux, 0, 1e7, 0, 1e4, true, "W/m^2 (absolute)", "up to a solar furnace"},
+    };
+    // [materials]: the properties of its key table (sim/scenario/materials_keys.h), in table order
+    for (const MaterialsKey& row : materials_keys()) {
+      if (row.extra.flow) continue;
+      const auto field = std::get<NumberKey<Materials>>(row.value).field;
+      out.push_back({"materials." + std::string(row.name),
+                     [field](const Scenario& s) { return s.materials.*field; }, nullptr, always,
+                     row.extra.lo, row.extra.hi, row.extra.typical_lo, row.extra.typical_hi,
+                     row.extra.decades, std::string(row.unit), std::string(row.extra.why)});
+    }
+    return out;
+  }();
   return ranges;
 }
 
@@ -189,16 +180,15 @@ std::optional<ScenarioProblem> outside_range(const Scenario& s) {
 
 /// Every number finite; the materials' properties positive.
 std::optional<ScenarioProblem> number_problem(const Scenario& s) {
-  const Materials& m = s.materials;
-  const double tm = m.melting_point_c;
-  const std::pair<const char*, double> positive_materials[] = {
-      {"materials.ice_conductivity_w_mk", m.ice_conductivity_w_mk},
-      {"materials.ice_density_kg_m3", m.ice_density_kg_m3},
-      {"materials.ice_specific_heat_j_kgk", m.ice_specific_heat_j_kgk},
-      {"materials.water_conductivity_w_mk", m.water_conductivity_w_mk},
-      {"materials.water_density_kg_m3", m.water_density_kg_m3},
-      {"materials.water_specific_heat_j_kgk", m.water_specific_heat_j_kgk},
-      {"materials.latent_heat_j_kg", m.latent_heat_j_kg}};
+  // [materials]: every property finite (after the other keys), and positive where its supported
+  // range is (all but the melting point), in table order
+  std::vector<std::pair<std::string, double>> finite_materials, positive_materials;
+  for (const MaterialsKey& row : materials_keys()) {
+    if (row.extra.flow) continue;
+    const double v = s.materials.*(std::get<NumberKey<Materials>>(row.value).field);
+    (row.extra.lo > 0 ? positive_materials : finite_materials)
+        .emplace_back("materials." + std::string(row.name), v);
+  }
   const std::pair<const char*, double> finite[] = {
       {"simulation.duration_s", s.duration_s},
       {"simulation.output_interval_s", s.output_interval_s},
@@ -210,12 +200,14 @@ std::optional<ScenarioProblem> number_problem(const Scenario& s) {
       {"inner_boundary.temperature_c", s.inner_temperature_c},
       {"outer_boundary.temperature_c", s.outer_temperature_c},
       {"outer_boundary.heat_transfer_coefficient_w_m2k", s.heat_transfer_coefficient_w_m2k},
-      {"outer_boundary.flux_w_m2", s.flux_w_m2},
-      {"materials.melting_point_c", tm}};
+      {"outer_boundary.flux_w_m2", s.flux_w_m2}};
   for (auto [key, v] : finite)
     if (!std::isfinite(v))
       return ScenarioProblem{key, "must be a finite number (got " + num(v) + ")"};
-  for (auto [key, v] : positive_materials)
+  for (const auto& [key, v] : finite_materials)
+    if (!std::isfinite(v))
+      return ScenarioProblem{key, "must be a finite number (got " + num(v) + ")"};
+  for (const auto& [key, v] : positive_materials)
     if (!(v > 0) || !std::isfinite(v))
       return ScenarioProblem{key, "must be positive (got " + num(v) + ")"};
   return std::nullopt;

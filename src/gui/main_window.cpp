@@ -22,7 +22,9 @@
 #include "base/check.h"
 #include "base/error.h"
 #include "render/scene/image_keys.h"
+#include "sim/scenario/materials_keys.h"
 #include "src/gui/key_form.h"
+#include "src/gui/key_row_field.h"
 #include "src/gui/radius_plot.h"
 #include "src/gui/scene_panel.h"
 #include "src/gui/shell_view.h"
@@ -48,42 +50,13 @@ TomlValue i(long long v) {
   return TomlValue{v};
 }
 
-/// A field for the [render.image] key `name`, built from its row (render/scene/image_keys.h):
-/// label, unit, kind and the value the parsed scenario holds.
+/// A field for the [render.image] key `name`, built from its row (render/scene/image_keys.h).
 void add_image_key(KeyForm* form, std::string_view name) {
   const render::ImageKey* row = render::find_image_key(name);
   THAW_CHECK(row != nullptr, "the Render tab names an [image] key of the table");
-  QString label = QString::fromUtf8(row->label.data(), static_cast<int>(row->label.size()));
-  if (!row->unit.empty())
-    label += " [" + QString::fromUtf8(row->unit.data(), static_cast<int>(row->unit.size())) + "]";
-  const std::string key = "render.image." + std::string(row->name);
-  if (const auto* k = std::get_if<render::IntegerKey>(&row->value)) {
-    const auto field = k->field;
-    form->add_integer(label, key,
-                      [field](const RunScenario& s) { return i(s.scene.image.*field); });
-  } else if (const auto* k = std::get_if<render::NumberKey>(&row->value)) {
-    const auto field = k->field;
-    form->add_number(label, key, [field](const RunScenario& s) { return d(s.scene.image.*field); });
-  } else if (const auto* k = std::get_if<render::FlagKey>(&row->value)) {
-    const auto field = k->field;
-    form->add_flag(label, key,
-                   [field](const RunScenario& s) { return TomlValue{s.scene.image.*field}; });
-  } else if (const auto* k = std::get_if<render::ChoiceKey>(&row->value)) {
-    QStringList names;
-    for (std::string_view n : k->names)
-      names << QString::fromUtf8(n.data(), static_cast<int>(n.size()));
-    const auto get = k->get;
-    form->add_choice(label, key, names, [get](const RunScenario& s) {
-      return TomlValue{std::string(get(s.scene.image))};
-    });
-  } else if (const auto* k = std::get_if<render::ColourKey>(&row->value)) {
-    const auto field = k->field;
-    form->add_vector(
-        label, key, [field](const RunScenario& s) { return TomlValue{s.scene.image.*field}; },
-        true);
-  } else {
-    THAW_CHECK(false, "the Render tab has a field for every kind of [image] key");
-  }
+  add_key_row(
+      form, *row, "render.image.",
+      +[](const RunScenario& s) -> const render::ImageSettings& { return s.scene.image; });
 }
 
 }  // namespace
@@ -379,25 +352,13 @@ QWidget* MainWindow::make_scenario_tab() {
   form->add_number("Air: emissivity", "outer_boundary.emissivity",
                    [](const RunScenario& s) { return d(s.simulation.emissivity); });
   form->add_section("Materials");
-  const auto& M = [](const RunScenario& s) -> const sim::Materials& {
-    return s.simulation.materials;
-  };
-  form->add_number("Ice conductivity [W/(m K)]", "materials.ice_conductivity_w_mk",
-                   [M](const RunScenario& s) { return d(M(s).ice_conductivity_w_mk); });
-  form->add_number("Ice density [kg/m3]", "materials.ice_density_kg_m3",
-                   [M](const RunScenario& s) { return d(M(s).ice_density_kg_m3); });
-  form->add_number("Ice specific heat [J/(kg K)]", "materials.ice_specific_heat_j_kgk",
-                   [M](const RunScenario& s) { return d(M(s).ice_specific_heat_j_kgk); });
-  form->add_number("Water conductivity [W/(m K)]", "materials.water_conductivity_w_mk",
-                   [M](const RunScenario& s) { return d(M(s).water_conductivity_w_mk); });
-  form->add_number("Water density [kg/m3]", "materials.water_density_kg_m3",
-                   [M](const RunScenario& s) { return d(M(s).water_density_kg_m3); });
-  form->add_number("Water specific heat [J/(kg K)]", "materials.water_specific_heat_j_kgk",
-                   [M](const RunScenario& s) { return d(M(s).water_specific_heat_j_kgk); });
-  form->add_number("Latent heat [J/kg]", "materials.latent_heat_j_kg",
-                   [M](const RunScenario& s) { return d(M(s).latent_heat_j_kg); });
-  form->add_number("Melting point [C]", "materials.melting_point_c",
-                   [M](const RunScenario& s) { return d(M(s).melting_point_c); });
+  // The properties by their rows (sim/scenario/materials_keys.h); the flowing water's keys are
+  // edited in the file.
+  for (const sim::MaterialsKey& row : sim::materials_keys())
+    if (!row.extra.flow)
+      add_key_row(
+          form, row, "materials.",
+          +[](const RunScenario& s) -> const sim::Materials& { return s.simulation.materials; });
   form->add_section("Duration and frames");
   form->add_number("Duration [s]", "simulation.duration_s",
                    [](const RunScenario& s) { return d(s.simulation.duration_s); });

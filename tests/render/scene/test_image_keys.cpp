@@ -16,14 +16,7 @@ namespace {
 
 /// The docs' rows of the [image] keys, as the table writes them.
 std::string expected_docs_rows() {
-  std::string out;
-  bool first = true;
-  for (const ImageKey& k : image_keys()) {
-    out += "| `" + std::string(first ? "[image] " : "") + std::string(k.name) + "` | " +
-           std::string(k.default_text) + " | " + std::string(k.doc) + " |\n";
-    first = false;
-  }
-  return out;
+  return key_docs_rows(image_keys(), "[image] ");
 }
 
 TEST(ImageKeys, NamesAreUniqueAndFound) {
@@ -40,7 +33,7 @@ TEST(ImageKeys, NamesAreUniqueAndFound) {
 TEST(ImageKeys, DefaultsPassTheirRules) {
   const ImageSettings defaults;
   for (const ImageKey& k : image_keys())
-    EXPECT_EQ(image_key_problem(k, defaults), std::nullopt) << k.name;
+    EXPECT_EQ(key_problem(k, defaults), std::nullopt) << k.name;
 }
 
 TEST(ImageKeys, FindSceneProblemNamesTheRowsKey) {
@@ -48,9 +41,9 @@ TEST(ImageKeys, FindSceneProblemNamesTheRowsKey) {
     const ImageKey* row = find_image_key(key);
     ASSERT_NE(row, nullptr);
     ImageSettings bad;
-    if (const auto* k = std::get_if<IntegerKey>(&row->value)) bad.*(k->field) = -5;
-    if (const auto* k = std::get_if<NumberKey>(&row->value)) bad.*(k->field) = 1e300;
-    const auto problem = image_key_problem(*row, bad);
+    if (const auto* k = std::get_if<IntegerKey<ImageSettings>>(&row->value)) bad.*(k->field) = -5;
+    if (const auto* k = std::get_if<NumberKey<ImageSettings>>(&row->value)) bad.*(k->field) = 1e300;
+    const auto problem = key_problem(*row, bad);
     ASSERT_TRUE(problem.has_value()) << key;
     SceneDescription scene;
     scene.image = bad;

@@ -1,0 +1,72 @@
+#pragma once
+// One key of a TOML table read by its row (base/key_table.h): a key the table leaves out keeps
+// the value the section holds (or takes the row's `absent` value); a present one is read, checked
+// by the row's rule and set, and a value the row rejects is the file's error at that key (exit 2).
+#include <span>
+#include <string>
+#include <string_view>
+#include <variant>
+
+#include "base/format/toml_table.h"
+#include "base/key_table.h"
+
+namespace thaw {
+
+/// "a", "b" or "c": the names of a choice key, for its message.
+inline std::string choice_names_text(std::span<const std::string_view> names) {
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (i > 0) out += i + 1 == names.size() ? " or " : ", ";
+    out += '"';
+    out.append(names[i]);
+    out += '"';
+  }
+  return out;
+}
+
+template <class Section, class Extra>
+void read_key(const TomlTable& t, const KeyRow<Section, Extra>& row, Section& s) {
+  const std::string key(row.name);
+  const auto fail_if = [&](const KeyProblem& problem) {
+    if (problem) t.fail(key, *problem);
+  };
+  if (const auto* k = std::get_if<IntegerKey<Section>>(&row.value)) {
+    const long long v = t.get_int(key, s.*(k->field));
+    if (k->rule) fail_if(k->rule(v));
+    s.*(k->field) = static_cast<int>(v);
+  } else if (const auto* k = std::get_if<NumberKey<Section>>(&row.value)) {
+    const double v = t.get_double(key, k->absent ? k->absent(s) : s.*(k->field));
+    if (k->rule) fail_if(k->rule(v));
+    s.*(k->field) = v;
+  } else if (const auto* k = std::get_if<FlagKey<Section>>(&row.value)) {
+    s.*(k->field) = t.get_bool(key, s.*(k->field));
+  } else if (const auto* k = std::get_if<ColourKey<Section>>(&row.value)) {
+    const std::array<double, 3> c = t.get_vec3(key, s.*(k->field));
+    for (double v : c)
+      if (v < 0.0) t.fail(key, "colour components must not be negative");
+    s.*(k->field) = c;
+  } else if (const auto* k = std::get_if<ChoiceKey<Section>>(&row.value)) {
+    const std::string name = t.get_string(key, std::string(k->get(s)));
+    if (!k->set(s, name)) {
+      std::string problem = "must be ";
+      problem.append(choice_names_text(k->names)).append(" (got \"").append(name).append("\")");
+      t.fail(key, problem);
+    }
+  } else if (const auto* k = std::get_if<AutoFlagKey<Section>>(&row.value)) {
+    if (!t.has(key)) return;
+    if (t.is<bool>(key))
+      k->set(s, t.get_bool(key, false));
+    else if (t.is<std::string>(key) && t.get_string(key) == "auto")
+      k->set(s, std::nullopt);
+    else
+      t.fail(key, "must be \"auto\", true or false");
+  }
+}
+
+/// Every row of `rows`, in table order.
+template <class Row, class Section>
+void read_keys(const TomlTable& t, std::span<const Row> rows, Section& s) {
+  for (const Row& row : rows) read_key(t, row, s);
+}
+
+}  // namespace thaw
