@@ -3,9 +3,12 @@
 #include <vtkAlgorithm.h>
 #include <vtkMapper.h>
 
+#include "base/check.h"
 #include "base/error.h"
 #include "render/geometry/obj_loader.h"
+#include "sim/simulate.h"
 #include "src/inspect/surface_actor.h"
+#include "src/mesh/grid_series.h"
 #include "src/mesh/shell_shape.h"
 #include "src/mesh/surface_mesher.h"
 #include "src/pipeline/water_budget.h"
@@ -60,15 +63,31 @@ void set_surface(ShellStep& step, bool outer, render::TriangleMesh mesh) {
   (outer ? step.outer_actor : step.inner_actor) = std::move(actor);
 }
 
+// A grid scenario's first frame as `thaw run` makes it: the solver's output at t = 0 (the
+// [shape] sampled into cell fractions by sim/grid/grid_builder.h, the same call and row as the
+// run's first interfaces.csv line), meshed by the grid mesher with the run's [mesh] options.
+ShellStep initial_grid_shell(const pipeline::RunScenario& sc) {
+  ShellStep step;
+  const sim::SimulationResult first = sim::simulate(sc.simulation, std::vector<double>{0.0});
+  THAW_CHECK(first.fields.size() == 1, "a grid run sampled at t = 0 keeps that one field");
+  step.row = first.interface_records().front();
+  try {
+    const mesh::GridMeshResult m =
+        mesh::mesh_grid_field(first.fields.front(), mesh::grid_mesh_options(sc.mesh));
+    if (!m.outer.faces.empty()) set_surface(step, true, to_render_mesh(m.outer));
+    if (!m.inner.faces.empty() && step.outer) set_surface(step, false, to_render_mesh(m.inner));
+  } catch (const mesh::MeshError& e) {
+    step.note = std::string("the initial body could not be meshed: ") + e.what();
+  }
+  return step;
+}
+
 }  // namespace
 
 ShellStep initial_shell(const pipeline::RunScenario& sc) {
   ShellStep step;
+  if (sc.simulation.grid != sim::GridGeometry::none) return initial_grid_shell(sc);
   step.row = initial_row(sc.simulation);
-  if (sc.simulation.grid != sim::GridGeometry::none) {
-    step.note = "grid scenario: the shell is meshed from the solver's fields (run the simulation)";
-    return step;
-  }
   const sim::ShellGeometry g = shell_geometry(sc.simulation);
   const auto outer_shape = mesh::ShellShape::from_geometry(g, sc.simulation.outer_radius_m);
   const mesh::MeshOptions options = mesh::resolve_triangle_target(

@@ -41,8 +41,9 @@ sim::ShellGeometry shell_geometry(const sim::Scenario& scenario);
 sim::InterfaceRecord initial_row(const sim::Scenario& scenario);
 
 /// Meshes the initial inner and outer surfaces with the scenario's [mesh] options (src/mesh,
-/// CGAL; about 0.1-1 s: call it off the GUI thread). Grid scenarios ([shape]) are meshed from
-/// their solver's fields only: the step then has no surfaces and says so in `note`.
+/// CGAL; about 0.1-1 s: call it off the GUI thread). A grid scenario ([shape]) is the run's
+/// first frame: its solver's field at t = 0 (sim::simulate at that one time, its row the run's
+/// first) meshed by the grid mesher (src/mesh/grid_mesher.h) as `thaw run` meshes it.
 ShellStep initial_shell(const pipeline::RunScenario& scenario);
 
 /// A step of a meshed simulation folder: OBJ files (absolute paths, nullopt when vanished).

@@ -27,6 +27,13 @@ fs::path grid_field_file(const fs::path& simdir, long step) {
   return simdir / "fields" / buf;
 }
 
+GridMeshOptions grid_mesh_options(const MeshOptions& options) {
+  GridMeshOptions go;
+  go.edge_length_m = options.edge_length_m;
+  go.normals = options.normals;
+  return go;
+}
+
 bool is_grid_simulation_folder(const fs::path& simdir) {
   std::error_code ec;
   if (!fs::is_directory(simdir / "fields", ec)) return false;
@@ -100,10 +107,7 @@ StepResult decode(const std::string& text) {
 void mesh_step(const fs::path& field_file, const fs::path& out_dir, long step,
                const MeshOptions& options, StepResult& r) {
   const sim::GridField f = sim::read_grid_field(field_file);
-  GridMeshOptions go;
-  go.edge_length_m = options.edge_length_m;
-  go.normals = options.normals;
-  const GridMeshResult m = mesh_grid_field(f, go);
+  const GridMeshResult m = mesh_grid_field(f, grid_mesh_options(options));
   r.cavities = m.cavities;
   r.cavity_water_fraction = m.cavity_water_fraction;
   r.remesh_problem = m.remesh_problem;

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "base/progress.h"
+#include "src/mesh/grid_mesher.h"
 #include "src/mesh/mesh_options.h"
 #include "src/mesh/mesh_series.h"
 
@@ -17,6 +18,11 @@ namespace thaw::mesh {
 
 /// SIMDIR/fields/step_000012.grid.
 std::filesystem::path grid_field_file(const std::filesystem::path& simdir, long step);
+
+/// The grid mesher's options of a run's [mesh] options: of these only edge_length_m (0 = the
+/// field's cell edge) and normals reach a grid field; the CGAL facet criteria of the 1D shapes do
+/// not. The one conversion for the series below and for `thaw gui`'s t = 0 preview.
+GridMeshOptions grid_mesh_options(const MeshOptions& options);
 
 /// True when SIMDIR holds a grid run (a fields/ folder with step_*.grid files).
 bool is_grid_simulation_folder(const std::filesystem::path& simdir);

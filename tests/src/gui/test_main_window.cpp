@@ -618,6 +618,84 @@ class TestMainWindow : public QObject {
                qPrintable(QString("%1 vs %2").arg(brightness[k]).arg(brightness[0])));
   }
 
+  // A grid scenario ([shape], issue 25 item 6) shows its body at t = 0 before any simulation:
+  // the grid solver's first field meshed as `thaw run` meshes it, in the preview and the 3D view.
+  void aGridScenarioShowsItsBodyBeforeSimulating() {
+    MainWindow w{
+        ScenarioDocument::load(fs::path(THAW_SOURCE_DIR) / "data/scenarios/hollow_cube.toml")};
+    w.show();
+    QVERIFY2(w.check().ok(), w.check().message.c_str());
+    QTRY_VERIFY_WITH_TIMEOUT(w.renderer().initial_shell() != nullptr, 120000);
+    const auto shell = w.renderer().initial_shell();
+    QVERIFY2(shell->outer && shell->inner, shell->note.c_str());
+    // The 4 cm cube and its 2.4 cm cavity, about the shape's centre: the extents within the
+    // mesher's tolerance of a cell (cell_size_m default: 1/48 of the largest extent), the
+    // enclosed volumes within the marching-tetrahedra error of a cell layer over the faces.
+    const double cell = 0.04 / 48;
+    auto extent = [](const thaw::render::TriangleMesh& m, int axis) {
+      double lo = 1e9, hi = -1e9;
+      for (const auto& p : m.positions) {
+        const double v = axis == 0 ? p.x : axis == 1 ? p.y : p.z;
+        lo = std::min(lo, v), hi = std::max(hi, v);
+      }
+      return hi - lo;
+    };
+    auto volume = [](const thaw::render::TriangleMesh& m) {
+      double v = 0;  // divergence theorem over the closed, outward surface
+      for (const auto& t : m.triangles) {
+        const auto &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
+        v += (a.x * (b.y * c.z - b.z * c.y) - a.y * (b.x * c.z - b.z * c.x) +
+              a.z * (b.x * c.y - b.y * c.x)) /
+             6.0;
+      }
+      return v;
+    };
+    for (int axis = 0; axis < 3; ++axis) {
+      QVERIFY2(std::abs(extent(*shell->outer, axis) - 0.04) < cell,
+               qPrintable(QString::number(extent(*shell->outer, axis))));
+      QVERIFY2(std::abs(extent(*shell->inner, axis) - 0.024) < cell,
+               qPrintable(QString::number(extent(*shell->inner, axis))));
+    }
+    const double outer_area = 6 * 0.04 * 0.04, inner_area = 6 * 0.024 * 0.024;
+    QVERIFY(std::abs(volume(*shell->outer) - 0.04 * 0.04 * 0.04) < outer_area * cell);
+    QVERIFY(std::abs(volume(*shell->inner) - 0.024 * 0.024 * 0.024) < inner_area * cell);
+    // The row of t = 0 is the grid run's own: its water is the cavity's volume.
+    QVERIFY(std::abs(shell->row.liquid_volume_m3 - 0.024 * 0.024 * 0.024) < inner_area * cell);
+    // The 3D view draws it: the water's blue in the view's area.
+    const fs::path png = temp_dir() / "hollow_cube.png";
+    fs::remove(png);
+    std::string problem = "not finished";
+    thaw::gui::take_screenshot_when_ready(w, png, [&](const std::string& p) { problem = p; });
+    QTRY_VERIFY_WITH_TIMEOUT(problem != "not finished", 300000);
+    QCOMPARE(QString::fromStdString(problem), QString());
+    const QImage shot(QString::fromStdString(png.string()));
+    QVERIFY(w.shell_view().triangles() > 100);
+    auto* view = w.findChild<QWidget*>("shell_view");
+    const QRect varea(view->mapTo(&w, QPoint(0, 0)), view->size());
+    long blue = 0;
+    for (int y = varea.top(); y <= varea.bottom(); y += 2)
+      for (int x = varea.left(); x <= varea.right(); x += 2) {
+        const QRgb p = shot.pixel(x, y);
+        blue += qBlue(p) > qRed(p) + 60;
+      }
+    QVERIFY2(blue > 500, qPrintable(QString::number(blue)));
+    // The preview renders it: moving the body out of the frame (both shapes 0.3 m along x)
+    // changes the middle of the preview, where the camera looks at the cube.
+    const QImage with_body = w.preview_image();
+    const QRect middle(with_body.width() * 3 / 8, with_body.height() * 3 / 8, with_body.width() / 4,
+                       with_body.height() / 4);
+    w.modify([](ScenarioDocument& d) {
+      d.set("shape.outer.center_m", std::array<double, 3>{0.3, 0.0, 0.0});
+      d.set("shape.cavity.center_m", std::array<double, 3>{0.3, 0.0, 0.0});
+    });
+    QVERIFY2(w.check().ok(), w.check().message.c_str());
+    QVERIFY(wait_for_full_size(w));
+    QTRY_VERIFY_WITH_TIMEOUT(!w.renderer().busy(), 120000);
+    const QImage without = w.preview_image();
+    const double moved = mean_difference(with_body.copy(middle), without.copy(middle));
+    QVERIFY2(moved > 10, qPrintable(QString::number(moved)));
+  }
+
   void screenshotOfTheDefaultHasThePanelsAndARender() {
     MainWindow w{ScenarioDocument()};
     w.show();
