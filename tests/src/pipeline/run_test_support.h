@@ -73,6 +73,15 @@ inline fs::path heavy_scenario(const fs::path& dir) {
                       "heavy.toml");
 }
 
+/// Every file and folder at the top of run folder `out` is named in docs/user-guide.md's table
+/// of outputs as `DIR/NAME (issue 27: docs that cannot drift).
+inline void expect_user_guide_lists(const fs::path& out) {
+  const std::string guide = read_file(fs::path(THAW_SOURCE_DIR) / "docs/user-guide.md");
+  for (const auto& e : fs::directory_iterator(out))
+    EXPECT_NE(guide.find("`DIR/" + e.path().filename().string()), std::string::npos)
+        << "docs/user-guide.md's table does not list " << e.path().filename();
+}
+
 /// No temporary (".tmp-") file or folder is left anywhere under `dir`.
 inline void expect_no_temporaries(const fs::path& dir) {
   for (const auto& e : fs::recursive_directory_iterator(dir))

@@ -39,6 +39,11 @@ TEST(ThawRunGrid, HollowCubeMeltsBreaksThroughAndIsFilmed) {
       run_process({kThaw.string(), "run", kCube.string(), "--out", out.string(), "--jobs", "2"});
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const auto manifest = nlohmann::json::parse(read_file(out / "sim/mesh/manifest.json"));
+  // Every file and folder of the run folder is in docs/user-guide.md's table (issue 27).
+  const std::string guide = read_file(fs::path(THAW_SOURCE_DIR) / "docs/user-guide.md");
+  for (const auto& e : fs::directory_iterator(out))
+    EXPECT_NE(guide.find("`DIR/" + e.path().filename().string()), std::string::npos)
+        << "docs/user-guide.md's table does not list " << e.path().filename();
   EXPECT_EQ(manifest["geometry"]["geometry"], "grid");
   const auto& steps = manifest["steps"];
   ASSERT_GE(steps.size(), 3u);

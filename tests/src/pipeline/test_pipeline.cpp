@@ -59,6 +59,7 @@ TEST_F(ThawRun, TinyScenarioEndToEndThenNothingToDo) {
     EXPECT_NE(first.output.find((out / path).string()), std::string::npos) << path;
   const auto frames = frames_of(out);
   EXPECT_EQ(frames.size(), 4u);
+  expect_user_guide_lists(out);
   const auto manifest_before = read_file(out / "run_manifest.json");
   const auto film_time = fs::last_write_time(out / "melt.mp4");
 
@@ -220,6 +221,7 @@ TEST_F(ThawRun, PreviewsNeverOverwriteTheFinals) {
   EXPECT_EQ(png_size(out / "preview/frames/frame_000000.png"),
             (std::pair<std::uint32_t, std::uint32_t>{64, 64}));
   expect_no_temporaries(out);
+  expect_user_guide_lists(out);
 }
 
 // Issue 27 item 2: the files a scenario names are inputs as much as its text.
