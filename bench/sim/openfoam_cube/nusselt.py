@@ -6,8 +6,9 @@ For every written iteration (SIMPLE) or time (PIMPLE) directory of CASE_DIR, rea
 order: x fastest, then y, then z, CELLS^3 uniform cells of edge h = 1/CELLS) and takes the wall
 gradient as OpenFOAM's own snGrad of a fixedValue patch does on this mesh, (T_wall - T_P) / (h/2);
 Nu = L / dT * mean over the wall of |dT/dn|, with L = 1 and dT = 1 (free-fall units). LOG is
-the solver's log: the process CPU time (ExecutionTime) at each written iteration. Prints one line
-per written iteration or time: iteration or time, CPU s, Nu hot, Nu cold.
+the solver's log: the process CPU time (ExecutionTime) and the wall time (ClockTime, whole
+seconds) at each written iteration. Prints one line per written iteration or time: iteration or
+time, CPU s, Nu hot, Nu cold, wall s.
 """
 import os
 import re
@@ -28,20 +29,21 @@ def read_cells(path):
 
 
 def cpu_by_iteration(log):
-    cpu, it = {}, None
+    cpu, wall, it = {}, {}, None
     for line in open(log):
         m = re.match(r"^Time = ([0-9.eE+-]+)\s*$", line)
         if m:
             it = float(m.group(1))
-        m = re.match(r"^ExecutionTime = ([0-9.eE+-]+) s", line)
+        m = re.match(r"^ExecutionTime = ([0-9.eE+-]+) s\s+ClockTime = ([0-9.eE+-]+) s", line)
         if m and it is not None:
             cpu[it] = float(m.group(1))
-    return cpu
+            wall[it] = float(m.group(2))
+    return cpu, wall
 
 
 def main():
     case, log = sys.argv[1], sys.argv[2]
-    cpu = cpu_by_iteration(log)
+    cpu, wall = cpu_by_iteration(log)
     def number(d):
         try:
             return float(d)
@@ -63,7 +65,8 @@ def main():
                 row = n * (j + n * k)
                 hot += (0.5 - t[row]) / half
                 cold += (t[row + n - 1] + 0.5) / half
-        print(f"{name} {cpu.get(it, float('nan')):.3f} {hot / n**2:.6f} {cold / n**2:.6f}")
+        print(f"{name} {cpu.get(it, float('nan')):.3f} {hot / n**2:.6f} {cold / n**2:.6f} "
+              f"{wall.get(it, float('nan')):.0f}")
 
 
 if __name__ == "__main__":

@@ -24,6 +24,7 @@ export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}  # Debian's etc/ (c
 command -v $app >/dev/null ||
   { echo "run.sh: OpenFOAM not found (scripts/setup-bench installs Debian's openfoam)" >&2; exit 2; }
 
+mkdir -p "$(dirname "$work")"
 rm -rf "$work"
 cp -r "$here/case" "$work"
 rm -r "$work/system/simple" "$work/system/pimple"
@@ -53,7 +54,7 @@ def settled(tol):  # the first written row from which on Nu stays within tol of 
         if abs(float(r[2]) - hot) > tol * hot:
             at = i + 1
     s = rows[min(at, len(rows) - 1)]
-    return f"{s[0]} ({float(s[1]):.2f} cpu s)"
+    return f"{s[0]} ({float(s[1]):.2f} cpu s, {float(s[4]):.0f} wall s)"
 print(f"openfoam {solver} cube {cells}^3  last {last}  wall {wall:.1f} s  cpu {user + sys_s:.1f} s  "
       f"Nu hot {hot:.5f} cold {cold:.5f}  error {100 * (hot - tric) / tric:+.3f} %  "
       f"settled 1e-3 at {settled(1e-3)}, 1e-4 at {settled(1e-4)}")
