@@ -35,7 +35,8 @@ namespace {
 using namespace thaw::sim::flow;
 
 /// Tric, Labrosse & Betrouni (2000), Int. J. Heat Mass Transfer 43:4043, pseudo-spectral
-/// Chebyshev solution of the air-filled cube: mean Nusselt number of the hot wall at Ra 1e5.
+/// Chebyshev solution of the air-filled cube: mean Nusselt number of the hot wall at Ra 1e5
+/// (quoted from memory of the paper's table, not checked against a copy: docs/benchmarks.md).
 constexpr double kTricNu1e5 = 4.3370;
 constexpr double kRayleigh = 1e5, kPrandtl = 0.71;
 

@@ -46,7 +46,7 @@ import sys
 rows = [l.split() for l in open(sys.argv[1])]
 solver, cells, last = sys.argv[2:5]
 wall, user, sys_s = map(float, sys.argv[5:8])
-tric = 4.3370  # Tric, Labrosse & Betrouni (2000), hot-wall mean Nu at Ra 1e5
+tric = 4.3370  # Tric, Labrosse & Betrouni (2000), hot-wall mean Nu at Ra 1e5 (from memory)
 it, cpu, hot, cold = rows[-1][0], float(rows[-1][1]), float(rows[-1][2]), float(rows[-1][3])
 def settled(tol):  # the first written row from which on Nu stays within tol of the last
     at = 0
