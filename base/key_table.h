@@ -26,12 +26,38 @@ struct IntegerKey {
   KeyProblem (*rule)(long long) = nullptr;
 };
 /// A real number and its rule; `absent` (when set) gives the value of a key the file leaves out
-/// from the settings read so far ([image] filter_radius follows the filter).
+/// from the settings read so far ([image] filter_radius follows the filter); `required`: the file
+/// must give it.
 template <class Section>
 struct NumberKey {
   double Section::*field;
   KeyProblem (*rule)(double) = nullptr;
   double (*absent)(const Section&) = nullptr;
+  bool required = false;
+};
+/// An integer or a real number that may be left to the program ("automatic": nullopt).
+template <class Section>
+struct OptionalIntegerKey {
+  std::optional<long long> Section::*field;
+  KeyProblem (*rule)(long long) = nullptr;
+};
+template <class Section>
+struct OptionalNumberKey {
+  std::optional<double> Section::*field;
+  KeyProblem (*rule)(double) = nullptr;
+};
+/// Three numbers: a point, or with `unit` a direction of length 1 (to within 1e-6); `required`:
+/// the file must give it.
+template <class Section>
+struct VectorKey {
+  std::array<double, 3> Section::*field;
+  bool unit = false;
+  bool required = false;
+};
+/// A name (a medium's, say), checked where it is used.
+template <class Section>
+struct TextKey {
+  std::string Section::*field;
 };
 template <class Section>
 struct FlagKey {
@@ -64,7 +90,8 @@ struct KeyRow {
   std::string_view default_text;  ///< the default as the docs write it
   std::string_view doc;           ///< its meaning (and accepted range), as the docs write it
   std::variant<IntegerKey<Section>, NumberKey<Section>, FlagKey<Section>, ColourKey<Section>,
-               ChoiceKey<Section>, AutoFlagKey<Section>>
+               ChoiceKey<Section>, AutoFlagKey<Section>, OptionalIntegerKey<Section>,
+               OptionalNumberKey<Section>, VectorKey<Section>, TextKey<Section>>
       value;
   Extra extra{};  ///< the section's own columns
 };
@@ -85,14 +112,18 @@ std::vector<std::string> key_names(std::span<const Row> rows) {
   return out;
 }
 
-/// The row's rule applied to its value in `section` (integer and real keys; the other kinds can
-/// only hold accepted values), or nothing.
+/// The row's rule applied to its value in `section` (integer and real keys, an automatic one
+/// passing; the other kinds are checked as they are read or where they are used), or nothing.
 template <class Section, class Extra>
 KeyProblem key_problem(const KeyRow<Section, Extra>& row, const Section& section) {
   if (const auto* k = std::get_if<IntegerKey<Section>>(&row.value))
     return k->rule ? k->rule(section.*(k->field)) : std::nullopt;
   if (const auto* k = std::get_if<NumberKey<Section>>(&row.value))
     return k->rule ? k->rule(section.*(k->field)) : std::nullopt;
+  if (const auto* k = std::get_if<OptionalIntegerKey<Section>>(&row.value))
+    return k->rule && section.*(k->field) ? k->rule(*(section.*(k->field))) : std::nullopt;
+  if (const auto* k = std::get_if<OptionalNumberKey<Section>>(&row.value))
+    return k->rule && section.*(k->field) ? k->rule(*(section.*(k->field))) : std::nullopt;
   return std::nullopt;
 }
 

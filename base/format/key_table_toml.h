@@ -1,7 +1,9 @@
 #pragma once
 // One key of a TOML table read by its row (base/key_table.h): a key the table leaves out keeps
 // the value the section holds (or takes the row's `absent` value); a present one is read, checked
-// by the row's rule and set, and a value the row rejects is the file's error at that key (exit 2).
+// by the row's rule and set, and a value the row rejects is the file's error at that key (exit 2);
+// a required key the table leaves out is the file's error too.
+#include <cmath>
 #include <span>
 #include <string>
 #include <string_view>
@@ -24,6 +26,16 @@ inline std::string choice_names_text(std::span<const std::string_view> names) {
   return out;
 }
 
+/// A unit vector: |v| must be 1 to within 1e-6 relative (a float's worth of rounding in the file).
+inline std::array<double, 3> unit_vector(const TomlTable& t, const std::string& key) {
+  const std::array<double, 3> v = t.get_vec3(key);
+  const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if (len == 0.0) t.fail(key, "must not be the zero vector");
+  if (std::abs(len - 1.0) > 1e-6)
+    t.fail(key, "must be a unit vector (its length is " + std::to_string(len) + ")");
+  return v;
+}
+
 template <class Section, class Extra>
 void read_key(const TomlTable& t, const KeyRow<Section, Extra>& row, Section& s) {
   const std::string key(row.name);
@@ -35,9 +47,25 @@ void read_key(const TomlTable& t, const KeyRow<Section, Extra>& row, Section& s)
     if (k->rule) fail_if(k->rule(v));
     s.*(k->field) = static_cast<int>(v);
   } else if (const auto* k = std::get_if<NumberKey<Section>>(&row.value)) {
-    const double v = t.get_double(key, k->absent ? k->absent(s) : s.*(k->field));
+    const double v = k->required ? t.get_double(key)
+                                 : t.get_double(key, k->absent ? k->absent(s) : s.*(k->field));
     if (k->rule) fail_if(k->rule(v));
     s.*(k->field) = v;
+  } else if (const auto* k = std::get_if<OptionalIntegerKey<Section>>(&row.value)) {
+    if (!t.has(key)) return;
+    const long long v = t.get_int(key);
+    if (k->rule) fail_if(k->rule(v));
+    s.*(k->field) = v;
+  } else if (const auto* k = std::get_if<OptionalNumberKey<Section>>(&row.value)) {
+    if (!t.has(key)) return;
+    const double v = t.get_double(key);
+    if (k->rule) fail_if(k->rule(v));
+    s.*(k->field) = v;
+  } else if (const auto* k = std::get_if<VectorKey<Section>>(&row.value)) {
+    if (!k->required && !t.has(key)) return;
+    s.*(k->field) = k->unit ? unit_vector(t, key) : t.get_vec3(key);
+  } else if (const auto* k = std::get_if<TextKey<Section>>(&row.value)) {
+    s.*(k->field) = t.get_string(key, s.*(k->field));
   } else if (const auto* k = std::get_if<FlagKey<Section>>(&row.value)) {
     s.*(k->field) = t.get_bool(key, s.*(k->field));
   } else if (const auto* k = std::get_if<ColourKey<Section>>(&row.value)) {

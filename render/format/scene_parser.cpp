@@ -12,25 +12,13 @@
 #include "render/format/medium_library.h"
 #include "render/format/medium_parser.h"
 #include "render/light/latlong_map.h"
+#include "render/scene/camera_keys.h"
+#include "render/scene/caustic_keys.h"
 #include "render/scene/image_keys.h"
 
 namespace thaw::render {
 
 namespace {
-
-double length3(const Vec3d& v) {
-  return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-}
-
-/// A unit vector: |v| must be 1 to within 1e-6 relative (a float's worth of rounding in the file).
-Vec3d unit_vec3(const TomlTable& t, const std::string& key) {
-  const Vec3d v = t.get_vec3(key);
-  const double len = length3(v);
-  if (len == 0.0) t.fail(key, "must not be the zero vector");
-  if (std::abs(len - 1.0) > 1e-6)
-    t.fail(key, "must be a unit vector (its length is " + std::to_string(len) + ")");
-  return v;
-}
 
 RgbD color3(const TomlTable& t, const std::string& key, const RgbD& fallback) {
   const RgbD c = t.get_vec3(key, fallback);
@@ -133,12 +121,12 @@ void parse_environment(const TomlTable& env, SceneDescription& s) {
     e.zenith = color3(env, "zenith", e.zenith);
     e.horizon = color3(env, "horizon", e.horizon);
     e.ground = color3(env, "ground", e.ground);
-    if (env.has("up")) e.up = unit_vec3(env, "up");
+    if (env.has("up")) e.up = unit_vector(env, "up");
     e.exponent = checked(env, "exponent", env.get_double("exponent", e.exponent),
                          environment_exponent_problem);
     for (const TomlTable& t : env.array_of_tables("panels")) {
       PanelDescription panel;
-      panel.direction = unit_vec3(t, "direction");
+      panel.direction = unit_vector(t, "direction");
       panel.width_deg = checked(t, "width_deg", t.get_double("width_deg"), panel_size_problem);
       panel.height_deg = checked(t, "height_deg", t.get_double("height_deg"), panel_size_problem);
       panel.edge_deg =
@@ -167,25 +155,17 @@ void parse_environment(const TomlTable& env, SceneDescription& s) {
       checked(env, "intensity", env.get_double("intensity", 1.0), environment_intensity_problem);
 }
 
+/// [caustics]: every key by its row (render/scene/caustic_keys.h).
 CausticSettings parse_caustics(const TomlTable& c) {
   CausticSettings caustics;
-  caustics.enabled = c.get_bool("enabled", true);
-  if (c.has("photons"))
-    caustics.photons =
-        checked<long long>(c, "photons", c.get_int("photons"), caustic_photons_problem);
-  if (c.has("radius"))
-    caustics.radius = checked(c, "radius", c.get_double("radius"), caustic_radius_problem);
+  read_keys(c, caustic_keys(), caustics);
   return caustics;
 }
 
+/// [camera]: every key by its row (render/scene/camera_keys.h), then the rules between them.
 CameraDescription parse_camera(const TomlTable& cam) {
   CameraDescription camera;
-  camera.position = cam.get_vec3("position");
-  camera.look_at = cam.get_vec3("look_at");
-  camera.up = cam.has("up") ? unit_vec3(cam, "up") : Vec3d{0.0, 1.0, 0.0};
-  camera.vertical_fov_deg =
-      checked(cam, "vertical_fov_deg", cam.get_double("vertical_fov_deg"), vertical_fov_problem);
-  camera.medium = cam.get_string("medium", "");
+  read_keys(cam, camera_keys(), camera);
   if (const auto problem = camera_problem(camera)) cam.fail(problem->key, problem->problem);
   return camera;
 }
@@ -261,7 +241,7 @@ void parse_shape(const TomlTable& o, ObjectDescription& obj) {
   } else if (shape == "plane") {
     obj.shape = ObjectDescription::Shape::plane;
     obj.point = o.get_vec3("point");
-    obj.normal = unit_vec3(o, "normal");
+    obj.normal = unit_vector(o, "normal");
   } else if (shape == "mesh") {
     obj.shape = ObjectDescription::Shape::mesh;
     const std::string file = o.get_string("file");

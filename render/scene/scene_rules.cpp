@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "render/scene/caustic_keys.h"
 #include "render/scene/image_keys.h"
 
 namespace thaw::render {
@@ -276,12 +277,9 @@ std::optional<SceneProblem> object_problem(const ObjectDescription& o) {
 
 std::optional<SceneProblem> find_scene_problem(const SceneDescription& s) {
   if (auto p = image_problem(s.image)) return p;
-  if (s.caustics.photons)
-    if (auto p = caustic_photons_problem(*s.caustics.photons))
-      return SceneProblem{"caustics.photons", *p};
-  if (s.caustics.radius)
-    if (auto p = caustic_radius_problem(*s.caustics.radius))
-      return SceneProblem{"caustics.radius", *p};
+  for (const CausticKey& key : caustic_keys())  // an automatic value passes
+    if (auto p = key_problem(key, s.caustics))
+      return SceneProblem{"caustics." + std::string(key.name), *p};
   if (s.environment.kind != EnvironmentDescription::Kind::constant)
     if (auto p = environment_intensity_problem(s.environment.intensity))
       return SceneProblem{"environment.intensity", *p};

@@ -17,13 +17,20 @@ namespace thaw::gui {
 template <class Section>
 using SectionOf = const Section& (*)(const pipeline::RunScenario&);
 
+/// The row's label and unit as a form shows them: "Width [px]".
+template <class Row>
+QString key_row_label(const Row& row) {
+  QString label = QString::fromUtf8(row.label.data(), static_cast<int>(row.label.size()));
+  if (!row.unit.empty())
+    label += " [" + QString::fromUtf8(row.unit.data(), static_cast<int>(row.unit.size())) + "]";
+  return label;
+}
+
 /// Adds `row` to `form`, bound to the document's dotted key `prefix + row.name`.
 template <class Section, class Extra>
 void add_key_row(KeyForm* form, const KeyRow<Section, Extra>& row, const std::string& prefix,
                  SectionOf<Section> section) {
-  QString label = QString::fromUtf8(row.label.data(), static_cast<int>(row.label.size()));
-  if (!row.unit.empty())
-    label += " [" + QString::fromUtf8(row.unit.data(), static_cast<int>(row.unit.size())) + "]";
+  const QString label = key_row_label(row);
   const std::string key = prefix + std::string(row.name);
   if (const auto* k = std::get_if<IntegerKey<Section>>(&row.value)) {
     const auto field = k->field;

@@ -21,6 +21,7 @@
 
 #include "base/check.h"
 #include "base/error.h"
+#include "render/scene/caustic_keys.h"
 #include "render/scene/image_keys.h"
 #include "sim/scenario/materials_keys.h"
 #include "src/gui/key_form.h"
@@ -182,6 +183,9 @@ void MainWindow::add_quality_rows(QVBoxLayout* v) {
   form->add_section("Quality of the film's frames ([render.image])");
   for (std::string_view key : {"width", "height", "samples_per_pixel", "exposure"})
     add_image_key(form, key);
+  add_key_row(
+      form, *find_key(render::caustic_keys(), "enabled"), "render.caustics.",
+      +[](const RunScenario& s) -> const render::CausticSettings& { return s.scene.caustics; });
   m_forms.push_back(form);
   v->addWidget(form);
   auto* row = new QHBoxLayout;

@@ -11,6 +11,9 @@
 #include <QVBoxLayout>
 #include <algorithm>
 
+#include "base/check.h"
+#include "render/scene/camera_keys.h"
+#include "src/gui/key_row_field.h"
 #include "src/gui/main_window.h"
 #include "src/gui/shell_step.h"
 #include "src/pipeline/frame_camera.h"
@@ -58,14 +61,21 @@ ScenePanel::ScenePanel(MainWindow& window, QWidget* parent) : QWidget(parent), m
   m_view_form->add_vector(
       "Background (linear RGB)", "render.image.background",
       [](const RunScenario& s) { return TomlValue{s.scene.image.background}; }, true);
+  // The camera's rows (render/scene/camera_keys.h) name and label the fields; the values are the
+  // frame's effective camera (the film's, when the file gives none).
+  const auto camera_label = [](std::string_view name) {
+    const render::CameraKey* row = find_key(render::camera_keys(), name);
+    THAW_CHECK(row != nullptr, "the camera form names a [camera] key of the table");
+    return key_row_label(*row);
+  };
   m_view_form->add_vector(
-      "Camera position [m]", "render.camera.position",
+      camera_label("position"), "render.camera.position",
       [](const RunScenario& s) { return TomlValue{effective_camera(s).position}; });
-  m_view_form->add_vector("Camera looks at [m]", "render.camera.look_at", [](const RunScenario& s) {
-    return TomlValue{effective_camera(s).look_at};
-  });
+  m_view_form->add_vector(
+      camera_label("look_at"), "render.camera.look_at",
+      [](const RunScenario& s) { return TomlValue{effective_camera(s).look_at}; });
   m_view_form->add_number(
-      "Vertical field of view [deg]", "render.camera.vertical_fov_deg",
+      camera_label("vertical_fov_deg"), "render.camera.vertical_fov_deg",
       [](const RunScenario& s) { return TomlValue{effective_camera(s).vertical_fov_deg}; });
   m_window.register_form(m_view_form, false);
   connect(m_view_form, &KeyForm::edited, this,
