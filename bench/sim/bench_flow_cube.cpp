@@ -14,6 +14,9 @@
 // starts from the previous grid's steady state, prolonged (temperature trilinear; velocity
 // exactly divergence-free: a fine face on a coarse face takes its value, a fine face inside a
 // coarse cell the mean of the cell's two faces), and the times printed add up the grids so far.
+// PRESSURE=boomeramg|gamg in the environment (builds with THAW_PETSC): the flow's pressure
+// solves by PetscPressureSolver instead of the own multigrid (the viscous and conductive
+// Helmholtz solves stay the own).
 // COURANT=c in the environment: the step's Courant number (FlowProblem::courant, default 0.5).
 // Usage: bench_flow_cube [THREADS [RATE [BALANCE [N1 N2 ...]]]]  (default 1 1e-5 1e-4 16 32)
 #include <omp.h>
@@ -24,11 +27,15 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "base/check.h"
 #include "sim/flow/flow_solver.h"
+#ifdef THAW_HAVE_PETSC
+#include "sim/flow/petsc_pressure_solver.h"
+#endif
 
 namespace {
 
@@ -138,7 +145,19 @@ double run(int cells, int threads, double rate_tolerance, double balance_toleran
   omp_set_num_threads(threads);
   const auto t0 = std::chrono::steady_clock::now();
   const std::clock_t c0 = std::clock();
-  FlowSolver s(cube_problem(cells));
+  std::unique_ptr<PressureSolver> pressure;
+  if (const char* back_end = std::getenv("PRESSURE"); back_end && *back_end) {
+#ifdef THAW_HAVE_PETSC
+    const std::string b = back_end;
+    THAW_CHECK(b == "boomeramg" || b == "gamg", "PRESSURE is boomeramg or gamg");
+    pressure = std::make_unique<PetscPressureSolver>(
+        b == "gamg" ? PetscPressureSolver::Preconditioner::gamg
+                    : PetscPressureSolver::Preconditioner::boomeramg);
+#else
+    THAW_CHECK(back_end == nullptr, "PRESSURE needs a build with THAW_PETSC");
+#endif
+  }
+  FlowSolver s(cube_problem(cells), std::move(pressure));
   const double wall_before = sequence ? sequence->wall_s : 0,
                cpu_before = sequence ? sequence->cpu_s : 0;
   if (sequence && sequence->cells > 0) prolong(*sequence, s);
