@@ -5,6 +5,8 @@
 // (cells x Newton iterations / CPU time) and CG cell sweeps per CPU second (cells x CG
 // iterations / CPU time); then 2 threads against 1 (wall and CPU, same process) and the cost
 // per halving of the cell (CPU). On a shared machine quote CPU times and same-run ratios.
+// Conduction only (flow = "none" whatever the file says): the water's flow has its own bench,
+// bench_flow.
 // Usage: bench_grid [scenario.toml [THREADS]] (default: the shipped hollow cube); with THREADS,
 // only the default resolution on that many threads (for farm-bench pairs: 2 threads vs 1 as
 // whole processes, alternating, so a drifting machine load affects both alike).
@@ -55,7 +57,8 @@ Run run(thaw::sim::Scenario sc, int threads, double cell) {
 int main(int argc, char** argv) {
   const std::string file =
       argc > 1 ? argv[1] : std::string(THAW_SOURCE_DIR) + "/data/scenarios/hollow_cube.toml";
-  const thaw::sim::Scenario sc = thaw::sim::read_scenario_file(file);
+  thaw::sim::Scenario sc = thaw::sim::read_scenario_file(file);
+  sc.natural_convection = false;
   const double cell = thaw::sim::effective_cell_size_m(sc);
   if (argc > 2) {
     run(sc, std::atoi(argv[2]), cell);

@@ -181,10 +181,12 @@ void parse_simulation(const TomlTable& sim, Scenario& s) {
     if (sim.has("cell_size_m"))
       s.cell_size_m = sim.require_positive("cell_size_m", sim.get_double("cell_size_m"));
     s.max_step_s = sim.require_positive("max_step_s", sim.get_double("max_step_s", s.max_step_s));
-    const std::string flow = sim.get_string("flow", "none");
-    if (flow != "none" && flow != "natural_convection")
-      sim.fail("flow", "unknown flow '" + flow + "' (expected natural_convection or none)");
-    s.natural_convection = flow == "natural_convection";
+    if (sim.has("flow")) {  // the default (water flows wherever there is water): parse_scenario
+      const std::string flow = sim.get_string("flow");
+      if (flow != "none" && flow != "natural_convection")
+        sim.fail("flow", "unknown flow '" + flow + "' (expected natural_convection or none)");
+      s.natural_convection = flow == "natural_convection";
+    }
   }
 }
 
@@ -321,6 +323,10 @@ Scenario parse_scenario(const TomlTable& root, const std::set<std::string>& fore
   parse_body(root, s);
   if (s.grid == GridGeometry::none || s.shape.cavity || root.has("water"))
     s.water_initial_temperature_c = root.table("water").get_double("initial_temperature_c");
+  // [simulation] flow defaults to natural convection wherever a grid run holds water (issue 24):
+  // a body with a cavity (a solid body's [water] table holds no water).
+  if (s.grid != GridGeometry::none && !root.table("simulation").has("flow"))
+    s.natural_convection = s.shape.cavity.has_value();
   s.ice_initial_temperature_c = root.table("ice").get_double("initial_temperature_c");
   parse_inner_boundary(root, s);
   parse_outer_boundary(root.table("outer_boundary"), s);
@@ -345,11 +351,10 @@ Scenario read_scenario_file(const std::filesystem::path& path) {
 
 nlohmann::json scenario_to_json(const Scenario& s) {
   nlohmann::json j;
-  j["simulation"] = {{"geometry", to_string(s.geometry)},
-                     {"duration_s", s.duration_s},
-                     {"output_interval_s", s.output_interval_s},
-                     {"cells_per_phase", s.cells_per_phase},
-                     {"time_tolerance", s.time_tolerance}};
+  j["simulation"] = {
+      {"geometry", to_string(s.geometry)},        {"duration_s", s.duration_s},
+      {"output_interval_s", s.output_interval_s}, {"cells_per_phase", s.cells_per_phase},
+      {"time_tolerance", s.time_tolerance},       {"flow", "none (the 1D solvers conduct only)"}};
   j["shell"] = {{"inner_radius_m", s.inner_radius_m},
                 {"outer_radius_m", s.outer_radius_m},
                 {"length_m", s.length_m},
@@ -360,7 +365,7 @@ nlohmann::json scenario_to_json(const Scenario& s) {
                        {"output_interval_s", s.output_interval_s},
                        {"cell_size_m", effective_cell_size_m(s)},
                        {"max_step_s", s.max_step_s}};
-    if (s.natural_convection) j["simulation"]["flow"] = "natural_convection";
+    j["simulation"]["flow"] = s.natural_convection ? "natural_convection" : "none";
     j.erase("shell");
     auto shape_json = [](const ShapeSpec& sp) {
       nlohmann::json o = {{"kind", to_string(sp.kind)}, {"center_m", sp.center_m}};

@@ -19,7 +19,7 @@ constexpr double kCarmanKozenyEpsilon = 1e-3;
 constexpr double kAdvectionCourant = 0.5;
 /// Cells of ice or air kept around the liquid when the box moves (it moves again only when the
 /// liquid reaches the box's outermost cells).
-constexpr int kBoxMargin = 4;
+constexpr int kBoxMargin = 2;
 /// The solves' tolerances in the coupled flow: the projection leaves a net outflow of 1e-7 of the
 /// largest face flow per cell (a sensible-heat source of that order against the advected heat;
 /// the advected rates sum to zero whatever it is), the viscous increment 1e-6 of its size.

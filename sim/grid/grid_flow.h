@@ -1,21 +1,20 @@
 #pragma once
 // Natural convection in the grid solver's water (issue 24): a Boussinesq flow solver
-// (sim/flow/flow_solver.h) on the grid solver's own cells, coupled by operator splitting. At
-// the start of each enthalpy step the flow advances over the step (as many stable sub-steps as
-// it needs) with the buoyancy of the step's start temperatures, the ice and the air held still
-// by enthalpy-porosity: a Carman-Kozeny drag C (1 - phi)^2 / (phi^3 + e) on the cell's liquid
-// volume fraction phi (Voller & Prakash 1987; Brent, Voller & Reid 1988: C = 1.6e6 kg/(m^3 s)
-// over rho_0, e = 1e-3). The flow's velocities then carry the water's sensible heat
-// c_w (T - T_m) between material cells (Koren-limited upwind, at the step's start
-// temperatures): a heat rate per cell that the conduction operator adds to its balance, so the
-// step stays implicit in conduction and explicit in advection, and the advective rates sum to
-// zero (the energy books are unchanged). The step is limited by the flow's Courant number.
-// The flow runs on a box of the grid's cells around the water (every cell at least half liquid
-// and not exposed to the outside air, whose melt drains away, and a cell more, with a margin of
-// kBoxMargin cells when the box moves; axisymmetric: from the axis): the cells outside it are ice
-// or air, which the drag would hold still anyway. The box grows (and shrinks) with the liquid, the
-// velocities carried over. Reads the cell state; writes only the advected heat rates. Knows nothing
-// of files.
+// (sim/flow/flow_solver.h) on the grid solver's own cells, coupled by operator splitting. After
+// each accepted enthalpy step the flow advances over it (as many stable sub-steps as it needs) with
+// the buoyancy of the step's end temperatures (the next step's start), the ice and the air held
+// still by enthalpy-porosity: a Carman-Kozeny drag C (1 - phi)^2 / (phi^3 + e) on the cell's liquid
+// volume fraction phi (Voller & Prakash 1987; Brent, Voller & Reid 1988: C = 1.6e6 kg/(m^3 s) over
+// rho_0, e = 1e-3). The flow's velocities then carry the water's sensible heat c_w (T - T_m)
+// between material cells in the next step (Koren-limited upwind, at that step's start
+// temperatures): a heat rate per cell that the conduction operator adds to its balance, so the step
+// stays implicit in conduction and explicit in advection, and the advective rates sum to zero (the
+// energy books are unchanged). The step is limited by the flow's Courant number. The flow runs on a
+// box of the grid's cells around the water (every cell at least half liquid and not exposed to the
+// outside air, whose melt drains away, and a cell more, with a margin of kBoxMargin cells when the
+// box moves; axisymmetric: from the axis): the cells outside it are ice or air, which the drag
+// would hold still anyway. The box grows (and shrinks) with the liquid, the velocities carried
+// over. Reads the cell state; writes only the advected heat rates. Knows nothing of files.
 #include <array>
 #include <memory>
 #include <vector>
@@ -36,7 +35,8 @@ class GridFlow {
            const CellState& cells, const std::vector<char>& exposed);
   ~GridFlow();
 
-  /// Advances the flow over dt from the current state (H, m) and sets advected_w().
+  /// Advances the flow over dt with the current state (H, m) and sets advected_w() for the next
+  /// step (zero before the first advance: the water starts at rest).
   void advance(double dt);
   /// Advected heat rate into each cell [W]; sums to zero over the cells.
   const std::vector<double>& advected_w() const { return m_advected_w; }

@@ -108,13 +108,6 @@ GridTimeStepper::StepResult GridTimeStepper::step(BlockTeam& team,
   const std::vector<double>& vol = m_mesh.vol;
   const PhaseRelation& ph = m_phase;
   m_surface.prepare_step(team, dt);
-  // The water's flow over the step and its advected heat (explicit in the step).
-  if (m_flow)
-    team.serial([&] {
-      m_flow->advance(dt);
-      m_stats.flow_steps = m_flow->flow_steps();
-      m_stats.flow_cell_steps = m_flow->flow_cell_steps();
-    });
   // assemble reads the neighbours' H, which nothing writes in this phase
   team.for_blocks([&](long bl) {
     double e = 0;
@@ -239,6 +232,16 @@ GridTimeStepper::StepResult GridTimeStepper::step(BlockTeam& team,
       });
     });
   }
+  // The water's flow over the accepted step, with the buoyancy and drag of the state it ended
+  // in; its velocities carry the water's heat in the next step (explicit there: a fixed rate
+  // per cell). A rejected or stopped step leaves the flow as it was, so a stopped run continues
+  // bit for bit.
+  if (m_flow)
+    team.serial([&] {
+      m_flow->advance(dt);
+      m_stats.flow_steps = m_flow->flow_steps();
+      m_stats.flow_cell_steps = m_flow->flow_cell_steps();
+    });
   return StepResult::accepted;
 }
 

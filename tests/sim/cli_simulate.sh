@@ -93,10 +93,13 @@ emissivity = 0.0}"
 check_bad air_speed "outer_boundary.speed_m_s" "[3.5, 7.6e4]" "${air/relative_humidity = 0.5/relative_humidity = 0.5
 speed_m_s = 60.0}"
 check_bad air_temperature "outer_boundary.temperature_c" "[-40, 50] C" "${air/temperature_c = 25.0/temperature_c = 80.0}"
-# Grid runs ([shape]): a shipped scenario shortened to one minute writes fields/*.grid.
+# Grid runs ([shape]): a shipped scenario shortened to one minute writes fields/*.grid (the
+# hollow cube without its flow: ~45 s of CPU in 3D with it; the bored cylinder flows).
 for name in bored_cylinder hollow_cube; do
+  flow=''
+  [ "$name" = hollow_cube ] && flow='s/^max_step_s = 10.0/max_step_s = 10.0\nflow = "none"/'
   sed -e 's/^duration_s = 3600.0/duration_s = 60.0/' -e 's/^output_interval_s = 60.0/output_interval_s = 30.0/' \
-    "$src/data/scenarios/$name.toml" > "$work/$name.toml"
+    -e "$flow" "$src/data/scenarios/$name.toml" > "$work/$name.toml"
   out="$work/grid_$name"
   if ! "$thaw" simulate "$work/$name.toml" --out "$out" -q; then note "grid $name: exit code"; continue; fi
   for f in interfaces.csv summary.json fields/step_000000.grid fields/step_000002.grid; do

@@ -350,12 +350,30 @@ TEST(ScenarioFile, FlowKeysParseAndEcho) {
   const nlohmann::json j = scenario_to_json(linear);
   EXPECT_EQ(j["simulation"]["flow"], "natural_convection");
   EXPECT_EQ(j["materials"]["water_density_model"], "linear");
-  // "none" (the default) echoes nothing new: conduction runs' summary.json is unchanged.
+  // "none" keeps conduction and says so.
   std::string none = kFlowGrid;
   none.replace(none.find("natural_convection"), 18, "none");
   const Scenario off = parse_scenario_string(none, "flow.toml");
   EXPECT_FALSE(off.natural_convection);
-  EXPECT_FALSE(scenario_to_json(off)["simulation"].contains("flow"));
+  EXPECT_EQ(scenario_to_json(off)["simulation"]["flow"], "none");
+  // Not given: the water flows wherever a grid run holds water (issue 24); a solid body has none.
+  std::string unset = kFlowGrid;
+  unset.erase(unset.find("flow = "), std::string("flow = \"natural_convection\"\n").size());
+  EXPECT_TRUE(parse_scenario_string(unset, "flow.toml").natural_convection);
+  std::string solid = unset;
+  solid.erase(solid.find("cavity = "), solid.find("[ice]") - solid.find("cavity = "));
+  const Scenario dry = parse_scenario_string(solid, "flow.toml");
+  EXPECT_FALSE(dry.natural_convection);
+  EXPECT_EQ(scenario_to_json(dry)["simulation"]["flow"], "none");
+  // The 1D solvers conduct only, and summary.json says so.
+  const Scenario radial = parse_scenario_string(
+      "[simulation]\ngeometry = \"sphere\"\nduration_s = 60.0\noutput_interval_s = 60.0\n"
+      "[shell]\ninner_radius_m = 0.02\nouter_radius_m = 0.03\n[water]\n"
+      "initial_temperature_c = 10.0\n[ice]\ninitial_temperature_c = -5.0\n[outer_boundary]\n"
+      "kind = \"insulated\"\n",
+      "radial.toml");
+  EXPECT_FALSE(radial.natural_convection);
+  EXPECT_EQ(scenario_to_json(radial)["simulation"]["flow"], "none (the 1D solvers conduct only)");
 }
 
 TEST(ScenarioFile, FlowKeysBadInput) {

@@ -20,11 +20,13 @@
 namespace thaw::sim {
 namespace {
 
+/// Conduction only (flow = "none"): these runs test the enthalpy solver (the flow's own tests:
+/// tests/sim/flow, test_grid_flow.cpp).
 std::string scenario_text(const std::string& geometry, const std::string& shape,
                           const std::string& extra_sim, double duration, double h) {
   return "[simulation]\ngeometry = \"" + geometry + "\"\nduration_s = " + std::to_string(duration) +
-         "\noutput_interval_s = " + std::to_string(duration / 10) + "\n" + extra_sim +
-         "\n[shape]\n" + shape +
+         "\noutput_interval_s = " + std::to_string(duration / 10) + "\nflow = \"none\"\n" +
+         extra_sim + "\n[shape]\n" + shape +
          "\n[water]\ninitial_temperature_c = 10.0\n[ice]\ninitial_temperature_c = -5.0\n"
          "[outer_boundary]\nkind = \"convective\"\ntemperature_c = "
          "25.0\nheat_transfer_coefficient_w_m2k = " +
@@ -91,8 +93,8 @@ TEST(GridRuns, CavityFreezesShutLikeThe1dSphere) {
       "one.toml"));
   const SimulationResult g = simulate(parse_scenario_string(
       sim +
-          "geometry = \"axisymmetric\"\n[shape]\nouter = { kind = \"sphere\", radius_m = 0.01 }\n"
-          "cavity = { kind = \"sphere\", radius_m = 0.005 }\n" +
+          "geometry = \"axisymmetric\"\nflow = \"none\"\n[shape]\nouter = { kind = \"sphere\", "
+          "radius_m = 0.01 }\ncavity = { kind = \"sphere\", radius_m = 0.005 }\n" +
           common,
       "freeze.toml"));
   double t_one = -1;

@@ -26,7 +26,7 @@ using Clock = std::chrono::steady_clock;
 Scenario hollow_cube(const std::string& sim_extra = "") {
   return parse_scenario_string(
       "[simulation]\ngeometry = \"3d\"\nduration_s = 600.0\noutput_interval_s = 300.0\n"
-      "cell_size_m = 0.0004\n" +
+      "cell_size_m = 0.0004\nflow = \"none\"\n" +
           sim_extra +
           "\n[shape]\nouter = { kind = \"box\", size_m = [0.024, 0.024, 0.024] }\n"
           "cavity = { kind = \"sphere\", radius_m = 0.008 }\n"

@@ -15,10 +15,11 @@
 namespace thaw::sim {
 namespace {
 
+/// Conduction only (flow = "none"): the 1D solvers conduct only.
 std::string grid_text(const std::string& geometry, const std::string& shape,
                       const std::string& extra, double duration) {
   return "[simulation]\ngeometry = \"" + geometry + "\"\nduration_s = " + std::to_string(duration) +
-         "\noutput_interval_s = 60.0\n" + extra + "\n[shape]\n" + shape +
+         "\noutput_interval_s = 60.0\nflow = \"none\"\n" + extra + "\n[shape]\n" + shape +
          "\n[water]\ninitial_temperature_c = 10.0\n[ice]\ninitial_temperature_c = -5.0\n"
          "[outer_boundary]\nkind = \"convective\"\ntemperature_c = "
          "25.0\nheat_transfer_coefficient_w_m2k = 50.0\n";
