@@ -6,8 +6,10 @@
 // (3D) in at most 5 minutes. Prints per run: grid, threads, wall and CPU time, enthalpy steps,
 // flow steps, flow cell updates (the flow box's cells x flow steps) per CPU second; then 2
 // threads against 1 (same process). On a shared machine quote CPU times and ratios.
+// With THREADS = "halving": one thread at the default cell, half of it and a quarter of it over
+// SIMULATED_SECONDS, and the CPU ratio per halving of the cell.
 // Usage: bench_flow [SIMULATED_SECONDS (default: the scenario's duration) [scenario.toml
-//        [THREADS (default: 1 and 2)]]]
+//        [THREADS (default: 1 and 2) | halving]]]
 #include <omp.h>
 
 #include <chrono>
@@ -17,6 +19,7 @@
 #include <string>
 
 #include "sim/format/scenario_file.h"
+#include "sim/grid/grid_rules.h"
 #include "sim/simulate.h"
 
 namespace {
@@ -55,6 +58,20 @@ int main(int argc, char** argv) {
       argc > 2 ? argv[2] : std::string(THAW_SOURCE_DIR) + "/data/scenarios/hollow_sphere_flow.toml";
   const thaw::sim::Scenario sc = thaw::sim::read_scenario_file(file);
   const double seconds = argc > 1 ? std::atof(argv[1]) : sc.duration_s;
+  if (argc > 3 && std::string(argv[3]) == "halving") {
+    const double h = thaw::sim::effective_cell_size_m(sc);
+    double previous = 0;
+    for (double cell : {h, h / 2, h / 4}) {
+      thaw::sim::Scenario fine = sc;
+      fine.cell_size_m = cell;
+      const Run r = run(fine, 1, seconds, sc.duration_s);
+      if (previous > 0)
+        std::printf("  cell %.4g mm: %.2fx the CPU of twice the cell\n", 1e3 * cell,
+                    r.cpu_s / previous);
+      previous = r.cpu_s;
+    }
+    return 0;
+  }
   if (argc > 3) {
     run(sc, std::atoi(argv[3]), seconds, sc.duration_s);
     return 0;
