@@ -133,10 +133,16 @@ double thinnest_wall_m(const SignedDistance& outer, const SignedDistance* cavity
 }
 
 namespace {
-double default_cell(const Scenario& s, double extent, double wall) {
+/// min(largest extent / cells across, thinnest wall / kDefaultWallCells), and with the water
+/// flowing (cavity_extent > 0) at most its thermal boundary layer / kMinBoundaryLayerCells.
+double default_cell(const Scenario& s, double extent, double wall, double cavity_extent) {
   const double across = s.grid == GridGeometry::axisymmetric ? kDefaultCellsAcrossAxisymmetric
                                                              : kDefaultCellsAcross3d;
-  return std::min(extent / across, wall / kDefaultWallCells);
+  double cell = std::min(extent / across, wall / kDefaultWallCells);
+  if (s.natural_convection && cavity_extent > 0)
+    cell = std::min(cell,
+                    cavity_flow_scale(s, cavity_extent).boundary_layer_m / kMinBoundaryLayerCells);
+  return cell;
 }
 }  // namespace
 
@@ -187,8 +193,8 @@ double effective_cell_size_m(const Scenario& s) {
   const SignedDistance outer = make_signed_distance(s.shape.outer, "shape.outer");
   std::optional<SignedDistance> cavity;
   if (s.shape.cavity) cavity = make_signed_distance(*s.shape.cavity, "shape.cavity");
-  return default_cell(s, largest_extent(outer),
-                      thinnest_wall_m(outer, cavity ? &*cavity : nullptr));
+  return default_cell(s, largest_extent(outer), thinnest_wall_m(outer, cavity ? &*cavity : nullptr),
+                      cavity ? largest_extent(*cavity) : 0.0);
 }
 
 std::optional<GridRuleProblem> find_grid_problem(const Scenario& s) {
@@ -225,7 +231,9 @@ std::optional<GridRuleProblem> find_grid_problem(const Scenario& s) {
                            "must lie strictly inside the outer body, but it reaches " + num(-wall) +
                                " m outside its surface (or touches it)"};
   const double extent = largest_extent(*outer);
-  const double cell = s.cell_size_m > 0 ? s.cell_size_m : default_cell(s, extent, wall);
+  const double cell = s.cell_size_m > 0
+                          ? s.cell_size_m
+                          : default_cell(s, extent, wall, cavity ? largest_extent(*cavity) : 0.0);
   if (wall < kMinWallCells * cell) {
     std::string message = s.cell_size_m > 0 ? "(" + num(cell) + " m) is too coarse: "
                                             : "the default cell size is too coarse: ";

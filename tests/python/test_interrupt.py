@@ -34,7 +34,8 @@ def _long_scenario(tmp_path):
     import thaw
     sc = thaw.Scenario.from_toml(text, "hollow_cube.toml").with_(**{
         "simulation.duration_s": 36000.0, "simulation.output_interval_s": 36000.0,
-        "simulation.cell_size_m": 0.002, "outer_boundary.heat_transfer_coefficient_w_m2k": 5.0})
+        "simulation.cell_size_m": 0.002, "simulation.flow": "none",
+        "outer_boundary.heat_transfer_coefficient_w_m2k": 5.0})
     path = tmp_path / "long.toml"
     path.write_text(sc.text)
     return path

@@ -45,12 +45,14 @@ TEST(GridRules, ValidShapesParse) {
       scenario(
           "3d",
           kCube +
-              "cavity = { kind = \"box\", size_m = [0.024, 0.024, 0.024], edge_radius_m = 0.002 }"),
+              "cavity = { kind = \"box\", size_m = [0.024, 0.024, 0.024], edge_radius_m = 0.002 }",
+          "flow = \"none\""),
       "good.toml");
   EXPECT_EQ(s.grid, GridGeometry::cartesian3d);
   ASSERT_TRUE(s.shape.cavity.has_value());
   EXPECT_EQ(s.shape.cavity->edge_radius_m, 0.002);
-  // default cell: 1/48 of the 4 cm extent (the 8 mm wall is 9.6 cells)
+  // default cell without flow: 1/48 of the 4 cm extent (the 8 mm wall is 9.6 cells); with flow
+  // it also spans the water's boundary layer (TooCoarseForTheFlowsBoundaryLayerSaysWhatIsNeeded)
   EXPECT_NEAR(effective_cell_size_m(s), 0.04 / kDefaultCellsAcross3d, 1e-15);
   const Scenario a = parse_scenario_string(
       scenario("axisymmetric",
@@ -167,6 +169,19 @@ TEST(GridRules, TooCoarseForTheFlowsBoundaryLayerSaysWhatIsNeeded) {
   // The shipped flow scenario's default cells (0.5 mm) span its layer (1.3 mm at Ra 8.5e5)
   EXPECT_NO_THROW(read_scenario_file(std::filesystem::path(THAW_SOURCE_DIR) /
                                      "data/scenarios/hollow_sphere_flow.toml"));
+  // Without cell_size_m, the default cell spans the layer with 2 cells when the water flows (the
+  // default wherever there is water): the shipped hollow cube's 24 mm cavity of 10 C water needs
+  // 0.58 mm, finer than 1/48 of its 4 cm (0.83 mm), which it keeps without flow.
+  const Scenario cube = read_scenario_file(std::filesystem::path(THAW_SOURCE_DIR) /
+                                           "data/scenarios/hollow_cube.toml");
+  EXPECT_TRUE(cube.natural_convection);
+  const double layer = cavity_flow_scale(cube, 0.024).boundary_layer_m;
+  EXPECT_NEAR(effective_cell_size_m(cube), layer / 2, 1e-12);
+  Scenario still = cube;
+  still.natural_convection = false;
+  EXPECT_NEAR(effective_cell_size_m(still), 0.04 / 48, 1e-12);
+  EXPECT_NO_THROW(read_scenario_file(std::filesystem::path(THAW_SOURCE_DIR) /
+                                     "data/scenarios/obj_pebble.toml"));
 }
 
 TEST(GridRules, FarOutBodyNamesItsFileNotTheCellSize) {
