@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <thread>
 
@@ -164,6 +165,11 @@ SimulationResult simulate_grid(const Scenario& scenario, const std::vector<doubl
     result.boundary_heat_j.push_back(g.face_heat_in_j);
     if (scenario.natural_convection)
       result.flow_records.push_back({g.time_s, g.max_speed_m_s, g.rayleigh});
+    result.water_records.push_back(
+        {g.time_s, g.held_water_m3,
+         std::isfinite(g.water_level_m) ? g.water_level_m
+                                        : std::numeric_limits<double>::quiet_NaN(),
+         g.enclosed_liquid_volume_m3, g.liquid_volume_m3, g.ice_volume_m3, g.drained_m3});
     if (sink)
       sink(i, solver.field());
     else

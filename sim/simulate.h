@@ -42,6 +42,18 @@ struct SimulationResult {
   /// entered the body through each since t = 0 [J] (boundary_heat.csv).
   std::vector<std::string> boundary_faces;
   std::vector<std::vector<double>> boundary_heat_j;
+  /// Grid runs: the water's books per output time (summary.json "water"; docs/simulate.md,
+  /// "Water held in an open shell").
+  struct WaterRecord {
+    double time_s = 0;
+    double held_m3 = 0;      ///< held in opened cavities (cups)
+    double level_m = 0;      ///< their lowest free surface (y) [m]; NaN: no cup holds water
+    double enclosed_m3 = 0;  ///< liquid in sealed cavities and held in cups
+    double liquid_m3 = 0;    ///< all liquid in the body
+    double ice_m3 = 0;
+    double drained_m3 = 0;  ///< drained so far (to the puddle)
+  };
+  std::vector<WaterRecord> water_records;
   /// interfaces.csv rows, step = index into snapshots.
   std::vector<InterfaceRecord> interface_records() const;
 };

@@ -1,5 +1,7 @@
 #include "sim/format/simulation_output.h"
 
+#include <cmath>
+
 #include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -58,6 +60,19 @@ nlohmann::json grid_summary_json(const SimulationResult& r) {
       rows.push_back({{"time_s", f[0]}, {"max_speed_m_s", f[1]}, {"rayleigh", f[2]}});
     j["flow"] = rows;
   }
+  // The water's books per output (material volumes: the solver has one density for ice and
+  // water; docs/simulate.md, "Water held in an open shell"); level null while no cup holds
+  // water.
+  nlohmann::json water = nlohmann::json::array();
+  for (const auto& w : r.water_records)
+    water.push_back({{"time_s", w.time_s},
+                     {"held_m3", w.held_m3},
+                     {"level_m", std::isfinite(w.level_m) ? nlohmann::json(w.level_m) : nullptr},
+                     {"enclosed_m3", w.enclosed_m3},
+                     {"liquid_m3", w.liquid_m3},
+                     {"ice_m3", w.ice_m3},
+                     {"drained_m3", w.drained_m3}});
+  j["water"] = water;
   const GridStatistics& s = r.grid_statistics;
   const GridField& f = r.grid;
   j["solver"] = {

@@ -7,8 +7,18 @@
 // (break-through: where the wall between them is gone, not where a cell is less than half
 // ice). Writes m and H of drained cells and its own arrays. Knows nothing of heat conduction,
 // Newton or step sizes.
+//
+// An opened cavity holds its water as a cup (issue 25 item 1): water drains only through
+// openings below its free surface. Its level is the height of its lowest opening (gravity along
+// -y); the cavity's cells keep what lies below the level (a cell cut by the level keeps that
+// share of its room not taken by ice: a flat, hydrostatic surface to the sub-cell) and go on
+// exchanging heat as before; the rest drains. The cup is always full to its lowest opening, so
+// melt made above the level would spill there anyway and drains as outside melt. A hole below
+// the level (the wall gone between a held cell and an outside cell, as for break-through)
+// lowers it: a `water_level_drop`.
 #include <array>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "sim/grid/block_team.h"
@@ -62,8 +72,15 @@ class CavityDrain {
   /// cavity has opened or the first one was already reported. Serial.
   std::optional<std::array<double, 3>> detect_break_through();
   bool broke_through() const { return m_broke_through; }
-  /// Drains cell c if it is exposed, outside the cavities and holds liquid, booking it in
-  /// `tally`.
+  /// After fill_outside: the level drops of opened cavities since the last call (where the
+  /// new lowest opening is, and the new level [m]). Serial.
+  std::vector<std::pair<std::array<double, 3>, double>> take_level_drops();
+  /// The lowest free surface of the opened cavities [m] (+infinity if none holds water).
+  double water_level_m() const;
+  /// Liquid volume held in opened cavities [m^3].
+  double held_water_volume() const;
+  /// Drains cell c if it is exposed, outside the cavities and holds liquid, or if it holds an
+  /// opened cavity's liquid above that cavity's level, booking it in `tally`.
   void drain_cell(long c, DrainTally& tally);
   /// Adds cell c's enclosed liquid to `tally`.
   void add_enclosed(long c, EnclosedTally& tally) const;
@@ -80,6 +97,13 @@ class CavityDrain {
   void open_cavities();
   /// Cell c holds no wall: its ice is below the remnant fraction that draining removes.
   bool ice_free(long c) const;
+  /// The height [m] below which water leaks through the face between cavity cell c and its
+  /// outside neighbour nb: the face itself if horizontal, c's centre if vertical (the hole's
+  /// middle: its bottom is not resolved).
+  double opening_height(long c, long nb) const;
+  double bottom(long c) const { return m_mesh.centre(c)[1] - 0.5 * m_mesh.dx_m; }
+  /// Fraction of cell c's room below `level` (0 above, 1 below).
+  double below(long c, double level) const;
   /// Liquid that stays in the body: not exposed, or held in a cavity.
   bool held(long c) const { return !m_exposed[c] || m_cavity[c]; }
 
@@ -90,6 +114,9 @@ class CavityDrain {
   bool m_broke_through = false;
   std::optional<std::array<double, 3>> m_opening;  ///< the first opening, until reported
   std::vector<char> m_exposed, open_now, outside_now, m_cavity, cavity_prev;
+  /// Per cavity cell: its cavity's free surface [m] once opened, +infinity while sealed.
+  std::vector<double> m_level, level_prev;
+  std::vector<std::pair<std::array<double, 3>, double>> m_level_drops;
   std::vector<long> queue;  ///< the flood fill's breadth-first queue
 };
 

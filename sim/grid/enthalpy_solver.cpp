@@ -85,6 +85,9 @@ struct EnthalpySolver::Impl {
     out.liquid_volume_m3 = liquid_volume();
     out.ice_volume_m3 = ice_volume();
     out.enclosed_liquid_volume_m3 = cavity.enclosed_liquid_volume();
+    out.held_water_m3 = cavity.held_water_volume();
+    out.water_level_m = cavity.water_level_m();
+    out.drained_m3 = stepper.drained_volume();
     out.enthalpy_j = stepper.energy();
     out.heat_in_j = stepper.heat_in();
     out.drained_j = stepper.drained();

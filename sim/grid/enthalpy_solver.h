@@ -42,7 +42,8 @@ namespace thaw::sim {
 
 /// A change of regime with where it happened.
 struct GridEvent {
-  std::string kind;  ///< "melt_onset" | "break_through" | "core_frozen" | "fully_melted"
+  /// "melt_onset" | "break_through" | "water_level_drop" | "core_frozen" | "fully_melted"
+  std::string kind;
   double time_s = 0;
   std::array<double, 3> position_m{0, 0, 0};  ///< cell centre (axisymmetric: {r, y, 0})
 };
@@ -66,7 +67,11 @@ struct GridStatistics {
 struct GridSnapshot {
   double time_s = 0;
   double liquid_volume_m3 = 0, ice_volume_m3 = 0;
-  double enclosed_liquid_volume_m3 = 0;  ///< liquid not open to the outside
+  double enclosed_liquid_volume_m3 = 0;  ///< liquid not open to the outside (or held)
+  /// Water held in opened cavities (cups) [m^3], their lowest free surface [m] (y; +infinity:
+  /// none), and the material volume drained so far [m^3]. The solver has one density for ice
+  /// and water: ice + liquid + drained = the initial material volume (docs/simulate.md).
+  double held_water_m3 = 0, water_level_m = 0, drained_m3 = 0;
   double enthalpy_j = 0, heat_in_j = 0, drained_j = 0;
   double energy_balance_error = 0;  ///< |E - E0 - heat_in + drained| / reference energy
   /// heat_in_j by the body's face (EnthalpySolver::face_names) [J]

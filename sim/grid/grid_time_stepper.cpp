@@ -165,8 +165,7 @@ GridTimeStepper::StepResult GridTimeStepper::step(BlockTeam& team,
     for (std::size_t f = 0; f < m_face_heat_in.size(); ++f)
       m_face_heat_in[f] += dt * sum_blocks([f](const BlockSums& b) { return b.face_heat[f]; });
     m_cavity.fill_outside();
-    if (const auto opened = m_cavity.detect_break_through())
-      m_events.push_back({"break_through", m_time, *opened});
+    record_openings();
   });
   // exposure, draining (booked), openness for a re-flood, energies and the end events' sums
   team.for_blocks([&](long bl) {
@@ -194,6 +193,7 @@ GridTimeStepper::StepResult GridTimeStepper::step(BlockTeam& team,
   team.serial([&] {
     const double drained_before = m_drained;
     m_drained += drained_step;
+    m_drained_m3 += sum_blocks([](const BlockSums& b) { return b.drained_m3; });
     m_stats.removed_ice_m3 += sum_blocks([](const BlockSums& b) { return b.drain.removed; });
     double most = 0;
     long most_cell = -1;
@@ -215,8 +215,7 @@ GridTimeStepper::StepResult GridTimeStepper::step(BlockTeam& team,
     m_stats.max_step_s = std::max(m_stats.max_step_s, dt);
     if (drained_step > 0) {  // the drained cells opened: the next outside
       m_cavity.fill_outside();
-      if (const auto opened = m_cavity.detect_break_through())
-        m_events.push_back({"break_through", m_time, *opened});
+      record_openings();
     }
     m_surface.after_step(drained_step > 0,
                          sum_blocks([](const BlockSums& b) { return b.drained_m3; }), dt);
@@ -243,6 +242,14 @@ GridTimeStepper::StepResult GridTimeStepper::step(BlockTeam& team,
       m_stats.flow_cell_steps = m_flow->flow_cell_steps();
     });
   return StepResult::accepted;
+}
+
+/// The cavities' openings found by the last flood fill as events (serial).
+void GridTimeStepper::record_openings() {
+  if (const auto opened = m_cavity.detect_break_through())
+    m_events.push_back({"break_through", m_time, *opened});
+  for (const auto& [where, level] : m_cavity.take_level_drops())
+    m_events.push_back({"water_level_drop", m_time, where});
 }
 
 /// The serial end of an accepted step: core_frozen (at the last enclosed liquid's cell),

@@ -54,6 +54,9 @@ class GridTimeStepper {
   /// heat_in() by the body's face (body_face_names(GridProblem::face_shape)) [J].
   const std::vector<double>& face_heat_in() const { return m_face_heat_in; }
   double drained() const { return m_drained; }
+  /// Material volume drained so far [m^3] (melt and held water spilt; the solver's one
+  /// density: docs/simulate.md, "Water held in an open shell").
+  double drained_volume() const { return m_drained_m3; }
   /// Total enthalpy of the material [J].
   double energy() const;
 
@@ -86,6 +89,7 @@ class GridTimeStepper {
   /// end at the pace of the last window of work.
   std::string runaway(double target);
   void end_of_step(double step_dt, double saved);
+  void record_openings();
   void advance_team(BlockTeam& team, double target, const std::function<bool()>& stop);
 
   const GridProblem& p;
@@ -112,6 +116,7 @@ class GridTimeStepper {
 
   double m_e0 = 0, m_heat_in = 0, m_drained = 0, m_reference = 0, initial_material = 0;
   std::vector<double> m_face_heat_in;
+  double m_drained_m3 = 0;
   std::vector<GridEvent> m_events;
   GridStatistics m_stats;
   long m_attempts = 0;              ///< attempted steps (accepted and rejected)

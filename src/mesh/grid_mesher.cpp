@@ -74,7 +74,8 @@ double ice_between(const GridSurfaces& s) {
 // solver drains every other cell in or next to the outside each step, so in a field such water
 // is a cavity's), and an enclosed open cell holding water is a sealed cavity (melt inside the
 // ice, in cells at least half ice, is not: after break-through such cells hold ~1e-6 of water).
-// Until the solver's break_through the film must show the cavity closed and full, after it open.
+// Until the solver's break_through the film must show the cavity closed and full, after it open
+// (the water an open shell holds as a cup is not sealed).
 bool holds_sealed_water(const sim::GridField& f) {
   const bool axi = f.geometry == sim::GridField::Geometry::axisymmetric;
   const int nx = f.cells[0], ny = f.cells[1], nz = f.cells[2];
@@ -114,8 +115,38 @@ bool holds_sealed_water(const sim::GridField& f) {
     visit(k > 0, c - sz);
     visit(k + 1 < nz, c + sz);
   }
-  for (std::size_t c = 0; c < f.cell_count(); ++c)
-    if (!outside[c] && open(c) && f.water_fraction[c] > 0.01f) return true;
+  // Each body of enclosed water is sealed unless it touches the outside where the wall is gone
+  // (an ice-free cell of it beside an ice-free outside cell): then it is water held in an open
+  // cup, whose free surface meets the air (sim/grid/cavity_drain.h).
+  auto ice_free = [&](std::size_t c) { return f.ice_fraction[c] < 1e-3f; };
+  auto water = [&](std::size_t c) { return !outside[c] && open(c) && f.water_fraction[c] > 0.01f; };
+  std::vector<char> seen(f.cell_count(), 0);
+  for (std::size_t start = 0; start < f.cell_count(); ++start) {
+    if (seen[start] || !water(start)) continue;
+    bool touches_air = false;
+    queue.assign(1, start);
+    seen[start] = 1;
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const std::size_t c = queue[head];
+      const int i = static_cast<int>(c % sy), j = static_cast<int>((c / sy) % ny),
+                k = static_cast<int>(c / sz);
+      auto visit = [&](bool inside, std::size_t nb) {
+        if (!inside) return;
+        if (outside[nb] && ice_free(nb) && ice_free(c)) touches_air = true;
+        if (!seen[nb] && water(nb)) {
+          seen[nb] = 1;
+          queue.push_back(nb);
+        }
+      };
+      visit(i > 0, c - sx);
+      visit(i + 1 < nx, c + sx);
+      visit(j > 0, c - sy);
+      visit(j + 1 < ny, c + sy);
+      visit(k > 0, c - sz);
+      visit(k + 1 < nz, c + sz);
+    }
+    if (!touches_air) return true;
+  }
   return false;
 }
 

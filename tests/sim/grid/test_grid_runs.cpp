@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -338,6 +339,91 @@ speed_m_s = )") + speed + "\n";
     EXPECT_NEAR(melted->time_s, t1d, 0.01 * t1d + 20.0) << speed;
     EXPECT_LT(grid.grid_statistics.max_step_energy_error, 1e-8);
   }
+}
+
+/// Fraction of a sphere's volume below the height y_over_r (in radii) from its centre.
+double sphere_below(double y_over_r) {
+  const double y = std::clamp(y_over_r, -1.0, 1.0);
+  return 0.5 + 0.75 * y - 0.25 * y * y * y;
+}
+
+TEST(GridRuns, OpenShellHoldsItsWaterUpToTheOpening) {
+  // A 1 cm ice sphere whose 6 mm cavity sits 2.4 mm towards +x: its thinnest wall (1.6 mm) is
+  // the side at mid-height, so the shell opens there and the cup keeps the water below the
+  // hole (issue 25 item 1): about half, as a sphere cut at its equator; water above the level
+  // drains, the level drops as the hole melts downwards, and the books balance at every
+  // output: ice + liquid + drained = the initial material (one density for ice and water).
+  const Scenario sc = parse_scenario_string(
+      "[simulation]\ngeometry = \"3d\"\nduration_s = 120.0\noutput_interval_s = 20.0\n"
+      "cell_size_m = 0.0005\n[shape]\nouter = { kind = \"sphere\", radius_m = 0.01 }\n"
+      "cavity = { kind = \"sphere\", radius_m = 0.006, center_m = [0.0024, 0.0, 0.0] }\n"
+      "[water]\ninitial_temperature_c = 10.0\n[ice]\ninitial_temperature_c = -1.0\n"
+      "[outer_boundary]\nkind = \"convective\"\ntemperature_c = 40.0\n"
+      "heat_transfer_coefficient_w_m2k = 200.0\n",
+      "side_hole.toml");
+  const GridEvent* first = nullptr;
+  const SimulationResult coarse = simulate(sc);
+  first = find_event(coarse, "break_through");
+  ASSERT_NE(first, nullptr);
+  // again with outputs every second around the opening
+  std::vector<double> times{0};
+  for (double t = std::floor(first->time_s) - 10; t < first->time_s + 10; t += 1)
+    times.push_back(t);
+  times.push_back(120);
+  const SimulationResult r = simulate(sc, times);
+  const GridEvent* bt = find_event(r, "break_through");
+  ASSERT_NE(bt, nullptr);
+  const double dx = r.fields.front().spacing_m;
+  std::printf("break_through at %.1f s, (%.4f, %.4f, %.4f) m\n", bt->time_s, bt->position_m[0],
+              bt->position_m[1], bt->position_m[2]);
+  int drops = 0;
+  for (const GridEvent& e : r.grid_events)
+    if (e.kind == "water_level_drop") ++drops;
+  std::printf("%d water_level_drop events\n", drops);
+  EXPECT_GT(bt->position_m[0], 0.006);  // the +x side
+  // within 2 mm of mid-height: the wall there is thicker than at the equator by only
+  // y^2 / 2 (1 / 6 mm - 1 / 10 mm) = 0.13 mm, a quarter cell, so the hole may open anywhere in it
+  EXPECT_LT(std::abs(bt->position_m[1]), 4 * dx);
+  EXPECT_GT(drops, 0);
+  // the books, every output
+  const auto& w = r.water_records;
+  ASSERT_EQ(w.size(), r.snapshots.size());
+  const double v0 = w.front().ice_m3 + w.front().liquid_m3;
+  for (const auto& row : w)
+    EXPECT_NEAR(row.ice_m3 + row.liquid_m3 + row.drained_m3, v0, 1e-9 * v0) << row.time_s;
+  // the first output after the opening holds the cavity's water below the level
+  std::size_t k = 2;
+  while (k < w.size() && w[k].time_s < bt->time_s) ++k;
+  ASSERT_LT(k + 1, w.size()) << "the run must go on after the opening";
+  ASSERT_TRUE(std::isfinite(w[k].level_m));
+  // the level is that of the last opening (break-through or drop) before the output
+  double level = bt->position_m[1];
+  for (const GridEvent& e : r.grid_events)
+    if (e.kind == "water_level_drop" && e.time_s <= w[k].time_s) level = e.position_m[1];
+  EXPECT_DOUBLE_EQ(w[k].level_m, level);
+  std::printf("held %.3e m^3 at %.0f s (level %.5f m); enclosed before %.3e m^3 at %.0f s\n",
+              w[k].held_m3, w[k].time_s, w[k].level_m, w[k - 1].enclosed_m3, w[k - 1].time_s);
+  // The cavity is about a sphere of the volume enclosed before (grown from 6 mm), centred at
+  // y = 0; the level cuts it. Slack: one cell of level over its equatorial area, plus what the
+  // cavity gained in the second before the opening (the same again after it).
+  const double enclosed = w[k - 1].enclosed_m3;
+  const double radius = std::cbrt(3 * enclosed / (4 * std::numbers::pi));
+  const double expected = enclosed * sphere_below(w[k].level_m / radius);
+  const double slack = std::numbers::pi * radius * radius * dx +
+                       2 * std::abs(w[k - 1].enclosed_m3 - w[k - 2].enclosed_m3);
+  std::printf("expected %.3e +- %.1e m^3\n", expected, slack);
+  EXPECT_NEAR(w[k].held_m3, expected, slack);
+  EXPECT_GT(w[k].drained_m3 - w[k - 1].drained_m3, 0.3 * enclosed);  // the top half spilt
+  // no water above the level in the field but the traces melting inside the ice
+  const GridField& f = r.fields[k];
+  double above = 0;
+  for (int kk = 0; kk < f.cells[2]; ++kk)
+    for (int j = 0; j < f.cells[1]; ++j)
+      for (int i = 0; i < f.cells[0]; ++i)
+        if (f.origin_m[1] + j * f.spacing_m >= w[k].level_m)
+          above += f.water_fraction[f.index(i, j, kk)] * dx * dx * dx;
+  EXPECT_LT(above, 0.01 * w[k].held_m3);
+  EXPECT_LT(r.grid_statistics.max_step_energy_error, 1e-8);
 }
 
 }  // namespace
