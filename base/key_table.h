@@ -68,12 +68,15 @@ template <class Section>
 struct ColourKey {
   std::array<double, 3> Section::*field;
 };
-/// One of a list of names; `set` returns false for a name not in the list.
+/// One of a list of names; `set` returns false for a name not in the list. `what` (when set)
+/// names the list in the message for another name: "unknown light kind 'x' (expected point or
+/// sphere)"; else "must be \"point\" or \"sphere\" (got \"x\")".
 template <class Section>
 struct ChoiceKey {
   std::span<const std::string_view> names;
   std::string_view (*get)(const Section&);
   bool (*set)(Section&, std::string_view name);
+  std::string_view what = {};
 };
 /// true, false or "auto" (nullopt).
 template <class Section>
@@ -94,6 +97,9 @@ struct KeyRow {
                OptionalNumberKey<Section>, VectorKey<Section>, TextKey<Section>>
       value;
   Extra extra{};  ///< the section's own columns
+  /// Whether the key belongs to the section as read so far (a sphere light's radius); a key that
+  /// does not is left unread, so the file's unused-key check names it. Null: always.
+  bool (*applies)(const Section&) = nullptr;
 };
 
 /// The row named `name`, or nullptr.

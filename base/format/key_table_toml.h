@@ -38,6 +38,7 @@ inline std::array<double, 3> unit_vector(const TomlTable& t, const std::string& 
 
 template <class Section, class Extra>
 void read_key(const TomlTable& t, const KeyRow<Section, Extra>& row, Section& s) {
+  if (row.applies && !row.applies(s)) return;
   const std::string key(row.name);
   const auto fail_if = [&](const KeyProblem& problem) {
     if (problem) t.fail(key, *problem);
@@ -76,8 +77,19 @@ void read_key(const TomlTable& t, const KeyRow<Section, Extra>& row, Section& s)
   } else if (const auto* k = std::get_if<ChoiceKey<Section>>(&row.value)) {
     const std::string name = t.get_string(key, std::string(k->get(s)));
     if (!k->set(s, name)) {
-      std::string problem = "must be ";
-      problem.append(choice_names_text(k->names)).append(" (got \"").append(name).append("\")");
+      std::string problem;
+      if (k->what.empty()) {
+        problem.append("must be ").append(choice_names_text(k->names));
+        problem.append(" (got \"").append(name).append("\")");
+      } else {
+        problem.append("unknown ").append(k->what).append(" '").append(name).append("' (expected ");
+        for (std::size_t i = 0; i < k->names.size(); ++i)
+          problem.append(i == 0                     ? ""
+                         : i + 1 == k->names.size() ? " or "
+                                                    : ", ")
+              .append(k->names[i]);
+        problem.append(")");
+      }
       t.fail(key, problem);
     }
   } else if (const auto* k = std::get_if<AutoFlagKey<Section>>(&row.value)) {

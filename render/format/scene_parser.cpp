@@ -15,6 +15,7 @@
 #include "render/scene/camera_keys.h"
 #include "render/scene/caustic_keys.h"
 #include "render/scene/image_keys.h"
+#include "render/scene/light_keys.h"
 
 namespace thaw::render {
 
@@ -170,28 +171,10 @@ CameraDescription parse_camera(const TomlTable& cam) {
   return camera;
 }
 
+/// One [[lights]] entry: every key by its row (render/scene/light_keys.h).
 LightDescription parse_light(const TomlTable& l) {
   LightDescription light;
-  const std::string kind = l.get_string("kind", "point");
-  if (kind == "point") {
-    light.kind = LightDescription::Kind::point;
-  } else if (kind == "sphere") {
-    light.kind = LightDescription::Kind::sphere;
-    light.radius = checked(l, "radius", l.get_double("radius"), light_radius_problem);
-    light.samples = int_key(l, "samples", light.samples, light_samples_problem);
-  } else {
-    l.fail("kind", "unknown light kind '" + kind + "' (expected point or sphere)");
-  }
-  light.position = l.get_vec3("position");
-  light.color = color3(l, "color", light.color);
-  light.intensity = l.require_non_negative("intensity", l.get_double("intensity", 1.0));
-  const std::string falloff = l.get_string("falloff", "none");
-  if (falloff == "none")
-    light.falloff = LightDescription::Falloff::none;
-  else if (falloff == "inverse_square")
-    light.falloff = LightDescription::Falloff::inverse_square;
-  else
-    l.fail("falloff", "unknown falloff '" + falloff + "' (expected none or inverse_square)");
+  read_keys(l, light_keys(), light);
   return light;
 }
 

@@ -135,6 +135,11 @@ std::optional<std::string> light_radius_problem(double radius) {
   return "a sphere light needs a positive radius (got " + num(radius) + ")";
 }
 
+std::optional<std::string> light_intensity_problem(double intensity) {
+  if (intensity >= 0.0) return std::nullopt;  // infinity: light_problem's
+  return "must not be negative (got " + num(intensity) + ")";
+}
+
 std::optional<std::string> light_samples_problem(long long samples) {
   return int_between(samples, 1, kMaxLightSamples);
 }

@@ -74,6 +74,8 @@ std::optional<std::string> wavelength_pattern_name_problem(std::string_view name
 std::optional<std::string> vertical_fov_problem(double degrees);
 std::optional<std::string> light_radius_problem(double radius);
 std::optional<std::string> light_samples_problem(long long samples);
+/// A light's intensity as the file gives it: not negative (NaN included).
+std::optional<std::string> light_intensity_problem(double intensity);
 std::optional<std::string> ior_problem(double ior);
 /// roughness of a dielectric object, a metal or a phong material: [0, 1]
 std::optional<std::string> roughness_problem(double roughness);

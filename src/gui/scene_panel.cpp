@@ -13,6 +13,7 @@
 
 #include "base/check.h"
 #include "render/scene/camera_keys.h"
+#include "render/scene/light_keys.h"
 #include "src/gui/key_row_field.h"
 #include "src/gui/main_window.h"
 #include "src/gui/shell_step.h"
@@ -247,14 +248,29 @@ void ScenePanel::refresh() {
 KeyForm* ScenePanel::light_form(int k) {
   auto* f = new KeyForm;
   const std::string key = indexed("render.lights", k);
-  f->add_choice("Kind", key + ".kind", {"point", "sphere"},
+  // Labels and choices from the light's rows (render/scene/light_keys.h); the values as the
+  // document has them, with a new light's seed values.
+  const auto row = [](std::string_view name) {
+    const render::LightKey* r = find_key(render::light_keys(), name);
+    THAW_CHECK(r != nullptr, "the light form names a [[lights]] key of the table");
+    return r;
+  };
+  const auto names = [&](std::string_view name) {
+    QStringList out;
+    for (std::string_view n : std::get<ChoiceKey<render::LightDescription>>(row(name)->value).names)
+      out << QString::fromUtf8(n.data(), static_cast<int>(n.size()));
+    return out;
+  };
+  f->add_choice(key_row_label(*row("kind")), key + ".kind", names("kind"),
                 doc(key + ".kind", std::string("point")));
-  f->add_vector("Position [m]", key + ".position", doc(key + ".position", V3{0, 1, 0}));
-  f->add_vector("Colour", key + ".color", doc(key + ".color", V3{1, 1, 1}), true);
-  f->add_number("Intensity", key + ".intensity", doc(key + ".intensity", 1.0));
-  f->add_choice("Falloff", key + ".falloff", {"none", "inverse_square"},
+  f->add_vector(key_row_label(*row("position")), key + ".position",
+                doc(key + ".position", V3{0, 1, 0}));
+  f->add_vector(key_row_label(*row("color")), key + ".color", doc(key + ".color", V3{1, 1, 1}),
+                true);
+  f->add_number(key_row_label(*row("intensity")), key + ".intensity", doc(key + ".intensity", 1.0));
+  f->add_choice(key_row_label(*row("falloff")), key + ".falloff", names("falloff"),
                 doc(key + ".falloff", std::string("none")));
-  f->add_number("Radius (sphere) [m]", key + ".radius", doc(key + ".radius", 0.0));
+  f->add_number(key_row_label(*row("radius")), key + ".radius", doc(key + ".radius", 0.0));
   return f;
 }
 

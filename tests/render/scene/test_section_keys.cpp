@@ -11,6 +11,7 @@
 #include "render/format/scene_parser.h"
 #include "render/scene/camera_keys.h"
 #include "render/scene/caustic_keys.h"
+#include "render/scene/light_keys.h"
 #include "render/scene/scene_rules.h"
 
 namespace thaw::render {
@@ -51,6 +52,32 @@ void expect_unique_names(std::span<const Row> rows) {
 TEST(SectionKeys, NamesAreUniqueAndFound) {
   expect_unique_names(camera_keys());
   expect_unique_names(caustic_keys());
+  expect_unique_names(light_keys());
+}
+
+TEST(SectionKeys, LightRowsAreReadAndASpheresKeysApplyToItAlone) {
+  const std::string light = "[[lights]]\nposition = [0, 5, 0]\n";
+  const SceneDescription s = parse_scene_string(
+      std::string(kCamera) + light + "kind = \"sphere\"\nradius = 0.5\nsamples = 8\n" +
+          "color = [1, 0.5, 0]\nintensity = 2\nfalloff = \"inverse_square\"\n",
+      "s.toml");
+  ASSERT_EQ(s.lights.size(), 1u);
+  EXPECT_EQ(s.lights[0].kind, LightDescription::Kind::sphere);
+  EXPECT_EQ(s.lights[0].radius, 0.5);
+  EXPECT_EQ(s.lights[0].samples, 8);
+  EXPECT_EQ(s.lights[0].color, (RgbD{1, 0.5, 0}));
+  EXPECT_EQ(s.lights[0].intensity, 2.0);
+  EXPECT_EQ(s.lights[0].falloff, LightDescription::Falloff::inverse_square);
+  EXPECT_NE(problem_of(std::string(kCamera) + light + "radius = 0.5\n").find("radius"),
+            std::string::npos);  // a point light has no radius
+  EXPECT_NE(problem_of(std::string(kCamera) + light + "kind = \"sphere\"\n").find("radius"),
+            std::string::npos);  // a sphere light needs one
+  EXPECT_NE(problem_of(std::string(kCamera) + light + "kind = \"spot\"\n")
+                .find("unknown light kind 'spot' (expected point or sphere)"),
+            std::string::npos);
+  EXPECT_NE(problem_of(std::string(kCamera) + light + "intensity = -1\n")
+                .find("must not be negative (got -1)"),
+            std::string::npos);
 }
 
 TEST(SectionKeys, CameraRowsAreReadAndRequiredOnesMustBeThere) {
@@ -98,7 +125,8 @@ TEST(SectionKeys, DocsRenderMdListsExactlyTheTablesRows) {
   ASSERT_FALSE(docs.empty()) << "docs/render.md";
   for (const auto& [expected, table] :
        {std::pair{key_docs_rows(caustic_keys(), "[caustics] "), "caustic_keys.cpp"},
-        std::pair{key_docs_rows(camera_keys(), "[camera] "), "camera_keys.cpp"}})
+        std::pair{key_docs_rows(camera_keys(), "[camera] "), "camera_keys.cpp"},
+        std::pair{key_docs_rows(light_keys(), "[[lights]] "), "light_keys.cpp"}})
     EXPECT_NE(docs.find(expected), std::string::npos)
         << "docs/render.md's rows differ from render/scene/" << table << "; they should read:\n"
         << expected;
