@@ -590,6 +590,12 @@ render.image height
 render.image samples_per_pixel
 render.shell floor_y
 EOF
+  # Sizes typed in centimetres, and an edge asking for 1e10 triangles: refused when the scenario
+  # is read, naming metres or [mesh] triangles (not a flag thaw run lacks), issue 27.
+  set_key "$base" shell outer_radius_m 3.0 >"$IN/k.toml"
+  bad run.shell.outer_radius_m_in_cm "outer_radius_m.*in metres: 3 cm is 0\.03" -- "$THAW" run "$IN/k.toml" --out "$OUT/run" -q
+  set_key "$base" mesh edge_length_m 1e-6 >"$IN/k.toml"
+  bad run.mesh.edge_length_m_1e10_triangles "edge_length_m.*\[mesh\] triangles" -- "$THAW" run "$IN/k.toml" --out "$OUT/run" -q
   for v in '[1e308, 0.0, 0.0]' '[0.0, 1e9, 0.0]' '[1.0, 2.0]' '[0.0, nan, 0.0]'; do
     set_key "$base" render.shell center "$v" >"$IN/k.toml"
     bad "run.render.shell.center=$v" "center" -- "$THAW" run "$IN/k.toml" --out "$OUT/run" -q
