@@ -23,6 +23,7 @@
 #include "base/error.h"
 #include "render/scene/caustic_keys.h"
 #include "render/scene/image_keys.h"
+#include "sim/grid/grid_rules.h"
 #include "sim/scenario/materials_keys.h"
 #include "src/gui/key_form.h"
 #include "src/gui/key_row_field.h"
@@ -311,20 +312,39 @@ void MainWindow::on_film_finished(const QString& film) {
 }
 
 QWidget* MainWindow::make_scenario_tab() {
+  auto* page = new QWidget;
+  auto* v = new QVBoxLayout(page);
+  v->setContentsMargins(0, 0, 0, 0);
+  v->setSpacing(0);
+  auto* top = new KeyForm;
+  top->add_section("Geometry and sizes");
+  top->add_choice("Geometry", "simulation.geometry",
+                  {"sphere", "cylinder", "planar", "axisymmetric", "3d"}, [](const RunScenario& s) {
+                    return TomlValue{std::string(s.simulation.grid == sim::GridGeometry::none
+                                                     ? sim::to_string(s.simulation.geometry)
+                                                     : sim::to_string(s.simulation.grid))};
+                  });
+  m_forms.push_back(top);  // m_forms[1]: its edits are connected by the constructor
+  v->addWidget(top);
+  // The 1D shell's radii or the grid body's [shape]: only the geometry's own rows are shown.
+  m_shell_form = new KeyForm;
+  m_shell_form->setObjectName("shell_form");
+  v->addWidget(m_shell_form);
+  m_shape_form = make_shape_form();
+  v->addWidget(m_shape_form);
+  register_form(m_shell_form, true);
+  register_form(m_shape_form, true);
   auto* form = new KeyForm;
-  form->add_section("Geometry and sizes");
-  form->add_choice("Geometry", "simulation.geometry", {"sphere", "cylinder", "planar"},
-                   [](const RunScenario& s) {
-                     return TomlValue{std::string(sim::to_string(s.simulation.geometry))};
-                   });
-  form->add_number("Inner radius [m]", "shell.inner_radius_m",
-                   [](const RunScenario& s) { return d(s.simulation.inner_radius_m); });
-  form->add_number("Outer radius [m]", "shell.outer_radius_m",
-                   [](const RunScenario& s) { return d(s.simulation.outer_radius_m); });
-  form->add_number("Cylinder length [m]", "shell.length_m",
-                   [](const RunScenario& s) { return d(s.simulation.length_m); });
-  form->add_number("Slab lateral size [m]", "shell.lateral_size_m",
-                   [](const RunScenario& s) { return d(s.simulation.lateral_size_m); });
+  v->addWidget(form);
+  register_form(form, true);
+  m_shell_form->add_number("Inner radius [m]", "shell.inner_radius_m",
+                           [](const RunScenario& s) { return d(s.simulation.inner_radius_m); });
+  m_shell_form->add_number("Outer radius [m]", "shell.outer_radius_m",
+                           [](const RunScenario& s) { return d(s.simulation.outer_radius_m); });
+  m_shell_form->add_number("Cylinder length [m]", "shell.length_m",
+                           [](const RunScenario& s) { return d(s.simulation.length_m); });
+  m_shell_form->add_number("Slab lateral size [m]", "shell.lateral_size_m",
+                           [](const RunScenario& s) { return d(s.simulation.lateral_size_m); });
   form->add_section("Temperatures");
   form->add_number("Water at t = 0 [C]", "water.initial_temperature_c", [](const RunScenario& s) {
     return d(s.simulation.water_initial_temperature_c);
@@ -372,7 +392,74 @@ QWidget* MainWindow::make_scenario_tab() {
                     [](const RunScenario& s) { return i(s.film.frames); });
   form->add_number("Frames per second", "film.fps",
                    [](const RunScenario& s) { return d(s.film.fps); });
-  m_forms.push_back(form);
+  v->addStretch(1);
+  return page;
+}
+
+namespace {
+
+/// The rows of one body of [shape] (`table` = "shape.outer" or "shape.cavity"): its kind and the
+/// keys of every kind (those of other kinds greyed out, grey_out_unused), as
+/// sim/format/scenario_file.cpp reads them. The cavity's kind has "none": no cavity (solid ice).
+void add_shape_rows(KeyForm* form, const std::string& table, bool cavity) {
+  using sim::ShapeSpec;
+  auto spec = [cavity](const RunScenario& s) -> const ShapeSpec* {
+    if (!cavity) return &s.simulation.shape.outer;
+    return s.simulation.shape.cavity ? &*s.simulation.shape.cavity : nullptr;
+  };
+  auto number = [spec](double ShapeSpec::*field) {
+    return [spec, field](const RunScenario& s) {
+      const ShapeSpec* p = spec(s);
+      return d(p ? p->*field : 0.0);
+    };
+  };
+  auto vector = [spec](std::array<double, 3> ShapeSpec::*field) {
+    return [spec, field](const RunScenario& s) {
+      const ShapeSpec* p = spec(s);
+      return TomlValue{p ? p->*field : std::array<double, 3>{0, 0, 0}};
+    };
+  };
+  QStringList kinds{"box", "sphere", "cylinder", "obj"};
+  if (cavity) kinds.prepend("none");
+  form->add_choice("Kind", table + ".kind", kinds, [spec](const RunScenario& s) {
+    const ShapeSpec* p = spec(s);
+    return TomlValue{std::string(p ? sim::to_string(p->kind) : "none")};
+  });
+  form->add_vector("Centre [m]", table + ".center_m", vector(&ShapeSpec::center_m));
+  form->add_vector("Box size [m]", table + ".size_m", vector(&ShapeSpec::size_m));
+  form->add_number("Box edge radius [m]", table + ".edge_radius_m",
+                   number(&ShapeSpec::edge_radius_m));
+  form->add_number("Radius [m]", table + ".radius_m", number(&ShapeSpec::radius_m));
+  form->add_number("Cylinder height [m]", table + ".height_m", number(&ShapeSpec::height_m));
+  form->add_number("OBJ scale", table + ".scale", number(&ShapeSpec::scale));
+  form->add_vector("OBJ translation [m]", table + ".translate_m", vector(&ShapeSpec::translate_m));
+}
+
+}  // namespace
+
+KeyForm* MainWindow::make_shape_form() {
+  auto* form = new KeyForm;
+  form->setObjectName("shape_form");
+  form->add_section("Grid solver ([simulation])");
+  form->add_number("Cell size [m]", "simulation.cell_size_m", [](const RunScenario& s) {
+    // The effective cell: the scenario's, or the default the solver picks.
+    try {
+      return d(sim::effective_cell_size_m(s.simulation));
+    } catch (const UserError&) {
+      return d(s.simulation.cell_size_m);
+    }
+  });
+  form->add_choice("Flow in the water", "simulation.flow", {"none", "natural_convection"},
+                   [](const RunScenario& s) {
+                     return TomlValue{std::string(
+                         s.simulation.natural_convection ? "natural_convection" : "none")};
+                   });
+  form->add_number("Largest time step [s]", "simulation.max_step_s",
+                   [](const RunScenario& s) { return d(s.simulation.max_step_s); });
+  form->add_section("Body ([shape] outer)");
+  add_shape_rows(form, "shape.outer", false);
+  form->add_section("Cavity ([shape] cavity)");
+  add_shape_rows(form, "shape.cavity", true);
   return form;
 }
 
@@ -496,6 +583,13 @@ void MainWindow::show_step(int index) {
 }
 
 bool MainWindow::apply_edit(const std::string& key, const TomlValue& value) {
+  const std::string* text = std::get_if<std::string>(&value);
+  if (key == "shape.cavity.kind" && text && *text == "none") {  // solid ice: no cavity table
+    m_document.remove("shape.cavity");
+    recheck();
+    return m_check.ok();
+  }
+  if (key == "simulation.geometry" && text) switch_solver_family(*text);
   m_document.set(key, value);
   if (key.size() > 5 && key.compare(key.size() - 5, 5, ".kind") == 0) fit_keys_to_kind(key);
   recheck();
@@ -586,6 +680,39 @@ void MainWindow::recheck() {
   update_title();
 }
 
+void MainWindow::switch_solver_family(const std::string& geometry) {
+  // [shell] is the 1D geometries' table, [shape] the grid solvers' (the parser rejects the other
+  // one, and the keys only one solver reads): switching between them carries the body over, a
+  // hollow sphere as spheres (a grid body that is no sphere becomes the 1D default's radii).
+  const bool to_grid = geometry == "axisymmetric" || geometry == "3d";
+  if (!m_check.ok()) return;
+  const sim::Scenario& s = m_check.scenario->simulation;
+  const bool grid = s.grid != sim::GridGeometry::none;
+  if (to_grid == grid) return;
+  if (to_grid) {
+    const double outer = s.outer_radius_m, inner = s.inner_radius_m;
+    m_document.remove("shell");
+    for (const char* key : {"simulation.cells_per_phase", "simulation.time_tolerance"})
+      m_document.remove(key);
+    m_document.set("shape.outer.kind", std::string("sphere"));
+    m_document.set("shape.outer.radius_m", outer);
+    if (inner > 0) {
+      m_document.set("shape.cavity.kind", std::string("sphere"));
+      m_document.set("shape.cavity.radius_m", inner);
+    }
+    return;
+  }
+  const bool spheres = s.shape.outer.kind == sim::ShapeKind::sphere &&
+                       (!s.shape.cavity || s.shape.cavity->kind == sim::ShapeKind::sphere);
+  const double outer = spheres ? s.shape.outer.radius_m : 0.03;
+  const double inner = spheres ? (s.shape.cavity ? s.shape.cavity->radius_m : 0.0) : 0.02;
+  for (const char* key :
+       {"shape", "simulation.cell_size_m", "simulation.max_step_s", "simulation.flow"})
+    m_document.remove(key);
+  m_document.set("shell.outer_radius_m", outer);
+  m_document.set("shell.inner_radius_m", inner);
+}
+
 void MainWindow::fit_keys_to_kind(const std::string& kind_key) {
   // The parsers' rule: a table holds exactly the keys its kind uses (an outer boundary's
   // temperature, h or flux; a sphere light's radius; a material's texture). After a kind
@@ -601,6 +728,11 @@ void MainWindow::fit_keys_to_kind(const std::string& kind_key) {
       {"flux_w_m2", TomlValue{1000.0}},
       {"relative_humidity", TomlValue{0.5}},
       {"radius", TomlValue{0.1}},
+      // [shape] bodies (issue 25): a 3 cm cube, sphere or cylinder, small enough to be a
+      // cavity in the shipped 4 cm bodies
+      {"size_m", TomlValue{std::array<double, 3>{0.03, 0.03, 0.03}}},
+      {"radius_m", TomlValue{0.015}},
+      {"height_m", TomlValue{0.03}},
       {"emission", TomlValue{std::array<double, 3>{1.0, 1.0, 1.0}}}};
   const std::string kind = m_document.string_or(kind_key, "");
   const std::string table = kind_key.substr(0, kind_key.size() - std::string(".kind").size());
@@ -642,6 +774,24 @@ void MainWindow::grey_out_unused(const RunScenario& sc) {
   for (const auto& [key, on] : used)
     for (KeyForm* form : m_forms)
       if (QWidget* field = form->field(key)) field->setEnabled(on);
+  // A grid scenario's [shape] rows instead of the 1D radii; of a body's rows those of its kind.
+  const bool grid = s.grid != sim::GridGeometry::none;
+  m_shell_form->setVisible(!grid);
+  m_shape_form->setVisible(grid);
+  using K = sim::ShapeKind;
+  for (const auto& [table, spec] :
+       {std::pair{std::string("shape.outer"), std::optional<sim::ShapeSpec>(s.shape.outer)},
+        std::pair{std::string("shape.cavity"), s.shape.cavity}}) {
+    const std::optional<K> kind = grid && spec ? std::optional<K>(spec->kind) : std::nullopt;
+    const std::pair<const char*, bool> keys[] = {
+        {".center_m", kind.has_value()},    {".size_m", kind == K::box},
+        {".edge_radius_m", kind == K::box}, {".radius_m", kind == K::sphere || kind == K::cylinder},
+        {".height_m", kind == K::cylinder}, {".scale", kind == K::obj},
+        {".translate_m", kind == K::obj},
+    };
+    for (const auto& [key, on] : keys)
+      if (QWidget* field = m_shape_form->field(table + key)) field->setEnabled(on);
+  }
 }
 
 bool MainWindow::can_save() const {

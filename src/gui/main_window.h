@@ -131,8 +131,13 @@ class MainWindow : public QMainWindow {
   /// A film's run ended: its frames are listed and the first one shown.
   void on_film_finished(const QString& film);
   QWidget* make_scenario_tab();
+  /// The Scenario tab's rows of a grid scenario: the grid solver's keys and the [shape] bodies.
+  KeyForm* make_shape_form();
   QWidget* make_simulation_tab();
   void recheck();
+  /// Before `simulation.geometry` becomes `geometry`: between a 1D geometry and a grid one,
+  /// replaces [shell] by [shape] (or back), carrying a hollow sphere over.
+  void switch_solver_family(const std::string& geometry);
   /// Makes the table of `kind_key` (just edited) hold the keys its new kind uses (see there).
   void fit_keys_to_kind(const std::string& kind_key);
   /// Greys out the fields of keys the scenario does not read (its geometry, its boundary kind).
@@ -160,6 +165,9 @@ class MainWindow : public QMainWindow {
   QAction* m_save = nullptr;
   QAction* m_save_as = nullptr;
   std::vector<KeyForm*> m_forms;
+  /// the Scenario tab's 1D shell rows and grid [shape] rows: one of them is shown
+  KeyForm* m_shell_form = nullptr;
+  KeyForm* m_shape_form = nullptr;
   QImage m_image;
   int m_pass = -1, m_passes = 0;
   /// the serial of the latest preview request: only its images are shown

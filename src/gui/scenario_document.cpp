@@ -60,15 +60,19 @@ ScenarioDocument::ScenarioDocument()
 
 ScenarioDocument::ScenarioDocument(std::nullptr_t) {}
 
+// A copy parses the text again rather than copying the table: toml++'s copy of a table loses
+// the source positions of what inline tables hold (a [shape] body's size_m), which the in-place
+// edits need (the copy's first edit of one re-serialised the whole file, without its comments).
+// m_root is always the parse of m_text (edit()), so the copy is the same document.
 ScenarioDocument::ScenarioDocument(const ScenarioDocument& o)
-    : m_root(std::make_unique<toml::table>(*o.m_root)),
+    : m_root(std::make_unique<toml::table>(parse_toml(o.m_text, o.m_source_name))),
       m_text(o.m_text),
       m_source_name(o.m_source_name),
       m_layout_kept(o.m_layout_kept) {}
 
 ScenarioDocument& ScenarioDocument::operator=(const ScenarioDocument& o) {
   if (this != &o) {
-    m_root = std::make_unique<toml::table>(*o.m_root);
+    m_root = std::make_unique<toml::table>(parse_toml(o.m_text, o.m_source_name));
     m_text = o.m_text;
     m_source_name = o.m_source_name;
     m_layout_kept = o.m_layout_kept;

@@ -26,6 +26,7 @@
 #include <string>
 
 #include "base/interrupt.h"
+#include "sim/grid/grid_rules.h"
 #include "src/gui/main_window.h"
 #include "src/gui/scene_props.h"
 #include "src/gui/screenshot.h"
@@ -694,6 +695,91 @@ class TestMainWindow : public QObject {
     const QImage without = w.preview_image();
     const double moved = mean_difference(with_body.copy(middle), without.copy(middle));
     QVERIFY2(moved > 10, qPrintable(QString::number(moved)));
+  }
+
+  // The Scenario tab of a grid scenario (issue 25 item 6) edits its [shape] and grid solver keys
+  // instead of the 1D radii; the edits round-trip through the file, its comments kept; switching
+  // the kind of a body or the solver's family is one edit.
+  void theScenarioTabEditsAGridScenariosShape() {
+    const fs::path source = fs::path(THAW_SOURCE_DIR) / "data/scenarios/hollow_cube.toml";
+    MainWindow w{ScenarioDocument::load(source)};
+    w.show();
+    QVERIFY2(w.check().ok(), w.check().message.c_str());
+    QVERIFY(w.select_tab("scenario"));
+    auto* shell_form = w.findChild<QWidget*>("shell_form");
+    auto* shape_form = w.findChild<QWidget*>("shape_form");
+    QVERIFY(shell_form && shape_form);
+    QVERIFY(shell_form->isHidden());  // no "sphere 0.02/0.03 m"
+    QVERIFY(!shape_form->isHidden());
+    auto combo = [&](const char* key) { return w.findChild<QComboBox*>(key)->currentText(); };
+    auto text = [&](const char* key) { return w.findChild<QLineEdit*>(key)->text(); };
+    auto enabled = [&](const char* key) {
+      auto* f = w.findChild<QWidget*>(key);
+      return f && f->isEnabled();
+    };
+    QCOMPARE(combo("simulation.geometry"), QString("3d"));
+    QCOMPARE(combo("shape.outer.kind"), QString("box"));
+    QCOMPARE(combo("shape.cavity.kind"), QString("box"));
+    // The flow as the scenario has it (the solver's default when the file names none); then off.
+    QCOMPARE(
+        combo("simulation.flow"),
+        QString(w.check().scenario->simulation.natural_convection ? "natural_convection" : "none"));
+    QVERIFY2(w.apply_edit("simulation.flow", std::string("none")), w.check().message.c_str());
+    QCOMPARE(combo("simulation.flow"), QString("none"));
+    QCOMPARE(text("shape.outer.size_m.text"), QString("0.04, 0.04, 0.04"));
+    // the solver's default cell, as the field prints it (10 significant digits)
+    const double cell = thaw::sim::effective_cell_size_m(w.check().scenario->simulation);
+    QVERIFY(std::abs(text("simulation.cell_size_m").toDouble() - cell) < 1e-9 * cell);
+    QVERIFY(enabled("shape.outer.size_m"));
+    QVERIFY(!enabled("shape.outer.radius_m"));
+    // Typed sizes reach the parsed scenario and round-trip through the saved file.
+    QVERIFY(w.document().layout_kept());
+    type_into(w, "shape.outer.size_m", "0.05, 0.04, 0.045");
+    QVERIFY(w.document().layout_kept());  // edited in place, the comments kept
+    type_into(w, "simulation.cell_size_m", "0.001");
+    QVERIFY(w.document().layout_kept());
+    QVERIFY2(w.check().ok(), w.check().message.c_str());
+    QCOMPARE(w.check().scenario->simulation.shape.outer.size_m,
+             (std::array<double, 3>{0.05, 0.04, 0.045}));
+    const fs::path file = temp_dir() / "hollow_cube_edited.toml";
+    QVERIFY(w.save_file(file));
+    const std::string saved = read_bytes(file);
+    QVERIFY(saved.find("# The first report's object") != std::string::npos);
+    QVERIFY(saved.find("cell_size_m = 0.001") != std::string::npos);
+    MainWindow back{ScenarioDocument::load(file)};
+    QVERIFY2(back.check().ok(), back.check().message.c_str());
+    QCOMPARE(back.check().scenario->simulation_text, w.check().scenario->simulation_text);
+    // A cavity turned into a sphere gets a radius; "none" removes it (solid ice).
+    QVERIFY2(w.apply_edit("shape.cavity.kind", std::string("sphere")), w.check().message.c_str());
+    QCOMPARE(w.check().scenario->simulation.shape.cavity->radius_m, 0.015);
+    QVERIFY(enabled("shape.cavity.radius_m"));
+    QVERIFY(!enabled("shape.cavity.size_m"));
+    QVERIFY2(w.apply_edit("shape.cavity.kind", std::string("none")), w.check().message.c_str());
+    QVERIFY(!w.check().scenario->simulation.shape.cavity);
+    QVERIFY(!enabled("shape.cavity.center_m"));
+    QVERIFY2(w.apply_edit("shape.cavity.kind", std::string("box")), w.check().message.c_str());
+    QCOMPARE(w.check().scenario->simulation.shape.cavity->size_m,
+             (std::array<double, 3>{0.03, 0.03, 0.03}));
+    // Natural convection is one choice; the flow's rule on the cell shows under its field.
+    QVERIFY(!w.apply_edit("simulation.flow", std::string("natural_convection")));
+    QVERIFY(!w.field_problem("simulation.cell_size_m").isEmpty());
+    QVERIFY2(w.apply_edit("simulation.cell_size_m", 0.0005), w.check().message.c_str());
+    QVERIFY(w.check().scenario->simulation.natural_convection);
+    // To the 1D solver and back: a hollow sphere is carried over as radii, and back as spheres.
+    QVERIFY2(w.apply_edit("shape.cavity.kind", std::string("sphere")), w.check().message.c_str());
+    // (a typical 1.5 cm sphere is no larger body than the cavity: the rule's message shows)
+    QVERIFY(!w.apply_edit("shape.outer.kind", std::string("sphere")));
+    QVERIFY2(w.apply_edit("shape.outer.radius_m", 0.03), w.check().message.c_str());
+    QVERIFY2(w.apply_edit("simulation.geometry", std::string("sphere")), w.check().message.c_str());
+    QVERIFY(!shell_form->isHidden());
+    QVERIFY(shape_form->isHidden());
+    QCOMPARE(w.check().scenario->simulation.outer_radius_m, 0.03);
+    QCOMPARE(w.check().scenario->simulation.inner_radius_m, 0.015);
+    QVERIFY2(w.apply_edit("simulation.geometry", std::string("axisymmetric")),
+             w.check().message.c_str());
+    QCOMPARE(w.check().scenario->simulation.shape.outer.radius_m, 0.03);
+    QCOMPARE(w.check().scenario->simulation.shape.cavity->radius_m, 0.015);
+    QVERIFY(shell_form->isHidden());
   }
 
   void screenshotOfTheDefaultHasThePanelsAndARender() {

@@ -233,3 +233,42 @@ TEST(ScenarioDocument, KeyOfProblem) {
 
 }  // namespace
 }  // namespace thaw::gui
+
+namespace thaw::gui {
+namespace {
+
+// A grid scenario's [shape] bodies are inline tables (issue 25 item 6): a box's size typed in
+// the Scenario tab is written into its inline table in place, the file's comments kept.
+TEST(ScenarioDocument, AShapeSizeIsEditedInPlace) {
+  const std::string text =
+      "# a hollow cube\n"
+      "[simulation]\n"
+      "geometry = \"3d\"\n"
+      "\n"
+      "[shape]\n"
+      "outer  = { kind = \"box\", size_m = [0.04, 0.04, 0.04] }\n"
+      "cavity = { kind = \"box\", size_m = [0.024, 0.024, 0.024] }\n"
+      "\n"
+      "[water]\n"
+      "initial_temperature_c = 10.0\n";
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / "thaw_gui_document_shape.toml";
+  write_file_atomic(file, text);
+  ScenarioDocument doc = ScenarioDocument::load(file);
+  doc.set("shape.outer.size_m", std::array<double, 3>{0.05, 0.04, 0.045});
+  EXPECT_TRUE(doc.layout_kept()) << doc.text();
+  EXPECT_NE(doc.text().find("size_m = [0.05, 0.04, 0.045]"), std::string::npos) << doc.text();
+  std::filesystem::remove(file);
+  ScenarioDocument cube = ScenarioDocument::load(std::filesystem::path(THAW_SOURCE_DIR) /
+                                                 "data/scenarios/hollow_cube.toml");
+  // A copy (the window's) edits in place as well.
+  ScenarioDocument copy = cube;
+  cube.set("shape.outer.size_m", std::array<double, 3>{0.05, 0.04, 0.045});
+  EXPECT_TRUE(cube.layout_kept()) << cube.text();
+  copy.set("shape.outer.size_m", std::array<double, 3>{0.05, 0.04, 0.045});
+  EXPECT_TRUE(copy.layout_kept()) << copy.text();
+  EXPECT_EQ(copy.text(), cube.text());
+}
+
+}  // namespace
+}  // namespace thaw::gui

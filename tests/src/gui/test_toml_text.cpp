@@ -95,6 +95,29 @@ TEST(TomlText, AnElementInsideAnInlineTableRewritesOnlyThatElement) {
   EXPECT_EQ(parse(*text), want);
 }
 
+// A [shape] body is an inline table (issue 25): a whole array inside it (a box's size_m) is
+// rewritten in place, and so is a key added to it.
+TEST(TomlText, AnArrayOrAKeyOfAnInlineTableIsEditedInPlace) {
+  const std::string text =
+      "# a grid body\n"
+      "[shape]\n"
+      "outer  = { kind = \"box\", size_m = [0.04, 0.04, 0.04] }  # the cube\n"
+      "cavity = { kind = \"sphere\", radius_m = 0.01 }\n";
+  const toml::table t = parse(text);
+  toml::table want = t;
+  want["shape"]["outer"].as_table()->insert_or_assign("size_m", toml::array{0.05, 0.04, 0.045});
+  const auto edited = with_value(text, t, split_key("shape.outer.size_m"), want);
+  ASSERT_TRUE(edited.has_value());
+  EXPECT_EQ(*edited, replaced(text, "[0.04, 0.04, 0.04]", "[0.05, 0.04, 0.045]"));
+  EXPECT_EQ(parse(*edited), want);
+  toml::table added = t;
+  added["shape"]["cavity"].as_table()->insert_or_assign("center_m", toml::array{0.0, 0.01, 0.0});
+  const auto with_key = with_value(text, t, split_key("shape.cavity.center_m"), added);
+  ASSERT_TRUE(with_key.has_value());
+  EXPECT_EQ(parse(*with_key), added);
+  EXPECT_NE(with_key->find("# the cube"), std::string::npos);
+}
+
 TEST(TomlText, ColumnsCountCodePointsNotBytes) {
   // toml++ positions count code points: the element after "é" (2 bytes) is found exactly.
   const std::string original = "x = [\"é\", 2]  # ü\n";
