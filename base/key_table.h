@@ -102,6 +102,18 @@ struct KeyRow {
   bool (*applies)(const Section&) = nullptr;
 };
 
+/// Sets `value` to the enumerator at `name`'s place in `names` (a choice key's names, in the
+/// order of the enumerators); false, and `value` unchanged, if `name` is not one of them.
+template <class Enum>
+bool set_enum_by_name(Enum& value, std::span<const std::string_view> names, std::string_view name) {
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) {
+      value = static_cast<Enum>(i);
+      return true;
+    }
+  return false;
+}
+
 /// The row named `name`, or nullptr.
 template <class Row>
 const Row* find_key(std::span<const Row> rows, std::string_view name) {

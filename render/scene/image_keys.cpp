@@ -82,15 +82,9 @@ const ImageKey kImageKeys[] = {
      "after Sobotka's AgX: highlights are not clipped, bright colours desaturate towards white) or "
      "\"clip\" (exposed and clamped to [0, 1], as POV-Ray; the comparison scenes set it); PFM and "
      "EXR stay linear",
-     ChoiceKey{kToneNames, [](const S& s) { return kToneNames[static_cast<std::size_t>(s.view)]; },
-               [](S& s, std::string_view name) {
-                 for (std::size_t i = 0; i < kToneNames.size(); ++i)
-                   if (name == kToneNames[i]) {
-                     s.view = static_cast<ViewTransform>(i);
-                     return true;
-                   }
-                 return false;
-               }}},
+     ChoiceKey{
+         kToneNames, [](const S& s) { return kToneNames[static_cast<std::size_t>(s.view)]; },
+         [](S& s, std::string_view name) { return set_enum_by_name(s.view, kToneNames, name); }}},
     {"spectral", "Spectral", "", "\"auto\"",
      "spectral transport (docs/dispersion.md): \"auto\" = on iff a medium is dispersive or "
      "absorbs; false = RGB (n_d, absorption per channel: docs/dispersion.md \"Absorption in RGB "

@@ -19,17 +19,10 @@ bool sphere(const L& l) {
 const LightKey kLightKeys[] = {
     {"kind", "Kind", "", "\"point\"",
      "\"point\" or \"sphere\" (an area light: soft shadows; see \"Sphere lights\" below)",
-     ChoiceKey<L>{kKindNames,
-                  [](const L& l) { return kKindNames[static_cast<std::size_t>(l.kind)]; },
-                  [](L& l, std::string_view name) {
-                    for (std::size_t i = 0; i < kKindNames.size(); ++i)
-                      if (name == kKindNames[i]) {
-                        l.kind = static_cast<L::Kind>(i);
-                        return true;
-                      }
-                    return false;
-                  },
-                  "light kind"}},
+     ChoiceKey<L>{
+         kKindNames, [](const L& l) { return kKindNames[static_cast<std::size_t>(l.kind)]; },
+         [](L& l, std::string_view name) { return set_enum_by_name(l.kind, kKindNames, name); },
+         "light kind"}},
     {"radius",
      "Radius (sphere)",
      "m",
@@ -59,12 +52,7 @@ const LightKey kLightKeys[] = {
      ChoiceKey<L>{kFalloffNames,
                   [](const L& l) { return kFalloffNames[static_cast<std::size_t>(l.falloff)]; },
                   [](L& l, std::string_view name) {
-                    for (std::size_t i = 0; i < kFalloffNames.size(); ++i)
-                      if (name == kFalloffNames[i]) {
-                        l.falloff = static_cast<L::Falloff>(i);
-                        return true;
-                      }
-                    return false;
+                    return set_enum_by_name(l.falloff, kFalloffNames, name);
                   },
                   "falloff"}},
 };

@@ -79,12 +79,7 @@ const MaterialsKey kMaterialsKeys[] = {
          kDensityModels,
          [](const M& m) { return kDensityModels[static_cast<std::size_t>(m.water_density_model)]; },
          [](M& m, std::string_view name) {
-           for (std::size_t i = 0; i < kDensityModels.size(); ++i)
-             if (name == kDensityModels[i]) {
-               m.water_density_model = static_cast<M::DensityModel>(i);
-               return true;
-             }
-           return false;
+           return set_enum_by_name(m.water_density_model, kDensityModels, name);
          }},
      {.flow = true}},
     {"water_expansion_per_k",
