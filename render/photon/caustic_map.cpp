@@ -99,21 +99,12 @@ std::vector<long long> share(long long total, const std::vector<double>& weight)
   return n;
 }
 
-}  // namespace
-
-CausticMap CausticMap::build(const Scene& scene, int threads, const std::atomic<bool>* cancel) {
-  const auto start = std::chrono::steady_clock::now();
-  CausticMap result;
-  const CausticSettings& settings = scene.caustics();
-  if (!settings.enabled) return result;
-  const std::vector<BoundingSphere> targets = dielectric_targets(scene);
-  const std::vector<Emitter> lights = emitters(scene);
-  const std::vector<LightCone> cones = light_cones(lights, targets);
-  if (cones.empty()) return result;
-
-  const PhotonTracer tracer(scene, kRouletteWeight);
-  // bench/render/ray_limit tells the photons' rays from the frame's (nothing when not recording).
-  const RayStreamScope photon_rays(RayStream::photon);
+/// The cones' photon budgets (share: sqrt of each cone's power), first photon indices, flux
+/// scales and starting media, and each target's automatic gather radius (the smallest over its
+/// cones; the settings' radius where given) in `radius`.
+std::vector<ConePlan> plan_cones(const std::vector<LightCone>& cones,
+                                 const std::vector<Emitter>& lights, const PhotonTracer& tracer,
+                                 const CausticSettings& settings, std::vector<double>& radius) {
   std::vector<double> weight;
   for (const LightCone& c : cones) {
     const Emitter& l = lights[c.emitter];
@@ -122,7 +113,6 @@ CausticMap CausticMap::build(const Scene& scene, int threads, const std::atomic<
   }
   const std::vector<long long> counts = share(settings.photons.value_or(kDefaultPhotons), weight);
   std::vector<ConePlan> plans;
-  std::vector<double> radius(targets.size(), 0.0);
   long long next = 0;
   for (std::size_t k = 0; k < cones.size(); ++k) {
     ConePlan p;
@@ -143,7 +133,108 @@ CausticMap CausticMap::build(const Scene& scene, int threads, const std::atomic<
   }
   if (settings.radius)
     for (double& r : radius) r = *settings.radius;
-  const long long photons = next;
+  return plans;
+}
+
+/// One path event of a photon of power `power` aimed at `target`: stored on a diffuse surface,
+/// or its flux booked where the path ended.
+void record_event(const PathEvent& e, const Rgb& power, std::uint32_t target, ChunkResult& part) {
+  const Rgb tinted = power * e.tint;  // RGB absorption (photon_tracer.h)
+  const Flux f = flux_of(tinted, e.weight);
+  switch (e.end) {
+    case PathEnd::stored:
+      part.photons.push_back(Photon{e.position, e.normal, tinted * e.weight});
+      part.target.push_back(target);
+      part.stored += f;
+      break;
+    case PathEnd::direct:
+      part.direct += f;
+      break;
+    case PathEnd::escaped:
+      part.escaped += f;
+      break;
+    case PathEnd::absorbed:
+      part.absorbed += f;
+      break;
+    case PathEnd::stopped:
+      part.stopped += f;
+      break;
+    case PathEnd::cut:
+      part.cut += f;
+      break;
+    case PathEnd::roulette: {
+      part.roulette += f;
+      // One event per decision on weight w: +w (ended) or -(T - w) (survived), of
+      // variance w (T - w) times the photon's power squared.
+      const double w = e.weight > 0 ? e.weight : kRouletteWeight + e.weight;
+      const double v = w * (kRouletteWeight - w);
+      part.roulette_variance +=
+          Flux{tinted.r * tinted.r * v, tinted.g * tinted.g * v, tinted.b * tinted.b * v};
+      break;
+    }
+  }
+}
+
+/// What the photon pass shares between its chunks.
+struct PhotonPass {
+  const std::vector<ConePlan>& plans;
+  const std::vector<Emitter>& lights;
+  const std::vector<RgbIlluminantSpectrum>& spectra;
+  bool spectral;
+  const PhotonTracer& tracer;
+  long long photons;
+};
+
+/// Photons [c kChunk, (c + 1) kChunk) of the pass: each emitted along its cone's low-discrepancy
+/// direction (unless an earlier cone of the same light owns it), traced, its events recorded.
+void trace_chunk(const PhotonPass& pass, long long c, PathEvents& events, ChunkResult& part) {
+  const std::vector<ConePlan>& plans = pass.plans;
+  const long long g0 = c * kChunk, g1 = std::min(pass.photons, g0 + kChunk);
+  std::size_t k = 0;
+  for (long long g = g0; g < g1; ++g) {
+    while (g >= plans[k].first + plans[k].count) ++k;
+    const ConePlan& plan = plans[k];
+    const auto i = static_cast<std::uint64_t>(g - plan.first);
+    const Vec3 dir =
+        plan.cone.direction(ScrambledHalton::sample(i, 0), ScrambledHalton::sample(i, 1));
+    // Directions of earlier cones of the same light belong to those cones.
+    bool owned_elsewhere = false;
+    for (std::size_t j = 0; j < k && !owned_elsewhere; ++j)
+      owned_elsewhere = plans[j].cone.emitter == plan.cone.emitter && plans[j].cone.contains(dir);
+    if (owned_elsewhere) continue;
+    const Emitter& light = pass.lights[plan.cone.emitter];
+    double lambda = media::kFraunhoferD_nm;
+    Rgb power = light.intensity * static_cast<float>(plan.scale);
+    if (pass.spectral)
+      power = photon_colour(pass.spectra[plan.cone.emitter], i, lambda) * plan.normalise *
+              static_cast<float>(plan.scale);
+    ++part.traced;
+    part.emitted += flux_of(power, 1.0);
+    const Vec3 origin =
+        emission_point(light, dir, ScrambledHalton::sample(i, 3), ScrambledHalton::sample(i, 4));
+    part.rays += pass.tracer.trace(Ray{origin, dir}, plan.medium, lambda, events, i);
+    for (const PathEvent& e : events) record_event(e, power, plan.cone.target_index, part);
+  }
+}
+
+}  // namespace
+
+CausticMap CausticMap::build(const Scene& scene, int threads, const std::atomic<bool>* cancel) {
+  const auto start = std::chrono::steady_clock::now();
+  CausticMap result;
+  const CausticSettings& settings = scene.caustics();
+  if (!settings.enabled) return result;
+  const std::vector<BoundingSphere> targets = dielectric_targets(scene);
+  const std::vector<Emitter> lights = emitters(scene);
+  const std::vector<LightCone> cones = light_cones(lights, targets);
+  if (cones.empty()) return result;
+
+  const PhotonTracer tracer(scene, kRouletteWeight);
+  // bench/render/ray_limit tells the photons' rays from the frame's (nothing when not recording).
+  const RayStreamScope photon_rays(RayStream::photon);
+  std::vector<double> radius(targets.size(), 0.0);
+  std::vector<ConePlan> plans = plan_cones(cones, lights, tracer, settings, radius);
+  const long long photons = plans.back().first + plans.back().count;
 
   const bool spectral = photons_carry_wavelengths(scene);
   std::vector<RgbIlluminantSpectrum> spectra;
@@ -155,6 +246,7 @@ CausticMap CausticMap::build(const Scene& scene, int threads, const std::atomic<
       p.normalise = colour_normalisation(spectra[p.cone.emitter], colour, p.count);
     }
 
+  const PhotonPass pass{plans, lights, spectra, spectral, tracer, photons};
   const long long chunks = (photons + kChunk - 1) / kChunk;
   std::vector<ChunkResult> parts(static_cast<std::size_t>(chunks));
   const int nthreads = threads > 0 ? threads : omp_get_max_threads();
@@ -166,70 +258,8 @@ CausticMap CausticMap::build(const Scene& scene, int threads, const std::atomic<
     for (long long c = 0; c < chunks; ++c) {
       // Ctrl-C / SIGTERM: skip the remaining chunks (the caller writes nothing, interrupt.h).
       if ((cancel && cancel->load(std::memory_order_relaxed)) || interrupt_requested()) continue;
-      ChunkResult& part = parts[static_cast<std::size_t>(c)];
       try {
-        const long long g0 = c * kChunk, g1 = std::min(photons, g0 + kChunk);
-        std::size_t k = 0;
-        for (long long g = g0; g < g1; ++g) {
-          while (g >= plans[k].first + plans[k].count) ++k;
-          const ConePlan& plan = plans[k];
-          const auto i = static_cast<std::uint64_t>(g - plan.first);
-          const Vec3 dir =
-              plan.cone.direction(ScrambledHalton::sample(i, 0), ScrambledHalton::sample(i, 1));
-          // Directions of earlier cones of the same light belong to those cones.
-          bool owned_elsewhere = false;
-          for (std::size_t j = 0; j < k && !owned_elsewhere; ++j)
-            owned_elsewhere =
-                plans[j].cone.emitter == plan.cone.emitter && plans[j].cone.contains(dir);
-          if (owned_elsewhere) continue;
-          const Emitter& light = lights[plan.cone.emitter];
-          double lambda = media::kFraunhoferD_nm;
-          Rgb power = light.intensity * static_cast<float>(plan.scale);
-          if (spectral)
-            power = photon_colour(spectra[plan.cone.emitter], i, lambda) * plan.normalise *
-                    static_cast<float>(plan.scale);
-          ++part.traced;
-          part.emitted += flux_of(power, 1.0);
-          const Vec3 origin = emission_point(light, dir, ScrambledHalton::sample(i, 3),
-                                             ScrambledHalton::sample(i, 4));
-          part.rays += tracer.trace(Ray{origin, dir}, plan.medium, lambda, events, i);
-          for (const PathEvent& e : events) {
-            const Rgb tinted = power * e.tint;  // RGB absorption (photon_tracer.h)
-            const Flux f = flux_of(tinted, e.weight);
-            switch (e.end) {
-              case PathEnd::stored:
-                part.photons.push_back(Photon{e.position, e.normal, tinted * e.weight});
-                part.target.push_back(plan.cone.target_index);
-                part.stored += f;
-                break;
-              case PathEnd::direct:
-                part.direct += f;
-                break;
-              case PathEnd::escaped:
-                part.escaped += f;
-                break;
-              case PathEnd::absorbed:
-                part.absorbed += f;
-                break;
-              case PathEnd::stopped:
-                part.stopped += f;
-                break;
-              case PathEnd::cut:
-                part.cut += f;
-                break;
-              case PathEnd::roulette: {
-                part.roulette += f;
-                // One event per decision on weight w: +w (ended) or -(T - w) (survived), of
-                // variance w (T - w) times the photon's power squared.
-                const double w = e.weight > 0 ? e.weight : kRouletteWeight + e.weight;
-                const double v = w * (kRouletteWeight - w);
-                part.roulette_variance +=
-                    Flux{tinted.r * tinted.r * v, tinted.g * tinted.g * v, tinted.b * tinted.b * v};
-                break;
-              }
-            }
-          }
-        }
+        trace_chunk(pass, c, events, parts[static_cast<std::size_t>(c)]);
       } catch (const std::bad_alloc&) {
 #pragma omp atomic write
         out_of_memory = true;
