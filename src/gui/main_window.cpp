@@ -485,6 +485,11 @@ QWidget* MainWindow::make_simulation_tab() {
   m_sim_status->setObjectName("simulation_status");
   m_sim_status->setWordWrap(true);
   v->addWidget(m_sim_status);
+  m_speed_label = new QLabel;
+  m_speed_label->setObjectName("flow_speed");
+  m_speed_label->setWordWrap(true);
+  m_speed_label->hide();
+  v->addWidget(m_speed_label);
   m_plot = new RadiusPlot;
   m_plot->setObjectName("radius_plot");
   v->addWidget(m_plot, 1);
@@ -530,6 +535,7 @@ QWidget* MainWindow::make_simulation_tab() {
               .arg(m_run->mesh_seconds, 0, 'f', 2)
               .arg(m_run->load_seconds, 0, 'f', 2));
     m_plot->set_rows(m_run->rows);
+    show_flow_speed();
     m_slider->setRange(0, static_cast<int>(m_run->steps.size()) - 1);
     m_slider->setEnabled(!m_run->steps.empty());
     m_step = -1;
@@ -574,12 +580,31 @@ void MainWindow::show_step(int index) {
   m_view->show_step(step, shell_offset_of(step), false, /*moving=*/true);
   m_plot->set_marker(step.row.time_s);
   m_time_label->setText(QString("%1 min").arg(step.row.time_s / 60.0, 0, 'f', 1));
+  show_flow_speed();
   if (m_slider->value() != index) m_slider->setValue(index);
   m_pass = -1;  // the image shown is of another step now
   // The preview follows once the slider rests; meanwhile no pass takes the cores from the 3D
   // view's draws (at load, a pass in flight made every move slower than the rest interval).
   m_renderer->cancel();
   m_scrub_timer->start();
+}
+
+void MainWindow::show_flow_speed() {
+  // summary.json's "flow" rows: the largest speed over the run, and at the slider's step.
+  const bool flow = m_run && !m_run->flow_records.empty();
+  m_speed_label->setVisible(flow);
+  if (!flow) return;
+  const auto largest = std::max_element(m_run->flow_records.begin(), m_run->flow_records.end(),
+                                        [](const auto& a, const auto& b) { return a[1] < b[1]; });
+  QString text = QString("Largest speed in the water: %1 mm/s (at %2 min)")
+                     .arg((*largest)[1] * 1e3, 0, 'f', 2)
+                     .arg((*largest)[0] / 60.0, 0, 'f', 1);
+  if (m_step >= 0) {
+    const double t = m_run->steps[static_cast<std::size_t>(m_step)]->row.time_s;
+    for (const auto& f : m_run->flow_records)
+      if (f[0] == t) text += QString("; at this step %1 mm/s").arg(f[1] * 1e3, 0, 'f', 2);
+  }
+  m_speed_label->setText(text + ".");
 }
 
 bool MainWindow::apply_edit(const std::string& key, const TomlValue& value) {
@@ -666,6 +691,7 @@ void MainWindow::recheck() {
       // The run no longer matches the scenario: back to the initial shell.
       m_run.reset();
       m_step = -1;
+      show_flow_speed();
       m_slider->setEnabled(false);
       m_plot->set_rows({});
       m_sim_status->setText("The scenario changed: simulate again to scrub through time.");

@@ -150,6 +150,8 @@ class MainWindow : public QMainWindow {
   std::array<double, 3> shell_offset_of(const ShellStep& step) const;
   /// Writes the 3D view's camera (after an orbit) as the scenario's [render.camera].
   void camera_from_view();
+  /// Shows the run's largest speed in the water (flow runs; hidden otherwise).
+  void show_flow_speed();
   void update_title();
   void resizeEvent(QResizeEvent* event) override;
 
@@ -188,6 +190,8 @@ class MainWindow : public QMainWindow {
   QPushButton* m_run_button = nullptr;
   QPushButton* m_cancel_button = nullptr;
   QLabel* m_sim_status = nullptr;
+  /// flow runs: the largest speed in the water over the run and at the slider's step
+  QLabel* m_speed_label = nullptr;
   /// While the slider moves, the preview of the step waits for it to rest (the 3D view follows
   /// at once, without the outer surface's edges): renders restarted at every tick would take
   /// the CPU from the GUI thread.

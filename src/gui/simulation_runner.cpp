@@ -95,6 +95,7 @@ void SimulationRunner::run(pipeline::RunScenario sc) {
     // 3. load every step's surfaces for the slider
     t = std::chrono::steady_clock::now();
     run->rows = result.interface_records();
+    run->flow_records = result.flow_records;
     const fs::path mesh_dir = simdir / "mesh";
     const auto total = static_cast<qint64>(manifest.steps.size());
     for (const mesh::StepRecord& s : manifest.steps) {

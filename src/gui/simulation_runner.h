@@ -8,6 +8,7 @@
 #include <QObject>
 #include <QString>
 #include <QTemporaryDir>
+#include <array>
 #include <atomic>
 #include <memory>
 #include <mutex>
@@ -26,6 +27,9 @@ struct SimulationRun {
   /// the sections the run was made from (a run is stale once they change)
   std::string simulation_text, mesh_text;
   double simulate_seconds = 0, mesh_seconds = 0, load_seconds = 0;
+  /// Flow runs: per output time {time [s], largest speed in the water [m/s], Rayleigh number},
+  /// summary.json's "flow" rows (sim::SimulationResult::flow_records); empty without flow.
+  std::vector<std::array<double, 3>> flow_records;
 };
 
 class SimulationRunner : public QObject {

@@ -782,6 +782,37 @@ class TestMainWindow : public QObject {
     QVERIFY(shell_form->isHidden());
   }
 
+  // A flow run's Simulation tab shows the largest speed in the water (issue 25 item 6): the
+  // largest of the run's flow rows (summary.json's), and the slider's step's own.
+  void aFlowRunShowsItsLargestSpeed() {
+    MainWindow w{ScenarioDocument::load(fs::path(THAW_SOURCE_DIR) /
+                                        "data/scenarios/hollow_sphere_flow.toml")};
+    w.show();
+    w.modify([](ScenarioDocument& d) {
+      d.set("simulation.duration_s", 60.0);
+      d.set("simulation.output_interval_s", 30.0);
+      d.set("film.frames", 3LL);
+    });
+    QVERIFY2(w.check().ok(), w.check().message.c_str());
+    auto* speed = w.findChild<QLabel*>("flow_speed");
+    QVERIFY(speed && speed->isHidden());
+    QSignalSpy finished(&w, &MainWindow::simulationFinished);
+    QVERIFY(w.start_simulation());
+    QTRY_VERIFY_WITH_TIMEOUT(finished.count() == 1, 300000);
+    const auto run = w.simulation_run();
+    QVERIFY(run && !run->flow_records.empty());
+    double largest = 0;
+    for (const auto& f : run->flow_records) largest = std::max(largest, f[1]);
+    QVERIFY(largest > 0);
+    QVERIFY(!speed->isHidden());
+    const QString shown = QString::number(largest * 1e3, 'f', 2) + " mm/s";
+    QVERIFY2(speed->text().contains(shown), qPrintable(speed->text() + " / " + shown));
+    QVERIFY2(speed->text().contains("at this step"), qPrintable(speed->text()));
+    // A stale run (an edit of the simulation) hides it.
+    QVERIFY(w.apply_edit("simulation.duration_s", 90.0));
+    QVERIFY(speed->isHidden());
+  }
+
   void screenshotOfTheDefaultHasThePanelsAndARender() {
     MainWindow w{ScenarioDocument()};
     w.show();
