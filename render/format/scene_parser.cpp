@@ -12,6 +12,7 @@
 #include "render/format/medium_library.h"
 #include "render/format/medium_parser.h"
 #include "render/light/latlong_map.h"
+#include "render/material/texture.h"
 #include "render/scene/camera_keys.h"
 #include "render/scene/caustic_keys.h"
 #include "render/scene/image_keys.h"
@@ -63,6 +64,28 @@ TextureDescription parse_texture(const TomlTable& m) {
     tex.checker_colors = {colors[0], colors[1]};
     tex.checker_size = c.require_positive("size", c.get_double("size"));
     tex.checker_offset = c.get_vec3("offset", {0.0, 0.0, 0.0});
+  } else if (m.has("noise")) {
+    if (m.has("color")) m.fail("color", "give either color or noise, not both");
+    const TomlTable c = m.table("noise");
+    tex.kind = TextureDescription::Kind::noise;
+    tex.noise_pattern = c.get_string("pattern");
+    Texture::Pattern pattern;
+    if (!noise_pattern_from_name(tex.noise_pattern, pattern))
+      c.fail("pattern", "expected \"perlin\", \"worley\", \"wood\" or \"slate\"");
+    const auto colors = c.get_vec3s("colors");
+    if (colors.size() != 2) c.fail("colors", "expected two colours [[r, g, b], [r, g, b]]");
+    for (const auto& col : colors)
+      for (double v : col)
+        if (!(v >= 0.0) || !std::isfinite(v))
+          c.fail("colors", "colour components must be finite and not negative");
+    tex.checker_colors = {colors[0], colors[1]};
+    tex.checker_size = c.require_positive("scale", c.get_double("scale"));
+    tex.checker_offset = c.get_vec3("offset", {0.0, 0.0, 0.0});
+    const std::int64_t octaves = c.get_int("octaves", 5);
+    if (octaves < 1 || octaves > 12) c.fail("octaves", "must be an integer from 1 to 12");
+    tex.noise_octaves = int(octaves);
+    tex.bump_m = c.get_double("bump_m", 0.0);
+    if (!(tex.bump_m >= 0.0 && tex.bump_m <= 0.1)) c.fail("bump_m", "must be from 0 to 0.1 [m]");
   } else {
     tex.kind = TextureDescription::Kind::solid;
     tex.color = color3(m, "color", {0.8, 0.8, 0.8});
@@ -231,6 +254,7 @@ void parse_shape(const TomlTable& o, ObjectDescription& obj) {
     if (file.empty()) o.fail("file", "must name an OBJ file");
     obj.mesh_file = file;
     obj.scale = o.get_double("scale", 1.0);
+    obj.rotate_deg = o.get_vec3("rotate_deg", {0.0, 0.0, 0.0});
     obj.translate = o.get_vec3("translate", {0.0, 0.0, 0.0});
     obj.smooth_normals = o.get_bool("smooth_normals", false);
   } else {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <unordered_map>
 
 #include "base/error.h"
@@ -154,6 +155,31 @@ void compute_smooth_normals(TriangleMesh& mesh) {
     mesh.normals[i] = len > 0.0f ? n / len : Vec3{0, 0, 1};
   }
   mesh.normal_indices = mesh.triangles;
+}
+
+void rotate_mesh(TriangleMesh& mesh, const std::array<double, 3>& degrees) {
+  // R = Rz Ry Rx, each a right-handed turn about its axis.
+  double r[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (int axis = 0; axis < 3; ++axis) {
+    const double a = degrees[std::size_t(axis)] * std::numbers::pi / 180.0;
+    const double c = std::cos(a), s = std::sin(a);
+    double turn[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    const int i = (axis + 1) % 3, j = (axis + 2) % 3;
+    turn[i][i] = c, turn[i][j] = -s, turn[j][i] = s, turn[j][j] = c;
+    double next[3][3] = {};
+    for (int row = 0; row < 3; ++row)
+      for (int col = 0; col < 3; ++col)
+        for (int k = 0; k < 3; ++k) next[row][col] += turn[row][k] * r[k][col];
+    std::copy(&next[0][0], &next[0][0] + 9, &r[0][0]);
+  }
+  const auto apply = [&](Vec3& v) {
+    const double x = v.x, y = v.y, z = v.z;
+    v = Vec3{float(r[0][0] * x + r[0][1] * y + r[0][2] * z),
+             float(r[1][0] * x + r[1][1] * y + r[1][2] * z),
+             float(r[2][0] * x + r[2][1] * y + r[2][2] * z)};
+  };
+  for (auto& p : mesh.positions) apply(p);
+  for (auto& n : mesh.normals) apply(n);
 }
 
 void transform_mesh(TriangleMesh& mesh, double scale, const std::array<double, 3>& translate) {

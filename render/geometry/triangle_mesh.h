@@ -31,8 +31,8 @@ struct TriangleMesh {
   bool has_normals() const { return !normal_indices.empty(); }
 };
 
-/// The renderer's mesh from a mesh file's (base/obj_reader.h): positions and normals rounded to float,
-/// normals made unit, 32-bit indices. Throws thaw::UserError naming `source` beyond 2^32 - 1
+/// The renderer's mesh from a mesh file's (base/obj_reader.h): positions and normals rounded to
+/// float, normals made unit, 32-bit indices. Throws thaw::UserError naming `source` beyond 2^32 - 1
 /// vertices or normals, on a zero-length normal, or a coordinate finite in double but not in
 /// float (validate_mesh).
 TriangleMesh from_file_mesh(const meshio::TriangleMesh& file, const std::string& source);
@@ -52,6 +52,10 @@ double signed_volume(const TriangleMesh& mesh);
 /// Replaces the normals by area-weighted vertex normals (vertices at identical positions are
 /// smoothed together, so split seams do not show).
 void compute_smooth_normals(TriangleMesh& mesh);
+
+/// Turns positions and normals about x, then y, then z by the angles `degrees` (right-handed,
+/// about the origin; in double, rounded to float once).
+void rotate_mesh(TriangleMesh& mesh, const std::array<double, 3>& degrees);
 
 /// p -> scale * p + translate; normals are unchanged for scale > 0.
 void transform_mesh(TriangleMesh& mesh, double scale, const std::array<double, 3>& translate);

@@ -20,15 +20,18 @@
 // The tracer (Derived) supplies what depends on the radiance type; see the "Derived provides"
 // list below. Knows nothing about pixels, tiles, films or files.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <vector>
 
 #include "render/integrator/phase_function.h"
 #include "render/light/environment_lighting.h"
+#include "render/light/environment_sampler.h"
 #include "render/light/light_sampling.h"
 #include "render/material/fresnel.h"
 #include "render/material/microfacet.h"
@@ -77,6 +80,13 @@ inline constexpr std::uint32_t kMicrofacetDimension = 0x20000u;
 /// per tree level).
 inline constexpr std::uint32_t kScatteringDimension = 0x30000u;
 
+/// First dimension pair of next-event estimation at scattering events: one pair per tree level
+/// and sphere light (level * 64 + light).
+inline constexpr std::uint32_t kScatteringLightDimension = 0x38000u;
+
+/// Dielectric interfaces a scattering event's shadow ray may cross before it counts as blocked.
+inline constexpr int kMaxShadowCrossings = 16;
+
 /// How a point light meets a surface point: behind it (no shadow ray cast), shadowed, or seen.
 enum class LightVisibility { facing_away, shadowed, seen };
 
@@ -124,6 +134,12 @@ class WhittedShading {
     }
     for (const SphereLight& l : scene.sphere_lights())
       m_sphere_light_medium.push_back(photon::medium_at(scene, l.center));
+    if (m_any_scattering) {
+      auto sampler = std::make_shared<const EnvironmentSampler>(scene.environment());
+      if (!sampler->empty()) m_environment_sampler = std::move(sampler);
+    }
+    m_light_material.assign(scene.materials().size(), false);
+    for (const SphereLight& l : scene.sphere_lights()) m_light_material[l.material] = true;
   }
 
   /// Spread angle [rad] of the ray cone of one camera sample (0: textures point-sampled): the
@@ -158,20 +174,13 @@ class WhittedShading {
     ++m_rays;
     Hit hit;
     const bool found = m_scene.intersect(ray, hit);
-    // A scattering medium: the free path to the next scattering event, exponential with mean
-    // 1 / sigma_s (analog sampling: lossless scattering keeps the throughput); an event before
-    // the surface continues from there (scatter(), after the miss below, whose return statement
-    // must come first: it fixes trace()'s deduced type, which scatter() needs).
-    float t_scatter = std::numeric_limits<float>::infinity();
-    if (m_any_scattering && m_scattering_per_m[medium] > 0.0f) {
-      const float u = 1.0f - camera_sampler().get_1d(m_camera_sample.sample_index,
-                                                     kScatteringDimension + std::uint32_t(depth));
-      t_scatter = -std::log(std::max(u, 1e-30f)) / m_scattering_per_m[medium];
-    }
-    const bool scattered =
-        found ? t_scatter < hit.t : t_scatter < std::numeric_limits<float>::infinity();
-    if (!found && !scattered) {
-      Radiance bg = self().illuminant(background(ray.direction), path);
+    const float sigma_s = m_any_scattering ? m_scattering_per_m[medium] : 0.0f;
+    if (!found && sigma_s == 0.0f) {
+      // A path from a scattering event that leaves through interfaces alone: the environment's
+      // light came by next-event estimation there (scatter_direct_light()).
+      Radiance bg = m_after_scatter && m_environment_sampler
+                        ? Radiance{}
+                        : self().illuminant(background(ray.direction), path);
       if constexpr (Derived::kAbsorption) {
         // Escaping inside an absorbing medium: an infinite path keeps nothing where alpha > 0
         // (a huge finite distance avoids 0 * inf where alpha = 0).
@@ -179,7 +188,44 @@ class WhittedShading {
       }
       return bg;
     }
-    if (scattered) return scatter(ray, t_scatter, depth, beta, medium, path);
+    if (sigma_s > 0.0f) {
+      // A scattering medium (sigma_s [1/m], lossless: scattering keeps the throughput). The
+      // camera's own rays (not yet scattered) are split, as the Whitted tree splits at an
+      // interface: the share Tr = exp(-sigma_s s) that crosses the segment unscattered goes on
+      // to the surface, the rest 1 - Tr scatters at a distance drawn from the exponential
+      // truncated to the segment (pdf sigma_s exp(-sigma_s t) / (1 - Tr)), so no pixel is a coin
+      // flip between the glow and what is seen through the ice. Paths that have scattered are
+      // followed analogously: an exponential free path (mean 1 / sigma_s), an event before the
+      // surface continuing from there (scatter()).
+      const float u = camera_sampler().get_1d(m_camera_sample.sample_index,
+                                              kScatteringDimension + std::uint32_t(depth));
+      if (!m_path_scattered) {
+        const float tr = found ? std::exp(-sigma_s * hit.t) : 0.0f;
+        const float p_scatter = 1.0f - tr;
+        Radiance l{};
+        if (p_scatter > 0.0f && self().weight(beta * p_scatter, path) >= m_min_weight) {
+          // Kept 1e-4 of the segment short of the surface (float rounding must not put the
+          // event on its far side).
+          float t = -std::log1p(-std::min(u * p_scatter, 1.0f - 1e-7f)) / sigma_s;
+          if (found) t = std::min(t, hit.t * (1.0f - 1e-4f));
+          l = scatter(ray, t, depth, beta * p_scatter, medium, path) * p_scatter;
+        }
+        if (found && tr > 0.0f && self().weight(beta * tr, path) >= m_min_weight)
+          l += surface(ray, hit, depth, beta * tr, medium, path) * tr;
+        return l;
+      }
+      const float t = -std::log(std::max(1.0f - u, 1e-30f)) / sigma_s;
+      if (!found || t < hit.t * (1.0f - 1e-4f)) return scatter(ray, t, depth, beta, medium, path);
+    }
+    return surface(ray, hit, depth, beta, medium, path);
+  }
+
+  /// The radiance leaving the surface that `ray` hits (`hit`), seen in `medium`: the segment's
+  /// absorption, the object's shading, the haze.
+  template <class Throughput, class Path>
+  auto surface(const Ray& ray, const Hit& hit, int depth, const Throughput& beta,
+               std::uint32_t medium, const Path& path) {
+    using Radiance = typename Derived::Radiance;
     Throughput b = beta;
     Radiance segment{};
     bool absorbs = false;
@@ -203,15 +249,22 @@ class WhittedShading {
       const Material& mat = m_scene.materials()[obj.material];
       switch (mat.kind) {
         case Material::Kind::emissive:
-          l = self().emission(obj.material, path);
+          // A sphere light met on a path from a scattering event: its light came already by
+          // next-event estimation there (scatter_direct_light()).
+          if (!(m_after_scatter && m_light_material[obj.material]))
+            l = self().emission(obj.material, path);
           break;
-        case Material::Kind::metal:
+        case Material::Kind::metal: {
+          const AfterScatter reset(*this, false);
           l = metal(ray, si, mat, depth, b, medium, path);
           break;
+        }
         case Material::Kind::matte:
-        case Material::Kind::phong:
+        case Material::Kind::phong: {
+          const AfterScatter reset(*this, false);
           l = diffuse(ray, si, mat, depth, b, medium, path);
           break;
+        }
       }
     }
     if constexpr (Derived::kAbsorption) {
@@ -276,6 +329,8 @@ class WhittedShading {
       const ConeBend bend(*this, [&] {
         return SpreadChange{1.0f, 2.0f * normal_spread(si, d, cos_i)};
       });
+      // A reflection ends a transmission-only path from a scattering event (AfterScatter).
+      const AfterScatter reflected(*this, false);
       result += trace(next, depth + 1, br, fi.from, path) * f.r;
     }
     const Reflectance t = Reflectance(1.0f) - f.r;
@@ -343,7 +398,7 @@ class WhittedShading {
     using Radiance = typename Derived::Radiance;
     const Vec3& d = ray.direction;
     const Vec3 ng = face_forward(si.ng, -d);
-    const Vec3 ns = face_forward(si.ns, ng);
+    const Vec3 ns = bumped_normal(mat.texture, si, face_forward(si.ns, ng), ng);
     const Radiance albedo = self().reflectance(texture_colour(mat.texture, si, d), path);
     Radiance result = albedo * self().ambient(path) * mat.ka;
     add_direct_light(result, si, ng, ns, d, albedo, mat, depth, medium, path);
@@ -426,11 +481,200 @@ class WhittedShading {
         b = self().attenuate(b, segment, path);
       }
     }
-    Radiance l = trace(Ray{ray.origin + ray.direction * t, dir}, depth + 1, b, medium, path);
+    const Vec3 p = ray.origin + ray.direction * t;
+    Radiance l = scatter_direct_light(p, ray.direction, dir, depth, medium, path);
+    {
+      const AfterScatter mark(*this, true);
+      const bool was_scattered = m_path_scattered;
+      m_path_scattered = true;
+      l += trace(Ray{p, dir}, depth + 1, b, medium, path);
+      m_path_scattered = was_scattered;
+    }
     if constexpr (Derived::kAbsorption) {
       if (absorbs) l *= segment;
     }
     return l;
+  }
+
+  /// Sets whether the rays traced are on a path from a scattering event (sphere lights met
+  /// directly, through dielectric interfaces only, are then not counted), for as long as this
+  /// object lives.
+  class AfterScatter {
+   public:
+    AfterScatter(WhittedShading& shading, bool value)
+        : m_shading(shading), m_saved(shading.m_after_scatter) {
+      shading.m_after_scatter = value;
+    }
+    ~AfterScatter() { m_shading.m_after_scatter = m_saved; }
+    AfterScatter(const AfterScatter&) = delete;
+    AfterScatter& operator=(const AfterScatter&) = delete;
+
+   private:
+    WhittedShading& m_shading;
+    bool m_saved;
+  };
+
+  /// Next-event estimation at a scattering event at p (ray direction d, in `medium`, tree level
+  /// depth): the light scattered towards the viewer, p(cos) L T / pdf (docs/render.md
+  /// "Scattering media"). Every light reaches p by one approximation: its shadow ray runs
+  /// straight through the dielectric interfaces between them, each crossing transmitting
+  /// 1 - R(cos) as seen from p's side (none where p's side reflects totally), each segment its
+  /// Beer-Lambert absorption and exp(-sigma_s s). This is exact where the interfaces are
+  /// index-matched; where they refract, the light is seen in its unbent direction (a soft box
+  /// seen through the ice's surface appears in the glow a little off its true place, the
+  /// focusing of the curved surface, a caustic inside the ice, is left out). The path leaving
+  /// the event does not count the environment or a sphere light it reaches through
+  /// transmissions alone (AfterScatter), the same light these samples bring; after an internal
+  /// reflection it counts them again. Under a uniform environment this is exact (the furnace).
+  /// - Point lights: one shadow ray each; the phase for the light's direction refracted where
+  ///   the shadow ray crosses the first interface.
+  /// - Sphere lights: one sample each from the camera sample's pair for this level and light,
+  ///   uniform in the light's cone; the phase as for point lights.
+  /// - The environment: one direction drawn by its radiance (EnvironmentSampler) and `phase_dir`
+  ///   (where the path continues, drawn from the phase), combined by multiple importance
+  ///   sampling (Veach 1997, the power heuristic).
+  template <class Path>
+  auto scatter_direct_light(const Vec3& p, const Vec3& d, const Vec3& phase_dir, int depth,
+                            std::uint32_t medium, const Path& path) {
+    using Radiance = typename Derived::Radiance;
+    Radiance result{};
+    const float g = m_asymmetry[medium];
+    const auto& lights = m_scene.lights();
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+      const PointLight& light = lights[i];
+      const Vec3 to_light = light.position - p;
+      const float dist2 = dot(to_light, to_light);
+      if (!(dist2 > 0.0f)) continue;
+      const float dist = std::sqrt(dist2);
+      const auto walk = shadow_walk(p, to_light / dist, dist * (1.0f - 1e-4f), medium, path);
+      if (!walk.open) continue;
+      Radiance li = self().light_radiance(i, path);
+      if (light.inverse_square) li *= 1.0f / dist2;
+      result += walk.apply(*this, li, path) * henyey_greenstein(dot(walk.travel, -d), g);
+    }
+    const auto& spheres = m_scene.sphere_lights();
+    const sampling::PixelSampler& sampler = camera_sampler();
+    for (std::size_t k = 0; k < spheres.size(); ++k) {
+      const SphereLight& light = spheres[k];
+      const sampling::Point2 u = sampler.get_2d(
+          m_camera_sample.sample_index,
+          kScatteringLightDimension + std::uint32_t(depth) * 64u + std::uint32_t(k % 63u));
+      SphereLightSample s;
+      if (!sample_sphere_light(light, p, u, s) || !(s.pdf > 0.0f)) continue;
+      const auto walk = shadow_walk(p, s.wi, s.distance * (1.0f - 1e-4f), medium, path);
+      if (!walk.open) continue;
+      Radiance li = self().emission(light.material, path) * (s.falloff_scale / s.pdf);
+      result += walk.apply(*this, li, path) * henyey_greenstein(dot(walk.travel, -d), g);
+    }
+    if (m_environment_sampler) {
+      const EnvironmentSampler& env = *m_environment_sampler;
+      const auto power = [](float a, float b) { return a * a / (a * a + b * b); };
+      constexpr float kOpen = std::numeric_limits<float>::infinity();
+      const sampling::Point2 u =
+          sampler.get_2d(m_camera_sample.sample_index,
+                         kScatteringLightDimension + std::uint32_t(depth) * 64u + 63u);
+      float pdf_env = 0.0f;
+      const Vec3 w = env.sample(u, pdf_env);
+      if (pdf_env > 0.0f) {
+        const auto walk = shadow_walk(p, w, kOpen, medium, path);
+        if (walk.open) {
+          const float pdf_phase = henyey_greenstein(dot(w, d), g);
+          result += walk.apply(*this, self().illuminant(background(walk.exit), path), path) *
+                    (pdf_phase / pdf_env * power(pdf_env, pdf_phase));
+        }
+      }
+      const auto walk = shadow_walk(p, phase_dir, kOpen, medium, path);
+      if (walk.open)
+        result += walk.apply(*this, self().illuminant(background(walk.exit), path), path) *
+                  power(henyey_greenstein(dot(phase_dir, d), g), env.pdf(phase_dir));
+    }
+    return result;
+  }
+
+  /// What a shadow walk from a scattering event found (shadow_walk()).
+  template <class Reflectance>
+  struct ShadowWalk {
+    /// it reached the light (or left the scene)
+    bool open = false;
+    /// the light's direction of travel at the event; the walk's last direction
+    Vec3 travel, exit;
+    /// product of the crossings' transmissions and of exp(-sigma_s s) over the segments
+    Reflectance transmission{1.0f};
+    float unscattered = 1.0f;
+    /// the segments in absorbing media: medium and length
+    int segments = 0;
+    std::array<std::uint32_t, kMaxShadowCrossings + 1> segment_medium{};
+    std::array<float, kMaxShadowCrossings + 1> segment_length{};
+
+    /// Light l after the walk.
+    template <class Radiance, class Shading, class Path>
+    Radiance apply(Shading& shading, Radiance l, const Path& path) const {
+      l = l * transmission * unscattered;
+      if constexpr (Derived::kAbsorption) {
+        for (int i = 0; i < segments; ++i)
+          l *= shading.self().transmittance(segment_medium[i], segment_length[i], path);
+      }
+      return l;
+    }
+  };
+
+  /// Follows the light's way back from p along unit direction w in `medium` for a distance
+  /// t_max (infinite: out of the scene), straight on through dielectric interfaces (the
+  /// approximation of scatter_direct_light()), transmitting 1 - R at each as seen from p's side
+  /// (so the light that total internal reflection keeps from p's direction is blocked: the
+  /// leaving path brings it), blocked by an opaque surface or too many crossings.
+  template <class Path>
+  auto shadow_walk(const Vec3& p, const Vec3& w, float t_max, std::uint32_t medium,
+                   const Path& path) {
+    ShadowWalk<typename Derived::Reflectance> walk;
+    walk.travel = -w;
+    bool first = true;
+    Vec3 origin = p;
+    for (int crossing = 0; crossing <= kMaxShadowCrossings; ++crossing) {
+      ++m_rays;
+      Hit hit;
+      const Ray ray{origin, w, t_max};
+      const bool found = m_scene.intersect(ray, hit);
+      const float s = found ? hit.t : t_max;
+      if (m_scattering_per_m[medium] > 0.0f)
+        walk.unscattered *= std::exp(-m_scattering_per_m[medium] * s);
+      if constexpr (Derived::kAbsorption) {
+        if (self().absorbs(medium)) {
+          walk.segment_medium[std::size_t(walk.segments)] = medium;
+          walk.segment_length[std::size_t(walk.segments++)] = std::min(s, 1e30f);
+        }
+      }
+      if (!found) {
+        walk.exit = w;
+        walk.open = true;
+        return walk;
+      }
+      const SurfaceInteraction si = m_scene.interaction(ray, hit);
+      const SceneObject& obj = m_scene.objects()[si.object];
+      if (!obj.dielectric) return walk;
+      const FacingInterface fi = facing_interface(w, si, obj);
+      if (fi.from != medium) return walk;
+      if (!obj.index_matched) {
+        const float cos_i = -dot(w, fi.ns);
+        const auto f = self().fresnel(fi.from, fi.to, cos_i, path);
+        walk.transmission = walk.transmission * (decltype(f.r)(1.0f) - f.r);
+        if (is_black(walk.transmission)) return walk;  // total internal reflection
+        if (first) {
+          // The light comes in from fi.to: its direction after refracting here.
+          Vec3 in;
+          if (refract(-w, -fi.ns, 1.0f / f.eta, in)) walk.travel = in;
+          first = false;
+        }
+      }
+      medium = fi.to;
+      origin = offset_ray_origin(si.p, si.p_error, fi.ng, w);
+      t_max -= hit.t;
+      if (!(t_max > 0.0f)) {
+        walk.open = true;
+        return walk;
+      }
+    }
+    return walk;
   }
 
   /// The camera sample's point for the microfacet normal of a rough event at tree level
@@ -493,6 +737,7 @@ class WhittedShading {
         const Throughput br = beta * r;
         if (self().weight(br, path) >= m_min_weight) {
           const Ray next{offset_ray_origin(si.p, si.p_error, fi.ng, dir), dir};
+          const AfterScatter reflected(*this, false);
           result += trace(next, depth + 1, br, fi.from, path) * r;
         }
       }
@@ -543,6 +788,26 @@ class WhittedShading {
                                                                   : Vec3{0.0f, 1.0f, 0.0f}));
     return texture.eval_footprint(
         TextureFootprint{si.p, along, cross(si.ng, along), minor / cos_t, minor});
+  }
+
+  /// The shading normal ns (facing the viewer, geometric normal ng) tilted by a noise texture's
+  /// bump (Blinn 1978): the height h = bump_m * value is differentiated by forward differences
+  /// along two tangents over a step of the cone's footprint width (the filtered field's own
+  /// scale; 1e-3 of the feature size without a cone), n = normalize(ns - grad h). Unchanged
+  /// where there is no bump or the tilted normal would face away from ng.
+  Vec3 bumped_normal(const Texture& texture, const SurfaceInteraction& si, const Vec3& ns,
+                     const Vec3& ng) const {
+    if (texture.kind != Texture::Kind::noise || texture.bump_m <= 0.0f) return ns;
+    const float w = std::max(std::abs(m_cone.width), 1e-3f * texture.size);
+    const microfacet::Frame frame(ns);
+    const Vec3 t1 = frame.to_world(Vec3{1.0f, 0.0f, 0.0f}),
+               t2 = frame.to_world(Vec3{0.0f, 1.0f, 0.0f});
+    const float h0 = texture.noise_value(si.p, w);
+    const float k = texture.bump_m / w;
+    const float g1 = k * (texture.noise_value(si.p + t1 * w, w) - h0),
+                g2 = k * (texture.noise_value(si.p + t2 * w, w) - h0);
+    const Vec3 n = normalize(ns - t1 * g1 - t2 * g2);
+    return dot(n, ng) > 0.0f ? n : ns;
   }
 
   /// How much the surface normal turns across the cone's footprint at a hit [rad], signed:
@@ -651,6 +916,16 @@ class WhittedShading {
   /// per medium: scattering coefficient [1/m] and Henyey-Greenstein g (render/media/scattering.h)
   std::vector<float> m_scattering_per_m, m_asymmetry;
   bool m_any_scattering = false;
+  /// the rays being traced continue a path from a scattering event through transmissions alone
+  /// (AfterScatter): the environment and sphere lights they reach are not counted
+  bool m_after_scatter = false;
+  /// the rays being traced continue a path that has scattered: free paths are sampled, not split
+  bool m_path_scattered = false;
+  /// per material: the emissive material of a sphere light's visible sphere
+  std::vector<bool> m_light_material;
+  /// importance sampling of the environment for scattering events (scenes that scatter and whose
+  /// environment is not black)
+  std::shared_ptr<const EnvironmentSampler> m_environment_sampler;
   /// the medium each point light and sphere light is in (photon::medium_at)
   std::vector<std::uint32_t> m_point_light_medium, m_sphere_light_medium;
   /// the camera sample being traced (set_camera_sample()); no sampler: pixel (0, 0), sample 0

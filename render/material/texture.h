@@ -10,10 +10,15 @@
 // box bounding a ray's footprint, an ellipse on the surface (TextureFootprint), in the texture's
 // axes or along the plane's diagonals, whichever is tighter (diagonal_box_mean: also closed form).
 // Far away, where the footprint spans many cells, both tend to the cells' mean colour: no moire at
-// the horizon. Knows nothing about rays, cameras or pixels.
+// the horizon. Procedural noise (render/material/noise.h: Perlin fBm, Worley cells, wood planks,
+// slate) blends colour 0 into colour 1 by a value in [0, 1] filtered to the footprint's width,
+// and may carry a bump height (bump_m times the same value) for the shading normal.
+// Knows nothing about rays, cameras or pixels.
 #include <algorithm>
 #include <cmath>
+#include <string>
 
+#include "render/material/noise.h"
 #include "render/math/color.h"
 #include "render/math/vec3.h"
 
@@ -28,17 +33,44 @@ struct TextureFootprint {
 };
 
 struct Texture {
-  enum class Kind { solid, checker };
+  enum class Kind { solid, checker, noise };
+  enum class Pattern { perlin, worley, wood, slate };
   Kind kind = Kind::solid;
+  /// noise: the pattern, its octaves (perlin, slate), and the bump height [m] of value 1
+  Pattern pattern = Pattern::perlin;
+  int octaves = 5;
+  float bump_m = 0.0f;
   Rgb color0{0.8f, 0.8f, 0.8f};
   Rgb color1{0.0f, 0.0f, 0.0f};
-  /// checker cell size [scene units]
+  /// checker cell size; noise feature size (wood: plank width) [scene units]
   float size = 1.0f;
-  /// checker origin [scene units]
+  /// checker and noise origin [scene units]
   Vec3 offset{0, 0, 0};
+
+  /// The noise value in [0, 1] at p for a footprint of width w [scene units].
+  float noise_value(const Vec3& p, float w) const {
+    const float inv = 1.0f / size;
+    const Vec3 q = (p - offset) * inv;
+    const float wq = w * inv;
+    switch (pattern) {
+      case Pattern::perlin:
+        return std::clamp(0.5f + 0.6f * noise::fbm(q, wq, octaves), 0.0f, 1.0f);
+      case Pattern::worley:
+        return std::clamp(noise::worley(q, wq), 0.0f, 1.0f);
+      case Pattern::wood:
+        return noise::wood(q, wq);
+      case Pattern::slate:
+        return noise::slate(q, wq);
+    }
+    return 0.0f;
+  }
 
   Rgb eval(const Vec3& p) const {
     if (kind == Kind::solid) return color0;
+    if (kind == Kind::noise) {
+      const float v = noise_value(p, 0.0f);
+      return color0 * (1.0f - v) + color1 * v;
+    }
     const float inv = 1.0f / size;
     const long long ix = floor_to_integer((p.x - offset.x) * inv);
     const long long iy = floor_to_integer((p.y - offset.y) * inv);
@@ -63,6 +95,11 @@ struct Texture {
   /// `half_extent` [scene units] (a box filter per axis); eval(p) where the extent is 0.
   Rgb eval_filtered(const Vec3& p, const Vec3& half_extent) const {
     if (kind == Kind::solid) return color0;
+    if (kind == Kind::noise) {
+      const float v =
+          noise_value(p, 2.0f * std::max({half_extent.x, half_extent.y, half_extent.z}));
+      return color0 * (1.0f - v) + color1 * v;
+    }
     const double q = checker_mean(p, half_extent);
     const auto w0 = static_cast<float>(0.5 * (1.0 + q)), w1 = static_cast<float>(0.5 * (1.0 - q));
     return color0 * w0 + color1 * w1;
@@ -99,6 +136,13 @@ struct Texture {
   /// eval(center) where the footprint has no extent.
   Rgb eval_footprint(const TextureFootprint& f) const {
     if (kind == Kind::solid) return color0;
+    if (kind == Kind::noise) {
+      // Isotropic filtering: the footprint's width taken as its minor diameter, or half its
+      // major one where longer (a grazing view keeps some detail along the view and blurs it
+      // less than the full ellipse would; the haze fades the far floor anyway).
+      const float v = noise_value(f.center, 2.0f * std::max(f.minor, 0.5f * f.major));
+      return color0 * (1.0f - v) + color1 * v;
+    }
     const Vec3 a = f.major_axis * f.major, b = f.minor_axis * f.minor;
     // Squared half-extents of the boxes bounding the ellipse (square roots only where used).
     const auto sq = [](float u, float v) { return u * u + v * v; };
@@ -202,5 +246,20 @@ struct Texture {
     return diagonal_integral(signed_levels(P), signed_levels(M));
   }
 };
+
+/// The noise pattern named `name` ("perlin", "worley", "wood", "slate"); false for any other.
+inline bool noise_pattern_from_name(const std::string& name, Texture::Pattern& pattern) {
+  if (name == "perlin")
+    pattern = Texture::Pattern::perlin;
+  else if (name == "worley")
+    pattern = Texture::Pattern::worley;
+  else if (name == "wood")
+    pattern = Texture::Pattern::wood;
+  else if (name == "slate")
+    pattern = Texture::Pattern::slate;
+  else
+    return false;
+  return true;
+}
 
 }  // namespace thaw::render

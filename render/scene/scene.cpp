@@ -9,6 +9,7 @@
 #include <optional>
 #include <set>
 
+#include "base/check.h"
 #include "base/error.h"
 #include "render/accel/ray_record.h"
 #include "render/geometry/box.h"
@@ -34,6 +35,16 @@ Texture build_texture(const TextureDescription& t) {
   if (t.kind == TextureDescription::Kind::solid) {
     tex.kind = Texture::Kind::solid;
     tex.color0 = to_rgb(t.color);
+  } else if (t.kind == TextureDescription::Kind::noise) {
+    tex.kind = Texture::Kind::noise;
+    tex.color0 = to_rgb(t.checker_colors[0]);
+    tex.color1 = to_rgb(t.checker_colors[1]);
+    tex.size = static_cast<float>(t.checker_size);
+    tex.offset = to_vec3(t.checker_offset);
+    tex.octaves = t.noise_octaves;
+    tex.bump_m = static_cast<float>(t.bump_m);
+    const bool known = noise_pattern_from_name(t.noise_pattern, tex.pattern);
+    THAW_CHECK(known, "unknown noise pattern");
   } else {
     tex.kind = Texture::Kind::checker;
     tex.color0 = to_rgb(t.checker_colors[0]);
@@ -507,6 +518,7 @@ class SceneBuilder {
                       problem->key == "file" || mesh_name.empty()
                           ? problem->problem
                           : problem->problem + " (the mesh of " + mesh_name + ")");
+    if (od.rotate_deg != Vec3d{0.0, 0.0, 0.0}) rotate_mesh(mesh, od.rotate_deg);
     if (od.scale != 1.0 || od.translate != Vec3d{0.0, 0.0, 0.0})
       transform_mesh(mesh, od.scale, od.translate);
     if (od.smooth_normals) compute_smooth_normals(mesh);

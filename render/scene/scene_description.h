@@ -187,8 +187,14 @@ struct MediumDescription {
 };
 
 struct TextureDescription {
-  enum class Kind { solid, checker };
+  enum class Kind { solid, checker, noise };
   Kind kind = Kind::solid;
+  /// noise (render/material/noise.h): the pattern ("perlin", "worley", "wood", "slate"), colour 0
+  /// at value 0 and colour 1 at value 1 (checker_colors), feature size (checker_size; wood: the
+  /// plank width) and origin (checker_offset), octaves, and the bump height [m] of value 1
+  std::string noise_pattern = "perlin";
+  int noise_octaves = 5;
+  double bump_m = 0.0;
   RgbD color{0.8, 0.8, 0.8};
   std::array<RgbD, 2> checker_colors{RgbD{0.9, 0.9, 0.9}, RgbD{0.1, 0.1, 0.1}};
   /// checker cell size [scene units]
@@ -224,9 +230,11 @@ struct ObjectDescription {
   Vec3d point{0.0, 0.0, 0.0};
   Vec3d normal{0.0, 1.0, 0.0};
   // mesh: either a file (OBJ, absolute or relative to SceneDescription::base_dir) or a mesh in
-  // memory; scale then translate is applied to it.
+  // memory; rotate (about x, then y, then z, right-handed, degrees), scale, then translate is
+  // applied to it.
   std::filesystem::path mesh_file;
   std::shared_ptr<const TriangleMesh> mesh;
+  Vec3d rotate_deg{0.0, 0.0, 0.0};
   double scale = 1.0;
   Vec3d translate{0.0, 0.0, 0.0};
   /// replace the mesh's normals by area-weighted smooth normals

@@ -275,6 +275,8 @@ std::optional<SceneProblem> object_problem(const ObjectDescription& o) {
       if (!finite3(o.translate) || max_abs(o.translate) > kMaxCoordinate)
         return SceneProblem{"translate",
                             "must be finite and within " + num(kMaxCoordinate) + " of the origin"};
+      if (!finite3(o.rotate_deg) || max_abs(o.rotate_deg) > 360.0)
+        return SceneProblem{"rotate_deg", "must be finite, each angle within -360..360 degrees"};
       return std::nullopt;  // placement: build_scene, once the mesh is loaded
   }
   return std::nullopt;
