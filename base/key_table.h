@@ -54,10 +54,11 @@ struct VectorKey {
   bool unit = false;
   bool required = false;
 };
-/// A name (a medium's, say), checked where it is used.
+/// A name (a medium's, a file's), checked where it is used; `required`: the file must give it.
 template <class Section>
 struct TextKey {
   std::string Section::*field;
+  bool required = false;
 };
 template <class Section>
 struct FlagKey {

@@ -66,7 +66,7 @@ void read_key(const TomlTable& t, const KeyRow<Section, Extra>& row, Section& s)
     if (!k->required && !t.has(key)) return;
     s.*(k->field) = k->unit ? unit_vector(t, key) : t.get_vec3(key);
   } else if (const auto* k = std::get_if<TextKey<Section>>(&row.value)) {
-    s.*(k->field) = t.get_string(key, s.*(k->field));
+    s.*(k->field) = k->required ? t.get_string(key) : t.get_string(key, s.*(k->field));
   } else if (const auto* k = std::get_if<FlagKey<Section>>(&row.value)) {
     s.*(k->field) = t.get_bool(key, s.*(k->field));
   } else if (const auto* k = std::get_if<ColourKey<Section>>(&row.value)) {

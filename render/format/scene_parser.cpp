@@ -15,6 +15,7 @@
 #include "render/material/texture.h"
 #include "render/scene/camera_keys.h"
 #include "render/scene/caustic_keys.h"
+#include "render/scene/environment_keys.h"
 #include "render/scene/image_keys.h"
 #include "render/scene/light_keys.h"
 
@@ -130,24 +131,8 @@ MaterialDescription parse_material(const std::string& name, const TomlTable& m) 
 /// errors). A lat-long map's file is read here, once (a film's frames share it).
 void parse_environment(const TomlTable& env, SceneDescription& s) {
   EnvironmentDescription& e = s.environment;
-  const std::string kind = env.get_string("kind", "constant");
-  e.light_surfaces = env.get_bool("light_surfaces", false);
-  e.occlusion_samples =
-      int_key(env, "occlusion_samples", e.occlusion_samples, environment_samples_problem);
-  e.haze_distance =
-      checked(env, "haze_distance", env.get_double("haze_distance", 0.0), environment_haze_problem);
-  if (kind == "constant") {
-    e.kind = EnvironmentDescription::Kind::constant;
-    return;
-  }
-  if (kind == "sky") {
-    e.kind = EnvironmentDescription::Kind::sky;
-    e.zenith = color3(env, "zenith", e.zenith);
-    e.horizon = color3(env, "horizon", e.horizon);
-    e.ground = color3(env, "ground", e.ground);
-    if (env.has("up")) e.up = unit_vector(env, "up");
-    e.exponent = checked(env, "exponent", env.get_double("exponent", e.exponent),
-                         environment_exponent_problem);
+  read_keys(env, environment_keys(), e);
+  if (e.kind == EnvironmentDescription::Kind::sky) {
     for (const TomlTable& t : env.array_of_tables("panels")) {
       PanelDescription panel;
       panel.direction = unit_vector(t, "direction");
@@ -160,11 +145,7 @@ void parse_environment(const TomlTable& env, SceneDescription& s) {
                                 environment_intensity_problem);
       e.panels.push_back(panel);
     }
-  } else if (kind == "latlong") {
-    e.kind = EnvironmentDescription::Kind::latlong;
-    e.file = env.get_string("file");
-    e.rotation_deg = checked(env, "rotation_deg", env.get_double("rotation_deg", 0.0),
-                             environment_rotation_problem);
+  } else if (e.kind == EnvironmentDescription::Kind::latlong) {
     const std::filesystem::path path = std::filesystem::path(e.file).is_absolute()
                                            ? std::filesystem::path(e.file)
                                            : s.base_dir / e.file;
@@ -172,11 +153,7 @@ void parse_environment(const TomlTable& env, SceneDescription& s) {
     auto map = load_latlong_map(path.string(), problem);
     if (!map) env.fail("file", "'" + path.string() + "' " + problem);
     e.map = std::make_shared<const LatLongMap>(std::move(*map));
-  } else {
-    env.fail("kind", "unknown environment '" + kind + "' (expected constant, sky or latlong)");
   }
-  e.intensity =
-      checked(env, "intensity", env.get_double("intensity", 1.0), environment_intensity_problem);
 }
 
 /// [caustics]: every key by its row (render/scene/caustic_keys.h).

@@ -11,6 +11,7 @@
 #include "render/format/scene_parser.h"
 #include "render/scene/camera_keys.h"
 #include "render/scene/caustic_keys.h"
+#include "render/scene/environment_keys.h"
 #include "render/scene/light_keys.h"
 #include "render/scene/scene_rules.h"
 
@@ -53,6 +54,27 @@ TEST(SectionKeys, NamesAreUniqueAndFound) {
   expect_unique_names(camera_keys());
   expect_unique_names(caustic_keys());
   expect_unique_names(light_keys());
+  expect_unique_names(environment_keys());
+}
+
+TEST(SectionKeys, EnvironmentRowsOfAKindApplyToItAlone) {
+  const SceneDescription s = parse_scene_string(
+      std::string(kCamera) +
+          "[environment]\nkind = \"sky\"\nzenith = [0, 0, 1]\nexponent = 2\nintensity = 3\n" +
+          "haze_distance = 10\n",
+      "s.toml");
+  EXPECT_EQ(s.environment.kind, EnvironmentDescription::Kind::sky);
+  EXPECT_EQ(s.environment.zenith, (RgbD{0, 0, 1}));
+  EXPECT_EQ(s.environment.exponent, 2.0);
+  EXPECT_EQ(s.environment.intensity, 3.0);
+  EXPECT_EQ(s.environment.haze_distance, 10.0);
+  EXPECT_NE(problem_of(std::string(kCamera) + "[environment]\nzenith = [0, 0, 1]\n").find("zenith"),
+            std::string::npos);  // a constant environment has no sky colours
+  EXPECT_NE(problem_of(std::string(kCamera) + "[environment]\nkind = \"latlong\"\n").find("file"),
+            std::string::npos);  // a map needs its file
+  EXPECT_NE(problem_of(std::string(kCamera) + "[environment]\nkind = \"dome\"\n")
+                .find("unknown environment 'dome' (expected constant, sky or latlong)"),
+            std::string::npos);
 }
 
 TEST(SectionKeys, LightRowsAreReadAndASpheresKeysApplyToItAlone) {
@@ -126,7 +148,8 @@ TEST(SectionKeys, DocsRenderMdListsExactlyTheTablesRows) {
   for (const auto& [expected, table] :
        {std::pair{key_docs_rows(caustic_keys(), "[caustics] "), "caustic_keys.cpp"},
         std::pair{key_docs_rows(camera_keys(), "[camera] "), "camera_keys.cpp"},
-        std::pair{key_docs_rows(light_keys(), "[[lights]] "), "light_keys.cpp"}})
+        std::pair{key_docs_rows(light_keys(), "[[lights]] "), "light_keys.cpp"},
+        std::pair{key_docs_rows(environment_keys(), "[environment] "), "environment_keys.cpp"}})
     EXPECT_NE(docs.find(expected), std::string::npos)
         << "docs/render.md's rows differ from render/scene/" << table << "; they should read:\n"
         << expected;
