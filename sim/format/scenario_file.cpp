@@ -13,6 +13,7 @@
 #include "base/format/toml_table.h"
 #include "embedded/kDefaultScenarioToml.h"
 #include "embedded/kIceWaterMaterialsToml.h"
+#include "sim/grid/body_faces.h"
 #include "sim/grid/grid_rules.h"
 #include "sim/scenario/materials_keys.h"
 
@@ -34,6 +35,17 @@ void reject_unless(const TomlTable& t, const std::string& key, bool allowed,
   if (!allowed && t.has(key)) t.fail(key, why);
 }
 
+/// The keys of an [outer_boundary] table ("faces" only in the body's own).
+const std::vector<std::string> kOuterBoundaryKeys = {"kind",
+                                                     "temperature_c",
+                                                     "heat_transfer_coefficient_w_m2k",
+                                                     "flux_w_m2",
+                                                     "relative_humidity",
+                                                     "speed_m_s",
+                                                     "surroundings_temperature_c",
+                                                     "emissivity",
+                                                     "faces"};
+
 /// Unknown tables and keys are reported before anything else: a misspelt key would otherwise
 /// surface as "required key is missing" for the key it was meant to be.
 void check_schema(const TomlTable& root, const std::set<std::string>& foreign_sections) {
@@ -41,14 +53,12 @@ void check_schema(const TomlTable& root, const std::set<std::string>& foreign_se
       {"simulation",
        {"geometry", "duration_s", "output_interval_s", "cells_per_phase", "time_tolerance",
         "cell_size_m", "max_step_s", "flow"}},
-      {"shape", {"outer", "cavity"}},
+      {"shape", {"outer", "cavity", "fill"}},
       {"shell", {"inner_radius_m", "outer_radius_m", "length_m", "lateral_size_m"}},
       {"water", {"initial_temperature_c"}},
       {"ice", {"initial_temperature_c"}},
       {"inner_boundary", {"kind", "temperature_c"}},
-      {"outer_boundary",
-       {"kind", "temperature_c", "heat_transfer_coefficient_w_m2k", "flux_w_m2",
-        "relative_humidity", "speed_m_s", "surroundings_temperature_c", "emissivity"}},
+      {"outer_boundary", kOuterBoundaryKeys},
       {"materials", key_names(materials_keys())}};
   for (const std::string& name : root.keys()) {
     if (foreign_sections.count(name)) continue;
@@ -114,6 +124,10 @@ Shape parse_shape(const TomlTable& t) {
   Shape shape;
   shape.outer = parse_shape_spec(t.table("outer"), dir);
   if (auto cavity = t.optional_table("cavity")) shape.cavity = parse_shape_spec(*cavity, dir);
+  const std::string fill = t.get_string("fill", "ice");
+  if (fill != "ice" && fill != "water")
+    t.fail("fill", "unknown fill '" + fill + "' (expected ice or water)");
+  shape.fill_water = fill == "water";
   return shape;
 }
 
@@ -274,6 +288,34 @@ void parse_outer_boundary(const TomlTable& outer, Scenario& s) {
   s.emissivity = outer.get_double("emissivity", s.emissivity);
 }
 
+/// [outer_boundary.faces.NAME]: a whole [outer_boundary] table for each named face the body
+/// has (sim/grid/body_faces.h), in the file's order.
+void parse_outer_faces(const TomlTable& outer, Scenario& s) {
+  const auto faces = outer.optional_table("faces");
+  if (!faces) return;
+  if (s.grid == GridGeometry::none)
+    outer.fail("faces",
+               "only for geometry = \"axisymmetric\" or \"3d\" (a 1D shell has one "
+               "outer surface)");
+  const std::vector<std::string> names = body_face_names(s.shape.outer.kind);
+  for (const std::string& name : faces->keys()) {
+    if (std::find(names.begin(), names.end(), name) == names.end()) {
+      std::string list;
+      for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+      faces->fail(name, std::string("a ") + to_string(s.shape.outer.kind) + " body has no face '" +
+                            name + "' (its faces: " + list + ")");
+    }
+    const TomlTable face = faces->table(name);
+    for (const std::string& key : face.keys())
+      if (key == "faces" || std::find(kOuterBoundaryKeys.begin(), kOuterBoundaryKeys.end(), key) ==
+                                kOuterBoundaryKeys.end())
+        face.fail(key, "unknown key");
+    Scenario own = s;  // the face's table read into the same fields, then kept apart
+    parse_outer_boundary(face, own);
+    s.outer_faces.push_back({name, outer_boundary_spec(own)});
+  }
+}
+
 }  // namespace
 
 Materials default_materials() {
@@ -321,19 +363,23 @@ Scenario parse_scenario(const TomlTable& root, const std::set<std::string>& fore
   check_schema(root, foreign_sections);
   parse_simulation(root.table("simulation"), s);
   parse_body(root, s);
-  if (s.grid == GridGeometry::none || s.shape.cavity || root.has("water"))
+  if (s.grid == GridGeometry::none || s.shape.cavity || s.shape.fill_water || root.has("water"))
     s.water_initial_temperature_c = root.table("water").get_double("initial_temperature_c");
   // [simulation] flow defaults to natural convection wherever a grid run holds water (issue 24):
-  // a body with a cavity (a solid body's [water] table holds no water).
+  // a body with a cavity, or a body all water (a solid body's [water] table holds no water).
   if (s.grid != GridGeometry::none && !root.table("simulation").has("flow"))
-    s.natural_convection = s.shape.cavity.has_value();
-  s.ice_initial_temperature_c = root.table("ice").get_double("initial_temperature_c");
+    s.natural_convection = s.shape.cavity.has_value() || s.shape.fill_water;
+  if (!s.shape.fill_water || root.has("ice"))
+    s.ice_initial_temperature_c = root.table("ice").get_double("initial_temperature_c");
   parse_inner_boundary(root, s);
   parse_outer_boundary(root.table("outer_boundary"), s);
+  parse_outer_faces(root.table("outer_boundary"), s);
   if (auto mat = root.optional_table("materials")) s.materials = parse_materials(*mat, s.materials);
   // Unset boundary temperatures follow the (possibly overridden) melting point.
   if (s.inner_kind == InnerBoundary::symmetry) s.inner_temperature_c = s.materials.melting_point_c;
   if (!uses_outer_temperature(s.outer_kind)) s.outer_temperature_c = s.materials.melting_point_c;
+  for (FaceBoundary& f : s.outer_faces)
+    if (!uses_outer_temperature(f.spec.kind)) f.spec.temperature_c = s.materials.melting_point_c;
 
   // check_schema() has already rejected every unknown key outside the foreign sections.
   if (foreign_sections.empty()) root.check_no_unknown_keys();
@@ -387,27 +433,32 @@ nlohmann::json scenario_to_json(const Scenario& s) {
     };
     j["shape"]["outer"] = shape_json(s.shape.outer);
     if (s.shape.cavity) j["shape"]["cavity"] = shape_json(*s.shape.cavity);
+    if (s.shape.fill_water) j["shape"]["fill"] = "water";
   }
   j["water"] = {{"initial_temperature_c", s.water_initial_temperature_c}};
   j["ice"] = {{"initial_temperature_c", s.ice_initial_temperature_c}};
   j["inner_boundary"] = {{"kind", to_string(s.inner_kind)}};
   if (s.inner_kind == InnerBoundary::temperature)
     j["inner_boundary"]["temperature_c"] = s.inner_temperature_c;
-  nlohmann::json outer = {{"kind", to_string(s.outer_kind)}};
-  if (s.outer_kind == OuterBoundary::temperature || s.outer_kind == OuterBoundary::convective ||
-      s.outer_kind == OuterBoundary::air)
-    outer["temperature_c"] = s.outer_temperature_c;
-  if (s.outer_kind == OuterBoundary::air) {
-    outer["relative_humidity"] = s.relative_humidity;
-    outer["speed_m_s"] = s.air_speed_m_s;
-    outer["surroundings_temperature_c"] =
-        s.surroundings_temperature_c.value_or(s.outer_temperature_c);
-    outer["emissivity"] = s.emissivity;
-  }
-  if (s.outer_kind == OuterBoundary::convective)
-    outer["heat_transfer_coefficient_w_m2k"] = s.heat_transfer_coefficient_w_m2k;
-  if (s.outer_kind == OuterBoundary::flux) outer["flux_w_m2"] = s.flux_w_m2;
-  j["outer_boundary"] = outer;
+  const auto outer_json = [](const OuterBoundarySpec& b) {
+    nlohmann::json outer = {{"kind", to_string(b.kind)}};
+    if (b.kind == OuterBoundary::temperature || b.kind == OuterBoundary::convective ||
+        b.kind == OuterBoundary::air)
+      outer["temperature_c"] = b.temperature_c;
+    if (b.kind == OuterBoundary::air) {
+      outer["relative_humidity"] = b.relative_humidity;
+      outer["speed_m_s"] = b.air_speed_m_s;
+      outer["surroundings_temperature_c"] = b.surroundings_temperature_c.value_or(b.temperature_c);
+      outer["emissivity"] = b.emissivity;
+    }
+    if (b.kind == OuterBoundary::convective)
+      outer["heat_transfer_coefficient_w_m2k"] = b.heat_transfer_coefficient_w_m2k;
+    if (b.kind == OuterBoundary::flux) outer["flux_w_m2"] = b.flux_w_m2;
+    return outer;
+  };
+  j["outer_boundary"] = outer_json(outer_boundary_spec(s));
+  for (const FaceBoundary& f : s.outer_faces)
+    j["outer_boundary"]["faces"][f.face] = outer_json(f.spec);
   const Materials& m = s.materials;
   j["materials"] = nlohmann::json::object();
   for (const MaterialsKey& row : materials_keys())

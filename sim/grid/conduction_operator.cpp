@@ -12,8 +12,15 @@ ConductionOperator::ConductionOperator(const GridMesh& mesh, const PhaseRelation
       m_problem(problem),
       m_cells(cells),
       m_surface_area(surface_area),
-      m_air_diameter_m(problem.air_diameter_m) {
+      m_air_diameter_m(problem.air_diameter_m),
+      m_surface{problem.surface_kind, problem.surface_temperature_c,
+                problem.heat_transfer_coefficient_w_m2k, problem.flux_w_m2, problem.air} {
   for (auto* v : {&kx, &ky, &kz, &bq0, &bq1}) v->assign(static_cast<std::size_t>(mesh.n), 0.0);
+  if (!problem.face_conditions.empty()) {
+    fq0.assign(3 * static_cast<std::size_t>(mesh.n), 0.0);
+    fq1.assign(3 * static_cast<std::size_t>(mesh.n), 0.0);
+    fface.assign(3 * static_cast<std::size_t>(mesh.n), kNoFace);
+  }
 }
 
 /// Sub-cell front reconstruction: a cell at the melting point (0 <= H <= L_v) next to a cell
@@ -68,57 +75,112 @@ void ConductionOperator::assemble(long c, int i, int j, int k) {
   if (j == ny - 1) wall(p.walls[3], m_mesh.area_y[i]);
   if (!axisymmetric && k == 0) wall(p.walls[4], m_mesh.area_z);
   if (!axisymmetric && k == nz - 1) wall(p.walls[5], m_mesh.area_z);
+  if (!fface.empty())
+    for (int slot = 0; slot < 3; ++slot) fface[3 * static_cast<std::size_t>(c) + slot] = kNoFace;
   const double a = m_surface_area[c];
-  if (a > 0) {
-    switch (p.surface_kind) {
-      case OuterBoundary::convective: {
-        // The film coefficient in series with the conduction between the cell's temperature
-        // point and the surface, half a cell (as for a held surface below): film (T_air - T_c)
-        // alone puts the surface at the cell centre, an O(film dx / k) relative excess of the
-        // flux (first order; 1.4 % at film = 100 W/(m^2 K), dx = 0.625 mm). A cell at the
-        // melting point holds the front, at T_m, on the surface (ablation) or within it: no
-        // added resistance.
-        const double film = p.heat_transfer_coefficient_w_m2k;
-        const bool at_front = m_phase.melting(H[c]);
-        const double g = at_front ? a * film : a / (1 / film + 0.5 * dx / kc);
-        bq0[c] += g * p.surface_temperature_c;
-        bq1[c] += g;
-        break;
+  if (!(a > 0)) return;
+  if (p.face_conditions.empty()) {
+    const auto [q0, q1] = surface_terms(c, m_surface, a, kc);
+    bq0[c] += q0;
+    bq1[c] += q1;
+    return;
+  }
+  // Faces with conditions of their own: the cell's surface split by its normal, each part's
+  // terms kept for the heat by face.
+  const FaceWeights w = body_face_weights(p.face_shape, surface_normal(c, i, j, k), axisymmetric,
+                                          p.face_of_cell.empty() ? 0 : p.face_of_cell[c]);
+  for (std::size_t f = 0; f < p.face_conditions.size(); ++f) {
+    if (!(w[f] > 0)) continue;
+    const auto [q0, q1] = surface_terms(c, p.face_conditions[f], a * w[f], kc);
+    bq0[c] += q0;
+    bq1[c] += q1;
+    // one slot per axis (box: faces 2a and 2a + 1 never both) or for the ends and the side
+    const std::size_t slot = 3 * static_cast<std::size_t>(c) +
+                             (p.face_shape == ShapeKind::box ? f / 2 : (f < 2 ? 0 : 1));
+    fq0[slot] = q0;
+    fq1[slot] = q1;
+    fface[slot] = static_cast<std::uint8_t>(f);
+  }
+}
+
+std::array<double, 3> ConductionOperator::surface_normal(long c, int i, int j, int k) const {
+  const std::vector<double>& m = m_cells.m;
+  const auto diff = [&](bool has_lo, bool has_hi, long step) {
+    return (has_hi ? m[c + step] : m[c]) - (has_lo ? m[c - step] : m[c]);
+  };
+  return {-diff(i > 0, i + 1 < m_mesh.nx, 1), -diff(j > 0, j + 1 < m_mesh.ny, m_mesh.nx),
+          m_mesh.axisymmetric ? 0.0 : -diff(k > 0, k + 1 < m_mesh.nz, m_mesh.nxy())};
+}
+
+FaceWeights ConductionOperator::boundary_heat_by_face(long c, int i, int j, int k,
+                                                      double tc) const {
+  const GridProblem& p = m_problem;
+  double rest = boundary_heat(c, tc);
+  FaceWeights out{};
+  if (!fface.empty())
+    for (std::size_t s = 3 * static_cast<std::size_t>(c), end = s + 3; s < end; ++s)
+      if (fface[s] != kNoFace) {
+        const double q = fq0[s] - fq1[s] * tc;
+        out[fface[s]] += q;
+        rest -= q;
       }
-      case OuterBoundary::temperature: {
-        const double g = a * kc / (0.5 * dx);
-        bq0[c] += g * p.surface_temperature_c;
-        bq1[c] += g;
-        break;
-      }
-      case OuterBoundary::flux:
-        bq0[c] += a * p.flux_w_m2;
-        break;
-      case OuterBoundary::insulated:
-        break;
-      case OuterBoundary::air: {
-        // The air's flux q(T_s) (sim/boundary/air_model.h; a sphere of the body's volume), frozen
-        // over the step as its tangent at the step's surface temperature: a film
-        // htc = -dq/dT_s (at least the convective h) towards T_eff = T_s + q / htc, then as the
-        // convective kind. The surface is at T_m on a cell holding the front, else taken at the
-        // cell's temperature (the film's linearisation point only; the half cell stays in series).
-        const bool at_front = m_phase.melting(H[c]);
-        const double ts = at_front ? p.materials.melting_point_c : m_cells.T[c];
-        const AirBodySize body{AirBody::sphere, m_air_diameter_m};
-        const AirFlux f = air_heat_flux(p.air, body, ts);
-        const double dt = 1e-4;
-        const double slope = (air_heat_flux(p.air, body, ts + dt).total_w_m2() -
-                              air_heat_flux(p.air, body, ts - dt).total_w_m2()) /
-                             (2 * dt);
-        const double film = std::max(-slope, f.heat_transfer_coefficient_w_m2k);
-        const double t_eff = ts + f.total_w_m2() / film;
-        const double g = at_front ? a * film : a / (1 / film + 0.5 * dx / kc);
-        bq0[c] += g * t_eff;
-        bq1[c] += g;
-        break;
-      }
+  // The rest (all of it when the faces share one condition; else a held wall's, or round-off)
+  // by the surface's normal.
+  if (rest != 0) {
+    const FaceWeights w =
+        body_face_weights(p.face_shape, surface_normal(c, i, j, k), m_mesh.axisymmetric,
+                          p.face_of_cell.empty() ? 0 : p.face_of_cell[c]);
+    for (std::size_t f = 0; f < kMaxBodyFaces; ++f) out[f] += w[f] * rest;
+  }
+  return out;
+}
+
+std::array<double, 2> ConductionOperator::surface_terms(long c, const SurfaceCondition& s, double a,
+                                                        double kc) const {
+  const std::vector<double>& H = m_cells.H;
+  const double dx = m_mesh.dx_m;
+  switch (s.kind) {
+    case OuterBoundary::convective: {
+      // The film coefficient in series with the conduction between the cell's temperature
+      // point and the surface, half a cell (as for a held surface below): film (T_air - T_c)
+      // alone puts the surface at the cell centre, an O(film dx / k) relative excess of the
+      // flux (first order; 1.4 % at film = 100 W/(m^2 K), dx = 0.625 mm). A cell at the
+      // melting point holds the front, at T_m, on the surface (ablation) or within it: no
+      // added resistance.
+      const double film = s.heat_transfer_coefficient_w_m2k;
+      const bool at_front = m_phase.melting(H[c]);
+      const double g = at_front ? a * film : a / (1 / film + 0.5 * dx / kc);
+      return {g * s.temperature_c, g};
+    }
+    case OuterBoundary::temperature: {
+      const double g = a * kc / (0.5 * dx);
+      return {g * s.temperature_c, g};
+    }
+    case OuterBoundary::flux:
+      return {a * s.flux_w_m2, 0.0};
+    case OuterBoundary::insulated:
+      return {0.0, 0.0};
+    case OuterBoundary::air: {
+      // The air's flux q(T_s) (sim/boundary/air_model.h; a sphere of the body's volume), frozen
+      // over the step as its tangent at the step's surface temperature: a film
+      // htc = -dq/dT_s (at least the convective h) towards T_eff = T_s + q / htc, then as the
+      // convective kind. The surface is at T_m on a cell holding the front, else taken at the
+      // cell's temperature (the film's linearisation point only; the half cell stays in series).
+      const bool at_front = m_phase.melting(H[c]);
+      const double ts = at_front ? m_problem.materials.melting_point_c : m_cells.T[c];
+      const AirBodySize body{AirBody::sphere, m_air_diameter_m};
+      const AirFlux f = air_heat_flux(s.air, body, ts);
+      const double dt = 1e-4;
+      const double slope = (air_heat_flux(s.air, body, ts + dt).total_w_m2() -
+                            air_heat_flux(s.air, body, ts - dt).total_w_m2()) /
+                           (2 * dt);
+      const double film = std::max(-slope, f.heat_transfer_coefficient_w_m2k);
+      const double t_eff = ts + f.total_w_m2() / film;
+      const double g = at_front ? a * film : a / (1 / film + 0.5 * dx / kc);
+      return {g * t_eff, g};
     }
   }
+  return {0.0, 0.0};
 }
 
 }  // namespace thaw::sim

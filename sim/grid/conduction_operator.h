@@ -6,7 +6,11 @@
 // at given temperatures. The 7-point stencil is matrix-free: neighbour_sum_of applies it.
 // Reads the cell state (m, H, T) and the surface areas; writes only its own coefficients.
 // Knows nothing of time stepping, Newton or draining.
+#include <array>
+#include <cstdint>
 #include <vector>
+
+#include "sim/grid/body_faces.h"
 
 #include "sim/grid/cell_state.h"
 #include "sim/grid/grid_mesh.h"
@@ -71,9 +75,21 @@ class ConductionOperator {
     return q;
   }
 
+  /// The outward normal of the material's surface at cell c (i, j, k): minus the central
+  /// differences of the material fraction (one-sided at the grid's border) [1/cell].
+  std::array<double, 3> surface_normal(long c, int i, int j, int k) const;
+  /// boundary_heat(c, tc) by the body's faces (GridProblem::face_shape): each face's own
+  /// condition's heat when faces have their own (GridProblem::face_conditions), the rest split by
+  /// the surface's normal (body_face_weights); sums to boundary_heat(c, tc) to round-off [W].
+  FaceWeights boundary_heat_by_face(long c, int i, int j, int k, double tc) const;
+
  private:
   /// Conductance per unit face area [W/(m^2 K)] between neighbouring material cells a and b.
   double face_conductance_per_area(long a, long b) const;
+  /// The boundary terms {q0, q1} (heat q0 - q1 T [W]) of cell c's surface `area` [m^2] under
+  /// condition `s` (kc: the cell's conductivity).
+  std::array<double, 2> surface_terms(long c, const SurfaceCondition& s, double area,
+                                      double kc) const;
 
   const GridMesh& m_mesh;
   const PhaseRelation& m_phase;
@@ -83,6 +99,12 @@ class ConductionOperator {
   std::vector<double> kx, ky, kz;  ///< face conductances to the +x, +y, +z neighbour [W/K]
   std::vector<double> bq0, bq1;    ///< boundary heat into the cell: bq0 - bq1 T [W]
   double m_air_diameter_m = 0;     ///< kind = air: the body's volume-equivalent diameter [m]
+  SurfaceCondition m_surface;      ///< the problem's surface condition (all faces alike)
+  /// With faces of their own conditions: per cell, 3 slots (a box's axes; a cylinder's ends and
+  /// side) of one face's terms, and the face of each slot (kNoFace: none).
+  std::vector<double> fq0, fq1;
+  std::vector<std::uint8_t> fface;
+  static constexpr std::uint8_t kNoFace = 255;
   const std::vector<double>* m_advected = nullptr;
 };
 

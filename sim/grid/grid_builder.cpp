@@ -116,6 +116,11 @@ void shape_fractions(const Scenario& sc, const GridProblem& g, std::vector<doubl
                                   : inside_fraction(*cavity, cavity_exact, axisymmetric, lo, s);
           // slivers go to the other material, so no air appears inside the body
           const double body = a < kMinFraction ? 0.0 : a;
+          if (sc.shape.fill_water) {  // all water: no ice at t = 0
+            water[c] = body;
+            ice[c] = 0;
+            continue;
+          }
           w = std::min(body, w);
           if (w < kMinFraction) w = 0;
           if (body - w < kMinFraction) w = body;
@@ -178,11 +183,26 @@ GridProblem build_grid_problem(const Scenario& sc) {
   g.surface_temperature_c = sc.outer_temperature_c;
   g.heat_transfer_coefficient_w_m2k = sc.heat_transfer_coefficient_w_m2k;
   g.flux_w_m2 = sc.flux_w_m2;
-  if (sc.outer_kind == OuterBoundary::air) {
-    g.air = scenario_air(sc);
-    g.air_diameter_m = volume_equivalent_diameter_m(g);
+  if (sc.outer_kind == OuterBoundary::air) g.air = scenario_air(sc);
+  if (!sc.outer_faces.empty()) {
+    const SurfaceCondition body{g.surface_kind, g.surface_temperature_c,
+                                g.heat_transfer_coefficient_w_m2k, g.flux_w_m2, g.air};
+    const std::vector<std::string> names = body_face_names(g.face_shape);
+    g.face_conditions.assign(names.size(), body);
+    for (const FaceBoundary& f : sc.outer_faces) {
+      const auto at = std::find(names.begin(), names.end(), f.face);
+      THAW_CHECK(at != names.end(), "the rules accept only the body's faces");
+      const Scenario own = with_outer_boundary(sc, f.spec);
+      SurfaceCondition& c = g.face_conditions[static_cast<std::size_t>(at - names.begin())];
+      c = {own.outer_kind, own.outer_temperature_c, own.heat_transfer_coefficient_w_m2k,
+           own.flux_w_m2, own.outer_kind == OuterBoundary::air ? scenario_air(own) : Air{}};
+    }
   }
-  g.drain = true;
+  bool air = sc.outer_kind == OuterBoundary::air;
+  for (const SurfaceCondition& c : g.face_conditions) air = air || c.kind == OuterBoundary::air;
+  if (air) g.air_diameter_m = volume_equivalent_diameter_m(g);
+  // A body all water is held by its faces (a container's walls): nothing drains from it.
+  g.drain = !sc.shape.fill_water;
   g.flow = sc.natural_convection;
   g.fluid = fluid_model_of(m);
   g.max_step_s = sc.max_step_s;

@@ -15,6 +15,15 @@
 
 namespace thaw::sim {
 
+/// The condition at the material | air surface (as an [outer_boundary] table).
+struct SurfaceCondition {
+  OuterBoundary kind = OuterBoundary::convective;
+  double temperature_c = 20;                    ///< held surface or air temperature [C]
+  double heat_transfer_coefficient_w_m2k = 10;  ///< convective h [W/(m^2 K)]
+  double flux_w_m2 = 0;                         ///< flux kind: heat into the body [W/m^2]
+  Air air;                                      ///< air kind: the room
+};
+
 /// A wall of the grid's box: insulated (also the axis r = 0) or held at a temperature. Walls
 /// touching material only occur in validation problems: scenario grids are padded with air.
 struct GridWall {
@@ -46,6 +55,10 @@ struct GridProblem {
   /// surface normal (empty: face 0).
   ShapeKind face_shape = ShapeKind::sphere;
   std::vector<std::uint8_t> face_of_cell;
+  /// Per face of face_shape, its own surface condition ([outer_boundary.faces.NAME]; a face not
+  /// named has the one above); empty: every face has the one above. A surface cell takes the
+  /// faces' conditions in the proportions of body_face_weights (by its surface's normal).
+  std::vector<SurfaceCondition> face_conditions;
   /// Grid walls, order x-, x+, y-, y+, z-, z+ (axisymmetric: x- is the axis, z unused).
   std::array<GridWall, 6> walls{};
   /// Melt drains away where it touches air that is connected to the grid's border.

@@ -159,9 +159,8 @@ flow::FluidModel fluid_model_of(const Materials& m) {
   return f;
 }
 
-FlowScale cavity_flow_scale(const Scenario& s, double extent_m) {
+FlowScale water_flow_scale(const Scenario& s, double extent_m, double tm, double tw) {
   const flow::FluidModel fluid = fluid_model_of(s.materials);
-  const double tm = s.materials.melting_point_c, tw = s.water_initial_temperature_c;
   // The buoyancy's spread over [T_m, T_water], sampled, with the density maximum when inside.
   double lo = fluid.buoyancy_m_s2(tm), hi = lo;
   const auto take = [&](double t) {
@@ -262,18 +261,39 @@ std::optional<GridRuleProblem> find_grid_problem(const Scenario& s) {
     message += "): shorter steps add nothing but their number";
     return GridRuleProblem{"simulation.max_step_s", message};
   }
-  if (s.shape.cavity && s.water_initial_temperature_c < s.materials.melting_point_c)
+  if (s.shape.fill_water && s.shape.cavity)
+    return GridRuleProblem{"shape.fill",
+                           "\"water\" makes the whole body water, which cannot hold a cavity "
+                           "(remove shape.cavity, or fill = \"ice\")"};
+  if ((s.shape.cavity || s.shape.fill_water) &&
+      s.water_initial_temperature_c < s.materials.melting_point_c)
     return GridRuleProblem{"water.initial_temperature_c",
                            "(" + num(s.water_initial_temperature_c) +
                                " C) is below the melting point: supercooled water is not modelled"};
-  if (s.natural_convection && cavity) {
-    const FlowScale flow = cavity_flow_scale(s, largest_extent(*cavity));
+  if (s.natural_convection && (cavity || s.shape.fill_water)) {
+    // The water's temperature span: from the ice's melting point to the cavity's water, or
+    // over the water and the faces that hold a temperature when the body is all water.
+    double lo = s.water_initial_temperature_c, hi = lo;
+    const auto take = [&](double t) { lo = std::min(lo, t), hi = std::max(hi, t); };
+    if (cavity) take(s.materials.melting_point_c);
+    const auto holds = [](OuterBoundary k) {
+      return k == OuterBoundary::temperature || k == OuterBoundary::convective ||
+             k == OuterBoundary::air;
+    };
+    if (!cavity) {
+      // liquid water is never below the melting point: a colder face freezes it instead
+      const double tm = s.materials.melting_point_c;
+      if (holds(s.outer_kind)) take(std::max(s.outer_temperature_c, tm));
+      for (const FaceBoundary& f : s.outer_faces)
+        if (holds(f.spec.kind)) take(std::max(f.spec.temperature_c, tm));
+    }
+    const FlowScale flow = water_flow_scale(s, cavity ? largest_extent(*cavity) : extent, lo, hi);
     if (flow.boundary_layer_m < kMinBoundaryLayerCells * cell) {
       std::string message = s.cell_size_m > 0 ? "(" + num(cell) + " m) is too coarse for the flow: "
                                               : "the default cell size (" + num(cell) +
                                                     " m) is too coarse for the flow: ";
       message += "the water's thermal boundary layer is about " + num(flow.boundary_layer_m);
-      message += " m (L Ra^-1/4, Ra = " + num(std::round(flow.rayleigh)) + " over the cavity's ";
+      message += " m (L Ra^-1/4, Ra = " + num(std::round(flow.rayleigh)) + " over the water's ";
       message += num(flow.length_m) + " m) and needs at least " + num(kMinBoundaryLayerCells);
       message += " cells across it: use cell_size_m <= " +
                  num(flow.boundary_layer_m / kMinBoundaryLayerCells) + " (or flow = \"none\")";

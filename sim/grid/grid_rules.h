@@ -44,16 +44,18 @@ flow::FluidModel fluid_model_of(const Materials& materials);
 /// Cells that must span the water's thermal boundary layer when it flows.
 constexpr double kMinBoundaryLayerCells = 2.0;
 
-/// The scale of the water's flow in a cavity at the start of a run with natural convection:
-/// L the cavity's largest extent [m], Ra = g (rho_max - rho_min) / rho_0 L^3 / (nu alpha) over
-/// the water's temperatures [T_m, T_water] (the 4 C maximum included; nu at their mean, alpha =
+/// The scale of the water's flow at the start of a run with natural convection: L the water's
+/// largest extent (the cavity's, or the body's when it is all water) [m], Ra = g (rho_max -
+/// rho_min) / rho_0 L^3 / (nu alpha) over the water's temperatures [t_lo, t_hi] (from the
+/// melting point to the initial water's, or over the held faces'; the 4 C maximum included; nu
+/// at their mean, alpha =
 /// k_w / (rho c)_w), and the thermal boundary layer along its walls, delta = L Ra^(-1/4) [m]
 /// (laminar natural convection along a wall: the scale analysis of Bejan, Convection Heat
 /// Transfer, 4th ed. 2013, sec. 4.2, delta_T ~ H Ra_H^(-1/4) for Pr >= 1).
 struct FlowScale {
   double length_m = 0, rayleigh = 0, boundary_layer_m = 0;
 };
-FlowScale cavity_flow_scale(const Scenario& s, double cavity_extent_m);
+FlowScale water_flow_scale(const Scenario& s, double extent_m, double t_lo, double t_hi);
 
 struct GridRuleProblem {
   std::string key;  ///< dotted key, e.g. "shape.cavity"

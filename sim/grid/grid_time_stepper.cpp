@@ -59,6 +59,8 @@ GridTimeStepper::GridTimeStepper(const GridProblem& problem, const GridMesh& mes
   m_face_heat_in.assign(body_face_names(problem.face_shape).size(), 0.0);
   const std::vector<double>& m = cells.m;
   initial_material = sum_cells(mesh.n, [&](long c) { return m[c] * mesh.vol[c]; });
+  m_most_ice = sum_cells(
+      mesh.n, [&](long c) { return m[c] * (1 - phase.liquid(cells.H[c])) * mesh.vol[c]; });
   m_reference = phase.latent * initial_material;
   THAW_CHECK(m_reference > 0, "a grid problem needs some material");
   // The initial state drains nothing by definition: only classify which liquid is enclosed.
@@ -69,15 +71,6 @@ GridTimeStepper::GridTimeStepper(const GridProblem& problem, const GridMesh& mes
   surface.update(team);
   m_e0 = energy();
   dt_next = p.fixed_step_s > 0 ? p.fixed_step_s : std::min(p.max_step_s, 0.05);
-}
-
-std::array<double, 3> GridTimeStepper::outward_normal(long c, int i, int j, int k) const {
-  const std::vector<double>& m = m_cells.m;
-  const auto diff = [&](bool has_lo, bool has_hi, long step) {
-    return (has_hi ? m[c + step] : m[c]) - (has_lo ? m[c - step] : m[c]);
-  };
-  return {-diff(i > 0, i + 1 < m_mesh.nx, 1), -diff(j > 0, j + 1 < m_mesh.ny, m_mesh.nx),
-          m_mesh.axisymmetric ? 0.0 : -diff(k > 0, k + 1 < m_mesh.nz, m_mesh.nxy())};
 }
 
 double GridTimeStepper::energy() const {
@@ -137,7 +130,6 @@ GridTimeStepper::StepResult GridTimeStepper::step(BlockTeam& team,
   // temperatures (T is current: Newton's last iteration set it from H), so that the interior
   // fluxes cancel exactly in the total. heat_rate reads the temperatures only, so each cell
   // may overwrite its own H. Then the cell's openness for the flood fill.
-  const std::vector<std::uint8_t>& face_of = p.face_of_cell;
   team.for_blocks([&](long bl) {
     double heat = 0;
     auto& face_heat = m_block_sums[static_cast<std::size_t>(bl)].face_heat;
@@ -148,10 +140,8 @@ GridTimeStepper::StepResult GridTimeStepper::step(BlockTeam& team,
         const double q = m_op.boundary_heat(c, T[c]);
         heat += q;
         if (q != 0) {
-          const FaceWeights w =
-              body_face_weights(p.face_shape, outward_normal(c, i, j, k), m_mesh.axisymmetric,
-                                face_of.empty() ? 0 : face_of[c]);
-          for (std::size_t f = 0; f < kMaxBodyFaces; ++f) face_heat[f] += w[f] * q;
+          const FaceWeights by_face = m_op.boundary_heat_by_face(c, i, j, k, T[c]);
+          for (std::size_t f = 0; f < kMaxBodyFaces; ++f) face_heat[f] += by_face[f];
         }
       }
       m_cavity.mark_open(c);
@@ -258,7 +248,9 @@ void GridTimeStepper::end_of_step(double step_dt, double saved) {
   const double enclosed = sum_blocks([](const BlockSums& b) { return b.enclosed.enclosed; });
   const double ice = sum_blocks([](const BlockSums& b) { return b.ice; });
   // the body the air sees follows its volume (ice and enclosed water)
-  if (p.surface_kind == OuterBoundary::air && ice + enclosed > 0)
+  bool air = p.surface_kind == OuterBoundary::air;
+  for (const SurfaceCondition& f : p.face_conditions) air = air || f.kind == OuterBoundary::air;
+  if (air && ice + enclosed > 0)
     m_op.set_air_diameter(std::cbrt(6 * (ice + enclosed) / std::numbers::pi));
   if (had_enclosed_liquid && !m_cavity.broke_through() && !core_frozen && enclosed == 0) {
     core_frozen = true;
@@ -272,7 +264,9 @@ void GridTimeStepper::end_of_step(double step_dt, double saved) {
         last_liquid_cell = b.enclosed.wettest_cell;
       }
   }
-  if (ice <= kGoneFraction * initial_material) {
+  // A body that starts as water ([shape] fill = "water") has no ice to lose until some forms.
+  m_most_ice = std::max(m_most_ice, ice);
+  if (ice <= kGoneFraction * initial_material && m_most_ice > kGoneFraction * initial_material) {
     m_done = true;
     long last = m_mesh.n - 1;
     while (last > 0 && m_cells.m[last] == 0) --last;

@@ -110,13 +110,11 @@ class GridTimeStepper {
   bool m_done = false, melt_started = false, core_frozen = false;
   bool had_enclosed_liquid = false;
   long last_liquid_cell = 0;
-  /// The outward normal of the material's surface at cell c (i, j, k): minus the central
-  /// differences of the material fraction (one-sided at the grid's border) [1/cell].
-  std::array<double, 3> outward_normal(long c, int i, int j, int k) const;
-
   double m_e0 = 0, m_heat_in = 0, m_drained = 0, m_reference = 0, initial_material = 0;
   std::vector<double> m_face_heat_in;
   double m_drained_m3 = 0;
+  /// The most ice the body has held [m^3] (a body all water at first has none to lose).
+  double m_most_ice = 0;
   std::vector<GridEvent> m_events;
   GridStatistics m_stats;
   long m_attempts = 0;              ///< attempted steps (accepted and rejected)

@@ -4,6 +4,7 @@
 // accuracy knobs. Knows nothing of TOML or of how the solver works.
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "sim/scenario/geometry.h"
 #include "sim/scenario/interface_record.h"
@@ -39,6 +40,25 @@ enum class OuterBoundary { temperature, convective, flux, insulated, air };
 
 const char* to_string(InnerBoundary kind);
 const char* to_string(OuterBoundary kind);
+
+/// The keys of one [outer_boundary] table: the whole body's (Scenario's outer_* fields) or one
+/// face's ([outer_boundary.faces.NAME], grid runs). Fields as Scenario's below.
+struct OuterBoundarySpec {
+  OuterBoundary kind = OuterBoundary::convective;
+  double temperature_c = 20.0;
+  double heat_transfer_coefficient_w_m2k = 10.0;
+  double flux_w_m2 = 0.0;
+  double relative_humidity = 0.5;
+  double air_speed_m_s = 0.0;
+  std::optional<double> surroundings_temperature_c;
+  double emissivity = 0.97;
+};
+
+/// A face of the body (sim/grid/body_faces.h) with its own [outer_boundary.faces.NAME] table.
+struct FaceBoundary {
+  std::string face;
+  OuterBoundarySpec spec;
+};
 
 /// Which solver runs: the 1D radial one (none: `geometry` and [shell] apply) or the grid
 /// enthalpy solver on [shape] (geometry = "axisymmetric" | "3d").
@@ -93,11 +113,36 @@ struct Scenario {
   /// Temperature of the walls the surface radiates to [C]; unset: the air's.
   std::optional<double> surroundings_temperature_c;
   double emissivity = 0.97;  ///< of the ice surface, (0, 1]
+  /// Grid runs: faces of the body with a condition of their own (a face not named takes the
+  /// keys above), in the file's order.
+  std::vector<FaceBoundary> outer_faces;
 
   Materials materials;
 
   /// Where the scenario came from, for messages (the file name, or what built it in code).
   std::string source_name = "scenario";
 };
+
+/// The body's [outer_boundary] keys of `s` (not its faces').
+inline OuterBoundarySpec outer_boundary_spec(const Scenario& s) {
+  return {
+      s.outer_kind,        s.outer_temperature_c, s.heat_transfer_coefficient_w_m2k, s.flux_w_m2,
+      s.relative_humidity, s.air_speed_m_s,       s.surroundings_temperature_c,      s.emissivity};
+}
+
+/// `s` with `spec` as its [outer_boundary] keys and no faces: a face's condition seen by the
+/// rules and the air model, which read those keys.
+inline Scenario with_outer_boundary(Scenario s, const OuterBoundarySpec& spec) {
+  s.outer_kind = spec.kind;
+  s.outer_temperature_c = spec.temperature_c;
+  s.heat_transfer_coefficient_w_m2k = spec.heat_transfer_coefficient_w_m2k;
+  s.flux_w_m2 = spec.flux_w_m2;
+  s.relative_humidity = spec.relative_humidity;
+  s.air_speed_m_s = spec.air_speed_m_s;
+  s.surroundings_temperature_c = spec.surroundings_temperature_c;
+  s.emissivity = spec.emissivity;
+  s.outer_faces.clear();
+  return s;
+}
 
 }  // namespace thaw::sim

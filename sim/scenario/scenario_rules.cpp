@@ -9,6 +9,7 @@
 #include "base/error.h"
 #include "base/number_text.h"
 #include "sim/boundary/scenario_air.h"
+#include "sim/grid/body_faces.h"
 #include "sim/grid/grid_rules.h"
 #include "sim/scenario/materials_keys.h"
 
@@ -277,7 +278,9 @@ std::optional<ScenarioProblem> temperature_problem(const Scenario& s) {
         "inner_boundary.temperature_c",
         "(" + num(s.inner_temperature_c) +
             " C) is below the melting point: water would freeze onto the wall (not modelled)"};
-  if (s.outer_kind == OuterBoundary::temperature && s.outer_temperature_c > tm)
+  // A body all water ([shape] fill = "water") does not drain: its faces may be held warm.
+  if (s.outer_kind == OuterBoundary::temperature && s.outer_temperature_c > tm &&
+      !s.shape.fill_water)
     return ScenarioProblem{
         "outer_boundary.temperature_c",
         "(" + num(s.outer_temperature_c) +
@@ -344,6 +347,23 @@ std::optional<ScenarioProblem> find_scenario_problem(const Scenario& s) {
     if (auto p = rule(s)) return p;
   // Grid runs ([shape]); the [shell] rules above pass on its unused defaults.
   if (auto p = find_grid_problem(s)) return ScenarioProblem{p->key, p->message};
+  // Each face's own [outer_boundary] table by the same rules, named by its key.
+  if (!s.outer_faces.empty() && s.grid == GridGeometry::none)
+    return ScenarioProblem{"outer_boundary.faces",
+                           "only for geometry = \"axisymmetric\" or \"3d\" (a 1D shell has one "
+                           "outer surface)"};
+  const std::vector<std::string> names = body_face_names(s.shape.outer.kind);
+  for (const FaceBoundary& f : s.outer_faces) {
+    const std::string key = "outer_boundary.faces." + f.face;
+    if (std::find(names.begin(), names.end(), f.face) == names.end())
+      return ScenarioProblem{key, std::string("a ") + to_string(s.shape.outer.kind) +
+                                      " body has no face '" + f.face + "'"};
+    if (auto p = find_scenario_problem(with_outer_boundary(s, f.spec))) {
+      const std::string outer = "outer_boundary.";
+      if (p->key.rfind(outer, 0) == 0) p->key = key + "." + p->key.substr(outer.size());
+      return p;
+    }
+  }
   return std::nullopt;
 }
 

@@ -29,6 +29,9 @@ struct ShapeSpec {
 struct Shape {
   ShapeSpec outer;
   std::optional<ShapeSpec> cavity;  ///< none: solid ice
+  /// [shape] fill = "water": the outer body is all water at t = 0 (no ice, no cavity); ice forms
+  /// where it freezes. The water stays where it is (it does not drain): its faces hold it.
+  bool fill_water = false;
 };
 
 }  // namespace thaw::sim
