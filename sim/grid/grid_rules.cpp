@@ -181,6 +181,11 @@ FlowScale water_flow_scale(const Scenario& s, double extent_m, double tm, double
   return f;
 }
 
+FlowScale cavity_flow_scale(const Scenario& s, double cavity_extent_m) {
+  return water_flow_scale(s, cavity_extent_m, s.materials.melting_point_c,
+                          s.water_initial_temperature_c);
+}
+
 double smallest_max_step_s(const Materials& m, double cell_m) {
   const double alpha = std::max(m.ice_conductivity_w_mk / m.ice_heat_capacity(),
                                 m.water_conductivity_w_mk / m.water_heat_capacity());

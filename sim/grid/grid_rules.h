@@ -56,6 +56,9 @@ struct FlowScale {
   double length_m = 0, rayleigh = 0, boundary_layer_m = 0;
 };
 FlowScale water_flow_scale(const Scenario& s, double extent_m, double t_lo, double t_hi);
+/// water_flow_scale of a cavity of largest extent `cavity_extent_m` whose water spans
+/// [T_m, T_water].
+FlowScale cavity_flow_scale(const Scenario& s, double cavity_extent_m);
 
 struct GridRuleProblem {
   std::string key;  ///< dotted key, e.g. "shape.cavity"

@@ -82,6 +82,7 @@ TEST(BodyFaces, OneHeatedFaceOfAnInsulatedBoxTakesAllTheHeat) {
 TEST(BodyFaces, AWaterBodyFreezesFromItsColdFace) {
   const std::string text =
       "[simulation]\ngeometry = \"3d\"\nduration_s = 120.0\noutput_interval_s = 60.0\n"
+      "flow = \"none\"\n"
       "cell_size_m = 0.001\n[shape]\nouter = { kind = \"box\", size_m = [0.010, 0.010, 0.010] "
       "}\nfill = \"water\"\n[water]\ninitial_temperature_c = 1.0\n[outer_boundary]\nkind = "
       "\"insulated\"\n[outer_boundary.faces.x_min]\nkind = \"temperature\"\ntemperature_c = "

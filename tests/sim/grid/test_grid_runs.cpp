@@ -355,7 +355,8 @@ TEST(GridRuns, OpenShellHoldsItsWaterUpToTheOpening) {
   // output: ice + liquid + drained = the initial material (one density for ice and water).
   const Scenario sc = parse_scenario_string(
       "[simulation]\ngeometry = \"3d\"\nduration_s = 120.0\noutput_interval_s = 20.0\n"
-      "cell_size_m = 0.0005\n[shape]\nouter = { kind = \"sphere\", radius_m = 0.01 }\n"
+      "cell_size_m = 0.0005\nflow = \"none\"\n[shape]\nouter = { kind = \"sphere\", "
+      "radius_m = 0.01 }\n"
       "cavity = { kind = \"sphere\", radius_m = 0.006, center_m = [0.0024, 0.0, 0.0] }\n"
       "[water]\ninitial_temperature_c = 10.0\n[ice]\ninitial_temperature_c = -1.0\n"
       "[outer_boundary]\nkind = \"convective\"\ntemperature_c = 40.0\n"
