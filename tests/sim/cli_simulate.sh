@@ -145,10 +145,13 @@ done
 # A grid run ends promptly on SIGTERM or SIGINT, mid-interval (steps of 0.01 s, outputs 30 s
 # apart; it used to run on until the next output): exit 130, no result folder. The solver stops
 # within a second of the flag (tests/sim/grid/test_grid_time_stepper.cpp); here the bound also
-# covers signal delivery and exit on a loaded machine.
+# covers signal delivery and exit on a loaded machine. The water conducts only (flow = "none"):
+# a 1 mm cell is too coarse for the flow's boundary layer, which thaw refuses. (A run with the flow
+# on is interrupted between the same steps; no test here signals one yet.)
 for sig in TERM INT; do
   printf '%s\n' "${grid/output_interval_s = 30.0/output_interval_s = 30.0
 cell_size_m = 0.001
+flow = \"none\"
 max_step_s = 0.01}" > "$work/grid_signal.toml"
   rm -rf "$work/grid_signal-out"
   "$thaw" simulate "$work/grid_signal.toml" --out "$work/grid_signal-out" -q 2> "$work/grid_signal.err" &
